@@ -1,0 +1,76 @@
+/**
+ * Device acquisition, the same for the browser (navigator.gpu) and Node (Dawn's `webgpu` package, see
+ * cli/dawn.ts). Asks for the adapter's real limits rather than WebGPU's defaults, so large scenes fit
+ * (the default 128 MiB storage binding holds only ~1.6M triangles of shading data), and for
+ * timestamp queries where the adapter has them.
+ */
+import { LanternError } from '../errors.ts';
+
+export interface GpuContext {
+  readonly device: GPUDevice;
+  /** A human-readable adapter name, e.g. "NVIDIA H100 80GB HBM3" or "SwiftShader". */
+  readonly adapterName: string;
+  readonly hasTimestamps: boolean;
+  /** Resolves when the device is lost (destroyed, driver reset, GPU removed). */
+  readonly lost: Promise<GPUDeviceLostInfo>;
+}
+
+const LIMITS_TO_RAISE = [
+  'maxStorageBufferBindingSize',
+  'maxBufferSize',
+  'maxStorageBuffersPerShaderStage',
+  'maxComputeWorkgroupsPerDimension',
+  'maxComputeWorkgroupStorageSize',
+  'maxComputeInvocationsPerWorkgroup',
+  'maxTextureDimension2D',
+] as const;
+
+export function adapterName(info: GPUAdapterInfo): string {
+  const parts = [info.description, info.device, info.architecture, info.vendor].filter((s) => s && s.length > 0);
+  return parts[0] ?? 'unknown adapter';
+}
+
+export async function acquireGpu(
+  gpu: GPU | undefined,
+  options: { powerPreference?: GPUPowerPreference; onUncapturedError?: (message: string) => void } = {},
+): Promise<GpuContext> {
+  if (!gpu) {
+    throw new LanternError('WebGPU is not available here', 'Use a browser with WebGPU (Chrome or Edge 113+, Safari 26+, Firefox 141+ on Windows) or run the CLI');
+  }
+  const adapter = await gpu.requestAdapter({ powerPreference: options.powerPreference ?? 'high-performance' });
+  if (!adapter) {
+    throw new LanternError('no WebGPU adapter found', 'Check the GPU driver (Vulkan on Linux); without a GPU install Chromium\'s SwiftShader with `apt-get install chromium`');
+  }
+  const requiredLimits: Record<string, number> = {};
+  for (const name of LIMITS_TO_RAISE) requiredLimits[name] = adapter.limits[name];
+  const hasTimestamps = adapter.features.has('timestamp-query');
+  const device = await adapter.requestDevice({
+    label: 'lantern',
+    requiredFeatures: hasTimestamps ? ['timestamp-query'] : [],
+    requiredLimits,
+  });
+  device.onuncapturederror = (event: GPUUncapturedErrorEvent) => {
+    const message = `WebGPU error: ${event.error.message}`;
+    if (options.onUncapturedError) options.onUncapturedError(message);
+    else console.error(message);
+  };
+  return { device, adapterName: adapterName(adapter.info), hasTimestamps, lost: device.lost };
+}
+
+/**
+ * Runs `create` inside validation and out-of-memory error scopes and turns a captured error into a
+ * LanternError naming `what`, so that a failed allocation is reported where it happened.
+ */
+export async function withErrorScope<T>(device: GPUDevice, what: string, create: () => T): Promise<T> {
+  device.pushErrorScope('out-of-memory');
+  device.pushErrorScope('validation');
+  const result = create();
+  const validation = await device.popErrorScope();
+  const oom = await device.popErrorScope();
+  const error = oom ?? validation;
+  if (error) {
+    const kind = oom ? 'the GPU ran out of memory' : 'WebGPU rejected it';
+    throw new LanternError(`could not create ${what}: ${kind}: ${error.message}`);
+  }
+  return result;
+}

@@ -1,0 +1,47 @@
+/**
+ * The GPU buffers of one scene (bind group 0), made from a PackedScene. Owns them: destroy() frees
+ * them all, so switching scenes never leaks GPU memory.
+ */
+import { LanternError } from '../errors.ts';
+import type { PackedScene } from './pack/scene-pack.ts';
+import { createBufferWithData } from './readback.ts';
+import { withErrorScope } from './device.ts';
+
+const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots'] as const;
+
+export class SceneResources {
+  private constructor(
+    /** Buffers keyed by their WGSL variable names in shaders/scene/bindings.wgsl. */
+    readonly buffers: Readonly<Record<'scene_info' | (typeof STORAGE_NAMES)[number], GPUBuffer>>,
+    readonly counts: PackedScene['counts'],
+    readonly byteSize: number,
+  ) {}
+
+  static async upload(device: GPUDevice, packed: PackedScene, label: string): Promise<SceneResources> {
+    const limit = device.limits.maxStorageBufferBindingSize;
+    for (const name of STORAGE_NAMES) {
+      const size = packed[name].byteLength;
+      if (size > limit) {
+        throw new LanternError(
+          `scene '${label}' is too large for this GPU: ${name} needs ${(size / 2 ** 20).toFixed(1)} MiB but one storage buffer may hold ${(limit / 2 ** 20).toFixed(1)} MiB`,
+          'Use a smaller scene or a GPU with larger storage buffers',
+        );
+      }
+    }
+    const buffers = await withErrorScope(device, `the GPU buffers of scene '${label}'`, () => {
+      const b = {
+        scene_info: createBufferWithData(device, `${label} scene_info`, packed.scene_info, GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST),
+      } as Record<string, GPUBuffer>;
+      for (const name of STORAGE_NAMES) {
+        b[name] = createBufferWithData(device, `${label} ${name}`, packed[name], GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC);
+      }
+      return b as SceneResources['buffers'];
+    });
+    const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0);
+    return new SceneResources(buffers, packed.counts, byteSize);
+  }
+
+  destroy(): void {
+    for (const b of Object.values(this.buffers)) b.destroy();
+  }
+}

@@ -1,0 +1,23 @@
+/** The closed list of built-in scenes, selectable by name from the CLI and the page. */
+import { LanternError } from '../../errors.ts';
+import type { Scene } from '../../scene/types.ts';
+import { cornellBox } from './cornell.ts';
+import { whiteFurnace } from './furnace.ts';
+
+export const BUILTIN_SCENES = {
+  cornell: { description: 'the Cornell box, from the published measurements (mm)', make: cornellBox },
+  furnace: { description: 'white furnace: every pixel converges to 5.0', make: whiteFurnace },
+} as const satisfies Record<string, { description: string; make: () => Scene }>;
+
+export type BuiltinSceneName = keyof typeof BUILTIN_SCENES;
+
+export const builtinSceneNames = (): BuiltinSceneName[] => Object.keys(BUILTIN_SCENES) as BuiltinSceneName[];
+
+export const isBuiltinScene = (name: string): name is BuiltinSceneName => Object.hasOwn(BUILTIN_SCENES, name);
+
+export function builtinScene(name: string): Scene {
+  if (!isBuiltinScene(name)) {
+    throw new LanternError(`unknown scene '${name}'`, `Built-in scenes are: ${builtinSceneNames().join(', ')}`);
+  }
+  return BUILTIN_SCENES[name].make();
+}

@@ -1,0 +1,59 @@
+/**
+ * Closest-hit tracing of a ray buffer (shaders/passes/trace-rays.wgsl): the traversal benchmark and
+ * the GPU side of the traversal-versus-oracle test.
+ */
+import { ComputeKernel } from '../gpu/kernel.ts';
+import type { SceneResources } from '../gpu/scene-resources.ts';
+import type { GpuTimer } from '../gpu/timestamps.ts';
+import { reflectModule, structLayout } from '../gpu/wgsl/reflect.ts';
+import { UniformParams } from './uniform-params.ts';
+
+const MODULE = 'passes/trace-rays';
+const WORKGROUP = 64;
+
+/** Bytes per ray and per hit record, from the WGSL structs. */
+export function rayBufferStrides(): { ray: number; hit: number } {
+  const { defs } = reflectModule(MODULE);
+  return { ray: structLayout(defs, 'Ray').stride, hit: structLayout(defs, 'HitRecord').stride };
+}
+
+/** Workgroup grid for `count` invocations of WORKGROUP threads, as rows within the dispatch limit. */
+export function rayDispatchSize(count: number, maxPerDimension: number): [number, number] {
+  const groups = Math.ceil(count / WORKGROUP);
+  const x = Math.min(groups, maxPerDimension);
+  return [x, Math.ceil(groups / x)];
+}
+
+export class TraceRaysPass {
+  private constructor(
+    private readonly device: GPUDevice,
+    private readonly kernel: ComputeKernel,
+    private readonly params: UniformParams<{ ray_count: number }>,
+  ) {}
+
+  static async create(device: GPUDevice): Promise<TraceRaysPass> {
+    const kernel = await ComputeKernel.create(device, { module: MODULE, entryPoint: 'trace_rays' });
+    return new TraceRaysPass(device, kernel, new UniformParams(device, MODULE));
+  }
+
+  /** Bind groups for tracing `rays` into `hits`; reuse them to trace the same buffers many times. */
+  bind(scene: SceneResources, rays: GPUBuffer, hits: GPUBuffer, count: number): { 0: GPUBindGroup; 2: GPUBindGroup; count: number } {
+    this.params.write({ ray_count: count });
+    return {
+      0: this.kernel.bindGroup(0, scene.buffers),
+      2: this.kernel.bindGroup(2, { params: this.params.buffer, rays, hits }),
+      count,
+    };
+  }
+
+  encode(encoder: GPUCommandEncoder, groups: { 0: GPUBindGroup; 2: GPUBindGroup; count: number }, timer?: GpuTimer, label = 'trace rays'): void {
+    const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
+    const [x, y] = rayDispatchSize(groups.count, this.device.limits.maxComputeWorkgroupsPerDimension);
+    this.kernel.dispatch(pass, groups, x, y);
+    pass.end();
+  }
+
+  destroy(): void {
+    this.params.destroy();
+  }
+}

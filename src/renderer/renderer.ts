@@ -1,0 +1,304 @@
+/**
+ * The Renderer: one object shared by the browser page, the CLI and the tests. It owns the GPU state
+ * of a scene and an image and runs the frame recipe
+ *
+ *   path trace (adds samples to the float32 accumulation) → tone map (8-bit sRGB) → present | read back
+ *
+ * Facade: setScene, setCamera, updateSettings, resize, accumulate, present, read*. Every method that
+ * changes the estimate (scene, camera, size, bounces, light sampling, seed) restarts accumulation.
+ */
+import { LanternError } from '../errors.ts';
+import type { GpuContext } from '../gpu/device.ts';
+import { withErrorScope } from '../gpu/device.ts';
+import { readBuffer, readTexture4x8 } from '../gpu/readback.ts';
+import { SceneResources } from '../gpu/scene-resources.ts';
+import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
+import { PresentPass } from '../passes/present-pass.ts';
+import { TonemapPass } from '../passes/tonemap-pass.ts';
+import type { Camera, Scene } from '../scene/types.ts';
+import { prepareScene, type PreparedScene } from './prepare.ts';
+import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
+import { ViewUniform } from './view.ts';
+
+/** Bytes per pixel of the accumulation buffer (one vec4f). */
+const ACCUMULATION_BYTES_PER_PIXEL = 16;
+/** An image side beyond this is refused even where the GPU would allow it. */
+export const MAX_IMAGE_SIDE = 16384;
+
+export interface RayCounts {
+  readonly extension: number;
+  readonly shadow: number;
+}
+
+export interface Accumulation {
+  readonly width: number;
+  readonly height: number;
+  readonly samples: number;
+  /** Mean radiance, 3 floats per pixel, row-major, top row first. */
+  readonly radiance: Float32Array;
+  /** Per-pixel sample variance of luminance (unbiased), 1 float per pixel. */
+  readonly luminanceVariance: Float32Array;
+}
+
+interface ImageTargets {
+  readonly width: number;
+  readonly height: number;
+  readonly accumulation: GPUBuffer;
+  readonly rayCounters: GPUBuffer;
+  readonly output: GPUTexture;
+}
+
+export class Renderer {
+  private prepared?: PreparedScene;
+  private resources?: SceneResources;
+  private targets?: ImageTargets;
+  private cameraValue?: Camera;
+  private settingsValue: RenderSettings = DEFAULT_SETTINGS;
+  private samples = 0;
+
+  private constructor(
+    readonly gpu: GpuContext,
+    private readonly view: ViewUniform,
+    private readonly pathTrace: PathTracePass,
+    private readonly tonemap: TonemapPass,
+    private presentPass?: PresentPass,
+  ) {}
+
+  static async create(gpu: GpuContext): Promise<Renderer> {
+    const { device } = gpu;
+    const [pathTrace, tonemap] = await Promise.all([PathTracePass.create(device), TonemapPass.create(device)]);
+    return new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap);
+  }
+
+  get device(): GPUDevice {
+    return this.gpu.device;
+  }
+  get sampleCount(): number {
+    return this.samples;
+  }
+  get settings(): RenderSettings {
+    return this.settingsValue;
+  }
+  get camera(): Camera | undefined {
+    return this.cameraValue;
+  }
+  get width(): number {
+    return this.targets?.width ?? 0;
+  }
+  get height(): number {
+    return this.targets?.height ?? 0;
+  }
+  get scene(): PreparedScene | undefined {
+    return this.prepared;
+  }
+  /** Bytes of GPU memory held for the scene. */
+  get sceneBytes(): number {
+    return this.resources?.byteSize ?? 0;
+  }
+
+  /** Uploads a scene (prepared here unless given prepared) and frees the previous one. Uses its camera. */
+  async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
+    const prepared = 'packed' in scene ? scene : prepareScene(scene);
+    const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
+    this.resources?.destroy();
+    this.resources = resources;
+    this.prepared = prepared;
+    this.setCamera(prepared.scene.camera);
+    return prepared;
+  }
+
+  setCamera(camera: Camera): void {
+    this.cameraValue = camera;
+    this.updateView();
+  }
+
+  /** Applies changed settings; those that change the estimate restart accumulation. */
+  updateSettings(changes: Partial<RenderSettings>): void {
+    const next = validateSettings({ ...this.settingsValue, ...changes });
+    const restart = ESTIMATE_SETTINGS.some((k) => next[k] !== this.settingsValue[k]);
+    this.settingsValue = next;
+    if (restart) this.resetAccumulation();
+  }
+
+  /** Sets the image size, checked against the GPU's limits. */
+  async resize(width: number, height: number): Promise<void> {
+    checkImageSize(width, height, this.device.limits);
+    if (this.targets && this.targets.width === width && this.targets.height === height) return;
+    const device = this.device;
+    const targets = await withErrorScope(device, `a ${width}×${height} image`, () => ({
+      width,
+      height,
+      accumulation: device.createBuffer({
+        label: 'accumulation',
+        size: width * height * ACCUMULATION_BYTES_PER_PIXEL,
+        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
+      }),
+      rayCounters: device.createBuffer({ label: 'ray counters', size: 16, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST }),
+      output: device.createTexture({
+        label: 'tone-mapped image',
+        size: [width, height],
+        format: 'rgba8unorm',
+        usage: GPUTextureUsage.STORAGE_BINDING | GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_SRC,
+      }),
+    }));
+    this.destroyTargets();
+    this.targets = targets;
+    this.updateView();
+  }
+
+  /** Discards every accumulated sample (the next frame starts a new estimate). */
+  resetAccumulation(): void {
+    this.samples = 0;
+    if (!this.targets) return;
+    const encoder = this.device.createCommandEncoder({ label: 'reset accumulation' });
+    encoder.clearBuffer(this.targets.accumulation);
+    encoder.clearBuffer(this.targets.rayCounters);
+    this.device.queue.submit([encoder.finish()]);
+  }
+
+  /** The whole image as one tile. */
+  fullImage(): Tile {
+    return { x: 0, y: 0, width: this.width, height: this.height };
+  }
+
+  /**
+   * Adds `samples` paths per pixel over `tiles` (default: the whole image), one submit per tile so
+   * that no single submit runs long enough to trip a GPU watchdog. Returns without waiting.
+   */
+  accumulate(samples: number, tiles: readonly Tile[] = [this.fullImage()]): void {
+    const { resources, targets } = this.ready();
+    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
+    const s = this.settingsValue;
+    for (const tile of tiles) {
+      const encoder = this.device.createCommandEncoder({ label: 'path trace' });
+      this.pathTrace.encode(encoder, resources, this.view, targets, {
+        tile,
+        sampleIndex: this.samples,
+        samples,
+        maxBounces: s.maxBounces,
+        seed: s.seed,
+        lightSampling: s.lightSampling,
+      });
+      this.device.queue.submit([encoder.finish()]);
+    }
+    this.samples += samples;
+  }
+
+  /** Tone-maps the current estimate and draws it onto `target` (a canvas texture). */
+  present(target: GPUTexture): void {
+    const { targets } = this.ready();
+    if (!this.presentPass) throw new Error('call enablePresentation() before present()');
+    const encoder = this.device.createCommandEncoder({ label: 'present' });
+    this.encodeTonemap(encoder, targets);
+    this.presentPass.encode(encoder, targets.output, target);
+    this.device.queue.submit([encoder.finish()]);
+  }
+
+  /** Compiles the present pipeline (browser only; the CLI never draws to a surface). */
+  async enablePresentation(): Promise<void> {
+    this.presentPass ??= await PresentPass.create(this.device);
+  }
+
+  /** The tone-mapped sRGB image, RGBA8 row-major, top row first. */
+  async readImage(): Promise<Uint8Array> {
+    const { targets } = this.ready();
+    const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
+    this.encodeTonemap(encoder, targets);
+    this.device.queue.submit([encoder.finish()]);
+    return readTexture4x8(this.device, targets.output);
+  }
+
+  /** The linear radiance estimate and its per-pixel luminance variance. */
+  async readAccumulation(): Promise<Accumulation> {
+    const { targets } = this.ready();
+    const raw = new Float32Array(await readBuffer(this.device, targets.accumulation));
+    const n = targets.width * targets.height;
+    const radiance = new Float32Array(n * 3);
+    const luminanceVariance = new Float32Array(n);
+    const samples = this.samples;
+    const inv = samples > 0 ? 1 / samples : 0;
+    for (let i = 0; i < n; i++) {
+      const r = raw[i * 4]! * inv, g = raw[i * 4 + 1]! * inv, b = raw[i * 4 + 2]! * inv;
+      radiance[i * 3] = r;
+      radiance[i * 3 + 1] = g;
+      radiance[i * 3 + 2] = b;
+      if (samples > 1) {
+        const mean = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        luminanceVariance[i] = Math.max(0, (raw[i * 4 + 3]! - samples * mean * mean) / (samples - 1));
+      }
+    }
+    return { width: targets.width, height: targets.height, samples, radiance, luminanceVariance };
+  }
+
+  /** Rays traced since accumulation last restarted: extension (closest hit) and shadow (any hit). */
+  async readRayCounts(): Promise<RayCounts> {
+    const { targets } = this.ready();
+    const w = new Uint32Array(await readBuffer(this.device, targets.rayCounters));
+    return { extension: w[0]! + w[1]! * 2 ** 32, shadow: w[2]! + w[3]! * 2 ** 32 };
+  }
+
+  /** Resolves when the GPU has finished everything submitted so far. */
+  finish(): Promise<void> {
+    return this.device.queue.onSubmittedWorkDone();
+  }
+
+  /** Frees every GPU resource this renderer created (the device stays). */
+  destroy(): void {
+    this.resources?.destroy();
+    this.resources = undefined;
+    this.destroyTargets();
+    this.view.destroy();
+    this.pathTrace.destroy();
+    this.tonemap.destroy();
+  }
+
+  /** For passes outside the facade (benchmarks, tests): the scene's GPU resources and the view. */
+  internals(): { resources: SceneResources; view: ViewUniform } {
+    const { resources } = this.ready();
+    return { resources, view: this.view };
+  }
+
+  private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets): void {
+    const s = this.settingsValue;
+    this.tonemap.encode(encoder, this.view, targets.accumulation, targets.output, {
+      exposureStops: s.exposureStops,
+      toneMapper: s.toneMapper,
+      sampleCount: this.samples,
+    });
+  }
+
+  private ready(): { resources: SceneResources; targets: ImageTargets } {
+    if (!this.resources) throw new Error('Renderer: setScene() first');
+    if (!this.targets) throw new Error('Renderer: resize() first');
+    return { resources: this.resources, targets: this.targets };
+  }
+
+  private updateView(): void {
+    if (this.cameraValue && this.targets) this.view.update(this.cameraValue, this.targets.width, this.targets.height);
+    this.resetAccumulation();
+  }
+
+  private destroyTargets(): void {
+    if (!this.targets) return;
+    this.targets.accumulation.destroy();
+    this.targets.rayCounters.destroy();
+    this.targets.output.destroy();
+    this.targets = undefined;
+  }
+}
+
+/** Throws a LanternError when an image of this size is not a sensible request or exceeds the GPU's limits. */
+export function checkImageSize(width: number, height: number, limits: GPUSupportedLimits): void {
+  for (const [name, v] of [['width', width], ['height', height]] as const) {
+    if (!Number.isInteger(v) || v < 1) throw new LanternError(`image ${name} must be a whole number of pixels ≥ 1, not ${v}`);
+  }
+  const maxSide = Math.min(MAX_IMAGE_SIDE, limits.maxTextureDimension2D);
+  if (width > maxSide || height > maxSide) {
+    throw new LanternError(`image ${width}×${height} is too large: each side may be at most ${maxSide} pixels on this GPU`);
+  }
+  const bytes = width * height * ACCUMULATION_BYTES_PER_PIXEL;
+  if (bytes > limits.maxStorageBufferBindingSize || bytes > limits.maxBufferSize) {
+    const maxPixels = Math.floor(Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize) / ACCUMULATION_BYTES_PER_PIXEL);
+    throw new LanternError(`image ${width}×${height} is too large for this GPU: at most ${maxPixels} pixels fit one accumulation buffer`);
+  }
+}

@@ -1,0 +1,56 @@
+/**
+ * Render settings: what a user can change without changing the scene. The closed lists mirror WGSL
+ * constants by position (TONEMAP_* in shaders/lib/color.wgsl, LIGHT_SAMPLING_* in
+ * shaders/passes/path-trace.wgsl); a unit test keeps the two in step.
+ */
+import { LanternError } from '../errors.ts';
+
+export const TONE_MAPPERS = ['linear', 'reinhard', 'aces'] as const;
+export type ToneMapper = (typeof TONE_MAPPERS)[number];
+
+/** 'bsdf': BSDF sampling only (emitters found by chance). 'mis': next-event estimation + BSDF sampling, combined by MIS. */
+export const LIGHT_SAMPLING = ['bsdf', 'mis'] as const;
+export type LightSampling = (typeof LIGHT_SAMPLING)[number];
+
+export interface RenderSettings {
+  /** Scattering events per path: 0 shows emitters only, 1 direct light, ... */
+  readonly maxBounces: number;
+  readonly lightSampling: LightSampling;
+  readonly toneMapper: ToneMapper;
+  /** Exposure in photographic stops: radiance is scaled by 2^stops before the tone curve. */
+  readonly exposureStops: number;
+  /** Seed of every random stream: the same seed, scene and settings give the same image. */
+  readonly seed: number;
+}
+
+export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
+  maxBounces: 8,
+  lightSampling: 'mis',
+  toneMapper: 'aces',
+  exposureStops: 0,
+  seed: 1,
+});
+
+/** Settings that change the estimate itself: changing one restarts accumulation. */
+export const ESTIMATE_SETTINGS: readonly (keyof RenderSettings)[] = ['maxBounces', 'lightSampling', 'seed'];
+
+export const MAX_BOUNCES_LIMIT = 1024;
+
+export function validateSettings(s: RenderSettings): RenderSettings {
+  if (!Number.isInteger(s.maxBounces) || s.maxBounces < 0 || s.maxBounces > MAX_BOUNCES_LIMIT) {
+    throw new LanternError(`bounces must be a whole number from 0 to ${MAX_BOUNCES_LIMIT}, not ${s.maxBounces}`);
+  }
+  if (!LIGHT_SAMPLING.includes(s.lightSampling)) {
+    throw new LanternError(`unknown light sampling '${s.lightSampling}'`, `Use one of: ${LIGHT_SAMPLING.join(', ')}`);
+  }
+  if (!TONE_MAPPERS.includes(s.toneMapper)) {
+    throw new LanternError(`unknown tone mapper '${s.toneMapper}'`, `Use one of: ${TONE_MAPPERS.join(', ')}`);
+  }
+  if (!Number.isFinite(s.exposureStops) || Math.abs(s.exposureStops) > 64) {
+    throw new LanternError(`exposure must be a number of stops between -64 and 64, not ${s.exposureStops}`);
+  }
+  if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) {
+    throw new LanternError(`seed must be a whole number from 0 to 4294967295, not ${s.seed}`);
+  }
+  return s;
+}

@@ -1,0 +1,49 @@
+/**
+ * The view uniform (bind group 1, shaders/view/bindings.wgsl): the camera basis scaled to the image
+ * and the image size. The WGSL struct is reflected; nothing here knows its byte layout.
+ */
+import { makeStructuredView } from 'webgpu-utils';
+import { cross, normalize, scale, type Vec3 } from '../math/vec3.ts';
+import type { Camera } from '../scene/types.ts';
+import { reflectModule } from '../gpu/wgsl/reflect.ts';
+
+export interface CameraBasis {
+  readonly position: Vec3;
+  /** Scaled: the image's right edge is at forward + right. */
+  readonly right: Vec3;
+  /** Scaled: the image's top edge is at forward + up. */
+  readonly up: Vec3;
+  readonly forward: Vec3;
+}
+
+/**
+ * The pinhole basis for an image of the given aspect (width / height). Screen right is
+ * forward × up, so a camera looking along +z with +y up sees +x on its left (as in the Cornell box
+ * photographs, where the red wall at x ≈ 550 is on the left).
+ */
+export function cameraBasis(camera: Camera, aspect: number): CameraBasis {
+  const forward = normalize(camera.forward);
+  const right = normalize(cross(forward, camera.up));
+  const up = cross(right, forward);
+  const tanHalf = Math.tan((camera.vfovDegrees * Math.PI) / 360);
+  return { position: camera.position, forward, right: scale(right, tanHalf * aspect), up: scale(up, tanHalf) };
+}
+
+export class ViewUniform {
+  readonly buffer: GPUBuffer;
+  private readonly values = makeStructuredView(reflectModule('view/bindings').defs.uniforms.view!);
+
+  constructor(private readonly device: GPUDevice) {
+    this.buffer = device.createBuffer({ label: 'view', size: this.values.arrayBuffer.byteLength, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
+  }
+
+  update(camera: Camera, width: number, height: number): void {
+    const b = cameraBasis(camera, width / height);
+    this.values.set({ camera: { position: b.position, right: b.right, up: b.up, forward: b.forward }, image_size: [width, height] });
+    this.device.queue.writeBuffer(this.buffer, 0, this.values.arrayBuffer);
+  }
+
+  destroy(): void {
+    this.buffer.destroy();
+  }
+}

@@ -1,0 +1,11 @@
+// Bind group 0, the scene, shared by every pass that traces rays (gpu/scene-resources.ts fills it).
+// Expects nothing; provides the scene arrays under these names.
+
+#import scene/types
+
+@group(0) @binding(0) var<uniform> scene_info: SceneInfo;
+@group(0) @binding(1) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(0) @binding(2) var<storage, read> triangles_hot: array<TriangleHot>;
+@group(0) @binding(3) var<storage, read> triangles_shading: array<TriangleShading>;
+@group(0) @binding(4) var<storage, read> materials: array<Material>;
+@group(0) @binding(5) var<storage, read> light_slots: array<LightSlot>;

@@ -1,0 +1,110 @@
+// BVH traversal: closest hit with an ordered stack (nearer child first, the closest hit so far prunes
+// boxes), and any hit for shadow rays. Expects the scene bindings (group 0). The CPU oracle
+// bvh/traverse.ts runs the same algorithm, so hits and visited-node counts agree.
+
+#import scene/bindings
+#import scene/intersect
+
+// The builder caps depth at 60 (bvh/build.ts); a push happens at most once per level.
+const BVH_STACK_SIZE: u32 = 64u;
+
+fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
+  let n = bvh_nodes[node];
+  return intersect_aabb(origin, inv_dir, n.aabb_min, n.aabb_max, t_best);
+}
+
+fn trace_closest(ray: Ray) -> Hit {
+  var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0);
+  let inv_dir = safe_inverse(ray.direction);
+  if (node_entry(0u, ray.origin, inv_dir, hit.t) == T_MISS) {
+    return hit;
+  }
+  var stack: array<u32, BVH_STACK_SIZE>;
+  var sp = 0u;
+  var node = 0u;
+  loop {
+    let n = bvh_nodes[node];
+    if (n.tri_count > 0u) {
+      for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
+        let r = intersect_triangle(ray.origin, ray.direction, triangles_hot[i], ray.t_min, hit.t);
+        if (r.x < hit.t) {
+          hit = Hit(r.x, i, r.y, r.z);
+        }
+      }
+      if (sp == 0u) {
+        break;
+      }
+      sp -= 1u;
+      node = stack[sp];
+      continue;
+    }
+    var near = n.left_first;
+    var far = near + 1u;
+    var t_near = node_entry(near, ray.origin, inv_dir, hit.t);
+    var t_far = node_entry(far, ray.origin, inv_dir, hit.t);
+    if (t_far < t_near) {
+      let swap_node = near;
+      near = far;
+      far = swap_node;
+      let swap_t = t_near;
+      t_near = t_far;
+      t_far = swap_t;
+    }
+    if (t_near == T_MISS) {
+      if (sp == 0u) {
+        break;
+      }
+      sp -= 1u;
+      node = stack[sp];
+      continue;
+    }
+    if (t_far != T_MISS) {
+      stack[sp] = far;
+      sp += 1u;
+    }
+    node = near;
+  }
+  return hit;
+}
+
+// True when anything lies strictly between t_min and t_max along the ray. Children are visited in
+// storage order: any hit ends the search, so ordering buys little.
+fn trace_any(ray: Ray) -> bool {
+  let inv_dir = safe_inverse(ray.direction);
+  if (node_entry(0u, ray.origin, inv_dir, ray.t_max) == T_MISS) {
+    return false;
+  }
+  var stack: array<u32, BVH_STACK_SIZE>;
+  var sp = 0u;
+  var node = 0u;
+  loop {
+    let n = bvh_nodes[node];
+    if (n.tri_count > 0u) {
+      for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
+        let r = intersect_triangle(ray.origin, ray.direction, triangles_hot[i], ray.t_min, ray.t_max);
+        if (r.x < ray.t_max) {
+          return true;
+        }
+      }
+    } else {
+      let left = n.left_first;
+      let hit_left = node_entry(left, ray.origin, inv_dir, ray.t_max) != T_MISS;
+      let hit_right = node_entry(left + 1u, ray.origin, inv_dir, ray.t_max) != T_MISS;
+      if (hit_left && hit_right) {
+        stack[sp] = left + 1u;
+        sp += 1u;
+        node = left;
+        continue;
+      }
+      if (hit_left || hit_right) {
+        node = select(left + 1u, left, hit_left);
+        continue;
+      }
+    }
+    if (sp == 0u) {
+      return false;
+    }
+    sp -= 1u;
+    node = stack[sp];
+  }
+}
