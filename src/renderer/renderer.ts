@@ -12,6 +12,7 @@ import type { GpuContext } from '../gpu/device.ts';
 import { withErrorScope } from '../gpu/device.ts';
 import { readBuffer, readTexture4x8 } from '../gpu/readback.ts';
 import { SceneResources } from '../gpu/scene-resources.ts';
+import type { GpuTimer } from '../gpu/timestamps.ts';
 import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
@@ -163,24 +164,20 @@ export class Renderer {
 
   /**
    * Adds `samples` paths per pixel over `tiles` (default: the whole image), one submit per tile so
-   * that no single submit runs long enough to trip a GPU watchdog. Returns without waiting.
+   * that no single submit runs long enough to trip a GPU watchdog. Returns without waiting. With a
+   * timer, each tile's pass is timed and the timestamps are resolved with the last tile.
    */
-  accumulate(samples: number, tiles: readonly Tile[] = [this.fullImage()]): void {
+  accumulate(samples: number, tiles: readonly Tile[] = [this.fullImage()], timer?: GpuTimer): void {
     const { resources, targets } = this.ready();
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
     const s = this.settingsValue;
-    for (const tile of tiles) {
+    tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      this.pathTrace.encode(encoder, resources, this.view, targets, {
-        tile,
-        sampleIndex: this.samples,
-        samples,
-        maxBounces: s.maxBounces,
-        seed: s.seed,
-        lightSampling: s.lightSampling,
-      });
+      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling };
+      this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
+      if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
-    }
+    });
     this.samples += samples;
   }
 

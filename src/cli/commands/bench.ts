@@ -1,0 +1,62 @@
+/** `lantern bench <scene>`: BVH build, traversal and path-tracing throughput, GPU-timed. */
+import type { Command } from 'commander';
+import { runBenchmark } from '../../renderer/benchmark.ts';
+import { DEFAULT_SETTINGS, MAX_BOUNCES_LIMIT } from '../../renderer/settings.ts';
+import type { CliContext } from '../context.ts';
+import { integerOption } from '../options.ts';
+import { sceneHelp } from '../scene-source.ts';
+import { openSession } from '../session.ts';
+
+interface BenchOptions {
+  width: number;
+  height: number;
+  repeats: number;
+  bounces: number;
+  json?: boolean;
+}
+
+export function registerBench(program: Command, context: CliContext): void {
+  program
+    .command('bench')
+    .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
+    .argument('<scene>', sceneHelp())
+    .option('-W, --width <pixels>', 'image width', integerOption('--width', 1, 16384), 1920)
+    .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, 16384), 1080)
+    .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
+    .option('-b, --bounces <n>', 'maximum bounces for the path-tracing figure', integerOption('--bounces', 0, MAX_BOUNCES_LIMIT), DEFAULT_SETTINGS.maxBounces)
+    .option('--json', 'print the figures as JSON')
+    .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
+}
+
+async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note);
+  await renderer.resize(o.width, o.height);
+  renderer.updateSettings({ maxBounces: o.bounces });
+  const result = await runBenchmark(renderer, { repeats: o.repeats });
+  const s = prepared.bvh.stats;
+  const report = {
+    scene: prepared.scene.name,
+    triangles: prepared.triangles.count,
+    lights: prepared.packed.counts.lights,
+    loadMs,
+    bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
+    ...result,
+  };
+  renderer.destroy();
+  if (o.json) {
+    context.print(JSON.stringify(report, null, 2));
+    return;
+  }
+  const f = (x: number, digits = 1) => x.toFixed(digits);
+  const p = result.pathTracing;
+  context.print(
+    [
+      `Lantern bench: ${report.scene} at ${o.width}×${o.height} on ${result.adapter} (${result.timing === 'gpu-timestamps' ? 'GPU timestamps' : 'wall clock'}, median of ${o.repeats})`,
+      `  triangles       ${report.triangles.toLocaleString('en-US')} (${report.lights} emissive)`,
+      `  BVH build       ${f(s.buildMs)} ms: ${s.nodeCount.toLocaleString('en-US')} nodes, depth ${s.maxDepth}, SAH cost ${f(s.sahCost, 2)}`,
+      `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,
+      `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms)`,
+      `  path tracing    ${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerSample, 2)} rays/sample)`,
+    ].join('\n'),
+  );
+}

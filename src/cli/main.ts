@@ -1,0 +1,26 @@
+/**
+ * The `lantern` command line. The only code (with the rest of src/cli) that touches node:*; it drives
+ * the same Renderer as the browser page.
+ */
+import { Command } from 'commander';
+import { registerBench } from './commands/bench.ts';
+import { registerInfo } from './commands/info.ts';
+import { registerRender } from './commands/render.ts';
+import { createCliContext } from './context.ts';
+
+const program = new Command();
+const context = createCliContext(() => Boolean(program.opts().verbose));
+
+program
+  .name('lantern')
+  .description('Lantern: a WebGPU path tracer, headless')
+  .option('-v, --verbose', 'show stack traces and details on errors')
+  .showHelpAfterError('(run with --help for usage)');
+
+registerRender(program, context);
+registerBench(program, context);
+registerInfo(program, context);
+
+await program.parseAsync(process.argv);
+// Dawn keeps native threads alive; leave as soon as the command is done.
+process.exit(process.exitCode ?? 0);

