@@ -6,7 +6,7 @@
 import { LanternError } from '../errors.ts';
 import { withErrorScope } from './device.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
-import { declaredBindings, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
+import { entryPointBindings, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
 
 export type NamedResource = GPUBuffer | GPUTextureView | GPUSampler | GPUBufferBinding;
 
@@ -101,7 +101,7 @@ export class ComputeKernel extends BindGroupFactory {
   static async create(device: GPUDevice, options: KernelOptions): Promise<ComputeKernel> {
     const shader = typeof options.module === 'string' ? reflectModule(options.module) : options.module;
     const label = `${shader.linked.entry}:${options.entryPoint}`;
-    const slots = declaredBindings(shader, GPUShaderStage.COMPUTE);
+    const slots = entryPointBindings(shader, [options.entryPoint], GPUShaderStage.COMPUTE);
     const module = await cachedModule(device, shader);
     const layouts = createBindGroupLayouts(device, label, slots);
     const layout = device.createPipelineLayout({ label, bindGroupLayouts: layouts });

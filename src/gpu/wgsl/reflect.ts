@@ -102,7 +102,7 @@ export function reflectLinked(linked: LinkedShader): ReflectedShader {
   }
 }
 
-/** A resource a shader module declares: its variable name and where it is bound. */
+/** A resource an entry point uses: its WGSL variable name and where it is bound. */
 export interface BindingSlot {
   readonly name: string;
   readonly group: number;
@@ -150,16 +150,27 @@ function layoutEntry(v: VariableInfo, visibility: GPUShaderStageFlags): GPUBindG
 }
 
 /**
- * Every resource the linked module declares, grouped by bind group (missing groups are empty).
- * Layouts come from declarations, not from per-entry-point usage analysis, which misses resources
- * reached only through function arguments: a module therefore declares only what its entry points
- * use, and modules whose entry points need different resources are split.
+ * The resources the given entry points use (directly or through the functions they call), grouped by
+ * bind group; groups in between that they do not use are empty. Layouts built from this hold exactly
+ * what the pipeline needs, so a test kernel may import a bindings module without binding all of it.
+ * wgsl_reflect's call-graph analysis decides "uses"; if it ever missed one, pipeline creation fails
+ * loudly with "binding doesn't exist in the layout", never silently.
  */
-export function declaredBindings(shader: ReflectedShader, visibility: GPUShaderStageFlags): BindingSlot[][] {
+export function entryPointBindings(shader: ReflectedShader, entryPoints: readonly string[], visibility: GPUShaderStageFlags): BindingSlot[][] {
   const reflect = new WgslReflect(shader.linked.code);
+  const all = [...reflect.entry.compute, ...reflect.entry.vertex, ...reflect.entry.fragment];
   const groups: BindingSlot[][] = [];
-  for (const v of [...reflect.uniforms, ...reflect.storage, ...reflect.textures, ...reflect.samplers]) {
-    (groups[v.group] ??= []).push({ name: v.name, group: v.group, entry: layoutEntry(v, visibility) });
+  const seen = new Set<string>();
+  for (const name of entryPoints) {
+    const entry = all.find((e) => e.name === name);
+    if (!entry) {
+      throw new Error(`WGSL module '${shader.linked.entry}' has no entry point '${name}' (has: ${all.map((e) => e.name).join(', ')})`);
+    }
+    for (const v of entry.resources) {
+      if (seen.has(v.name)) continue;
+      seen.add(v.name);
+      (groups[v.group] ??= []).push({ name: v.name, group: v.group, entry: layoutEntry(v, visibility) });
+    }
   }
   for (let g = 0; g < groups.length; g++) groups[g] = (groups[g] ?? []).sort((a, b) => a.entry.binding - b.entry.binding);
   return groups;
