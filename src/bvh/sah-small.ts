@@ -1,0 +1,116 @@
+/**
+ * Exact SAH for small nodes: with only a handful of triangles, sorting their centroids along each
+ * axis and scoring every gap between neighbours is cheaper than filling and sweeping B bins per
+ * axis (a JS-speed concern: most nodes of a big tree are this small), and it can only find an
+ * equal or better split than binning, since every binned plane is one of these gaps.
+ *
+ * Same conventions as SahBinner: centroids are min + max in float64, the score is
+ * A_L·N_L + A_R·N_R (half areas), and two triangles with equal centroids on the axis are never
+ * separated (no plane between them), so a node whose centroids all coincide reports no split.
+ */
+import { halfArea, sweepMax, sweepMin } from './box-area.ts';
+
+/** Nodes with at most this many triangles use the exact sweep. */
+export const SMALL_NODE_MAX = 12;
+
+export class SmallSahSplitter {
+  /** The node's triangles: boxes (6 each), copied out of the working array, and their order per axis. */
+  private readonly box = new Float64Array(SMALL_NODE_MAX * 6);
+  private readonly key = new Float64Array(SMALL_NODE_MAX);
+  private readonly order = new Uint8Array(SMALL_NODE_MAX);
+  private readonly prefixCost = new Float64Array(SMALL_NODE_MAX);
+  private readonly saved = new Uint32Array(SMALL_NODE_MAX);
+
+  /** Result of the last `findSplit`: best axis (-1: none), its score, left side size and order. */
+  axis = -1;
+  cost = Infinity;
+  leftCount = 0;
+  readonly bestOrder = new Uint8Array(SMALL_NODE_MAX);
+  readonly leftBox = new Float64Array(6);
+  readonly rightBox = new Float64Array(6);
+
+  /** Scores every centroid gap of work[start..end) (at most SMALL_NODE_MAX triangles) on every axis. */
+  findSplit(work: Float32Array, start: number, end: number): boolean {
+    const k = end - start, box = this.box, key = this.key, order = this.order;
+    const prefixCost = this.prefixCost, bestOrder = this.bestOrder;
+    for (let i = 0; i < k * 6; i++) box[i] = work[start * 6 + i]!;
+    let bestCost = Infinity, bestAxis = -1, bestLeft = 0;
+    for (let a = 0; a < 3; a++) {
+      // Insertion sort by centroid: k is tiny, and it is stable, so equal keys keep their order.
+      for (let i = 0; i < k; i++) {
+        const c = box[i * 6 + a]! + box[i * 6 + 3 + a]!;
+        let j = i;
+        while (j > 0 && key[j - 1]! > c) {
+          key[j] = key[j - 1]!;
+          order[j] = order[j - 1]!;
+          j--;
+        }
+        key[j] = c;
+        order[j] = i;
+      }
+      if (key[0] === key[k - 1]) continue; // flat axis: no plane
+      // prefixCost[j] = A·N of the first j+1 triangles in sorted order (sweepMin/Max: see box-area.ts).
+      let m = order[0]! * 6;
+      let x0 = box[m]!, y0 = box[m + 1]!, z0 = box[m + 2]!, x1 = box[m + 3]!, y1 = box[m + 4]!, z1 = box[m + 5]!;
+      prefixCost[0] = halfArea(x0, y0, z0, x1, y1, z1);
+      for (let j = 1; j < k - 1; j++) {
+        m = order[j]! * 6;
+        x0 = sweepMin(x0, box[m]!); y0 = sweepMin(y0, box[m + 1]!); z0 = sweepMin(z0, box[m + 2]!);
+        x1 = sweepMax(x1, box[m + 3]!); y1 = sweepMax(y1, box[m + 4]!); z1 = sweepMax(z1, box[m + 5]!);
+        prefixCost[j] = halfArea(x0, y0, z0, x1, y1, z1) * (j + 1);
+      }
+      m = order[k - 1]! * 6;
+      x0 = box[m]!; y0 = box[m + 1]!; z0 = box[m + 2]!; x1 = box[m + 3]!; y1 = box[m + 4]!; z1 = box[m + 5]!;
+      for (let j = k - 1; j > 0; j--) {
+        if (j < k - 1) {
+          m = order[j]! * 6;
+          x0 = sweepMin(x0, box[m]!); y0 = sweepMin(y0, box[m + 1]!); z0 = sweepMin(z0, box[m + 2]!);
+          x1 = sweepMax(x1, box[m + 3]!); y1 = sweepMax(y1, box[m + 4]!); z1 = sweepMax(z1, box[m + 5]!);
+        }
+        // Gap between sorted positions j-1 and j: left = first j triangles.
+        if (key[j - 1] === key[j]) continue;
+        const total = prefixCost[j - 1]! + halfArea(x0, y0, z0, x1, y1, z1) * (k - j);
+        if (total < bestCost) {
+          bestCost = total;
+          bestAxis = a;
+          bestLeft = j;
+          for (let i = 0; i < k; i++) bestOrder[i] = order[i]!;
+        }
+      }
+    }
+    this.axis = bestAxis;
+    this.cost = bestCost;
+    this.leftCount = bestLeft;
+    if (bestAxis < 0) return false;
+    this.sideBox(0, this.leftCount, this.leftBox);
+    this.sideBox(this.leftCount, k, this.rightBox);
+    return true;
+  }
+
+  /** Reorders index/work[start..end) into the best order found, left side first. */
+  apply(index: Uint32Array, work: Float32Array, start: number, end: number): void {
+    const k = end - start, box = this.box;
+    for (let i = 0; i < k; i++) this.saved[i] = index[start + i]!;
+    for (let j = 0; j < k; j++) {
+      const src = this.bestOrder[j]!;
+      index[start + j] = this.saved[src]!;
+      for (let c = 0; c < 6; c++) work[(start + j) * 6 + c] = box[src * 6 + c]!;
+    }
+  }
+
+  private sideBox(from: number, to: number, out: Float64Array): void {
+    const box = this.box;
+    let x0 = Infinity, y0 = Infinity, z0 = Infinity, x1 = -Infinity, y1 = -Infinity, z1 = -Infinity;
+    for (let j = from; j < to; j++) {
+      const m = this.bestOrder[j]! * 6;
+      if (box[m]! < x0) x0 = box[m]!;
+      if (box[m + 1]! < y0) y0 = box[m + 1]!;
+      if (box[m + 2]! < z0) z0 = box[m + 2]!;
+      if (box[m + 3]! > x1) x1 = box[m + 3]!;
+      if (box[m + 4]! > y1) y1 = box[m + 4]!;
+      if (box[m + 5]! > z1) z1 = box[m + 5]!;
+    }
+    out[0] = x0; out[1] = y0; out[2] = z0;
+    out[3] = x1; out[4] = y1; out[5] = z1;
+  }
+}
