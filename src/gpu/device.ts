@@ -8,6 +8,11 @@ import { LanternError } from '../errors.ts';
 
 export interface GpuContext {
   readonly device: GPUDevice;
+  /**
+   * Held for the device's lifetime: Dawn (in Node, and in Chromium) rejects pending promises with "a
+   * valid external Instance reference no longer exists" once the adapter is garbage-collected.
+   */
+  readonly adapter: GPUAdapter;
   /** A human-readable adapter name, e.g. "NVIDIA H100 80GB HBM3" or "SwiftShader". */
   readonly adapterName: string;
   readonly hasTimestamps: boolean;
@@ -54,7 +59,7 @@ export async function acquireGpu(
     if (options.onUncapturedError) options.onUncapturedError(message);
     else console.error(message);
   };
-  return { device, adapterName: adapterName(adapter.info), hasTimestamps, lost: device.lost };
+  return { device, adapter, adapterName: adapterName(adapter.info), hasTimestamps, lost: device.lost };
 }
 
 /**

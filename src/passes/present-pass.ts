@@ -3,7 +3,7 @@
  * fit. A render pipeline per canvas format; the bind group layout comes from reflection.
  */
 import { BindGroupFactory, compileShader, createBindGroupLayouts } from '../gpu/kernel.ts';
-import { declaredBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
+import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
 
 const MODULE = 'passes/present';
 
@@ -21,7 +21,7 @@ export class PresentPass {
   static async create(device: GPUDevice): Promise<PresentPass> {
     const shader = reflectModule(MODULE);
     const module = await compileShader(device, shader.linked);
-    const slots = declaredBindings(shader, GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT);
+    const slots = entryPointBindings(shader, ['present_vertex', 'present_fragment'], GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT);
     const layouts = createBindGroupLayouts(device, MODULE, slots);
     const sampler = device.createSampler({ label: 'present', magFilter: 'linear', minFilter: 'linear' });
     return new PresentPass(device, module, new BindGroupFactory(device, MODULE, layouts, slots), sampler);
