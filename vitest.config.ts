@@ -4,7 +4,7 @@ import { defineConfig } from 'vitest/config';
 // - unit: pure TypeScript beside the code it tests (src/**/*.test.ts), no GPU.
 // - gpu:  WebGPU through Dawn on SwiftShader (tests/gpu), one file at a time: SwiftShader already
 //         uses every core, so running GPU files in parallel only makes each one slower.
-// - e2e:  the built page in headless Chromium (tests/e2e).
+// - e2e:  the built page in headless Chromium (tests/e2e) and the built CLI as a user runs it (tests/cli).
 export default defineConfig({
   test: {
     projects: [
@@ -26,7 +26,7 @@ export default defineConfig({
         extends: true,
         test: {
           name: 'e2e',
-          include: ['tests/e2e/**/*.test.ts'],
+          include: ['tests/e2e/**/*.test.ts', 'tests/cli/**/*.test.ts'],
           fileParallelism: false,
           testTimeout: 300_000,
           hookTimeout: 180_000,

@@ -48,20 +48,27 @@ export interface NodeGpuOptions {
   readonly forceSwiftShader?: boolean;
 }
 
+/**
+ * Dawn quantizes timestamp queries by default (a browser defence against timing attacks, 65.5 µs
+ * steps here), which makes sub-millisecond pass timings meaningless for a local benchmark.
+ */
+const DEFAULT_DAWN_OPTIONS = ['disable-dawn-features=timestamp_quantization'];
+
 export async function acquireNodeGpu(options: NodeGpuOptions = {}): Promise<GpuContext> {
   const { create } = await loadDawn();
+  const dawnOptions = [...DEFAULT_DAWN_OPTIONS, ...(options.dawnOptions ?? [])];
   // The Vulkan loader complains on every start without it.
   process.env.XDG_RUNTIME_DIR ??= tmpdir();
   const driverChosen = process.env.VK_ICD_FILENAMES !== undefined || process.env.VK_DRIVER_FILES !== undefined;
   if (options.forceSwiftShader) useSwiftShader();
   else if (!driverChosen) {
-    const adapter = await createInstance(create, options.dawnOptions ?? []).requestAdapter({ powerPreference: 'high-performance' });
+    const adapter = await createInstance(create, dawnOptions).requestAdapter({ powerPreference: 'high-performance' });
     if (!adapter && existsSync(SWIFTSHADER_ICD)) {
       useSwiftShader();
       options.onNote?.('no GPU adapter found; rendering on the CPU with SwiftShader (slow)');
     }
   }
-  return acquireGpu(createInstance(create, options.dawnOptions ?? []));
+  return acquireGpu(createInstance(create, dawnOptions));
 }
 
 function useSwiftShader(): void {

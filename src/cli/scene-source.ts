@@ -59,6 +59,6 @@ export function loadSceneArgument(arg: string, onWarning: (message: string) => v
     const why = code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : code === 'EISDIR' ? 'it is a directory' : (e as Error).message;
     throw new LanternError(`cannot read '${path}': ${why}`);
   }
-  const name = arg === DRAGON_ALIAS ? DRAGON_ALIAS : basename(path).replace(/\.ply(\.gz)?$/i, '');
-  return loadPly(bytes, name, { onWarning });
+  // The file's own name, so that messages about its contents say which file.
+  return loadPly(bytes, arg === DRAGON_ALIAS ? DRAGON_ALIAS : basename(path), { onWarning });
 }

@@ -30,9 +30,16 @@ const LIMITS_TO_RAISE = [
   'maxTextureDimension2D',
 ] as const;
 
+/**
+ * A readable adapter name from whatever the implementation fills in: Dawn on NVIDIA gives vendor
+ * "nvidia", architecture "hopper" and the driver version as description; SwiftShader gives a device
+ * string; browsers often give vendor and architecture only.
+ */
 export function adapterName(info: GPUAdapterInfo): string {
-  const parts = [info.description, info.device, info.architecture, info.vendor].filter((s) => s && s.length > 0);
-  return parts[0] ?? 'unknown adapter';
+  const name = info.device || [info.vendor, info.architecture].filter(Boolean).join(' ');
+  const detail = info.description && info.description !== name ? info.description : '';
+  if (!name) return detail || 'unknown adapter';
+  return detail ? `${name} (${detail})` : name;
 }
 
 export async function acquireGpu(

@@ -4,7 +4,6 @@
  * and create bind groups from resources given by their WGSL variable names.
  */
 import { LanternError } from '../errors.ts';
-import { withErrorScope } from './device.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
 import { entryPointBindings, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
 
@@ -12,19 +11,14 @@ export type NamedResource = GPUBuffer | GPUTextureView | GPUSampler | GPUBufferB
 
 const isBuffer = (r: NamedResource): r is GPUBuffer => typeof (r as GPUBuffer).mapAsync === 'function';
 
-/**
- * Compiles a linked shader, throwing a LanternError whose message points every error at its module
- * and line. Errors are caught with an error scope rather than getCompilationInfo(), which crashes
- * Dawn for Node (webgpu 0.6) whenever the compiler has anything to report.
- */
+/** Compiles a linked shader, throwing a LanternError that points every error at its module and line. */
 export async function compileShader(device: GPUDevice, linked: LinkedShader): Promise<GPUShaderModule> {
-  device.pushErrorScope('validation');
   const module = device.createShaderModule({ label: linked.entry, code: linked.code });
-  const error = await device.popErrorScope();
-  if (error) {
-    // Compiler messages cite linked lines as ":line:column"; point them at the module files instead.
-    const message = error.message.replace(/(^|\s):(\d+):(\d+)/gm, (_, pre: string, line: string, col: string) => `${pre}${sourceLocation(linked, Number(line))}:${col}`);
-    throw new LanternError(`WGSL compilation of '${linked.entry}' failed:\n${message}`);
+  const info = await module.getCompilationInfo();
+  const errors = info.messages.filter((m) => m.type === 'error');
+  if (errors.length > 0) {
+    const lines = errors.map((m) => `${sourceLocation(linked, m.lineNum)}:${m.linePos}: ${m.message}`);
+    throw new LanternError(`WGSL compilation of '${linked.entry}' failed:\n  ${lines.join('\n  ')}`);
   }
   return module;
 }
@@ -105,15 +99,16 @@ export class ComputeKernel extends BindGroupFactory {
     const module = await cachedModule(device, shader);
     const layouts = createBindGroupLayouts(device, label, slots);
     const layout = device.createPipelineLayout({ label, bindGroupLayouts: layouts });
-    // Synchronous creation inside an error scope: Dawn for Node (webgpu 0.6) crashes the process in
-    // createComputePipelineAsync on SwiftShader, and browsers compile off the main thread either way.
-    const pipeline = await withErrorScope(device, `the compute pipeline ${label}`, () =>
-      device.createComputePipeline({
+    let pipeline: GPUComputePipeline;
+    try {
+      pipeline = await device.createComputePipelineAsync({
         label,
         layout,
         compute: { module, entryPoint: options.entryPoint, ...(options.constants ? { constants: options.constants } : {}) },
-      }),
-    );
+      });
+    } catch (e) {
+      throw new LanternError(`could not create the compute pipeline ${label}: ${(e as Error).message}`, undefined, { cause: e });
+    }
     return new ComputeKernel(device, label, layouts, slots, pipeline);
   }
 

@@ -30,7 +30,8 @@ export interface BenchmarkResult {
     readonly samplesPerSecond: number;
     /** Extension + shadow rays per second. */
     readonly mraysPerSecond: number;
-    readonly raysPerSample: number;
+    /** Extension + shadow rays per path (one sample of one pixel). */
+    readonly raysPerPath: number;
   };
 }
 
@@ -101,7 +102,7 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
       if (i > 0) sampleTimes.push(ms);
     }
     const rays = await renderer.readRayCounts();
-    const raysPerSample = (rays.extension + rays.shadow) / renderer.sampleCount;
+    const raysPerPath = (rays.extension + rays.shadow) / (renderer.sampleCount * count);
     const msPerSample = median(sampleTimes);
     renderer.resetAccumulation();
 
@@ -117,8 +118,8 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
         maxBounces: renderer.settings.maxBounces,
         msPerSample,
         samplesPerSecond: (count * 1000) / msPerSample,
-        mraysPerSecond: raysPerSample / (msPerSample * 1e3),
-        raysPerSample,
+        mraysPerSecond: (raysPerPath * count) / (msPerSample * 1e3),
+        raysPerPath,
       },
     };
   } finally {

@@ -1,0 +1,136 @@
+/**
+ * The built `lantern` command, as a user runs it: real renders produce valid files and honest JSON;
+ * bad input gives one line that says what is wrong and what to do, a non-zero exit code, and no
+ * stack trace unless --verbose.
+ */
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { build } from 'vite';
+import { decodeExr } from '../../src/image/exr.ts';
+import { decodePng } from '../../src/image/png.ts';
+
+let dir: string;
+let cli: string;
+
+let binDir: string;
+
+beforeAll(async () => {
+  dir = mkdtempSync(join(tmpdir(), 'lantern-cli-'));
+  // Inside the project, so that the bundle resolves `webgpu` from node_modules as an installed CLI does.
+  mkdirSync(join('node_modules', '.cache'), { recursive: true });
+  binDir = mkdtempSync(join('node_modules', '.cache', 'lantern-cli-test-'));
+  await build({ configFile: 'vite.cli.config.ts', logLevel: 'error', build: { outDir: binDir, sourcemap: false } });
+  cli = join(binDir, 'lantern.mjs');
+});
+
+afterAll(() => {
+  rmSync(dir, { recursive: true, force: true });
+  rmSync(binDir, { recursive: true, force: true });
+});
+
+function lantern(args: string[], env: Record<string, string> = {}) {
+  // SwiftShader everywhere, so the outcome does not depend on the machine's GPU.
+  const r = spawnSync(process.execPath, [cli, ...args], {
+    encoding: 'utf8',
+    env: { ...process.env, VK_ICD_FILENAMES: '/usr/lib/chromium/vk_swiftshader_icd.json', ...env },
+    timeout: 120_000,
+  });
+  // Dawn's own warnings (Vulkan loader chatter) are not Lantern's output; Lantern's lines start with
+  // "lantern:" and commander's usage errors with "error:".
+  const stderr = r.stderr.split('\n').filter((l) => l.startsWith('lantern') || l.startsWith('error:')).join('\n');
+  return { code: r.status, stdout: r.stdout, stderr, rawStderr: r.stderr };
+}
+
+describe('lantern render', () => {
+  it('renders PNG and EXR and reports what it did', () => {
+    const png = join(dir, 'c.png'), exr = join(dir, 'c.exr');
+    const r = lantern(['render', 'cornell', '-W', '24', '-H', '16', '-s', '3', '--out', png, '--exr', exr, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const report = JSON.parse(r.stdout);
+    expect(report).toMatchObject({ scene: 'cornell', width: 24, height: 16, spp: 3, bounces: 8, seed: 1, triangles: 32 });
+    expect(report.rays.extension).toBeGreaterThanOrEqual(24 * 16 * 3);
+    expect(report.rays.total).toBe(report.rays.extension + report.rays.shadow);
+    expect(report.raysPerSecond).toBeGreaterThan(0);
+    const image = decodePng(readFileSync(png));
+    expect([image.width, image.height]).toEqual([24, 16]);
+    const radiance = decodeExr(readFileSync(exr));
+    expect([radiance.width, radiance.height]).toEqual([24, 16]);
+    expect(Object.keys(radiance.channels).sort()).toEqual(['B', 'G', 'R']);
+  });
+
+  it('is deterministic for a fixed seed', () => {
+    const a = join(dir, 'a.exr'), b = join(dir, 'b.exr');
+    expect(lantern(['render', 'furnace', '-W', '8', '-H', '8', '-s', '2', '--seed', '5', '--exr', a]).code).toBe(0);
+    expect(lantern(['render', 'furnace', '-W', '8', '-H', '8', '-s', '2', '--seed', '5', '--exr', b]).code).toBe(0);
+    expect(Buffer.compare(readFileSync(a), readFileSync(b))).toBe(0);
+  });
+});
+
+describe('bad input', () => {
+  const oneLine = (s: string) => s.trim().split('\n').length === 1;
+
+  it.each([
+    [['render', 'nope'], /unknown scene 'nope'.*cornell/],
+    [['render', 'missing.ply'], /cannot read 'missing\.ply': no such file/],
+    [['render', 'cornell', '--width', '0'], /--width must be from 1 to 16384/],
+    [['render', 'cornell', '--height', 'tall'], /--height must be a whole number/],
+    [['render', 'cornell', '--spp', '-3'], /--spp must be from 1/],
+    [['render', 'cornell', '--tonemap', 'filmic'], /--tonemap must be one of linear, reinhard, aces/],
+    [['render', 'cornell', '-W', '16384', '-H', '16384'], /image 16384×16384 is too large/],
+    [['info', 'nope.obj'], /unknown scene 'nope\.obj'/],
+  ])('%j: one line, non-zero exit', (args, message) => {
+    const r = lantern(args as string[]);
+    expect(r.code).not.toBe(0);
+    expect(r.stderr).toMatch(message);
+    expect(oneLine(r.stderr), r.stderr).toBe(true);
+    expect(r.rawStderr).not.toMatch(/^\s+at /m);
+  });
+
+  it('a corrupt PLY names the file and the problem', () => {
+    const path = join(dir, 'broken.ply');
+    writeFileSync(path, 'ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nproperty float y\nproperty float z\nelement face 10\nproperty list uchar int vertex_indices\nend_header\n\x00\x01');
+    const r = lantern(['info', path]);
+    expect(r.code).toBe(1);
+    expect(r.stderr).toMatch(/broken\.ply/);
+    expect(oneLine(r.stderr)).toBe(true);
+  });
+
+  it('no WebGPU adapter: says so and what to do', () => {
+    const r = lantern(['render', 'cornell', '-W', '8', '-H', '8'], { VK_ICD_FILENAMES: join(dir, 'no-such-driver.json') });
+    expect(r.code).toBe(1);
+    expect(r.stderr).toMatch(/no WebGPU adapter found.*driver/);
+    expect(oneLine(r.stderr)).toBe(true);
+  });
+
+  it('--verbose adds the stack trace', () => {
+    const r = lantern(['--verbose', 'render', 'nope']);
+    expect(r.code).toBe(1);
+    expect(r.rawStderr).toMatch(/^\s+at /m);
+  });
+});
+
+describe('lantern info and bench', () => {
+  it('info reports the scene and its BVH', () => {
+    const r = lantern(['info', 'cornell', '--json']);
+    expect(r.code).toBe(0);
+    const info = JSON.parse(r.stdout);
+    expect(info).toMatchObject({ scene: 'cornell', triangles: 32, lights: 2 });
+    expect(info.bvh.nodeCount).toBeGreaterThan(0);
+  });
+
+  it('bench reports GPU-timed throughput figures', () => {
+    const r = lantern(['bench', 'cornell', '-W', '32', '-H', '32', '-r', '1', '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const b = JSON.parse(r.stdout);
+    expect(b.timing).toBe('gpu-timestamps');
+    for (const figure of [b.primary.mraysPerSecond, b.diffuse.mraysPerSecond, b.pathTracing.samplesPerSecond, b.pathTracing.mraysPerSecond]) {
+      expect(figure).toBeGreaterThan(0);
+      expect(Number.isFinite(figure)).toBe(true);
+    }
+    expect(b.pathTracing.raysPerPath).toBeGreaterThan(1);
+    expect(b.bvh.nodes).toBe(33);
+  });
+});
