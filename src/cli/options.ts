@@ -1,5 +1,7 @@
 /** Parsing and checking of numeric command-line options, with messages that name the option. */
-import { InvalidArgumentError } from 'commander';
+import { InvalidArgumentError, type Command } from 'commander';
+import { MAX_IMAGE_SIDE } from '../renderer/renderer.ts';
+import { DEFAULT_SETTINGS, MAX_BOUNCES_LIMIT } from '../renderer/settings.ts';
 
 export function integerOption(name: string, min: number, max: number): (value: string) => number {
   return (value: string) => {
@@ -24,4 +26,12 @@ export function choiceOption<T extends string>(name: string, choices: readonly T
     if (!(choices as readonly string[]).includes(value)) throw new InvalidArgumentError(`${name} must be one of ${choices.join(', ')}, not '${value}'.`);
     return value as T;
   };
+}
+
+/** --width, --height and --bounces, shared by the commands that render. */
+export function withImageOptions(command: Command, defaults: { width: number; height: number }): Command {
+  return command
+    .option('-W, --width <pixels>', 'image width', integerOption('--width', 1, MAX_IMAGE_SIDE), defaults.width)
+    .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, MAX_IMAGE_SIDE), defaults.height)
+    .option('-b, --bounces <n>', 'maximum bounces per path', integerOption('--bounces', 0, MAX_BOUNCES_LIMIT), DEFAULT_SETTINGS.maxBounces);
 }

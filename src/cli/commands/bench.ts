@@ -1,9 +1,8 @@
 /** `lantern bench <scene>`: BVH build, traversal and path-tracing throughput, GPU-timed. */
 import type { Command } from 'commander';
 import { runBenchmark } from '../../renderer/benchmark.ts';
-import { DEFAULT_SETTINGS, MAX_BOUNCES_LIMIT } from '../../renderer/settings.ts';
 import type { CliContext } from '../context.ts';
-import { integerOption } from '../options.ts';
+import { integerOption, withImageOptions } from '../options.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 
@@ -16,14 +15,12 @@ interface BenchOptions {
 }
 
 export function registerBench(program: Command, context: CliContext): void {
-  program
+  const command = program
     .command('bench')
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
-    .argument('<scene>', sceneHelp())
-    .option('-W, --width <pixels>', 'image width', integerOption('--width', 1, 16384), 1920)
-    .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, 16384), 1080)
+    .argument('<scene>', sceneHelp());
+  withImageOptions(command, { width: 1920, height: 1080 })
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
-    .option('-b, --bounces <n>', 'maximum bounces for the path-tracing figure', integerOption('--bounces', 0, MAX_BOUNCES_LIMIT), DEFAULT_SETTINGS.maxBounces)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
 }

@@ -3,8 +3,7 @@ import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { DEFAULT_SETTINGS, LIGHT_SAMPLING, TONE_MAPPERS, type LightSampling, type ToneMapper } from '../../renderer/settings.ts';
-import { MAX_BOUNCES_LIMIT } from '../../renderer/settings.ts';
-import { choiceOption, integerOption, numberOption } from '../options.ts';
+import { choiceOption, integerOption, numberOption, withImageOptions } from '../options.ts';
 import { writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
@@ -25,14 +24,12 @@ interface RenderOptions {
 }
 
 export function registerRender(program: Command, context: CliContext): void {
-  program
+  const command = program
     .command('render')
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
-    .argument('<scene>', sceneHelp())
-    .option('-W, --width <pixels>', 'image width', integerOption('--width', 1, 16384), 512)
-    .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, 16384), 512)
+    .argument('<scene>', sceneHelp());
+  withImageOptions(command, { width: 512, height: 512 })
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
-    .option('-b, --bounces <n>', 'maximum bounces per path', integerOption('--bounces', 0, MAX_BOUNCES_LIMIT), DEFAULT_SETTINGS.maxBounces)
     .option('--seed <n>', 'random seed (same seed, same image)', integerOption('--seed', 0, 0xffffffff), DEFAULT_SETTINGS.seed)
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
     .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)')
