@@ -7,15 +7,22 @@ import type { PackedScene } from './pack/scene-pack.ts';
 import { createBufferWithData } from './readback.ts';
 import { withErrorScope } from './device.ts';
 
-const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots'] as const;
+const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_rects'] as const;
+
+type BufferName = 'scene_info' | (typeof STORAGE_NAMES)[number];
 
 export class SceneResources {
+  /** Every group-0 resource keyed by its WGSL variable name in shaders/scene/bindings.wgsl. */
+  readonly bindings: Readonly<Record<BufferName | 'texture_atlas', GPUBuffer | GPUTextureView>>;
+
   private constructor(
-    /** Buffers keyed by their WGSL variable names in shaders/scene/bindings.wgsl. */
-    readonly buffers: Readonly<Record<'scene_info' | (typeof STORAGE_NAMES)[number], GPUBuffer>>,
+    readonly buffers: Readonly<Record<BufferName, GPUBuffer>>,
+    readonly atlas: GPUTexture,
     readonly counts: PackedScene['counts'],
     readonly byteSize: number,
-  ) {}
+  ) {
+    this.bindings = { ...buffers, texture_atlas: atlas.createView({ label: 'texture atlas', dimension: '2d-array' }) };
+  }
 
   static async upload(device: GPUDevice, packed: PackedScene, label: string): Promise<SceneResources> {
     const limit = device.limits.maxStorageBufferBindingSize;
@@ -37,11 +44,25 @@ export class SceneResources {
       }
       return b as SceneResources['buffers'];
     });
-    const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0);
-    return new SceneResources(buffers, packed.counts, byteSize);
+    const { pageSize, pages } = packed.atlas;
+    const atlas = await withErrorScope(device, `the texture atlas of scene '${label}' (${pages.length} × ${pageSize}² texels)`, () => {
+      const texture = device.createTexture({
+        label: `${label} texture atlas`,
+        size: [pageSize, pageSize, pages.length],
+        format: 'rgba8unorm-srgb',
+        usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST,
+      });
+      pages.forEach((page, layer) => {
+        device.queue.writeTexture({ texture, origin: [0, 0, layer] }, page, { bytesPerRow: pageSize * 4 }, [pageSize, pageSize, 1]);
+      });
+      return texture;
+    });
+    const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0) + pages.length * pageSize * pageSize * 4;
+    return new SceneResources(buffers, atlas, packed.counts, byteSize);
   }
 
   destroy(): void {
     for (const b of Object.values(this.buffers)) b.destroy();
+    this.atlas.destroy();
   }
 }

@@ -4,7 +4,15 @@ import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../renderer/view.ts';
 import { LIGHT_SAMPLING, type LightSampling } from '../renderer/settings.ts';
-import { UniformParams } from './uniform-params.ts';
+import type { Torch } from '../scene/types.ts';
+import { UniformParams, type UniformValues } from './uniform-params.ts';
+
+/** shaders/scene/torch.wgsl TorchLight: surface radiance I / (π r²) gives intensity I far away. */
+function torchUniform(torch: Torch | undefined): { radiance: number[]; radius: number; range: number } {
+  if (!torch) return { radiance: [0, 0, 0], radius: 1, range: 1 };
+  const l = torch.intensity / (Math.PI * torch.radius * torch.radius);
+  return { radiance: torch.color.map((c) => c * l), radius: torch.radius, range: torch.range };
+}
 
 const MODULE = 'passes/path-trace';
 /** Must match @workgroup_size of path_trace. */
@@ -25,6 +33,8 @@ export interface PathTraceDispatch {
   readonly maxBounces: number;
   readonly seed: number;
   readonly lightSampling: LightSampling;
+  /** The torch at the camera, if any. */
+  readonly torch?: Torch;
 }
 
 /** The buffers the path tracer writes. */
@@ -42,7 +52,7 @@ export class PathTracePass {
 
   private constructor(
     private readonly kernel: ComputeKernel,
-    private readonly params: UniformParams<Record<string, number | number[]>>,
+    private readonly params: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<PathTracePass> {
@@ -60,6 +70,7 @@ export class PathTracePass {
       max_bounces: d.maxBounces,
       seed: d.seed >>> 0,
       light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
+      torch: torchUniform(d.torch),
     });
     const pass = encoder.beginComputePass({ label: 'path trace', ...(timer ? { timestampWrites: timer.timestampWrites('path trace') } : {}) });
     this.kernel.dispatch(
@@ -77,7 +88,7 @@ export class PathTracePass {
 
   private sceneGroup(scene: SceneResources): GPUBindGroup {
     let g = this.sceneGroups.get(scene);
-    if (!g) this.sceneGroups.set(scene, (g = this.kernel.bindGroup(0, scene.buffers)));
+    if (!g) this.sceneGroups.set(scene, (g = this.kernel.bindGroup(0, scene.bindings)));
     return g;
   }
 

@@ -40,7 +40,7 @@ export class TraceRaysPass {
   bind(scene: SceneResources, rays: GPUBuffer, hits: GPUBuffer, count: number): { 0: GPUBindGroup; 2: GPUBindGroup; count: number } {
     this.params.write({ ray_count: count });
     return {
-      0: this.kernel.bindGroup(0, scene.buffers),
+      0: this.kernel.bindGroup(0, scene.bindings),
       2: this.kernel.bindGroup(2, { params: this.params.buffer, rays, hits }),
       count,
     };

@@ -6,7 +6,10 @@
 import { makeStructuredView, type StructuredView } from 'webgpu-utils';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
 
-export class UniformParams<T extends Record<string, number | readonly number[]>> {
+/** Values by WGSL field name; nested structs as nested objects. */
+export type UniformValues = { [field: string]: number | readonly number[] | UniformValues };
+
+export class UniformParams<T extends UniformValues> {
   readonly buffer: GPUBuffer;
   private readonly view: StructuredView;
 

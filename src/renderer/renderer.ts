@@ -18,7 +18,7 @@ import { PresentPass } from '../passes/present-pass.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { prepareScene, type PreparedScene } from './prepare.ts';
-import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
+import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
 import { ViewUniform } from './view.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
@@ -171,9 +171,10 @@ export class Renderer {
     const { resources, targets } = this.ready();
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
     const s = this.settingsValue;
+    const torch = effectiveTorch(this.prepared?.scene, s.torch);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling };
+      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, torch };
       this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);

@@ -4,6 +4,8 @@
  * shaders/passes/path-trace.wgsl); a unit test keeps the two in step.
  */
 import { LanternError } from '../errors.ts';
+import type { Vec3 } from '../math/vec3.ts';
+import type { Scene, Torch } from '../scene/types.ts';
 
 export const TONE_MAPPERS = ['linear', 'reinhard', 'aces'] as const;
 export type ToneMapper = (typeof TONE_MAPPERS)[number];
@@ -11,6 +13,18 @@ export type ToneMapper = (typeof TONE_MAPPERS)[number];
 /** 'bsdf': BSDF sampling only (emitters found by chance). 'mis': next-event estimation + BSDF sampling, combined by MIS. */
 export const LIGHT_SAMPLING = ['bsdf', 'mis'] as const;
 export type LightSampling = (typeof LIGHT_SAMPLING)[number];
+
+/**
+ * The torch at the camera: on or off, and any of its parameters overriding the scene's own torch.
+ * A scene without a torch gets one only when intensity and range are both given.
+ */
+export interface TorchSettings {
+  readonly enabled: boolean;
+  readonly color?: Vec3;
+  readonly intensity?: number;
+  readonly range?: number;
+  readonly radius?: number;
+}
 
 export interface RenderSettings {
   /** Scattering events per path: 0 shows emitters only, 1 direct light, ... */
@@ -21,6 +35,7 @@ export interface RenderSettings {
   readonly exposureStops: number;
   /** Seed of every random stream: the same seed, scene and settings give the same image. */
   readonly seed: number;
+  readonly torch: TorchSettings;
 }
 
 export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
@@ -29,10 +44,21 @@ export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
   toneMapper: 'aces',
   exposureStops: 0,
   seed: 1,
+  torch: Object.freeze({ enabled: true }),
 });
 
 /** Settings that change the estimate itself: changing one restarts accumulation. */
-export const ESTIMATE_SETTINGS: readonly (keyof RenderSettings)[] = ['maxBounces', 'lightSampling', 'seed'];
+export const ESTIMATE_SETTINGS: readonly (keyof RenderSettings)[] = ['maxBounces', 'lightSampling', 'seed', 'torch'];
+
+/** The torch that lights the scene under these settings, or undefined when there is none. */
+export function effectiveTorch(scene: Pick<Scene, 'torch'> | undefined, t: TorchSettings): Torch | undefined {
+  if (!t.enabled) return undefined;
+  const base = scene?.torch;
+  const intensity = t.intensity ?? base?.intensity;
+  const range = t.range ?? base?.range;
+  if (intensity === undefined || range === undefined) return undefined;
+  return { color: t.color ?? base?.color ?? [1, 1, 1], intensity, range, radius: t.radius ?? base?.radius ?? range / 256 };
+}
 
 export const MAX_BOUNCES_LIMIT = 1024;
 
@@ -52,5 +78,12 @@ export function validateSettings(s: RenderSettings): RenderSettings {
   if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) {
     throw new LanternError(`seed must be a whole number from 0 to 4294967295, not ${s.seed}`);
   }
+  const t = s.torch;
+  if (t.color && (t.color.length !== 3 || !t.color.every((c) => Number.isFinite(c) && c >= 0))) {
+    throw new LanternError(`torch colour must be three non-negative numbers, not ${t.color.join(', ')}`);
+  }
+  if (t.intensity !== undefined && !(Number.isFinite(t.intensity) && t.intensity >= 0)) throw new LanternError(`torch intensity must be a non-negative number, not ${t.intensity}`);
+  if (t.range !== undefined && !(Number.isFinite(t.range) && t.range > 0)) throw new LanternError(`torch range must be a positive number, not ${t.range}`);
+  if (t.radius !== undefined && !(Number.isFinite(t.radius) && t.radius > 0)) throw new LanternError(`torch radius must be a positive number, not ${t.radius}`);
   return s;
 }

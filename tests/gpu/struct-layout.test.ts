@@ -54,6 +54,7 @@ const STRUCTS: [string, string][] = [
   ['passes/path-trace', 'PathTraceParams'],
   ['passes/tonemap', 'TonemapParams'],
   ['passes/diffuse-rays', 'DiffuseRaysParams'],
+  ['scene/bindings', 'TextureRect'],
 ];
 
 describe('GPU struct layouts match reflection', () => {

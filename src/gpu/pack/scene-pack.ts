@@ -11,6 +11,7 @@ import type { TriangleList } from '../../scene/triangles.ts';
 import type { Scene } from '../../scene/types.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
 import { StructArray } from './struct-array.ts';
+import { meanLinearColor, packTextureAtlas, type TextureAtlas } from './texture-atlas.ts';
 
 /** The group-0 resources, keyed by their WGSL variable names. */
 export interface PackedScene {
@@ -20,7 +21,10 @@ export interface PackedScene {
   readonly triangles_shading: ArrayBuffer;
   readonly materials: ArrayBuffer;
   readonly light_slots: ArrayBuffer;
-  readonly counts: { readonly triangles: number; readonly nodes: number; readonly lights: number };
+  readonly texture_rects: ArrayBuffer;
+  /** The pages of texture_atlas (bound as a 2D array texture). */
+  readonly atlas: TextureAtlas;
+  readonly counts: { readonly triangles: number; readonly nodes: number; readonly lights: number; readonly textures: number };
   /** Σ luminance(emission) × area over emissive triangles. */
   readonly totalLightPower: number;
 }
@@ -34,12 +38,29 @@ export function sceneLayouts() {
     shading: structLayout(defs, 'TriangleShading'),
     material: structLayout(defs, 'Material'),
     lightSlot: structLayout(defs, 'LightSlot'),
+    textureRect: structLayout(defs, 'TextureRect'),
   };
 }
 
-export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh): PackedScene {
+/** Sentinels and flag bits shared with shaders/scene/types.wgsl and lib/constants.wgsl. */
+export const NO_TEXTURE = 0xffffffff;
+export const TRIANGLE_ALPHA_MASKED = 1;
+export const MATERIAL_ALPHA_MASK = 1;
+export const MATERIAL_EMISSION_PANORAMA = 2;
+
+/** Options of packing that depend on the device. */
+export interface PackOptions {
+  /** Largest 2D texture side the device allows (maxTextureDimension2D). */
+  readonly maxTextureSide: number;
+}
+
+export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }): PackedScene {
   const layouts = sceneLayouts();
   const n = triangles.count;
+  const textures = scene.textures ?? [];
+  // Luminance of each texture's mean linear colour: the emitted power of a textured emitter.
+  const textureMean = textures.map((t) => luminance(meanLinearColor(t)));
+  const emissionMean = scene.materials.map((m) => (m.emissionTexture === undefined ? 1 : textureMean[m.emissionTexture] ?? 0));
 
   const nodes = new StructArray(layouts.node, bvh.nodeCount);
   {
@@ -59,7 +80,7 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh): Pack
   const lightTriangles: number[] = [];
   const lightPowers: number[] = [];
   {
-    const v0 = hot.vec3('v0'), e1 = hot.vec3('e1'), e2 = hot.vec3('e2');
+    const v0 = hot.vec3('v0'), e1 = hot.vec3('e1'), e2 = hot.vec3('e2'), flags = hot.u32Field('flags');
     const normals = [shading.vec3('n0'), shading.vec3('n1'), shading.vec3('n2')] as const;
     const uvs = [shading.vec2('uv0'), shading.vec2('uv1'), shading.vec2('uv2')] as const;
     const material = shading.u32Field('material'), sourceIndex = shading.u32Field('source_index');
@@ -91,9 +112,11 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh): Pack
       const m = triangles.materialIds[t]!;
       material(leaf, m);
       sourceIndex(leaf, t);
+      const mat = scene.materials[m]!;
+      if (mat.alphaMode === 'mask' && mat.albedoTexture !== undefined) flags(leaf, TRIANGLE_ALPHA_MASKED);
 
       // Power in the luminance sense, as lights.wgsl light_selection_pmf computes it.
-      const power = luminance(scene.materials[m]!.emission) * 0.5 * twiceArea;
+      const power = luminance(mat.emission) * emissionMean[m]! * 0.5 * twiceArea;
       if (power > 0) {
         lightTriangles.push(leaf);
         lightPowers.push(power);
@@ -104,9 +127,36 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh): Pack
   const materials = new StructArray(layouts.material, scene.materials.length);
   {
     const albedo = materials.vec3('albedo'), emission = materials.vec3('emission');
+    const albedoTexture = materials.u32Field('albedo_texture'), emissionTexture = materials.u32Field('emission_texture');
+    const mean = materials.f32Field('emission_texture_mean'), flags = materials.u32Field('flags');
+    const repeats = materials.f32Field('panorama_repeats'), horizon = materials.f32Field('panorama_horizon_v'), vPerRadian = materials.f32Field('panorama_v_per_radian');
     scene.materials.forEach((m, i) => {
       albedo(i, ...m.albedo);
       emission(i, ...m.emission);
+      albedoTexture(i, m.albedoTexture ?? NO_TEXTURE);
+      emissionTexture(i, m.emissionTexture ?? NO_TEXTURE);
+      mean(i, emissionMean[i]!);
+      let f = 0;
+      if (m.alphaMode === 'mask') f |= MATERIAL_ALPHA_MASK;
+      const mapping = m.emissionMapping;
+      if (mapping?.kind === 'panorama') {
+        f |= MATERIAL_EMISSION_PANORAMA;
+        repeats(i, mapping.repeats);
+        horizon(i, mapping.horizonV);
+        vPerRadian(i, mapping.vPerRadian);
+      }
+      flags(i, f);
+    });
+  }
+
+  const atlas = packTextureAtlas(textures, options.maxTextureSide);
+  const textureRects = new StructArray(layouts.textureRect, textures.length);
+  {
+    const origin = textureRects.vec2u('origin'), size = textureRects.vec2u('size'), page = textureRects.u32Field('page');
+    atlas.rects.forEach((r, i) => {
+      origin(i, r.x, r.y);
+      size(i, r.width, r.height);
+      page(i, r.page);
     });
   }
 
@@ -136,7 +186,9 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh): Pack
     triangles_shading: shading.bytes,
     materials: materials.bytes,
     light_slots: lightSlots.bytes,
-    counts: { triangles: n, nodes: bvh.nodeCount, lights: lightTriangles.length },
+    texture_rects: textureRects.bytes,
+    atlas,
+    counts: { triangles: n, nodes: bvh.nodeCount, lights: lightTriangles.length, textures: textures.length },
     totalLightPower,
   };
 }

@@ -46,6 +46,17 @@ export class StructArray {
     };
   }
 
+  vec2u(field: string): (i: number, x: number, y: number) => void {
+    const o = this.layout.word(field, 'vec2u');
+    const s = this.layout.strideWords;
+    const u32 = this.u32;
+    return (i, x, y) => {
+      const b = i * s + o;
+      u32[b] = x;
+      u32[b + 1] = y;
+    };
+  }
+
   f32Field(field: string): (i: number, value: number) => void {
     const o = this.layout.word(field, 'f32');
     const s = this.layout.strideWords;

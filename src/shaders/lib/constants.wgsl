@@ -9,3 +9,5 @@ const INV_PI: f32 = 0.318309886183791;
 const T_MISS: f32 = 3.0e38;
 // Triangle index meaning "the ray hit nothing".
 const NO_TRIANGLE: u32 = 0xffffffffu;
+// Texture index meaning "no texture".
+const NO_TEXTURE: u32 = 0xffffffffu;

@@ -1,7 +1,7 @@
 // The path tracer: one invocation per pixel of the current tile, `samples` paths per invocation,
-// added to the float32 accumulation buffer. Diffuse surfaces only; next-event estimation on emissive
-// triangles combined with BSDF sampling by multiple importance sampling (power heuristic), Russian
-// roulette from the fourth bounce on. Expects the scene (group 0) and view (group 1); its own inputs
+// added to the float32 accumulation buffer. Diffuse (textured) surfaces; next-event estimation on
+// emissive triangles combined with BSDF sampling by multiple importance sampling (power heuristic),
+// plus next-event estimation of the torch at the camera; Russian roulette from the fourth bounce on. Expects the scene (group 0) and view (group 1); its own inputs
 // and outputs are group 2. Follows Veach 1997, ch. 9, and pbrt-v4's PathIntegrator (§13.4).
 
 #import lib/constants
@@ -12,6 +12,8 @@
 #import scene/surface
 #import lib/ray-offset
 #import scene/lights
+#import scene/materials
+#import scene/torch
 #import view/bindings
 
 // The closed set of light-sampling strategies; the host's names live in renderer/settings.ts.
@@ -35,6 +37,8 @@ struct PathTraceParams {
   max_bounces: u32,
   seed: u32,
   light_sampling: u32,
+  // The torch at the camera position (radiance zero: off).
+  torch: TorchLight,
 }
 
 // 64-bit ray counters as (low, high) word pairs: a 4K image at a few thousand samples overflows 32 bits.
@@ -78,11 +82,10 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
     if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
       var weight = 1.0;
       if (bounce > 0u && use_nee) {
-        let light_pdf = light_selection_pmf(material.emission, surface.area) / surface.area
-          * hit.t * hit.t / cos_emitter;
+        let light_pdf = light_selection_pmf(material, surface.area) / surface.area * hit.t * hit.t / cos_emitter;
         weight = power_heuristic(bsdf_pdf, light_pdf);
       }
-      result.radiance += throughput * material.emission * weight;
+      result.radiance += throughput * material_emission(material, surface.uv, ray.direction) * weight;
     }
     if (bounce == params.max_bounces) {
       break;
@@ -93,7 +96,8 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
     let ng = facing * surface.geometric_normal;
     let ns = facing * surface.shading_normal;
     let origin = offset_ray_origin(surface.position, ng);
-    let brdf = material.albedo * INV_PI;
+    let albedo = material_albedo(material, surface.uv).rgb;
+    let brdf = albedo * INV_PI;
 
     // Next-event estimation: one point on one emissive triangle.
     if (use_nee) {
@@ -110,9 +114,23 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
         result.shadow_rays += 1u;
         let shadow = Ray(origin, 0.0, wi, distance * (1.0 - SHADOW_RAY_SHORTEN));
         if (!trace_any(shadow)) {
+          let light_material = materials[triangles_shading[light.triangle].material];
+          let emission = material_emission(light_material, triangle_uv(light.triangle, light.bary), wi);
           let light_pdf = light.pdf_area * distance2 / cos_light;
           let weight = power_heuristic(light_pdf, cosine_hemisphere_pdf(cos_surface));
-          result.radiance += throughput * brdf * light.emission * (cos_surface * weight / light_pdf);
+          result.radiance += throughput * brdf * emission * (cos_surface * weight / light_pdf);
+        }
+      }
+    }
+
+    // The torch: next-event estimation only, so no MIS weight (BSDF rays never hit it).
+    let torch = sample_torch(params.torch, view.camera.position, origin, rng_next_2d(rng));
+    if (torch.pdf > 0.0) {
+      let cos_surface = dot(ns, torch.direction);
+      if (cos_surface > 0.0 && dot(ng, torch.direction) > 0.0) {
+        result.shadow_rays += 1u;
+        if (!trace_any(Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
+          result.radiance += throughput * brdf * torch.radiance * (cos_surface / torch.pdf);
         }
       }
     }
@@ -123,7 +141,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
       break;
     }
     bsdf_pdf = cosine_hemisphere_pdf(dot(wi, ns));
-    throughput *= material.albedo;
+    throughput *= albedo;
 
     if (bounce + 1u >= ROULETTE_START_BOUNCE) {
       let survive = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);

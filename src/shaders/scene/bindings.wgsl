@@ -9,3 +9,6 @@
 @group(0) @binding(3) var<storage, read> triangles_shading: array<TriangleShading>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var<storage, read> light_slots: array<LightSlot>;
+@group(0) @binding(6) var<storage, read> texture_rects: array<TextureRect>;
+// rgba8unorm-srgb pages: textureLoad returns linear colour.
+@group(0) @binding(7) var texture_atlas: texture_2d_array<f32>;

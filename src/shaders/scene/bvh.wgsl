@@ -1,9 +1,16 @@
 // BVH traversal: closest hit with an ordered stack (nearer child first, the closest hit so far prunes
-// boxes), and any hit for shadow rays. Expects the scene bindings (group 0). The CPU oracle
-// bvh/traverse.ts runs the same algorithm, so hits and visited-node counts agree.
+// boxes), and any hit for shadow rays. Alpha-masked triangles count only where their texture is
+// opaque. Expects the scene bindings (group 0). The CPU oracle bvh/traverse.ts runs the same
+// algorithm (without alpha masks), so hits and visited-node counts agree.
+
+// A candidate hit that survives the alpha mask, if the triangle has one.
+fn accept_hit(tri: TriangleHot, triangle: u32, bary: vec2f) -> bool {
+  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(triangle, bary);
+}
 
 #import scene/bindings
 #import scene/intersect
+#import scene/materials
 
 // The builder caps depth at 60 (bvh/build.ts); a push happens at most once per level.
 const BVH_STACK_SIZE: u32 = 64u;
@@ -26,8 +33,9 @@ fn trace_closest(ray: Ray) -> Hit {
     let n = bvh_nodes[node];
     if (n.tri_count > 0u) {
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
-        let r = intersect_triangle(ray.origin, ray.direction, triangles_hot[i], ray.t_min, hit.t);
-        if (r.x < hit.t) {
+        let tri = triangles_hot[i];
+        let r = intersect_triangle(ray.origin, ray.direction, tri, ray.t_min, hit.t);
+        if (r.x < hit.t && accept_hit(tri, i, r.yz)) {
           hit = Hit(r.x, i, r.y, r.z);
         }
       }
@@ -81,8 +89,9 @@ fn trace_any(ray: Ray) -> bool {
     let n = bvh_nodes[node];
     if (n.tri_count > 0u) {
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
-        let r = intersect_triangle(ray.origin, ray.direction, triangles_hot[i], ray.t_min, ray.t_max);
-        if (r.x < ray.t_max) {
+        let tri = triangles_hot[i];
+        let r = intersect_triangle(ray.origin, ray.direction, tri, ray.t_min, ray.t_max);
+        if (r.x < ray.t_max && accept_hit(tri, i, r.yz)) {
           return true;
         }
       }

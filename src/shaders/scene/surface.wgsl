@@ -1,6 +1,7 @@
 // The surface at a closest hit: position, normals, area, material. Expects the scene bindings (group 0).
 
 #import scene/bindings
+#import scene/materials
 
 struct Surface {
   position: vec3f,
@@ -11,6 +12,7 @@ struct Surface {
   // Triangle area in squared scene units.
   area: f32,
   material: u32,
+  uv: vec2f,
 }
 
 fn surface_at(hit: Hit) -> Surface {
@@ -25,5 +27,5 @@ fn surface_at(hit: Hit) -> Surface {
   let ns_length = length(ns);
   ns = select(ng, ns / ns_length, ns_length > 1e-12);
   ns = select(-ns, ns, dot(ns, ng) >= 0.0);
-  return Surface(position, ng, ns, 0.5 * twice_area, shading.material);
+  return Surface(position, ng, ns, 0.5 * twice_area, shading.material, triangle_uv(hit.triangle, vec2f(hit.u, hit.v)));
 }

@@ -17,9 +17,14 @@ struct BvhNode {
 // Möller–Trumbore (v1 = v0 + e1, v2 = v0 + e2). The "hot" half of the triangle data.
 struct TriangleHot {
   v0: vec3f,
+  // TRIANGLE_* bits; fills the slot after v0 that alignment would leave empty anyway.
+  flags: u32,
   e1: vec3f,
   e2: vec3f,
 }
+
+// The triangle's material is alpha-masked: a hit counts only where its texture is opaque.
+const TRIANGLE_ALPHA_MASKED: u32 = 1u;
 
 // What shading reads once per closest hit, same order as TriangleHot. The "cold" half.
 struct TriangleShading {
@@ -35,12 +40,36 @@ struct TriangleShading {
   source_index: u32,
 }
 
-// A diffuse surface that may emit (scene/types.ts Material).
+// A diffuse surface that may emit (scene/types.ts Material). Textures multiply the constants.
 struct Material {
   // Diffuse reflectance, linear RGB in [0, 1].
   albedo: vec3f,
+  // Index into texture_rects, or NO_TEXTURE.
+  albedo_texture: u32,
   // Emitted radiance, linear RGB, on the side the geometric normal (e1 × e2) faces.
   emission: vec3f,
+  emission_texture: u32,
+  // Luminance of the emission texture's mean linear colour (1 without one): emitted power is
+  // luminance(emission) × this × area, the weight of light selection.
+  emission_texture_mean: f32,
+  // MATERIAL_* bits.
+  flags: u32,
+  // For MATERIAL_EMISSION_PANORAMA: texture repeats around the horizon, v at the horizon, and v per
+  // radian of elevation.
+  panorama_repeats: f32,
+  panorama_horizon_v: f32,
+  panorama_v_per_radian: f32,
+}
+
+const MATERIAL_ALPHA_MASK: u32 = 1u;
+// The emission texture is looked up by the viewing direction (a sky panorama), not by uv.
+const MATERIAL_EMISSION_PANORAMA: u32 = 2u;
+
+// Where one texture lies in the atlas: texels [origin, origin + size) of page `page`.
+struct TextureRect {
+  origin: vec2u,
+  size: vec2u,
+  page: u32,
 }
 
 // One slot of the alias table over emissive triangles (Walker 1977; Vose 1991): pick a slot
@@ -57,7 +86,8 @@ struct SceneInfo {
   triangle_count: u32,
   node_count: u32,
   light_count: u32,
-  // Σ over emissive triangles of luminance(emission) × area: the normaliser of light selection.
+  // Σ over emissive triangles of their power (see Material.emission_texture_mean): the normaliser
+  // of light selection.
   total_light_power: f32,
 }
 
