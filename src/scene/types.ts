@@ -108,4 +108,6 @@ export interface Scene {
   readonly camera: Camera;
   /** A light the viewer carries, on by default where the scene has one (Doom maps). */
   readonly torch?: Torch;
+  /** Size of one scene unit in metres, when known (Cornell box: 0.001; Doom: 1/32). */
+  readonly metersPerUnit?: number;
 }

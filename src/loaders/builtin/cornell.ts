@@ -52,5 +52,6 @@ export function cornellBox(): Scene {
     materials: b.materials,
     // Published camera: focal length 35 mm, 25 mm film: 2·atan(12.5 / 35) = 39.3077°.
     camera: { position: [278, 273, -800], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 39.3077 },
+    metersPerUnit: 0.001,
   };
 }
