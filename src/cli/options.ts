@@ -35,3 +35,15 @@ export function withImageOptions(command: Command, defaults: { width: number; he
     .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, MAX_IMAGE_SIDE), defaults.height)
     .option('-b, --bounces <n>', 'maximum bounces per path', integerOption('--bounces', 0, MAX_BOUNCES_LIMIT), DEFAULT_SETTINGS.maxBounces);
 }
+
+/** A comma-separated list of exactly `count` finite numbers (e.g. a colour or a point). */
+export function numberListOption(name: string, counts: readonly number[]): (value: string) => number[] {
+  return (value: string) => {
+    const parts = value.split(',').map((p) => p.trim());
+    const numbers = parts.map(Number);
+    if (!counts.includes(parts.length) || parts.some((p) => p === '') || !numbers.every(Number.isFinite)) {
+      throw new InvalidArgumentError(`${name} takes ${counts.join(' or ')} comma-separated numbers, not '${value}'.`);
+    }
+    return numbers;
+  };
+}

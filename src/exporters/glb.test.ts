@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { WebIO } from '@gltf-transform/core';
-import { KHRMaterialsEmissiveStrength } from '@gltf-transform/extensions';
+import { KHRMaterialsEmissiveStrength, type EmissiveStrength } from '@gltf-transform/extensions';
 // @ts-expect-error gltf-validator ships no types
 import { validateBytes } from 'gltf-validator';
 import { builtinScene } from '../loaders/builtin/index.ts';
@@ -57,7 +57,7 @@ describe('GLB export', () => {
     const [masked, glow] = doc.getRoot().listMaterials();
     expect(masked!.getAlphaMode()).toBe('MASK');
     expect(masked!.getAlphaCutoff()).toBe(0.5);
-    const strength = glow!.getExtension<{ getEmissiveStrength(): number }>('KHR_materials_emissive_strength')!.getEmissiveStrength();
+    const strength = glow!.getExtension<EmissiveStrength>('KHR_materials_emissive_strength')!.getEmissiveStrength();
     expect(glow!.getEmissiveFactor().map((f) => f * strength)).toEqual([12, 6, 3]);
     expect(glow!.getEmissiveTexture()?.getName()).toBe('CHECK');
   });

@@ -3,7 +3,8 @@ import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { DEFAULT_SETTINGS, LIGHT_SAMPLING, TONE_MAPPERS, type LightSampling, type ToneMapper } from '../../renderer/settings.ts';
-import { choiceOption, integerOption, numberOption, withImageOptions } from '../options.ts';
+import { cameraFromOptions } from '../camera-option.ts';
+import { choiceOption, integerOption, numberListOption, numberOption, withImageOptions } from '../options.ts';
 import { writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
@@ -20,6 +21,12 @@ interface RenderOptions {
   exposure: number;
   tonemap: ToneMapper;
   lightSampling: LightSampling;
+  camera?: number[];
+  fov?: number;
+  torch: 'on' | 'off';
+  torchIntensity?: number;
+  torchRange?: number;
+  torchColor?: number[];
   json?: boolean;
 }
 
@@ -36,6 +43,12 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--exposure <stops>', 'exposure in stops (PNG only)', numberOption('--exposure', -64, 64), DEFAULT_SETTINGS.exposureStops)
     .option('--tonemap <curve>', `tone curve: ${TONE_MAPPERS.join(', ')} (PNG only)`, choiceOption('--tonemap', TONE_MAPPERS), DEFAULT_SETTINGS.toneMapper)
     .option('--light-sampling <strategy>', `${LIGHT_SAMPLING.join(', ')}: BSDF sampling only, or next-event estimation with MIS`, choiceOption('--light-sampling', LIGHT_SAMPLING), DEFAULT_SETTINGS.lightSampling)
+    .option('--camera <px,py,pz,tx,ty,tz>', 'camera position and look-at target in scene coordinates (Doom maps: x, height, -y)', numberListOption('--camera', [6]))
+    .option('--fov <degrees>', 'vertical field of view', numberOption('--fov', 1, 179))
+    .option('--torch <on|off>', 'the light carried at the camera (on by default where the scene has one, as Doom maps do)', choiceOption('--torch', ['on', 'off'] as const), 'on')
+    .option('--torch-intensity <W/sr>', 'torch intensity (with --torch-range, gives any scene a torch)', numberOption('--torch-intensity', 0, 1e12))
+    .option('--torch-range <distance>', 'distance at which the torch fades out', numberOption('--torch-range', 1e-6, 1e12))
+    .option('--torch-color <r,g,b>', 'torch colour, linear RGB', numberListOption('--torch-color', [3]))
     .option('--json', 'print what was done as JSON')
     .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
 }
@@ -44,7 +57,20 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const png = o.out ?? (o.exr ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note);
   await renderer.resize(o.width, o.height);
-  renderer.updateSettings({ maxBounces: o.bounces, seed: o.seed, exposureStops: o.exposure, toneMapper: o.tonemap, lightSampling: o.lightSampling });
+  renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
+  renderer.updateSettings({
+    maxBounces: o.bounces,
+    seed: o.seed,
+    exposureStops: o.exposure,
+    toneMapper: o.tonemap,
+    lightSampling: o.lightSampling,
+    torch: {
+      enabled: o.torch === 'on',
+      ...(o.torchIntensity !== undefined ? { intensity: o.torchIntensity } : {}),
+      ...(o.torchRange !== undefined ? { range: o.torchRange } : {}),
+      ...(o.torchColor ? { color: [o.torchColor[0]!, o.torchColor[1]!, o.torchColor[2]!] as const } : {}),
+    },
+  });
 
   const bar = !o.json && process.stderr.isTTY ? new SingleBar({ format: 'rendering [{bar}] {value}/{total} spp | {eta_formatted} left', hideCursor: true, stream: process.stderr }) : undefined;
   bar?.start(o.spp, 0);

@@ -1,0 +1,22 @@
+/**
+ * `--camera px,py,pz,tx,ty,tz` (position and look-at target in scene coordinates) and `--fov`,
+ * applied over the scene's own camera. For Doom maps, scene coordinates are (x, height, −y) of the
+ * map's (x, y, height).
+ */
+import { LanternError } from '../errors.ts';
+import { sub, length, cross, type Vec3 } from '../math/vec3.ts';
+import type { Camera } from '../scene/types.ts';
+
+export function cameraFromOptions(base: Camera, look?: number[], fov?: number): Camera {
+  let camera = base;
+  if (look) {
+    const position: Vec3 = [look[0]!, look[1]!, look[2]!];
+    const target: Vec3 = [look[3]!, look[4]!, look[5]!];
+    const forward = sub(target, position);
+    if (!(length(forward) > 0)) throw new LanternError('--camera: the target is the same point as the position');
+    const up: Vec3 = length(cross(forward, [0, 1, 0])) > 1e-9 * length(forward) ? [0, 1, 0] : [0, 0, -1];
+    camera = { ...camera, position, forward, up };
+  }
+  if (fov !== undefined) camera = { ...camera, vfovDegrees: fov };
+  return camera;
+}
