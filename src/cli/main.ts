@@ -4,6 +4,7 @@
  */
 import { Command } from 'commander';
 import { registerBench } from './commands/bench.ts';
+import { registerConvert } from './commands/convert.ts';
 import { registerInfo } from './commands/info.ts';
 import { registerRender } from './commands/render.ts';
 import { createCliContext } from './context.ts';
@@ -20,6 +21,7 @@ program
 registerRender(program, context);
 registerBench(program, context);
 registerInfo(program, context);
+registerConvert(program, context);
 
 await program.parseAsync(process.argv);
 // Dawn keeps native threads alive; leave as soon as the command is done.

@@ -6,7 +6,8 @@ import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
 import type { Renderer } from '../renderer/renderer.ts';
 
-function write(path: string, bytes: Uint8Array): void {
+/** Writes a file, creating its folder; a failure is a LanternError naming the path. */
+export function writeFile(path: string, bytes: Uint8Array): void {
   try {
     mkdirSync(dirname(path), { recursive: true });
     writeFileSync(path, bytes);
@@ -16,10 +17,10 @@ function write(path: string, bytes: Uint8Array): void {
 }
 
 export async function writePng(renderer: Renderer, path: string): Promise<void> {
-  write(path, encodePng(renderer.width, renderer.height, await renderer.readImage()));
+  writeFile(path, encodePng(renderer.width, renderer.height, await renderer.readImage()));
 }
 
 export async function writeExr(renderer: Renderer, path: string): Promise<void> {
   const { width, height, radiance } = await renderer.readAccumulation();
-  write(path, encodeExr(width, height, radiance));
+  writeFile(path, encodeExr(width, height, radiance));
 }

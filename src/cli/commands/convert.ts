@@ -1,0 +1,29 @@
+/** `lantern convert <scene> -o file.glb`: the built scene as binary glTF 2.0. */
+import type { Command } from 'commander';
+import { LanternError } from '../../errors.ts';
+import { sceneToGlb } from '../../exporters/glb.ts';
+import { validateScene } from '../../scene/validate.ts';
+import type { CliContext } from '../context.ts';
+import { numberOption } from '../options.ts';
+import { writeFile } from '../output-files.ts';
+import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
+
+export function registerConvert(program: Command, context: CliContext): void {
+  program
+    .command('convert')
+    .description('write the built scene as binary glTF 2.0 (.glb) with embedded PNG textures, for Blender or any glTF viewer')
+    .argument('<scene>', sceneHelp())
+    .requiredOption('-o, --out <file.glb>', 'where to write the .glb')
+    .option('--meters-per-unit <m>', "scale of one scene unit in metres (default: the scene's own, e.g. 1/32 for Doom maps)", numberOption('--meters-per-unit', 1e-9, 1e9))
+    .action((sceneArg: string, o: { out: string; metersPerUnit?: number }) =>
+      context.run(async () => {
+        if (!o.out.toLowerCase().endsWith('.glb')) throw new LanternError(`--out must name a .glb file, not '${o.out}'`);
+        const scene = loadSceneArgument(sceneArg, context.note);
+        validateScene(scene);
+        const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });
+        writeFile(o.out, glb);
+        const triangles = scene.meshes.reduce((n, m) => n + m.indices.length / 3, 0);
+        context.print(`${scene.name}: ${triangles.toLocaleString('en-US')} triangles, ${scene.materials.length} materials, ${scene.textures?.length ?? 0} textures -> ${o.out} (${(glb.length / 2 ** 20).toFixed(1)} MiB)`);
+      }),
+    );
+}
