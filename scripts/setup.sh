@@ -3,6 +3,7 @@
 #   - chromium:   headless Chromium for the browser tests, and the SwiftShader Vulkan driver that
 #                 Dawn falls back to on a machine without a GPU;
 #   - libvulkan1: the Vulkan loader Dawn (the `webgpu` npm package) opens;
+#   - freedoom:   the Freedoom IWADs (BSD licence), the Doom maps the tests load and render;
 #   - npm packages, reinstalled only when package-lock.json changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,7 @@ fi
 packages=()
 [ -x /usr/bin/chromium ] && [ -f /usr/lib/chromium/vk_swiftshader_icd.json ] || packages+=(chromium)
 /sbin/ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1' || packages+=(libvulkan1)
+[ -f /usr/share/games/doom/freedoom1.wad ] && [ -f /usr/share/games/doom/freedoom2.wad ] || packages+=(freedoom)
 if [ ${#packages[@]} -gt 0 ]; then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"

@@ -7,6 +7,7 @@ import { registerBench } from './commands/bench.ts';
 import { registerConvert } from './commands/convert.ts';
 import { registerInfo } from './commands/info.ts';
 import { registerRender } from './commands/render.ts';
+import { registerTextures } from './commands/textures.ts';
 import { createCliContext } from './context.ts';
 
 const program = new Command();
@@ -22,6 +23,7 @@ registerRender(program, context);
 registerBench(program, context);
 registerInfo(program, context);
 registerConvert(program, context);
+registerTextures(program, context);
 
 await program.parseAsync(process.argv);
 // Dawn keeps native threads alive; leave as soon as the command is done.

