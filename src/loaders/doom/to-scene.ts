@@ -1,0 +1,304 @@
+/**
+ * A Lantern scene from a Doom map: floors and ceilings (sectors.ts), walls (walls.ts), materials
+ * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the player's
+ * view and torch. Coordinates go through coordinates.ts.
+ */
+import { scale, type Vec3 } from '../../math/vec3.ts';
+import type { Camera, Material, Mesh, Scene, Texture } from '../../scene/types.ts';
+import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
+import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
+import { EYE_HEIGHT, PLAYER1_START, type DoomImageSource, type DoomMap } from './map-types.ts';
+import { buildSectorShapes, sectorAt, type SectorFailure, type SectorShapes } from './sectors.ts';
+import { buildWalls, isSky, type WallQuad } from './walls.ts';
+
+export interface DoomSceneOptions {
+  /** The sky texture (SKY1, ...). Without one the sky glows a plain grey. */
+  readonly sky?: Texture;
+  /** Entries replacing or adding to DEFAULT_LIGHT_TABLE. */
+  readonly lightTable?: Partial<LightTable>;
+  readonly onWarning?: (message: string) => void;
+  /** Scene name; the map's name by default. */
+  readonly name?: string;
+}
+
+export interface DoomSceneStats {
+  readonly sectors: number;
+  /** Sectors with floor and ceiling triangles. */
+  readonly triangulatedSectors: number;
+  readonly wallQuads: number;
+  readonly triangles: number;
+  readonly materials: number;
+  readonly emissiveMaterials: number;
+  readonly textures: number;
+}
+
+export interface DoomScene {
+  readonly scene: Scene;
+  /** Sectors whose floor and ceiling could not be built (sectors.ts). */
+  readonly failures: readonly SectorFailure[];
+  readonly stats: DoomSceneStats;
+}
+
+/**
+ * Doom renders 90° across its 320 columns and 2·atan(100/160) = 64° down its 200 rows, which a 4:3
+ * monitor stretched by 1.2 vertically. With square pixels, 90° across a 4:3 image is
+ * 2·atan(tan 45° · 3/4) = 73.74° vertically: Doom's width of view, nothing stretched.
+ */
+export const DOOM_VFOV_DEGREES = (2 * Math.atan(0.75) * 180) / Math.PI;
+
+/**
+ * Doom's sky (R_DrawPlanes): column = view angle in 1024ths of a turn, wrapped by the texture's
+ * width, so a 256-wide sky repeats 4 times around the horizon (90° each); rows start at texture row
+ * 100 on the horizon (skytexturemid = 100, the middle of the 200-row screen) and step one texture row
+ * per screen row. The screen's focal length is 160 pixels (90° across 320 columns), so near the
+ * horizon one radian of elevation is 160 rows (and 256 columns per 90° is 163 per radian: the sky's
+ * texels are nearly square in angle). For the 128-row sky: horizonV = 100/128 = 0.781, vPerRadian =
+ * 160/128 = 1.25, and the top row is reached 36° up; above that the panorama lookup clamps to it.
+ */
+export const SKY_COLUMNS_PER_TURN = 1024;
+export const SKY_HORIZON_ROW = 100;
+export const SKY_ROWS_PER_RADIAN = 160;
+/** Sky colour (linear) when no sky texture is given. */
+const PLAIN_SKY: Vec3 = [0.3, 0.3, 0.3];
+const MISSING_ALBEDO: Vec3 = [0.5, 0.5, 0.5];
+
+export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: DoomSceneOptions = {}): DoomScene {
+  const warn = options.onWarning ?? (() => {});
+  const table = mergeLightTables(DEFAULT_LIGHT_TABLE, options.lightTable);
+  const shapes = buildSectorShapes(map, warn);
+  const walls = buildWalls(map, (name) => images.texture(name), warn);
+  const out = new SceneParts(images, table, options.sky, warn);
+
+  let triangulatedSectors = 0;
+  for (const shape of shapes.shapes) {
+    const sector = map.sectors[shape.sector]!;
+    if (shape.indices.length === 0) continue;
+    triangulatedSectors++;
+    // A closed door or lift (ceiling at or below the floor) shows neither plane.
+    if (sector.ceilingHeight <= sector.floorHeight) continue;
+    const v = shape.vertices;
+    let [originU, originV] = [Infinity, Infinity];
+    for (let i = 0; i < v.length; i += 2) {
+      const [u, w] = flatUv(v[i]!, v[i + 1]!);
+      originU = Math.min(originU, Math.floor(u));
+      originV = Math.min(originV, Math.floor(w));
+    }
+    for (const [height, flat, up] of [[sector.floorHeight, sector.floorFlat, true], [sector.ceilingHeight, sector.ceilingFlat, false]] as const) {
+      const mesh = out.meshFor(isSky(flat) ? out.sky() : out.material('flat', flat, sector.lightLevel, false));
+      const base = mesh.vertexCount();
+      for (let i = 0; i < v.length; i += 2) mesh.vertex(toWorld(v[i]!, v[i + 1]!, height), flatUv(v[i]!, v[i + 1]!, originU, originV));
+      // The shape's triangles are counter-clockwise seen from above: as they are, they face up
+      // (floors); reversed, down (ceilings). Emission is one-sided, so this matters for lit flats.
+      for (let t = 0; t < shape.indices.length; t += 3) {
+        const [a, b, c] = [shape.indices[t]!, shape.indices[t + 1]!, shape.indices[t + 2]!];
+        if (up) mesh.triangle(base + a, base + b, base + c);
+        else mesh.triangle(base + a, base + c, base + b);
+      }
+    }
+  }
+
+  for (const quad of walls) addWall(out, quad, map.sectors[quad.sector]!.lightLevel);
+
+  const { meshes, materials, textures } = out.finish();
+  const scene: Scene = {
+    name: options.name ?? map.name,
+    meshes,
+    materials,
+    textures,
+    camera: playerCamera(map, shapes, warn),
+    torch: DOOM_TORCH,
+  };
+  return {
+    scene,
+    failures: shapes.failures,
+    stats: {
+      sectors: map.sectors.length,
+      triangulatedSectors,
+      wallQuads: walls.length,
+      triangles: meshes.reduce((n, m) => n + m.indices.length / 3, 0),
+      materials: materials.length,
+      emissiveMaterials: materials.filter((m) => m.emission.some((c) => c > 0)).length,
+      textures: textures.length,
+    },
+  };
+}
+
+function addWall(out: SceneParts, q: WallQuad, lightLevel: number): void {
+  const s = q.surface;
+  const material = s.kind === 'sky' ? out.sky() : s.kind === 'missing' ? out.missing() : out.material('texture', s.name, lightLevel, q.section === 'masked');
+  const mesh = out.meshFor(material);
+  const base = mesh.vertexCount();
+  // Counter-clockwise seen from the quad's sector (walls.ts), so the geometric normal faces it.
+  mesh.vertex(toWorld(q.x0, q.y0, q.bottom), [q.u0, q.vBottom]);
+  mesh.vertex(toWorld(q.x1, q.y1, q.bottom), [q.u1, q.vBottom]);
+  mesh.vertex(toWorld(q.x1, q.y1, q.top), [q.u1, q.vTop]);
+  mesh.vertex(toWorld(q.x0, q.y0, q.top), [q.u0, q.vTop]);
+  mesh.triangle(base, base + 1, base + 2);
+  mesh.triangle(base, base + 2, base + 3);
+}
+
+/**
+ * The view from player 1's start (thing type 1) at eye height above the floor it stands on, along
+ * its angle. Without one: the middle of the map, looking east.
+ */
+function playerCamera(map: DoomMap, shapes: SectorShapes, warn: (m: string) => void): Camera {
+  const start = map.things.find((t) => t.type === PLAYER1_START);
+  let x: number, y: number, angle: number;
+  if (start) [x, y, angle] = [start.x, start.y, start.angle];
+  else {
+    const xs = map.vertices.map((v) => v.x);
+    const ys = map.vertices.map((v) => v.y);
+    [x, y, angle] = [(Math.min(...xs) + Math.max(...xs)) / 2, (Math.min(...ys) + Math.max(...ys)) / 2, 0];
+    warn(`${map.name} has no player 1 start; the camera stands in the middle of the map, looking east`);
+  }
+  const sector = sectorAt(shapes, x, y) ?? nearestSector(shapes, x, y);
+  if (start && sector !== undefined && sectorAt(shapes, x, y) === undefined) warn(`the player 1 start (${x}, ${y}) is outside every sector; using the nearest, ${sector}`);
+  const floor = sector === undefined ? 0 : map.sectors[sector]!.floorHeight;
+  return { position: toWorld(x, y, floor + EYE_HEIGHT), forward: directionFromAngle(angle), up: [0, 1, 0], vfovDegrees: DOOM_VFOV_DEGREES };
+}
+
+/** The sector with a floor corner nearest to (x, y). */
+function nearestSector(shapes: SectorShapes, x: number, y: number): number | undefined {
+  let best: number | undefined;
+  let bestD = Infinity;
+  for (const s of shapes.shapes) {
+    for (let i = 0; i < s.vertices.length; i += 2) {
+      const d = (s.vertices[i]! - x) ** 2 + (s.vertices[i + 1]! - y) ** 2;
+      if (d < bestD) [best, bestD] = [s.sector, d];
+    }
+  }
+  return best;
+}
+
+/** Triangles of one material. */
+class MeshParts {
+  private readonly positions: number[] = [];
+  private readonly uvs: number[] = [];
+  private readonly indices: number[] = [];
+
+  vertexCount(): number {
+    return this.positions.length / 3;
+  }
+  vertex(p: Vec3, uv: readonly [number, number]): void {
+    this.positions.push(p[0], p[1], p[2]);
+    this.uvs.push(uv[0], uv[1]);
+  }
+  triangle(a: number, b: number, c: number): void {
+    this.indices.push(a, b, c);
+  }
+  build(name: string, material: number): Mesh | undefined {
+    if (this.indices.length === 0) return undefined;
+    return {
+      name,
+      positions: new Float32Array(this.positions),
+      indices: new Uint32Array(this.indices),
+      uvs: new Float32Array(this.uvs),
+      materialIds: new Uint32Array(this.indices.length / 3).fill(material),
+    };
+  }
+}
+
+/**
+ * Materials, textures and meshes as they are needed: one material per (image, emission, alpha mode),
+ * each image stored once, one mesh per material.
+ */
+class SceneParts {
+  private readonly materials: Material[] = [];
+  private readonly materialIndex = new Map<string, number>();
+  private readonly textures: Texture[] = [];
+  private readonly textureIndex = new Map<Texture, number>();
+  private readonly meshes = new Map<number, MeshParts>();
+  private readonly warnedFlats = new Set<string>();
+
+  constructor(
+    private readonly images: DoomImageSource,
+    private readonly table: LightTable,
+    private readonly skyTexture: Texture | undefined,
+    private readonly warn: (m: string) => void,
+  ) {}
+
+  /** A wall texture or flat in a sector at `lightLevel`; the plain material when the WAD lacks it. */
+  material(kind: 'texture' | 'flat', name: string, lightLevel: number, masked: boolean): number {
+    const image = kind === 'texture' ? this.images.texture(name) : this.images.flat(name);
+    if (!image) {
+      // Missing wall textures were reported by buildWalls; missing flats are reported here.
+      if (kind === 'flat' && !this.warnedFlats.has(name)) {
+        this.warnedFlats.add(name);
+        this.warn(`flat ${name} is not in the WAD; drawn with a plain material`);
+      }
+      return this.missing();
+    }
+    const emission = emissionOf((kind === 'texture' ? this.table.textures : this.table.flats)[name], lightLevel);
+    const key = `${kind}:${name}:${emission?.join(',') ?? ''}:${masked}`;
+    return this.add(key, () => {
+      const texture = this.texture(image);
+      return {
+        name: emission ? `${name} (glowing ${+emission[0].toFixed(3)})` : name,
+        albedo: [1, 1, 1],
+        emission: emission ?? [0, 0, 0],
+        albedoTexture: texture,
+        ...(emission && { emissionTexture: texture }),
+        ...(masked && { alphaMode: 'mask' as const }),
+      };
+    });
+  }
+
+  /** Emits the sky picture by viewing direction, as Doom draws it behind F_SKY1; reflects nothing. */
+  sky(): number {
+    return this.add('sky', () => {
+      const sky = this.skyTexture;
+      if (!sky) return { name: 'sky', albedo: [0, 0, 0], emission: scale(PLAIN_SKY, SKY_STRENGTH) };
+      return {
+        name: `sky ${sky.name}`,
+        albedo: [0, 0, 0],
+        emission: [SKY_STRENGTH, SKY_STRENGTH, SKY_STRENGTH],
+        emissionTexture: this.texture(sky),
+        emissionMapping: {
+          kind: 'panorama',
+          repeats: SKY_COLUMNS_PER_TURN / sky.width,
+          horizonV: SKY_HORIZON_ROW / sky.height,
+          vPerRadian: SKY_ROWS_PER_RADIAN / sky.height,
+        },
+      };
+    });
+  }
+
+  /** For surfaces whose texture is missing: plain mid grey. */
+  missing(): number {
+    return this.add('missing', () => ({ name: 'missing texture', albedo: MISSING_ALBEDO, emission: [0, 0, 0] }));
+  }
+
+  meshFor(material: number): MeshParts {
+    let mesh = this.meshes.get(material);
+    if (!mesh) this.meshes.set(material, (mesh = new MeshParts()));
+    return mesh;
+  }
+
+  finish(): { meshes: Mesh[]; materials: Material[]; textures: Texture[] } {
+    const meshes: Mesh[] = [];
+    for (const [material, parts] of this.meshes) {
+      const mesh = parts.build(this.materials[material]!.name, material);
+      if (mesh) meshes.push(mesh);
+    }
+    return { meshes, materials: this.materials, textures: this.textures };
+  }
+
+  private add(key: string, make: () => Material): number {
+    let index = this.materialIndex.get(key);
+    if (index === undefined) {
+      index = this.materials.push(make()) - 1;
+      this.materialIndex.set(key, index);
+    }
+    return index;
+  }
+
+  /** Each image once (the image source hands out one object per name). */
+  private texture(image: Texture): number {
+    let index = this.textureIndex.get(image);
+    if (index === undefined) {
+      index = this.textures.push(image) - 1;
+      this.textureIndex.set(image, index);
+    }
+    return index;
+  }
+}
