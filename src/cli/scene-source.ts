@@ -10,7 +10,9 @@ import { LanternError } from '../errors.ts';
 import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { loadPly } from '../loaders/ply/ply.ts';
 import type { Scene } from '../scene/types.ts';
-import { readFileOrExplain } from './wad-files.ts';
+import { openWads, readFileOrExplain } from './wad-files.ts';
+import { isDoomUri } from '../loaders/doom/uri.ts';
+import { loadDoomMap } from '../loaders/doom/load.ts';
 
 export const DRAGON_ALIAS = 'dragon';
 
@@ -36,11 +38,17 @@ function isFile(path: string): boolean {
 }
 
 export function sceneHelp(): string {
-  return `a built-in scene (${builtinSceneNames().join(', ')}), '${DRAGON_ALIAS}', or a .ply / .ply.gz file`;
+  return `a built-in scene (${builtinSceneNames().join(', ')}), '${DRAGON_ALIAS}', a .ply / .ply.gz file, or a Doom map: iwad.wad#E1M1, iwad.wad+pwad.wad#MAP01`;
 }
 
 export function loadSceneArgument(arg: string, onWarning: (message: string) => void = () => {}): Scene {
   if (isBuiltinScene(arg)) return builtinScene(arg);
+  if (isDoomUri(arg)) {
+    const { stack, map } = openWads(arg);
+    const loaded = loadDoomMap(stack, map, { onWarning });
+    if (loaded.failures.length > 0) onWarning(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated: ${loaded.failures.map((f) => `#${f.sector}`).join(', ')}`);
+    return loaded.scene;
+  }
   let path = arg;
   if (arg === DRAGON_ALIAS) {
     const found = dragonPath();

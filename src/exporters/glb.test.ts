@@ -1,9 +1,12 @@
+import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { WebIO } from '@gltf-transform/core';
 import { KHRMaterialsEmissiveStrength, type EmissiveStrength } from '@gltf-transform/extensions';
 // @ts-expect-error gltf-validator ships no types
 import { validateBytes } from 'gltf-validator';
 import { builtinScene } from '../loaders/builtin/index.ts';
+import { loadDoomMap } from '../loaders/doom/load.ts';
+import { readWad, WadStack } from '../loaders/doom/wad.ts';
 import type { Scene } from '../scene/types.ts';
 import { quaternionFromBasis, sceneToGlb } from './glb.ts';
 
@@ -78,5 +81,26 @@ describe('GLB export', () => {
     expect(r[0]).toBeCloseTo(1, 6);
     expect(r[1]).toBeCloseTo(0, 6);
     expect(r[2]).toBeCloseTo(0, 6);
+  });
+});
+
+const FREEDOOM1 = '/usr/share/games/doom/freedoom1.wad';
+
+describe.skipIf(!existsSync(FREEDOOM1))('GLB export of freedoom1 E1M1', () => {
+  it('validates with no errors and round-trips through a glTF reader', async () => {
+    const { scene } = loadDoomMap(new WadStack([readWad(readFileSync(FREEDOOM1), 'freedoom1.wad')]), 'E1M1');
+    const glb = await sceneToGlb(scene);
+    const report = await validate(glb);
+    expect(report.issues.numErrors, JSON.stringify(report.issues.messages.slice(0, 5))).toBe(0);
+    const doc = await new WebIO().registerExtensions([KHRMaterialsEmissiveStrength]).readBinary(glb);
+    const root = doc.getRoot();
+    expect(root.listTextures()).toHaveLength(scene.textures!.length);
+    expect(root.listMaterials().filter((m) => m.getEmissiveFactor().some((f) => f > 0)).length).toBeGreaterThan(0);
+    expect(root.listMaterials().some((m) => m.getAlphaMode() === 'MASK')).toBe(true);
+    const triangles = root.listMeshes().flatMap((m) => m.listPrimitives()).reduce((n, p) => n + p.getIndices()!.getCount() / 3, 0);
+    expect(triangles).toBe(scene.meshes.reduce((n, m) => n + m.indices.length / 3, 0));
+    // Doom units to metres: the map spans a few hundred metres, not kilometres.
+    const extent = root.listMeshes().flatMap((m) => m.listPrimitives()).map((p) => p.getAttribute('POSITION')!.getMax([0, 0, 0])[0]);
+    expect(Math.max(...extent)).toBeLessThan(500);
   });
 });

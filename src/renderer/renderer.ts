@@ -259,7 +259,7 @@ export class Renderer {
   private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets): void {
     const s = this.settingsValue;
     this.tonemap.encode(encoder, this.view, targets.accumulation, targets.output, {
-      exposureStops: s.exposureStops,
+      exposureStops: (this.cameraValue?.exposureStops ?? 0) + s.exposureStops,
       toneMapper: s.toneMapper,
       sampleCount: this.samples,
     });

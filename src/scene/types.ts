@@ -98,6 +98,11 @@ export interface Camera {
   readonly up: Vec3;
   /** Vertical field of view in degrees, in (0, 180). */
   readonly vfovDegrees: number;
+  /**
+   * The camera's exposure compensation in stops (default 0): radiance is scaled by 2^stops before
+   * tone mapping. A user's exposure setting adds to it.
+   */
+  readonly exposureStops?: number;
 }
 
 export interface Scene {

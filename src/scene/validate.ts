@@ -49,4 +49,5 @@ export function validateScene(scene: Scene): void {
   const side: Vec3 = cross(c.forward, c.up);
   if (!(length(side) > 1e-9 * length(c.forward) * length(c.up))) fail('the camera up vector is zero or parallel to forward');
   if (!(c.vfovDegrees > 0 && c.vfovDegrees < 180)) fail(`the camera field of view ${c.vfovDegrees}° is outside (0, 180)`);
+  if (c.exposureStops !== undefined && !(Math.abs(c.exposureStops) <= 64)) fail(`the camera exposure ${c.exposureStops} stops is outside ±64`);
 }

@@ -4,7 +4,7 @@
  * stack trace unless --verbose.
  */
 import { spawnSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -132,5 +132,59 @@ describe('lantern info and bench', () => {
     }
     expect(b.pathTracing.raysPerPath).toBeGreaterThan(1);
     expect(b.bvh.nodes).toBe(33);
+  });
+});
+
+const FREEDOOM1 = '/usr/share/games/doom/freedoom1.wad';
+
+describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () => {
+  it('info lists every map with its counts', () => {
+    const r = lantern(['info', FREEDOOM1, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const { maps } = JSON.parse(r.stdout);
+    expect(maps).toHaveLength(36);
+    expect(maps[0]).toMatchObject({ name: 'E1M1', format: 'doom', failures: [] });
+    expect(maps[0].triangles).toBeGreaterThan(1000);
+  });
+
+  it('renders a map from the player start', () => {
+    const png = join(dir, 'e1m1.png');
+    const r = lantern(['render', `${FREEDOOM1}#E1M1`, '-W', '32', '-H', '20', '-s', '1', '-b', '2', '--out', png, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(JSON.parse(r.stdout)).toMatchObject({ scene: 'E1M1', width: 32, height: 20 });
+    expect(decodePng(readFileSync(png)).width).toBe(32);
+  });
+
+  it('converts a map to a .glb', () => {
+    const glb = join(dir, 'e1m1.glb');
+    const r = lantern(['convert', `${FREEDOOM1}#E1M1`, '-o', glb]);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(new TextDecoder().decode(readFileSync(glb).subarray(0, 4))).toBe('glTF');
+  });
+
+  it('writes every texture and flat as PNG', () => {
+    const out = join(dir, 'textures');
+    const r = lantern(['textures', FREEDOOM1, '-o', out]);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(readdirSync(join(out, 'textures')).length).toBeGreaterThan(800);
+    expect(readdirSync(join(out, 'flats')).length).toBeGreaterThan(200);
+    const startan = decodePng(readFileSync(join(out, 'textures', 'STARTAN3.png')));
+    expect([startan.width, startan.height]).toEqual([128, 128]);
+  });
+
+  it('an unknown map lists the maps there are', () => {
+    const r = lantern(['render', `${FREEDOOM1}#E9M9`]);
+    expect(r.code).toBe(1);
+    expect(r.stderr).toMatch(/has no map 'E9M9'.*E1M1, E1M2/);
+    expect(r.stderr.trim().split('\n')).toHaveLength(1);
+  });
+
+  it('a truncated WAD says what is wrong in one line', () => {
+    const cut = join(dir, 'cut.wad');
+    writeFileSync(cut, readFileSync(FREEDOOM1).subarray(0, 100_000));
+    const r = lantern(['info', `${cut}#E1M1`]);
+    expect(r.code).toBe(1);
+    expect(r.stderr).toMatch(/cut\.wad/);
+    expect(r.stderr.trim().split('\n')).toHaveLength(1);
   });
 });

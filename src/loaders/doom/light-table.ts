@@ -43,13 +43,19 @@
  * (strength 0 turns one off) or add their own: the table is plain JSON.
  */
 import { luminance, type Vec3 } from '../../math/vec3.ts';
-import type { Torch } from '../../scene/types.ts';
+import type { Texture, Torch } from '../../scene/types.ts';
 
 export interface LightSource {
   /** Emitted radiance = strength × colour × texture colour (linear), at sector light 255. */
   readonly strength: number;
   /** Linear RGB tint, white by default. */
   readonly color?: readonly [number, number, number];
+  /**
+   * Only texels at least this fraction of the texture's brightest texel's luminance emit (0 or
+   * absent: the whole texture). Lamps use it so the glass glows and the frame does not, which lets
+   * the glass be as bright as a real fixture.
+   */
+  readonly glow?: number;
 }
 
 export interface LightTable {
@@ -59,7 +65,12 @@ export interface LightTable {
   readonly flats: Readonly<Record<string, LightSource>>;
 }
 
-export const LAMP_STRENGTH = 16;
+/**
+ * Lamps emit from their bright texels only (LAMP_GLOW), so they can be bright: the glass of a light
+ * panel at sector light 255 shines at 48 × its texture colour, about 50× a lit wall.
+ */
+export const LAMP_STRENGTH = 48;
+export const LAMP_GLOW = 0.6;
 export const LAVA_STRENGTH = 8;
 export const NUKAGE_STRENGTH = 6;
 export const SKY_STRENGTH = 5;
@@ -90,12 +101,37 @@ const NUKAGE_FLATS = range('NUKAGE', 1, 3);
 /** Falling slime (green), Doom II. */
 const NUKAGE_TEXTURES = range('SFALL', 1, 4);
 
-const entries = (names: readonly string[], strength: number) => Object.fromEntries(names.map((n) => [n, { strength }]));
+const entries = (names: readonly string[], source: LightSource) => Object.fromEntries(names.map((n) => [n, source]));
+const lamp: LightSource = { strength: LAMP_STRENGTH, glow: LAMP_GLOW };
 
 export const DEFAULT_LIGHT_TABLE: LightTable = {
-  textures: { ...entries(LAMP_TEXTURES, LAMP_STRENGTH), ...entries(FIRE_TEXTURES, LAVA_STRENGTH), ...entries(NUKAGE_TEXTURES, NUKAGE_STRENGTH) },
-  flats: { ...entries(LAMP_FLATS, LAMP_STRENGTH), ...entries(LAVA_FLATS, LAVA_STRENGTH), ...entries(NUKAGE_FLATS, NUKAGE_STRENGTH) },
+  textures: { ...entries(LAMP_TEXTURES, lamp), ...entries(FIRE_TEXTURES, { strength: LAVA_STRENGTH }), ...entries(NUKAGE_TEXTURES, { strength: NUKAGE_STRENGTH }) },
+  flats: { ...entries(LAMP_FLATS, lamp), ...entries(LAVA_FLATS, { strength: LAVA_STRENGTH }), ...entries(NUKAGE_FLATS, { strength: NUKAGE_STRENGTH }) },
 };
+
+/**
+ * The part of a texture that glows: texels whose linear luminance is at least `threshold` × the
+ * brightest texel's keep their colour, the others turn black (alpha kept).
+ */
+export function glowTexture(texture: Texture, threshold: number): Texture {
+  const lin = (c: number) => {
+    const v = c / 255;
+    return v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4;
+  };
+  const n = texture.width * texture.height;
+  const lum = new Float64Array(n);
+  let max = 0;
+  for (let i = 0; i < n; i++) {
+    const p = i * 4;
+    lum[i] = luminance([lin(texture.rgba[p]!), lin(texture.rgba[p + 1]!), lin(texture.rgba[p + 2]!)]);
+    if (texture.rgba[p + 3]! >= 128 && lum[i]! > max) max = lum[i]!;
+  }
+  const rgba = new Uint8Array(texture.rgba);
+  for (let i = 0; i < n; i++) {
+    if (lum[i]! < threshold * max) rgba.fill(0, i * 4, i * 4 + 3);
+  }
+  return { name: `${texture.name}@glow`, width: texture.width, height: texture.height, rgba };
+}
 
 /** `base` with the entries of `overrides` replacing or adding to its own (names upper-cased). */
 export function mergeLightTables(base: LightTable, overrides: Partial<LightTable> = {}): LightTable {

@@ -179,7 +179,7 @@ describe('doomMapToScene', () => {
     expect(warnings).toEqual(['TEST has no player 1 start; the camera stands in the middle of the map, looking east']);
   });
 
-  it('makes light textures glow with their own image, scaled by the sector light level squared', () => {
+  it('makes light textures glow from their bright texels, scaled by the sector light level squared', () => {
     const m = new TestMap();
     const room = m.sector({ lightLevel: 160, ceilingFlat: 'TLITE6_1' });
     m.loop(cw(0, 0, 256), room, undefined, { middle: 'LITE3' });
@@ -189,8 +189,17 @@ describe('doomMapToScene', () => {
     for (const name of ['LITE3', 'TLITE6_1']) {
       const mat = material(scene, name)!;
       expect(mat.emission).toEqual([s, s, s]);
-      expect(mat.emissionTexture).toBe(mat.albedoTexture);
-      expect(scene.textures![mat.emissionTexture!]!.name).toBe(name);
+      expect(scene.textures![mat.albedoTexture!]!.name).toBe(name);
+      // The glow image: the same texels where bright enough, black elsewhere.
+      const image = scene.textures![mat.albedoTexture!]!;
+      const glow = scene.textures![mat.emissionTexture!]!;
+      expect(glow.name).toBe(`${name}@glow`);
+      expect([glow.width, glow.height]).toEqual([image.width, image.height]);
+      for (let i = 0; i < glow.rgba.length; i += 4) {
+        const kept = glow.rgba[i] === image.rgba[i] && glow.rgba[i + 1] === image.rgba[i + 1] && glow.rgba[i + 2] === image.rgba[i + 2];
+        const black = glow.rgba[i] === 0 && glow.rgba[i + 1] === 0 && glow.rgba[i + 2] === 0;
+        expect(kept || black).toBe(true);
+      }
     }
     expect(stats.emissiveMaterials).toBe(2);
     // The lit ceiling faces down, so it shines into the room.

@@ -6,7 +6,7 @@
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import type { Camera, Material, Mesh, Scene, Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
-import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
+import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
 import { EYE_HEIGHT, PLAYER1_START, type DoomImageSource, type DoomMap } from './map-types.ts';
 import { buildSectorShapes, sectorAt, type SectorFailure, type SectorShapes } from './sectors.ts';
 import { buildWalls, isSky, type WallQuad } from './walls.ts';
@@ -44,6 +44,17 @@ export interface DoomScene {
  * monitor stretched by 1.2 vertically. With square pixels, 90° across a 4:3 image is
  * 2·atan(tan 45° · 3/4) = 73.74° vertically: Doom's width of view, nothing stretched.
  */
+/**
+ * Doom shows a wall in a sector at light 255 at its palette colour; light transport gives such a
+ * wall radiance ≈ its linear texture colour (light-table.ts), which is 0.04–0.15 for Doom's dark
+ * palette, where the ACES curve's toe sits about a stop and a half below the identity. The camera's
+ * +1.5 stops brings those colours back to about what Doom displays.
+ */
+export const DOOM_EXPOSURE_STOPS = 1.5;
+
+/** The player is 56 units tall and about 1.75 m: 1/32 m per map unit is the usual conversion. */
+export const DOOM_METERS_PER_UNIT = 1 / 32;
+
 export const DOOM_VFOV_DEGREES = (2 * Math.atan(0.75) * 180) / Math.PI;
 
 /**
@@ -107,6 +118,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
     textures,
     camera: playerCamera(map, shapes, warn),
     torch: DOOM_TORCH,
+    metersPerUnit: DOOM_METERS_PER_UNIT,
   };
   return {
     scene,
@@ -154,7 +166,7 @@ function playerCamera(map: DoomMap, shapes: SectorShapes, warn: (m: string) => v
   const sector = sectorAt(shapes, x, y) ?? nearestSector(shapes, x, y);
   if (start && sector !== undefined && sectorAt(shapes, x, y) === undefined) warn(`the player 1 start (${x}, ${y}) is outside every sector; using the nearest, ${sector}`);
   const floor = sector === undefined ? 0 : map.sectors[sector]!.floorHeight;
-  return { position: toWorld(x, y, floor + EYE_HEIGHT), forward: directionFromAngle(angle), up: [0, 1, 0], vfovDegrees: DOOM_VFOV_DEGREES };
+  return { position: toWorld(x, y, floor + EYE_HEIGHT), forward: directionFromAngle(angle), up: [0, 1, 0], vfovDegrees: DOOM_VFOV_DEGREES, exposureStops: DOOM_EXPOSURE_STOPS };
 }
 
 /** The sector with a floor corner nearest to (x, y). */
@@ -209,6 +221,7 @@ class SceneParts {
   private readonly textureIndex = new Map<Texture, number>();
   private readonly meshes = new Map<number, MeshParts>();
   private readonly warnedFlats = new Set<string>();
+  private readonly glowImages = new Map<string, Texture>();
 
   constructor(
     private readonly images: DoomImageSource,
@@ -228,16 +241,18 @@ class SceneParts {
       }
       return this.missing();
     }
-    const emission = emissionOf((kind === 'texture' ? this.table.textures : this.table.flats)[name], lightLevel);
+    const source = (kind === 'texture' ? this.table.textures : this.table.flats)[name];
+    const emission = emissionOf(source, lightLevel);
     const key = `${kind}:${name}:${emission?.join(',') ?? ''}:${masked}`;
     return this.add(key, () => {
       const texture = this.texture(image);
+      const glow = source?.glow ? this.glow(image, source.glow) : texture;
       return {
         name: emission ? `${name} (glowing ${+emission[0].toFixed(3)})` : name,
         albedo: [1, 1, 1],
         emission: emission ?? [0, 0, 0],
         albedoTexture: texture,
-        ...(emission && { emissionTexture: texture }),
+        ...(emission && { emissionTexture: glow }),
         ...(masked && { alphaMode: 'mask' as const }),
       };
     });
@@ -290,6 +305,14 @@ class SceneParts {
       this.materialIndex.set(key, index);
     }
     return index;
+  }
+
+  /** The glowing part of an image (light-table.ts glowTexture), made once per image and threshold. */
+  private glow(image: Texture, threshold: number): number {
+    const key = `${image.name}@${threshold}`;
+    let glow = this.glowImages.get(key);
+    if (!glow) this.glowImages.set(key, (glow = glowTexture(image, threshold)));
+    return this.texture(glow);
   }
 
   /** Each image once (the image source hands out one object per name). */

@@ -1,0 +1,21 @@
+import { describe, expect, it } from 'vitest';
+import type { Texture } from '../../scene/types.ts';
+import { glowTexture } from './light-table.ts';
+
+describe('glowTexture', () => {
+  it('keeps texels at least the threshold of the brightest luminance and blackens the rest', () => {
+    // Linear luminances: 255 -> 1, 188 -> ~0.5, 128 -> ~0.216, 0 -> 0; a transparent white texel is ignored for the maximum.
+    const rgba = new Uint8Array([255, 255, 255, 255, 188, 188, 188, 255, 128, 128, 128, 255, 0, 0, 0, 255]);
+    const t: Texture = { name: 'LAMP', width: 4, height: 1, rgba };
+    const glow = glowTexture(t, 0.4);
+    expect([...glow.rgba]).toEqual([255, 255, 255, 255, 188, 188, 188, 255, 0, 0, 0, 255, 0, 0, 0, 255]);
+    expect(glow.name).toBe('LAMP@glow');
+    expect(t.rgba[8]).toBe(128);
+  });
+
+  it('measures the brightest texel among opaque ones only', () => {
+    const rgba = new Uint8Array([255, 255, 255, 0, 128, 128, 128, 255]);
+    const glow = glowTexture({ name: 'M', width: 2, height: 1, rgba }, 0.9);
+    expect([...glow.rgba.subarray(4)]).toEqual([128, 128, 128, 255]);
+  });
+});

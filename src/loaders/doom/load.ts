@@ -1,0 +1,80 @@
+/**
+ * The Doom loader's front door: a WAD stack and an optional map name in, a Scene out, with the
+ * warnings and sector failures the builders reported. Also the per-map summary `lantern info`
+ * prints. Pure, like every loader.
+ */
+import { LanternError } from '../../errors.ts';
+import type { LightTable } from './light-table.ts';
+import { readMap } from './map-lumps.ts';
+import type { SectorFailure } from './sectors.ts';
+import { DoomGraphics } from './textures.ts';
+import { doomMapToScene, type DoomScene } from './to-scene.ts';
+import type { MapInfo, WadStack } from './wad.ts';
+
+export interface DoomLoadOptions {
+  readonly lightTable?: Partial<LightTable>;
+  readonly onWarning?: (message: string) => void;
+  /** Reuse graphics across maps of the same stack (textures are composed once). */
+  readonly graphics?: DoomGraphics;
+}
+
+export interface DoomLoad extends DoomScene {
+  readonly map: MapInfo;
+  readonly things: number;
+  readonly linedefs: number;
+}
+
+/** Loads `mapName`, or the stack's first map when none is given. */
+export function loadDoomMap(stack: WadStack, mapName: string | undefined, options: DoomLoadOptions = {}): DoomLoad {
+  const maps = stack.maps();
+  if (maps.length === 0) throw new LanternError(`${stack.describe()} has no maps`);
+  const info = mapName === undefined ? maps[0]! : maps.find((m) => m.name === mapName.toUpperCase());
+  if (!info) {
+    throw new LanternError(`${stack.describe()} has no map '${mapName}'`, `Its maps are: ${maps.map((m) => m.name).join(', ')}`);
+  }
+  const map = readMap(stack, info.name, options.onWarning ? { onWarning: options.onWarning } : {});
+  const graphics = options.graphics ?? new DoomGraphics(stack, options.onWarning ? { onWarning: options.onWarning } : {});
+  const sky = graphics.sky(info.name);
+  const built = doomMapToScene(map, graphics, {
+    ...(sky ? { sky } : {}),
+    ...(options.lightTable ? { lightTable: options.lightTable } : {}),
+    ...(options.onWarning ? { onWarning: options.onWarning } : {}),
+  });
+  return { ...built, map: info, things: map.things.length, linedefs: map.linedefs.length };
+}
+
+export interface MapSummary {
+  readonly name: string;
+  readonly format: MapInfo['format'];
+  readonly things?: number;
+  readonly linedefs?: number;
+  readonly sectors?: number;
+  readonly triangles?: number;
+  readonly textures?: number;
+  readonly failures?: readonly SectorFailure[];
+  /** Why the map was not built (Hexen or UDMF format, a broken lump). */
+  readonly error?: string;
+}
+
+/** Every map of a stack with its counts; maps that cannot be built say why instead of stopping the list. */
+export function summarizeMaps(stack: WadStack): MapSummary[] {
+  const graphics = new DoomGraphics(stack);
+  return stack.maps().map((info) => {
+    try {
+      const m = loadDoomMap(stack, info.name, { graphics });
+      return {
+        name: info.name,
+        format: info.format,
+        things: m.things,
+        linedefs: m.linedefs,
+        sectors: m.stats.sectors,
+        triangles: m.stats.triangles,
+        textures: m.stats.textures,
+        failures: m.failures,
+      };
+    } catch (e) {
+      if (!(e instanceof LanternError)) throw e;
+      return { name: info.name, format: info.format, error: e.userMessage };
+    }
+  });
+}
