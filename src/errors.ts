@@ -13,8 +13,9 @@ export class LanternError extends Error {
     this.name = 'LanternError';
   }
 
-  /** "what is wrong: what to do", the one line a user sees. */
+  /** "What is wrong. What to do", the one line a user sees. */
   get userMessage(): string {
-    return this.hint ? `${this.message}. ${this.hint}` : this.message;
+    if (!this.hint) return this.message;
+    return `${this.message}. ${this.hint.charAt(0).toUpperCase()}${this.hint.slice(1)}`;
   }
 }
