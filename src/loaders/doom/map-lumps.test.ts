@@ -46,7 +46,7 @@ describe('readMap', () => {
       expect.unreachable();
     } catch (e) {
       expect(e).toBeInstanceOf(LanternError);
-      expect((e as LanternError).userMessage).toBe('there is no map E2M1 in doom.wad. its maps are E1M1, E1M2');
+      expect((e as LanternError).userMessage).toBe('there is no map E2M1 in doom.wad. Its maps are E1M1, E1M2');
     }
     expect(() => readMap(stackOf(['empty.wad', new WadBuilder().lump('X', new Uint8Array(1)).build()]), 'MAP01')).toThrow(/contains no maps/);
   });
