@@ -133,3 +133,30 @@ export class ComputeKernel extends BindGroupFactory {
     return bg;
   }
 }
+
+/**
+ * The variants of one entry point compiled with different `override` constants, created up front so
+ * that choosing one while encoding is synchronous. Keys are caller-chosen names.
+ */
+export class KernelVariants<K extends string> {
+  private constructor(private readonly kernels: ReadonlyMap<K, ComputeKernel>) {}
+
+  static async create<K extends string>(device: GPUDevice, base: Omit<KernelOptions, 'constants'>, variants: Record<K, Record<string, number>>): Promise<KernelVariants<K>> {
+    const entries = await Promise.all(
+      (Object.entries(variants) as [K, Record<string, number>][]).map(async ([key, constants]) => [key, await ComputeKernel.create(device, { ...base, constants })] as const),
+    );
+    return new KernelVariants(new Map(entries));
+  }
+
+  get(key: K): ComputeKernel {
+    return this.kernels.get(key)!;
+  }
+}
+
+/** The traversal variant a scene needs: alpha masks compiled in only where it has masked triangles. */
+export type TraversalVariant = 'masked' | 'opaque';
+export const TRAVERSAL_VARIANTS: Record<TraversalVariant, Record<string, number>> = {
+  masked: { SCENE_HAS_ALPHA_MASKS: 1 },
+  opaque: { SCENE_HAS_ALPHA_MASKS: 0 },
+};
+export const traversalVariant = (maskedTriangles: number): TraversalVariant => (maskedTriangles > 0 ? 'masked' : 'opaque');

@@ -1,5 +1,5 @@
 /** The path tracer dispatch (shaders/passes/path-trace.wgsl): adds samples to the accumulation buffer. */
-import { ComputeKernel } from '../gpu/kernel.ts';
+import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type ComputeKernel, type TraversalVariant } from '../gpu/kernel.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../renderer/view.ts';
@@ -46,18 +46,19 @@ export interface PathTraceTarget {
 }
 
 export class PathTracePass {
-  private readonly sceneGroups = new WeakMap<SceneResources, GPUBindGroup>();
-  private readonly viewGroups = new WeakMap<ViewUniform, GPUBindGroup>();
-  private readonly targetGroups = new WeakMap<GPUBuffer, GPUBindGroup>();
+  // Bind groups per kernel variant (each pipeline has its own layouts) and resource.
+  private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
+  private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
+  private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
 
   private constructor(
-    private readonly kernel: ComputeKernel,
+    private readonly kernels: KernelVariants<TraversalVariant>,
     private readonly params: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<PathTracePass> {
-    const kernel = await ComputeKernel.create(device, { module: MODULE, entryPoint: 'path_trace' });
-    return new PathTracePass(kernel, new UniformParams(device, MODULE));
+    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'path_trace' }, TRAVERSAL_VARIANTS);
+    return new PathTracePass(kernels, new UniformParams(device, MODULE));
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
@@ -72,10 +73,17 @@ export class PathTracePass {
       light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
       torch: torchUniform(d.torch),
     });
+    const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
     const pass = encoder.beginComputePass({ label: 'path trace', ...(timer ? { timestampWrites: timer.timestampWrites('path trace') } : {}) });
-    this.kernel.dispatch(
+    kernel.dispatch(
       pass,
-      { 0: this.sceneGroup(scene), 1: this.viewGroup(view), 2: this.targetGroup(target) },
+      {
+        0: cached(this.sceneGroups, kernel, scene, () => kernel.bindGroup(0, scene.bindings)),
+        1: cached(this.viewGroups, kernel, view, () => kernel.bindGroup(1, { view: view.buffer })),
+        2: cached(this.targetGroups, kernel, target.accumulation, () =>
+          kernel.bindGroup(2, { params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters }),
+        ),
+      },
       Math.ceil(d.tile.width / WORKGROUP),
       Math.ceil(d.tile.height / WORKGROUP),
     );
@@ -85,25 +93,13 @@ export class PathTracePass {
   destroy(): void {
     this.params.destroy();
   }
+}
 
-  private sceneGroup(scene: SceneResources): GPUBindGroup {
-    let g = this.sceneGroups.get(scene);
-    if (!g) this.sceneGroups.set(scene, (g = this.kernel.bindGroup(0, scene.bindings)));
-    return g;
-  }
-
-  private viewGroup(view: ViewUniform): GPUBindGroup {
-    let g = this.viewGroups.get(view);
-    if (!g) this.viewGroups.set(view, (g = this.kernel.bindGroup(1, { view: view.buffer })));
-    return g;
-  }
-
-  private targetGroup(target: PathTraceTarget): GPUBindGroup {
-    let g = this.targetGroups.get(target.accumulation);
-    if (!g) {
-      g = this.kernel.bindGroup(2, { params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters });
-      this.targetGroups.set(target.accumulation, g);
-    }
-    return g;
-  }
+/** A bind group cached per kernel and resource (both weakly held). */
+function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
+  let perKernel = cache.get(kernel);
+  if (!perKernel) cache.set(kernel, (perKernel = new WeakMap()));
+  let group = perKernel.get(key);
+  if (!group) perKernel.set(key, (group = make()));
+  return group;
 }

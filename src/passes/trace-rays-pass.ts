@@ -2,7 +2,7 @@
  * Closest-hit tracing of a ray buffer (shaders/passes/trace-rays.wgsl): the traversal benchmark and
  * the GPU side of the traversal-versus-oracle test.
  */
-import { ComputeKernel } from '../gpu/kernel.ts';
+import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type ComputeKernel, type TraversalVariant } from '../gpu/kernel.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule, structLayout } from '../gpu/wgsl/reflect.ts';
@@ -24,32 +24,37 @@ export function rayDispatchSize(count: number, maxPerDimension: number): [number
   return [x, Math.ceil(groups / x)];
 }
 
+/** What tracing one ray buffer needs: the kernel variant for the scene and its bind groups. */
+export interface TraceRaysBinding {
+  readonly kernel: ComputeKernel;
+  readonly 0: GPUBindGroup;
+  readonly 2: GPUBindGroup;
+  readonly count: number;
+}
+
 export class TraceRaysPass {
   private constructor(
     private readonly device: GPUDevice,
-    private readonly kernel: ComputeKernel,
+    private readonly kernels: KernelVariants<TraversalVariant>,
     private readonly params: UniformParams<{ ray_count: number }>,
   ) {}
 
   static async create(device: GPUDevice): Promise<TraceRaysPass> {
-    const kernel = await ComputeKernel.create(device, { module: MODULE, entryPoint: 'trace_rays' });
-    return new TraceRaysPass(device, kernel, new UniformParams(device, MODULE));
+    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'trace_rays' }, TRAVERSAL_VARIANTS);
+    return new TraceRaysPass(device, kernels, new UniformParams(device, MODULE));
   }
 
   /** Bind groups for tracing `rays` into `hits`; reuse them to trace the same buffers many times. */
-  bind(scene: SceneResources, rays: GPUBuffer, hits: GPUBuffer, count: number): { 0: GPUBindGroup; 2: GPUBindGroup; count: number } {
+  bind(scene: SceneResources, rays: GPUBuffer, hits: GPUBuffer, count: number): TraceRaysBinding {
     this.params.write({ ray_count: count });
-    return {
-      0: this.kernel.bindGroup(0, scene.bindings),
-      2: this.kernel.bindGroup(2, { params: this.params.buffer, rays, hits }),
-      count,
-    };
+    const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
+    return { kernel, 0: kernel.bindGroup(0, scene.bindings), 2: kernel.bindGroup(2, { params: this.params.buffer, rays, hits }), count };
   }
 
-  encode(encoder: GPUCommandEncoder, groups: { 0: GPUBindGroup; 2: GPUBindGroup; count: number }, timer?: GpuTimer, label = 'trace rays'): void {
+  encode(encoder: GPUCommandEncoder, binding: TraceRaysBinding, timer?: GpuTimer, label = 'trace rays'): void {
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
-    const [x, y] = rayDispatchSize(groups.count, this.device.limits.maxComputeWorkgroupsPerDimension);
-    this.kernel.dispatch(pass, groups, x, y);
+    const [x, y] = rayDispatchSize(binding.count, this.device.limits.maxComputeWorkgroupsPerDimension);
+    binding.kernel.dispatch(pass, { 0: binding[0], 2: binding[2] }, x, y);
     pass.end();
   }
 

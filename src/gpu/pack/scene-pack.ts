@@ -24,7 +24,7 @@ export interface PackedScene {
   readonly texture_rects: ArrayBuffer;
   /** The pages of texture_atlas (bound as a 2D array texture). */
   readonly atlas: TextureAtlas;
-  readonly counts: { readonly triangles: number; readonly nodes: number; readonly lights: number; readonly textures: number };
+  readonly counts: { readonly triangles: number; readonly nodes: number; readonly lights: number; readonly textures: number; readonly maskedTriangles: number };
   /** Σ luminance(emission) × area over emissive triangles. */
   readonly totalLightPower: number;
 }
@@ -79,6 +79,7 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
   const shading = new StructArray(layouts.shading, n);
   const lightTriangles: number[] = [];
   const lightPowers: number[] = [];
+  let maskedTriangles = 0;
   {
     const v0 = hot.vec3('v0'), e1 = hot.vec3('e1'), e2 = hot.vec3('e2'), flags = hot.u32Field('flags');
     const normals = [shading.vec3('n0'), shading.vec3('n1'), shading.vec3('n2')] as const;
@@ -113,7 +114,10 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
       material(leaf, m);
       sourceIndex(leaf, t);
       const mat = scene.materials[m]!;
-      if (mat.alphaMode === 'mask' && mat.albedoTexture !== undefined) flags(leaf, TRIANGLE_ALPHA_MASKED);
+      if (mat.alphaMode === 'mask' && mat.albedoTexture !== undefined) {
+        flags(leaf, TRIANGLE_ALPHA_MASKED);
+        maskedTriangles++;
+      }
 
       // Power in the luminance sense, as lights.wgsl light_selection_pmf computes it.
       const power = luminance(mat.emission) * emissionMean[m]! * 0.5 * twiceArea;
@@ -188,7 +192,7 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
     light_slots: lightSlots.bytes,
     texture_rects: textureRects.bytes,
     atlas,
-    counts: { triangles: n, nodes: bvh.nodeCount, lights: lightTriangles.length, textures: textures.length },
+    counts: { triangles: n, nodes: bvh.nodeCount, lights: lightTriangles.length, textures: textures.length, maskedTriangles },
     totalLightPower,
   };
 }
