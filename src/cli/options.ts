@@ -47,3 +47,8 @@ export function numberListOption(name: string, counts: readonly number[]): (valu
     return numbers;
   };
 }
+
+/** --light-table, for every command that builds a scene. */
+export function withSceneOptions(command: Command): Command {
+  return command.option('--light-table <file.json>', 'Doom maps: JSON overrides of which textures and flats emit, and how strongly (see the README)');
+}

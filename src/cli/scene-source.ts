@@ -13,6 +13,7 @@ import type { Scene } from '../scene/types.ts';
 import { openWads, readFileOrExplain } from './wad-files.ts';
 import { isDoomUri } from '../loaders/doom/uri.ts';
 import { loadDoomMap } from '../loaders/doom/load.ts';
+import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
 
 export const DRAGON_ALIAS = 'dragon';
 
@@ -41,11 +42,19 @@ export function sceneHelp(): string {
   return `a built-in scene (${builtinSceneNames().join(', ')}), '${DRAGON_ALIAS}', a .ply / .ply.gz file, or a Doom map: iwad.wad#E1M1, iwad.wad+pwad.wad#MAP01`;
 }
 
-export function loadSceneArgument(arg: string, onWarning: (message: string) => void = () => {}): Scene {
+export interface SceneLoadOptions {
+  readonly onWarning?: (message: string) => void;
+  /** A JSON file of Doom light table overrides (src/loaders/doom/light-table.ts). */
+  readonly lightTablePath?: string;
+}
+
+export function loadSceneArgument(arg: string, options: SceneLoadOptions = {}): Scene {
+  const onWarning = options.onWarning ?? (() => {});
   if (isBuiltinScene(arg)) return builtinScene(arg);
   if (isDoomUri(arg)) {
     const { stack, map } = openWads(arg);
-    const loaded = loadDoomMap(stack, map, { onWarning });
+    const lightTable = options.lightTablePath ? readLightTable(options.lightTablePath) : undefined;
+    const loaded = loadDoomMap(stack, map, { onWarning, ...(lightTable ? { lightTable } : {}) });
     if (loaded.failures.length > 0) onWarning(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated: ${loaded.failures.map((f) => `#${f.sector}`).join(', ')}`);
     return loaded.scene;
   }
@@ -63,4 +72,15 @@ export function loadSceneArgument(arg: string, onWarning: (message: string) => v
   const bytes = readFileOrExplain(path);
   // The file's own name, so that messages about its contents say which file.
   return loadPly(bytes, arg === DRAGON_ALIAS ? DRAGON_ALIAS : basename(path), { onWarning });
+}
+
+function readLightTable(path: string): Partial<LightTable> {
+  const text = new TextDecoder().decode(readFileOrExplain(path));
+  let json: unknown;
+  try {
+    json = JSON.parse(text);
+  } catch (e) {
+    throw new LanternError(`${path} is not valid JSON: ${(e as Error).message}`);
+  }
+  return parseLightTable(json, path);
 }

@@ -13,9 +13,9 @@ export interface Session {
   readonly loadMs: number;
 }
 
-export async function openSession(sceneArg: string, note: (message: string) => void): Promise<Session> {
+export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string): Promise<Session> {
   const t0 = performance.now();
-  const scene = loadSceneArgument(sceneArg, note);
+  const scene = loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
   const prepared = prepareScene(scene);
   const loadMs = performance.now() - t0;
   const gpu = await acquireNodeGpu({ onNote: note });

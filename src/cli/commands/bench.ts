@@ -2,7 +2,7 @@
 import type { Command } from 'commander';
 import { runBenchmark } from '../../renderer/benchmark.ts';
 import type { CliContext } from '../context.ts';
-import { integerOption, withImageOptions } from '../options.ts';
+import { integerOption, withImageOptions, withSceneOptions } from '../options.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 
@@ -11,6 +11,7 @@ interface BenchOptions {
   height: number;
   repeats: number;
   bounces: number;
+  lightTable?: string;
   json?: boolean;
 }
 
@@ -19,14 +20,14 @@ export function registerBench(program: Command, context: CliContext): void {
     .command('bench')
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
     .argument('<scene>', sceneHelp());
-  withImageOptions(command, { width: 1920, height: 1080 })
+  withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
 }
 
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
   await renderer.resize(o.width, o.height);
   renderer.updateSettings({ maxBounces: o.bounces });
   const result = await runBenchmark(renderer, { repeats: o.repeats });

@@ -4,21 +4,21 @@ import { LanternError } from '../../errors.ts';
 import { sceneToGlb } from '../../exporters/glb.ts';
 import { validateScene } from '../../scene/validate.ts';
 import type { CliContext } from '../context.ts';
-import { numberOption } from '../options.ts';
+import { numberOption, withSceneOptions } from '../options.ts';
 import { writeFile } from '../output-files.ts';
 import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
 
 export function registerConvert(program: Command, context: CliContext): void {
-  program
+  const command = program
     .command('convert')
     .description('write the built scene as binary glTF 2.0 (.glb) with embedded PNG textures, for Blender or any glTF viewer')
     .argument('<scene>', sceneHelp())
     .requiredOption('-o, --out <file.glb>', 'where to write the .glb')
-    .option('--meters-per-unit <m>', "scale of one scene unit in metres (default: the scene's own, e.g. 1/32 for Doom maps)", numberOption('--meters-per-unit', 1e-9, 1e9))
-    .action((sceneArg: string, o: { out: string; metersPerUnit?: number }) =>
+    .option('--meters-per-unit <m>', "scale of one scene unit in metres (default: the scene's own, e.g. 1/32 for Doom maps)", numberOption('--meters-per-unit', 1e-9, 1e9));
+  withSceneOptions(command).action((sceneArg: string, o: { out: string; metersPerUnit?: number; lightTable?: string }) =>
       context.run(async () => {
         if (!o.out.toLowerCase().endsWith('.glb')) throw new LanternError(`--out must name a .glb file, not '${o.out}'`);
-        const scene = loadSceneArgument(sceneArg, context.note);
+        const scene = loadSceneArgument(sceneArg, { onWarning: context.note, ...(o.lightTable ? { lightTablePath: o.lightTable } : {}) });
         validateScene(scene);
         const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });
         writeFile(o.out, glb);

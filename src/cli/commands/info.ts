@@ -5,20 +5,21 @@ import { summarizeMaps } from '../../loaders/doom/load.ts';
 import { isDoomUri, parseDoomUri } from '../../loaders/doom/uri.ts';
 import { prepareScene } from '../../renderer/prepare.ts';
 import type { CliContext } from '../context.ts';
+import { withSceneOptions } from '../options.ts';
 import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
 import { openWads } from '../wad-files.ts';
 
 export function registerInfo(program: Command, context: CliContext): void {
-  program
+  const command = program
     .command('info')
     .description('print what a scene holds and its BVH statistics, or the maps of a WAD (no GPU needed)')
     .argument('<scene>', `${sceneHelp()}; a WAD without #map lists its maps`)
-    .option('--json', 'print as JSON')
-    .action((sceneArg: string, options: { json?: boolean }) =>
+    .option('--json', 'print as JSON');
+  withSceneOptions(command).action((sceneArg: string, options: { json?: boolean; lightTable?: string }) =>
       context.run(async () => {
         if (isDoomUri(sceneArg) && parseDoomUri(sceneArg).map === undefined) return listMaps(sceneArg, options.json ?? false, context);
         const t0 = performance.now();
-        const prepared = prepareScene(loadSceneArgument(sceneArg, context.note));
+        const prepared = prepareScene(loadSceneArgument(sceneArg, { onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) }));
         const loadMs = performance.now() - t0;
         const { scene, triangles, bvh, packed } = prepared;
         if (options.json) {

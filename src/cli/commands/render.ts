@@ -4,7 +4,7 @@ import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { DEFAULT_SETTINGS, LIGHT_SAMPLING, TONE_MAPPERS, type LightSampling, type ToneMapper } from '../../renderer/settings.ts';
 import { cameraFromOptions } from '../camera-option.ts';
-import { choiceOption, integerOption, numberListOption, numberOption, withImageOptions } from '../options.ts';
+import { choiceOption, integerOption, numberListOption, numberOption, withImageOptions, withSceneOptions } from '../options.ts';
 import { writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
@@ -27,6 +27,7 @@ interface RenderOptions {
   torchIntensity?: number;
   torchRange?: number;
   torchColor?: number[];
+  lightTable?: string;
   json?: boolean;
 }
 
@@ -35,7 +36,7 @@ export function registerRender(program: Command, context: CliContext): void {
     .command('render')
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
     .argument('<scene>', sceneHelp());
-  withImageOptions(command, { width: 512, height: 512 })
+  withSceneOptions(withImageOptions(command, { width: 512, height: 512 }))
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
     .option('--seed <n>', 'random seed (same seed, same image)', integerOption('--seed', 0, 0xffffffff), DEFAULT_SETTINGS.seed)
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
@@ -55,7 +56,7 @@ export function registerRender(program: Command, context: CliContext): void {
 
 async function render(sceneArg: string, o: RenderOptions, context: CliContext): Promise<void> {
   const png = o.out ?? (o.exr ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
   await renderer.resize(o.width, o.height);
   renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
   renderer.updateSettings({

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { Texture } from '../../scene/types.ts';
-import { glowTexture } from './light-table.ts';
+import { LanternError } from '../../errors.ts';
+import { glowTexture, parseLightTable } from './light-table.ts';
 
 describe('glowTexture', () => {
   it('keeps texels at least the threshold of the brightest luminance and blackens the rest', () => {
@@ -17,5 +18,25 @@ describe('glowTexture', () => {
     const rgba = new Uint8Array([255, 255, 255, 0, 128, 128, 128, 255]);
     const glow = glowTexture({ name: 'M', width: 2, height: 1, rgba }, 0.9);
     expect([...glow.rgba.subarray(4)]).toEqual([128, 128, 128, 255]);
+  });
+});
+
+describe('parseLightTable', () => {
+  it('accepts overrides and upper-cases names', () => {
+    expect(parseLightTable({ textures: { lite3: { strength: 0 } }, flats: { NUKAGE1: { strength: 2, color: [0, 1, 0], glow: 0.5 } } })).toEqual({
+      textures: { LITE3: { strength: 0 } },
+      flats: { NUKAGE1: { strength: 2, color: [0, 1, 0], glow: 0.5 } },
+    });
+  });
+
+  it.each([
+    [[], /not a JSON object/],
+    [{ walls: {} }, /unknown key 'walls'/],
+    [{ textures: { LITE3: { strength: -1 } } }, /textures\.LITE3\.strength/],
+    [{ flats: { X: { strength: 1, color: [1, 2] } } }, /flats\.X\.color/],
+    [{ flats: { X: { strength: 1, glow: 2 } } }, /flats\.X\.glow/],
+  ])('refuses %j, naming the entry', (json, message) => {
+    expect(() => parseLightTable(json, 'my.json')).toThrow(LanternError);
+    expect(() => parseLightTable(json, 'my.json')).toThrow(message);
   });
 });

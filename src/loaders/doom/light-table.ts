@@ -42,6 +42,7 @@
  * textures list every frame. Callers may override any entry
  * (strength 0 turns one off) or add their own: the table is plain JSON.
  */
+import { LanternError } from '../../errors.ts';
 import { luminance, type Vec3 } from '../../math/vec3.ts';
 import type { Texture, Torch } from '../../scene/types.ts';
 
@@ -140,6 +141,41 @@ export function mergeLightTables(base: LightTable, overrides: Partial<LightTable
     textures: { ...base.textures, ...upper(overrides.textures) },
     flats: { ...base.flats, ...upper(overrides.flats) },
   };
+}
+
+/**
+ * A user's light table overrides from parsed JSON, checked: `{ "textures": { "NAME": { "strength": 48,
+ * "color": [1, 0.9, 0.8], "glow": 0.6 } }, "flats": { ... } }`. Throws a LanternError naming the
+ * first bad entry.
+ */
+export function parseLightTable(json: unknown, source = 'light table'): Partial<LightTable> {
+  const fail = (what: string): never => {
+    throw new LanternError(`${source}: ${what}`, 'Expected { "textures": { "NAME": { "strength": 16, "color": [1, 1, 1], "glow": 0.6 } }, "flats": { ... } }');
+  };
+  if (typeof json !== 'object' || json === null || Array.isArray(json)) fail('not a JSON object');
+  const out: { textures?: Record<string, LightSource>; flats?: Record<string, LightSource> } = {};
+  for (const [key, value] of Object.entries(json as Record<string, unknown>)) {
+    if (key !== 'textures' && key !== 'flats') fail(`unknown key '${key}' (use "textures" and "flats")`);
+    if (typeof value !== 'object' || value === null || Array.isArray(value)) fail(`"${key}" must be an object of names`);
+    const entries: Record<string, LightSource> = {};
+    for (const [name, entry] of Object.entries(value as Record<string, unknown>)) {
+      const e = entry as { strength?: unknown; color?: unknown; glow?: unknown };
+      const where = `${key}.${name}`;
+      if (typeof e !== 'object' || e === null) fail(`${where} must be an object`);
+      if (typeof e.strength !== 'number' || !Number.isFinite(e.strength) || e.strength < 0) fail(`${where}.strength must be a number ≥ 0`);
+      if (e.color !== undefined && !(Array.isArray(e.color) && e.color.length === 3 && e.color.every((c) => typeof c === 'number' && Number.isFinite(c) && c >= 0))) {
+        fail(`${where}.color must be three numbers ≥ 0`);
+      }
+      if (e.glow !== undefined && !(typeof e.glow === 'number' && e.glow >= 0 && e.glow <= 1)) fail(`${where}.glow must be a number from 0 to 1`);
+      entries[name.toUpperCase()] = {
+        strength: e.strength as number,
+        ...(e.color !== undefined ? { color: e.color as [number, number, number] } : {}),
+        ...(e.glow !== undefined ? { glow: e.glow as number } : {}),
+      };
+    }
+    out[key as 'textures' | 'flats'] = entries;
+  }
+  return out;
 }
 
 /** How a sector's light level scales its emitters: (level / 255)², level clamped to 0–255. */
