@@ -2,18 +2,10 @@
  * Deterministic triangle soups for the BVH tests (test-only; nothing in the renderer imports this).
  * Each returns a flat position array, 9 floats per triangle.
  */
+import { seededRandom } from '../math/seeded-random.ts';
 
-/** mulberry32: a tiny, fast, well-mixed 32-bit PRNG; the same seed gives the same scene everywhere. */
-export function makeRandom(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+/** The seeded PRNG the BVH tests share (math/seeded-random.ts). */
+export const makeRandom = seededRandom;
 
 /** Random triangles in [-10, 10]³: mostly small, some long slivers, scaled by `scale`. */
 export function randomSoup(count: number, seed: number, scale = 1): Float32Array {

@@ -12,18 +12,8 @@ import {
 } from './test-wad.ts';
 import { DoomGraphics } from './textures.ts';
 import { readWad, WadStack } from './wad.ts';
+import { seededRandom } from '../../math/seeded-random.ts';
 
-/** mulberry32: a tiny seeded PRNG, so failures reproduce. */
-function prng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
 
 /** A small WAD exercising every reader: a map, PNAMES, TEXTURE1, patches (one tall), flats. */
 function smallWad(): Uint8Array {
@@ -134,7 +124,7 @@ describe('corrupt WADs', () => {
   it('survives lump offsets and sizes pointing anywhere', () => {
     const dir = new DataView(wad.buffer).getInt32(8, true);
     const count = new DataView(wad.buffer).getInt32(4, true);
-    const random = prng(7);
+    const random = seededRandom(7);
     for (let i = 0; i < 300; i++) {
       const bytes = wad.slice();
       const view = new DataView(bytes.buffer);
@@ -159,7 +149,7 @@ describe('corrupt WADs', () => {
   });
 
   it('survives hundreds of random byte flips', { timeout: 10_000 }, () => {
-    const random = prng(1234);
+    const random = seededRandom(1234);
     const tally = { ok: 0, refused: 0 };
     const dir = new DataView(wad.buffer).getInt32(8, true);
     for (let i = 0; i < 600; i++) {
