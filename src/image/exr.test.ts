@@ -4,6 +4,7 @@ import { LanternError } from '../errors.ts';
 import { filterForCompression } from './exr-compression.ts';
 import { decodeExr, encodeExr, exrToRgb } from './exr.ts';
 import { floatToHalf, halfToFloat } from './half.ts';
+import { expectLanternError } from '../expect-lantern-error.ts';
 
 /** Deterministic values covering signs, zero, -0, huge, tiny (float subnormal), inf and NaN. */
 function awkwardFloats(n: number, seed: number): Float32Array {
@@ -28,17 +29,6 @@ function gradient(width: number, height: number): Float32Array {
     }
   }
   return rgb;
-}
-
-function expectLanternError(fn: () => unknown, pattern?: RegExp): void {
-  let thrown: unknown;
-  try {
-    fn();
-  } catch (e) {
-    thrown = e;
-  }
-  expect(thrown).toBeInstanceOf(LanternError);
-  if (pattern) expect((thrown as Error).message).toMatch(pattern);
 }
 
 const SIZES: [number, number][] = [[1, 1], [3, 17], [37, 5], [16, 16], [64, 33]];

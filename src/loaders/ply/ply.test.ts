@@ -4,6 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { LanternError } from '../../errors.ts';
 import { validateScene } from '../../scene/validate.ts';
 import { loadPly, parsePly } from './ply.ts';
+import { expectLanternError } from '../../expect-lantern-error.ts';
 
 type Format = 'ascii' | 'binary_little_endian' | 'binary_big_endian';
 type Type = 'char' | 'uchar' | 'short' | 'ushort' | 'int' | 'uint' | 'float' | 'double' | 'int8' | 'uint8' | 'int16' | 'uint16' | 'int32' | 'uint32' | 'float32' | 'float64';
@@ -66,17 +67,6 @@ const cube = (format: Format, vertexProps: Prop[] = XYZ, faceProp: Prop = INDICE
     { name: 'vertex', props: vertexProps, rows: CUBE_VERTICES },
     { name: 'face', props: [faceProp], rows: CUBE_QUADS.map((q) => [q]) },
   ]);
-
-function expectLanternError(fn: () => unknown, pattern: RegExp): void {
-  let thrown: unknown;
-  try {
-    fn();
-  } catch (e) {
-    thrown = e;
-  }
-  expect(thrown).toBeInstanceOf(LanternError);
-  expect((thrown as Error).message).toMatch(pattern);
-}
 
 describe('parsePly', () => {
   it.each(FORMATS)('reads a quad cube in %s and fan-triangulates it', (format) => {

@@ -1,0 +1,14 @@
+/** Test helper: asserts that `fn` throws a LanternError whose message matches `pattern`. */
+import { expect } from 'vitest';
+import { LanternError } from './errors.ts';
+
+export function expectLanternError(fn: () => unknown, pattern?: RegExp): void {
+  let thrown: unknown;
+  try {
+    fn();
+  } catch (e) {
+    thrown = e;
+  }
+  expect(thrown).toBeInstanceOf(LanternError);
+  if (pattern) expect((thrown as Error).message).toMatch(pattern);
+}
