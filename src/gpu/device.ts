@@ -5,6 +5,7 @@
  * timestamp queries where the adapter has them.
  */
 import { LanternError } from '../errors.ts';
+import { ResourceCounter } from './resource-count.ts';
 
 export interface GpuContext {
   readonly device: GPUDevice;
@@ -18,6 +19,8 @@ export interface GpuContext {
   readonly hasTimestamps: boolean;
   /** Resolves when the device is lost (destroyed, driver reset, GPU removed). */
   readonly lost: Promise<GPUDeviceLostInfo>;
+  /** Live buffers and textures of the device (what leaks shows here). */
+  readonly resources: ResourceCounter;
 }
 
 const LIMITS_TO_RAISE = [
@@ -66,7 +69,8 @@ export async function acquireGpu(
     if (options.onUncapturedError) options.onUncapturedError(message);
     else console.error(message);
   };
-  return { device, adapter, adapterName: adapterName(adapter.info), hasTimestamps, lost: device.lost };
+  const resources = new ResourceCounter(device);
+  return { device, adapter, adapterName: adapterName(adapter.info), hasTimestamps, lost: device.lost, resources };
 }
 
 /**

@@ -4,6 +4,7 @@
  * map units for Doom); the renderer never assumes a scale.
  */
 import type { Vec3 } from '../math/vec3.ts';
+import type { WalkMap } from './walk-map.ts';
 
 /**
  * An image for materials: 8-bit RGBA, row-major, top row first. Colour channels are sRGB-encoded
@@ -115,4 +116,6 @@ export interface Scene {
   readonly torch?: Torch;
   /** Size of one scene unit in metres, when known (Cornell box: 0.001; Doom: 1/32). */
   readonly metersPerUnit?: number;
+  /** The floor plan a viewer can walk on (Doom maps), with the walker's dimensions. */
+  readonly walkMap?: WalkMap;
 }

@@ -3,6 +3,7 @@
  * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the player's
  * view and torch. Coordinates go through coordinates.ts.
  */
+import { doomWalkMap } from './walk-map.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import type { Camera, Material, Mesh, Scene, Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
@@ -119,6 +120,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
     camera: playerCamera(map, shapes, warn),
     torch: DOOM_TORCH,
     metersPerUnit: DOOM_METERS_PER_UNIT,
+    walkMap: doomWalkMap(map),
   };
   return {
     scene,
