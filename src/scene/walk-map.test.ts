@@ -14,7 +14,7 @@ function twoRooms(b: Partial<Sector>, sharedFlags = 0): DoomMap {
   ];
   const sector = (s: Partial<Sector>): Sector => ({ floorHeight: 0, ceilingHeight: 128, floorFlat: 'F', ceilingFlat: 'C', lightLevel: 160, special: 0, tag: 0, ...s });
   const side = (s: number): Sidedef => ({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle: '-', sector: s });
-  const line = (v1: number, v2: number, front: number, back = NO_SIDEDEF, flags = LINEDEF_FLAGS.BLOCKING): Linedef => ({ v1, v2, flags, special: 0, tag: 0, front, back });
+  const line = (v1: number, v2: number, front: number, back: number = NO_SIDEDEF, flags: number = LINEDEF_FLAGS.BLOCKING): Linedef => ({ v1, v2, flags, special: 0, tag: 0, front, back });
   // Clockwise loops, so front (right) sides face into each room.
   const linedefs = [
     line(0, 1, 0), line(1, 2, 1), line(3, 0, 2),
