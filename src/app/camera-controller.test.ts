@@ -1,0 +1,76 @@
+import { describe, expect, it } from 'vitest';
+import type { Camera } from '../scene/types.ts';
+import type { WalkMap } from '../scene/walk-map.ts';
+import { CameraController, forwardOf, NO_INPUT, poseFromCamera } from './camera-controller.ts';
+
+const camera: Camera = { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 };
+
+/** One square room 512 units wide, floor at 0 except a raised half (x > 0) at 16: a step. */
+function room(step = 16): WalkMap {
+  // Lines around the square (x, z in −256..256), the sector inside on the positive-cross side.
+  const corners = [[-256, -256], [-256, 256], [0, 256], [256, 256], [256, -256], [0, -256]] as const;
+  const loopA = [[0, 1], [1, 2], [5, 0]], loopB = [[2, 3], [3, 4], [4, 5]];
+  const lines: number[] = [], sectors: number[] = [];
+  const add = (a: number, b: number, inside: number, other = -1) => {
+    lines.push(...corners[a]!, ...corners[b]!);
+    sectors.push(inside, other);
+  };
+  // Orientation chosen so the room's inside is on the positive side of each line.
+  for (const [a, b] of loopA) add(b!, a!, 0);
+  for (const [a, b] of loopB) add(b!, a!, 1);
+  add(2, 5, 1, 0);
+  return { lines: new Float32Array(lines), lineSectors: new Int32Array(sectors), lineBlocks: new Uint8Array(lines.length / 4), floors: new Float32Array([0, step]), ceilings: new Float32Array([128, 128]), eyeHeight: 41, stepHeight: 24, bodyHeight: 56, radius: 16 };
+}
+
+describe('camera controller', () => {
+  it('round-trips yaw and pitch through the forward vector', () => {
+    for (const [yaw, pitch] of [[0, 0], [1, 0.3], [-2.5, -0.7], [3, 1.2]] as const) {
+      const pose = poseFromCamera({ ...camera, forward: forwardOf(yaw, pitch) });
+      expect(pose.yaw).toBeCloseTo(yaw, 9);
+      expect(pose.pitch).toBeCloseTo(pitch, 9);
+    }
+  });
+
+  it('flies forward along the view, strafes right, rises, and runs twice as fast', () => {
+    const c = new CameraController(camera, 10);
+    expect(c.update(1, { ...NO_INPUT, forward: 1 })).toBe(true);
+    expect(c.pose.position[2]).toBeCloseTo(-10);
+    c.update(1, { ...NO_INPUT, right: 1 });
+    expect(c.pose.position[0]).toBeCloseTo(10);
+    c.update(0.5, { ...NO_INPUT, up: 1, run: true });
+    expect(c.pose.position[1]).toBeCloseTo(10);
+    expect(c.update(1, NO_INPUT)).toBe(false);
+  });
+
+  it('turns left with negative turn input and looks up with the mouse moving up', () => {
+    const c = new CameraController(camera, 10);
+    c.update(0.5, { ...NO_INPUT, turn: -1 });
+    expect(c.camera().forward[0]).toBeLessThan(-0.5);
+    c.look(0, -100);
+    expect(c.camera().forward[1]).toBeGreaterThan(0.2);
+    c.look(0, -100000);
+    expect(c.pitch).toBeLessThan(Math.PI / 2);
+  });
+
+  it('walks at eye height, climbs a step smoothly and ignores up/down', () => {
+    const c = new CameraController({ ...camera, position: [-100, 41, 0], forward: [1, 0, 0] }, 100, room());
+    expect(c.setMode('walk')).toBe(true);
+    c.update(0.1, { ...NO_INPUT, up: 1 });
+    expect(c.pose.position[1]).toBeCloseTo(41, 5);
+    const heights: number[] = [];
+    for (let i = 0; i < 30; i++) {
+      c.update(0.1, { ...NO_INPUT, forward: 1 });
+      heights.push(c.pose.position[1]);
+    }
+    expect(c.pose.position[0]).toBeGreaterThan(100);
+    expect(heights.at(-1)).toBeCloseTo(57, 5);
+    // Smooth: some frames sit between the two eye heights, and height never goes down.
+    expect(heights.some((h) => h > 41.5 && h < 56.5)).toBe(true);
+    for (let i = 1; i < heights.length; i++) expect(heights[i]!).toBeGreaterThanOrEqual(heights[i - 1]!);
+  });
+
+  it('refuses walk mode without a walk map or outside it', () => {
+    expect(new CameraController(camera, 1).setMode('walk')).toBe(false);
+    expect(new CameraController({ ...camera, position: [1000, 0, 0] }, 1, room()).setMode('walk')).toBe(false);
+  });
+});

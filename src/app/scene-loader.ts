@@ -1,0 +1,73 @@
+/**
+ * The page's side of the scene worker: promises for opening WADs and loading scenes, with progress
+ * callbacks. One worker for the page's lifetime (it keeps the open WAD's textures between maps).
+ */
+import { LanternError } from '../errors.ts';
+import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
+import type { LoadedScene, NamedBytes, ProgressListener, SceneRequest, WadSummary } from './scene-request.ts';
+
+interface Pending {
+  resolve(reply: WorkerReply): void;
+  reject(error: Error): void;
+  onProgress?: ProgressListener;
+}
+
+export class SceneLoader {
+  private readonly worker: Worker;
+  private readonly pending = new Map<number, Pending>();
+  private nextId = 1;
+
+  constructor() {
+    this.worker = new Worker(new URL('./scene-worker.ts', import.meta.url), { type: 'module', name: 'lantern scenes' });
+    this.worker.onmessage = (event: MessageEvent<WorkerReply>) => this.receive(event.data);
+    this.worker.onerror = (event) => {
+      event.preventDefault();
+      this.failAll(new Error(`the scene worker failed: ${event.message || 'it could not start'}`));
+    };
+  }
+
+  async openWads(files: readonly File[]): Promise<WadSummary> {
+    const named: NamedBytes[] = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) })));
+    const reply = await this.send({ id: this.nextId++, type: 'open-wads', files: named }, named.map((f) => f.bytes.buffer as ArrayBuffer));
+    if (reply.type !== 'wads') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
+    return reply.summary;
+  }
+
+  async load(request: SceneRequest, onProgress?: ProgressListener): Promise<LoadedScene> {
+    const transfer = request.kind === 'ply' ? [request.file.bytes.buffer as ArrayBuffer] : [];
+    const reply = await this.send({ id: this.nextId++, type: 'load', request }, transfer, onProgress);
+    if (reply.type !== 'loaded') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
+    return reply.loaded;
+  }
+
+  terminate(): void {
+    this.worker.terminate();
+    this.failAll(new Error('the scene worker was stopped'));
+  }
+
+  private send(message: WorkerRequest, transfer: Transferable[], onProgress?: ProgressListener): Promise<WorkerReply> {
+    return new Promise((resolve, reject) => {
+      this.pending.set(message.id, { resolve, reject, ...(onProgress ? { onProgress } : {}) });
+      this.worker.postMessage(message, transfer);
+    });
+  }
+
+  private receive(reply: WorkerReply): void {
+    const pending = this.pending.get(reply.id);
+    if (!pending) return;
+    if (reply.type === 'progress') {
+      pending.onProgress?.(reply.stage, reply.fraction);
+      return;
+    }
+    this.pending.delete(reply.id);
+    if (reply.type === 'error') {
+      const { message, hint, user } = reply.error;
+      pending.reject(user ? new LanternError(message, hint) : new Error(message));
+    } else pending.resolve(reply);
+  }
+
+  private failAll(error: Error): void {
+    for (const p of this.pending.values()) p.reject(error);
+    this.pending.clear();
+  }
+}

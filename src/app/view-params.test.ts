@@ -1,0 +1,38 @@
+import { describe, expect, it } from 'vitest';
+import { formatViewParams, parseViewParams, type ViewParams } from './view-params.ts';
+
+describe('view parameters', () => {
+  it('round-trip a full view', () => {
+    const view: ViewParams = {
+      scene: { kind: 'wad', urls: ['files/0/freedoom1.wad', 'files/1/my.wad'], map: 'E1M2' },
+      pose: { position: [1024.5, 41, -3200.25], yaw: 1.5708, pitch: -0.1 },
+      fovDegrees: 73.74,
+      mode: 'walk',
+      samplesPerFrame: 4,
+      maxBounces: 3,
+      scale: 0.5,
+      accumulate: false,
+      toneMapper: 'reinhard',
+      exposureStops: -1.5,
+      torch: { enabled: true, color: [1, 0.8, 0.6], intensity: 2000, range: 900 },
+    };
+    const { view: back, problems } = parseViewParams(new URLSearchParams(formatViewParams(view).toString()));
+    expect(problems).toEqual([]);
+    expect(back).toEqual(view);
+  });
+
+  it('reads the scene forms and ignores what is absent', () => {
+    expect(parseViewParams(new URLSearchParams('scene=furnace')).view).toEqual({ scene: { kind: 'builtin', name: 'furnace' } });
+    expect(parseViewParams(new URLSearchParams('ply=files/0/dragon.ply.gz')).view.scene).toEqual({ kind: 'ply', url: 'files/0/dragon.ply.gz' });
+    expect(parseViewParams(new URLSearchParams('wad=a.wad&map=e1m1')).view.scene).toEqual({ kind: 'wad', urls: ['a.wad'], map: 'E1M1' });
+    expect(parseViewParams(new URLSearchParams('')).view).toEqual({});
+  });
+
+  it('names every parameter it refuses and keeps the rest', () => {
+    const { view, problems } = parseViewParams(new URLSearchParams('cam=1,2,3&spf=0&bounces=2.5&scale=9&tonemap=filmic&mode=swim&torch-color=2,0,0&exposure=1'));
+    expect(view).toEqual({ exposureStops: 1 });
+    expect(problems).toHaveLength(7);
+    expect(problems.join('\n')).toMatch(/cam=1,2,3 is not 5 numbers/);
+    expect(problems.join('\n')).toMatch(/spf=0 is outside 1–64/);
+  });
+});

@@ -1,0 +1,143 @@
+/**
+ * The page's URL parameters: which scene, where the camera is and the settings, so that a link
+ * restores a view. Pure (URLSearchParams in, plain data out), unit-tested both ways.
+ *
+ *   scene=cornell                      a built-in scene
+ *   wad=<url>[&wad=<url>…]&map=E1M1    a Doom map from WAD files the server offers (IWAD first)
+ *   ply=<url>                          a PLY mesh the server offers
+ *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly
+ *   spf, bounces, scale, acc=0|1, tonemap, exposure, torch=on|off, torch-color=r,g,b,
+ *   torch-intensity, torch-range
+ */
+import { TONE_MAPPERS, type ToneMapper } from '../renderer/settings.ts';
+import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
+
+export type SceneLocation =
+  | { readonly kind: 'builtin'; readonly name: string }
+  | { readonly kind: 'wad'; readonly urls: readonly string[]; readonly map?: string }
+  | { readonly kind: 'ply'; readonly url: string };
+
+/** Everything a link carries besides the scene; absent fields keep their defaults. */
+export interface ViewParams {
+  readonly scene?: SceneLocation;
+  readonly pose?: Pose;
+  readonly fovDegrees?: number;
+  readonly mode?: MoveMode;
+  readonly samplesPerFrame?: number;
+  readonly maxBounces?: number;
+  readonly scale?: number;
+  readonly accumulate?: boolean;
+  readonly toneMapper?: ToneMapper;
+  readonly exposureStops?: number;
+  readonly torch?: {
+    readonly enabled?: boolean;
+    readonly color?: readonly [number, number, number];
+    readonly intensity?: number;
+    readonly range?: number;
+  };
+}
+
+/** Values outside these ranges are refused (the parameter is ignored with a note). */
+export const LIMITS = {
+  samplesPerFrame: [1, 64],
+  maxBounces: [0, 64],
+  scale: [0.01, 2],
+  exposureStops: [-20, 20],
+  fovDegrees: [5, 150],
+} as const;
+
+const round = (v: number) => Number(v.toFixed(4));
+
+export function parseViewParams(params: URLSearchParams): { view: ViewParams; problems: string[] } {
+  const problems: string[] = [];
+  const view: { -readonly [K in keyof ViewParams]: ViewParams[K] } = {};
+  const numbers = (name: string, count: number): number[] | undefined => {
+    const raw = params.get(name);
+    if (raw === null) return undefined;
+    const values = raw.split(',').map(Number);
+    if (values.length !== count || !values.every(Number.isFinite)) {
+      problems.push(`${name}=${raw} is not ${count} number${count > 1 ? 's' : ''}`);
+      return undefined;
+    }
+    return values;
+  };
+  const ranged = (name: string, [lo, hi]: readonly [number, number], integer = false): number | undefined => {
+    const v = numbers(name, 1)?.[0];
+    if (v === undefined) return undefined;
+    if (v < lo || v > hi || (integer && !Number.isInteger(v))) {
+      problems.push(`${name}=${v} is outside ${lo}–${hi}${integer ? ' (whole numbers)' : ''}`);
+      return undefined;
+    }
+    return v;
+  };
+  const wads = params.getAll('wad');
+  const ply = params.get('ply');
+  const scene = params.get('scene');
+  const map = params.get('map');
+  if (wads.length > 0) view.scene = { kind: 'wad', urls: wads, ...(map ? { map: map.toUpperCase() } : {}) };
+  else if (ply) view.scene = { kind: 'ply', url: ply };
+  else if (scene) view.scene = { kind: 'builtin', name: scene };
+
+  const cam = numbers('cam', 5);
+  if (cam) view.pose = { position: [cam[0]!, cam[1]!, cam[2]!], yaw: cam[3]!, pitch: cam[4]! };
+  const fov = ranged('fov', LIMITS.fovDegrees);
+  if (fov !== undefined) view.fovDegrees = fov;
+  const mode = params.get('mode');
+  if (mode !== null) {
+    if ((MOVE_MODES as readonly string[]).includes(mode)) view.mode = mode as MoveMode;
+    else problems.push(`mode=${mode} is not one of ${MOVE_MODES.join(', ')}`);
+  }
+  const spf = ranged('spf', LIMITS.samplesPerFrame, true);
+  if (spf !== undefined) view.samplesPerFrame = spf;
+  const bounces = ranged('bounces', LIMITS.maxBounces, true);
+  if (bounces !== undefined) view.maxBounces = bounces;
+  const scale = ranged('scale', LIMITS.scale);
+  if (scale !== undefined) view.scale = scale;
+  const acc = params.get('acc');
+  if (acc !== null) view.accumulate = acc !== '0';
+  const tonemap = params.get('tonemap');
+  if (tonemap !== null) {
+    if ((TONE_MAPPERS as readonly string[]).includes(tonemap)) view.toneMapper = tonemap as ToneMapper;
+    else problems.push(`tonemap=${tonemap} is not one of ${TONE_MAPPERS.join(', ')}`);
+  }
+  const exposure = ranged('exposure', LIMITS.exposureStops);
+  if (exposure !== undefined) view.exposureStops = exposure;
+
+  const torch: { enabled?: boolean; color?: [number, number, number]; intensity?: number; range?: number } = {};
+  const on = params.get('torch');
+  if (on !== null) torch.enabled = on !== 'off';
+  const color = numbers('torch-color', 3);
+  if (color && color.every((c) => c >= 0 && c <= 1)) torch.color = [color[0]!, color[1]!, color[2]!];
+  else if (color) problems.push('torch-color components must be in 0–1');
+  const intensity = ranged('torch-intensity', [0, 1e9]);
+  if (intensity !== undefined) torch.intensity = intensity;
+  const range = ranged('torch-range', [1e-3, 1e9]);
+  if (range !== undefined) torch.range = range;
+  if (Object.keys(torch).length > 0) view.torch = torch;
+  return { view, problems };
+}
+
+export function formatViewParams(view: ViewParams): URLSearchParams {
+  const p = new URLSearchParams();
+  const s = view.scene;
+  if (s?.kind === 'builtin') p.set('scene', s.name);
+  else if (s?.kind === 'wad') {
+    for (const url of s.urls) p.append('wad', url);
+    if (s.map) p.set('map', s.map);
+  } else if (s?.kind === 'ply') p.set('ply', s.url);
+  if (view.pose) p.set('cam', [...view.pose.position, view.pose.yaw, view.pose.pitch].map(round).join(','));
+  if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
+  if (view.mode) p.set('mode', view.mode);
+  if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
+  if (view.maxBounces !== undefined) p.set('bounces', String(view.maxBounces));
+  if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
+  if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
+  if (view.toneMapper) p.set('tonemap', view.toneMapper);
+  if (view.exposureStops !== undefined) p.set('exposure', String(round(view.exposureStops)));
+  const t = view.torch;
+  if (t?.enabled !== undefined) p.set('torch', t.enabled ? 'on' : 'off');
+  if (t?.color) p.set('torch-color', t.color.map(round).join(','));
+  if (t?.intensity !== undefined) p.set('torch-intensity', String(round(t.intensity)));
+  if (t?.range !== undefined) p.set('torch-range', String(round(t.range)));
+  return p;
+}
