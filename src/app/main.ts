@@ -1,25 +1,56 @@
 /**
- * The page: a scene picker, Play/Pause, and the canvas. Nothing touches the GPU before Play.
- * URL parameters: scene=<name>, scale=<render resolution / canvas resolution>.
- * Test hook: `window.lantern` exposes the viewer's state and sample count, and the canvas carries
- * data-state and data-samples, so scripts (the Playwright tests) can wait for frames.
+ * The page: scene picker, WAD/PLY opening (file picker and drag-and-drop) with a map picker, Play,
+ * the settings panel, and the canvas. Scenes load in a Web Worker with a progress bar; nothing
+ * touches the GPU before Play. URL parameters (view-params.ts) choose the scene, camera and
+ * settings, so a copied link restores a view.
+ *
+ * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera and live GPU
+ * resources, and the canvas carries data-state and data-samples, so scripts can wait for frames.
  */
 import { LanternError } from '../errors.ts';
 import { BUILTIN_SCENES, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
-import { Viewer } from './viewer.ts';
+import type { Pose } from './camera-controller.ts';
+import { Input } from './input.ts';
+import { SettingsPanel } from './panel.ts';
+import { SceneLoader } from './scene-loader.ts';
+import type { SceneRequest } from './scene-request.ts';
+import { formatViewParams, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
+import { describeError, Viewer } from './viewer.ts';
+import type { ResourceCount } from '../gpu/resource-count.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 const canvas = $<HTMLCanvasElement>('view');
 const sceneSelect = $<HTMLSelectElement>('scene');
+const fileInput = $<HTMLInputElement>('open-file');
+const mapPicker = $<HTMLLabelElement>('map-picker');
+const mapSelect = $<HTMLSelectElement>('map');
 const playButton = $<HTMLButtonElement>('play');
+const progress = $<HTMLProgressElement>('progress');
 const stats = $<HTMLSpanElement>('stats');
 const message = $<HTMLParagraphElement>('message');
+const dropZone = $<HTMLDivElement>('drop-zone');
 
-const params = new URLSearchParams(location.search);
-const requested = params.get('scene') ?? 'cornell';
-// Render resolution as a fraction of the canvas (0.25–2 in the viewer; tests go lower on SwiftShader).
-const scale = Math.min(2, Math.max(1 / 64, Number(params.get('scale') ?? 1) || 1));
-const initial = isBuiltinScene(requested) ? requested : 'cornell';
+/** The option of the scene picker that stands for a scene opened from a file. */
+const FILE_OPTION = '__file__';
+
+function showMessage(text: string, kind: 'info' | 'warning' | 'error'): void {
+  message.hidden = false;
+  message.dataset.kind = kind;
+  message.textContent = text;
+}
+function clearMessage(): void {
+  message.hidden = true;
+  message.textContent = '';
+}
+
+const { view: linked, problems } = parseViewParams(new URLSearchParams(location.search));
+const viewer = new Viewer(canvas, { onChange: showViewer, onMessage: showMessage });
+const loader = new SceneLoader();
+let panel: SettingsPanel | undefined;
+/** Where the current scene came from (for links); undefined for files opened from this computer. */
+let current: SceneLocation | undefined;
+let loading: string | undefined;
+let loadToken = 0;
 
 for (const name of builtinSceneNames()) {
   const option = document.createElement('option');
@@ -28,42 +59,273 @@ for (const name of builtinSceneNames()) {
   option.title = BUILTIN_SCENES[name].description;
   sceneSelect.append(option);
 }
-sceneSelect.value = initial;
-
-function showError(error: unknown): void {
-  message.hidden = false;
-  message.textContent = error instanceof LanternError ? error.userMessage : `Something went wrong: ${(error as Error)?.message ?? error}`;
-}
 
 function showViewer(v: Viewer): void {
   const s = v.stats;
   canvas.dataset.state = v.state;
   canvas.dataset.samples = String(s.samples);
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
-  playButton.disabled = v.state === 'starting' || v.state === 'failed';
-  stats.textContent = v.state === 'idle' ? 'press Play to start' : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.adapter}`;
-  if (v.state === 'failed') showError(v.failure);
+  playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
+  const hidden = document.hidden && v.state === 'playing' ? ' · paused while the tab is hidden' : '';
+  stats.textContent =
+    loading !== undefined ? `loading: ${loading}…`
+    : v.state === 'idle' ? 'press Play to start'
+    : v.state === 'starting' ? 'starting the GPU…'
+    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter}${hidden}`;
+  panel?.showStats();
 }
 
-const viewer = new Viewer(canvas, initial, scale, showViewer);
-showViewer(viewer);
-if (!isBuiltinScene(requested)) showError(new LanternError(`unknown scene '${requested}'`, `Built-in scenes are: ${builtinSceneNames().join(', ')}`));
-if (!navigator.gpu) {
-  showError(new LanternError('this browser has no WebGPU', 'Use Chrome or Edge 113+, Safari 26+ or Firefox 141+ on Windows; on Linux Chrome needs --enable-unsafe-webgpu --enable-features=Vulkan'));
-  playButton.disabled = true;
+// ---- loading scenes ----
+
+/** Loads a scene in the worker and shows it; a failure leaves the current scene as it was. */
+async function show(request: SceneRequest, where: SceneLocation | undefined, view: ViewParams = {}): Promise<void> {
+  const token = ++loadToken;
+  progress.hidden = false;
+  progress.value = 0;
+  loading = 'starting';
+  showViewer(viewer);
+  try {
+    const loaded = await loader.load(request, (stage, fraction) => {
+      if (token !== loadToken) return;
+      progress.value = fraction;
+      loading = stage;
+      showViewer(viewer);
+    });
+    if (token !== loadToken) return;
+    await viewer.setScene(loaded, { ...(view.pose ? { pose: view.pose } : {}), ...(view.mode ? { mode: view.mode } : {}), ...(view.fovDegrees !== undefined ? { fovDegrees: view.fovDegrees } : {}) });
+    if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
+    current = where;
+    panel?.readFromViewer();
+    if (loaded.warnings.length > 0) {
+      showMessage(`${loaded.prepared.scene.name}: ${loaded.warnings.length} warning(s), first: ${loaded.warnings[0]}`, 'warning');
+    } else if (message.dataset.kind !== 'error' || where) clearMessage();
+  } catch (e) {
+    if (token === loadToken) showMessage(describeError(e), 'error');
+  } finally {
+    if (token === loadToken) {
+      loading = undefined;
+      progress.hidden = true;
+      showViewer(viewer);
+    }
+  }
 }
+
+function showBuiltin(name: string, view: ViewParams = {}): Promise<void> {
+  sceneSelect.value = name;
+  mapPicker.hidden = true;
+  return show({ kind: 'builtin', name }, { kind: 'builtin', name }, view);
+}
+
+/** The file-scene entry of the scene picker, labelled with what was opened. */
+function markFileScene(label: string): void {
+  let option = sceneSelect.querySelector<HTMLOptionElement>(`option[value="${FILE_OPTION}"]`);
+  if (!option) {
+    option = document.createElement('option');
+    option.value = FILE_OPTION;
+    sceneSelect.append(option);
+  }
+  option.textContent = label;
+  sceneSelect.value = FILE_OPTION;
+}
+
+/** IWADs first (the base game), then PWADs in the order given: PWADs override what comes before. */
+async function wadOrder(files: readonly File[]): Promise<File[]> {
+  const kinds = await Promise.all(files.map(async (f) => new TextDecoder().decode(await f.slice(0, 4).arrayBuffer())));
+  return files.map((f, i) => ({ f, iwad: kinds[i] === 'IWAD' })).sort((a, b) => Number(b.iwad) - Number(a.iwad)).map((x) => x.f);
+}
+
+/** Opens files picked or dropped (or served): WADs get a map picker, a PLY file is shown at once. */
+async function openFiles(files: readonly File[], where?: { urls: readonly string[]; map?: string }, view: ViewParams = {}): Promise<void> {
+  const wads = files.filter((f) => /\.wad$/i.test(f.name));
+  const ply = files.find((f) => /\.ply(\.gz)?$/i.test(f.name));
+  try {
+    if (ply && wads.length === 0) {
+      markFileScene(ply.name);
+      mapPicker.hidden = true;
+      await show({ kind: 'ply', file: { name: ply.name, bytes: new Uint8Array(await ply.arrayBuffer()) } }, where ? { kind: 'ply', url: where.urls[0]! } : undefined, view);
+      return;
+    }
+    if (wads.length === 0) {
+      throw new LanternError(`cannot open ${files.map((f) => `'${f.name}'`).join(', ')}`, 'Lantern opens Doom WAD files (.wad) and PLY meshes (.ply, .ply.gz)');
+    }
+    const summary = await loader.openWads(await wadOrder(wads));
+    mapSelect.replaceChildren(
+      ...summary.maps.map((m) => {
+        const option = document.createElement('option');
+        option.value = m.name;
+        option.textContent = m.format === 'doom' ? m.name : `${m.name} (${m.format} format: not supported)`;
+        option.disabled = m.format !== 'doom';
+        return option;
+      }),
+    );
+    const playable = summary.maps.filter((m) => m.format === 'doom');
+    if (playable.length === 0) throw new LanternError(`${summary.description} has only Hexen or UDMF maps`, 'Lantern reads Doom-format maps');
+    const wanted = where?.map && playable.some((m) => m.name === where.map) ? where.map : playable[0]!.name;
+    if (where?.map && wanted !== where.map) showMessage(`${summary.description} has no map ${where.map}; showing ${wanted}`, 'warning');
+    mapSelect.value = wanted;
+    mapPicker.hidden = false;
+    markFileScene(summary.description);
+    wadSource = where ? { urls: where.urls } : undefined;
+    await showMap(wanted, view);
+  } catch (e) {
+    showMessage(describeError(e), 'error');
+    // The picker goes back to what is still shown.
+    if (current?.kind === 'builtin') sceneSelect.value = current.name;
+  }
+}
+
+/** Where the open WAD stack was served from (links can name it), or undefined for local files. */
+let wadSource: { urls: readonly string[] } | undefined;
+
+function showMap(map: string, view: ViewParams = {}): Promise<void> {
+  return show({ kind: 'doom-map', map }, wadSource ? { kind: 'wad', urls: wadSource.urls, map } : undefined, view);
+}
+
+/** Files the server offers (`lantern view` serves the files named on its command line). */
+async function fetchFiles(urls: readonly string[]): Promise<File[]> {
+  return Promise.all(
+    urls.map(async (url) => {
+      let response: Response;
+      try {
+        response = await fetch(url);
+      } catch (e) {
+        throw new LanternError(`cannot fetch '${url}': ${(e as Error).message}`);
+      }
+      if (!response.ok) throw new LanternError(`cannot fetch '${url}': HTTP ${response.status}`, 'Open the file with the Open button instead');
+      return new File([await response.arrayBuffer()], decodeURIComponent(url.split('/').pop() ?? url));
+    }),
+  );
+}
+
+// ---- output ----
+
+function download(bytes: Uint8Array, name: string, type: string): void {
+  const url = URL.createObjectURL(new Blob([bytes as Uint8Array<ArrayBuffer>], { type }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  a.click();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+function fileStem(): string {
+  return (viewer.stats.sceneName || 'lantern').replace(/[^A-Za-z0-9_-]+/g, '_');
+}
+
+function viewLink(): string {
+  const params = formatViewParams({ ...viewer.viewParams(), ...(current ? { scene: current } : {}) });
+  return `${location.origin}${location.pathname}?${params}`;
+}
+
+const actions = {
+  screenshot: () => viewer.screenshotPng().then((png) => download(png, `${fileStem()}.png`, 'image/png')).catch((e) => showMessage(describeError(e), 'error')),
+  exportExr: () => viewer.radianceExr().then((exr) => download(exr, `${fileStem()}.exr`, 'image/x-exr')).catch((e) => showMessage(describeError(e), 'error')),
+  copyLink: async () => {
+    const link = viewLink();
+    history.replaceState(null, '', link);
+    const note = current ? '' : ' (it restores the camera and settings; a file opened from this computer must be opened again)';
+    try {
+      await navigator.clipboard.writeText(link);
+      showMessage(`Link copied${note}.`, 'info');
+    } catch {
+      showMessage(`The address bar now holds the link to this view${note}.`, 'info');
+    }
+  },
+};
+
+// ---- wiring ----
+
+new ResizeObserver((entries) => {
+  const entry = entries[0];
+  if (!entry) return;
+  const box = entry.devicePixelContentBoxSize?.[0];
+  const w = box ? box.inlineSize : Math.round(entry.contentRect.width * devicePixelRatio);
+  const h = box ? box.blockSize : Math.round(entry.contentRect.height * devicePixelRatio);
+  viewer.resizeCanvas(Math.max(1, Math.min(8192, w)), Math.max(1, Math.min(8192, h))).catch((e) => viewer.fail(e));
+}).observe(canvas);
+
+viewer.input = new Input(canvas);
 
 playButton.addEventListener('click', () => {
   if (viewer.state === 'playing') viewer.pause();
   else viewer.play().catch((e) => viewer.fail(e));
 });
 sceneSelect.addEventListener('change', () => {
-  viewer.selectScene(sceneSelect.value).catch((e) => viewer.fail(e));
+  if (sceneSelect.value !== FILE_OPTION) void showBuiltin(sceneSelect.value);
 });
+mapSelect.addEventListener('change', () => void showMap(mapSelect.value));
+fileInput.addEventListener('change', () => {
+  const files = [...(fileInput.files ?? [])];
+  fileInput.value = '';
+  if (files.length > 0) void openFiles(files);
+});
+let dragDepth = 0;
+window.addEventListener('dragenter', (e) => {
+  e.preventDefault();
+  dragDepth++;
+  dropZone.hidden = false;
+});
+window.addEventListener('dragover', (e) => e.preventDefault());
+window.addEventListener('dragleave', () => {
+  if (--dragDepth <= 0) dropZone.hidden = true;
+});
+window.addEventListener('drop', (e) => {
+  e.preventDefault();
+  dragDepth = 0;
+  dropZone.hidden = true;
+  const files = [...(e.dataTransfer?.files ?? [])];
+  if (files.length > 0) void openFiles(files);
+});
+
+// Settings from the link, then the panel, then the scene.
+await viewer.updateSettings({
+  ...(linked.samplesPerFrame !== undefined ? { samplesPerFrame: linked.samplesPerFrame } : {}),
+  ...(linked.scale !== undefined ? { scale: linked.scale } : {}),
+  ...(linked.accumulate !== undefined ? { accumulate: linked.accumulate } : {}),
+  render: {
+    ...(linked.maxBounces !== undefined ? { maxBounces: linked.maxBounces } : {}),
+    ...(linked.toneMapper ? { toneMapper: linked.toneMapper } : {}),
+    ...(linked.exposureStops !== undefined ? { exposureStops: linked.exposureStops } : {}),
+    ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}),
+  },
+});
+panel = new SettingsPanel($('panel'), viewer, actions);
+showViewer(viewer);
+
+if (problems.length > 0) showMessage(`Ignored in the link: ${problems.join('; ')}`, 'warning');
+if (!navigator.gpu) {
+  showMessage(describeError(new LanternError('this browser has no WebGPU', 'Use Chrome or Edge 113+, Safari 26+ or Firefox 141+ on Windows; on Linux start Chrome with --enable-unsafe-webgpu --enable-features=Vulkan')), 'error');
+}
+const scene = linked.scene;
+if (scene?.kind === 'wad' || scene?.kind === 'ply') {
+  const urls = scene.kind === 'wad' ? scene.urls : [scene.url];
+  fetchFiles(urls)
+    .then((files) => openFiles(files, { urls, ...(scene.kind === 'wad' && scene.map ? { map: scene.map } : {}) }, linked))
+    .catch(async (e) => {
+      showMessage(describeError(e), 'error');
+      await showBuiltin('cornell');
+    });
+} else if (scene && !isBuiltinScene(scene.name)) {
+  await showBuiltin('cornell');
+  showMessage(describeError(new LanternError(`unknown scene '${scene.name}'`, `Built-in scenes are: ${builtinSceneNames().join(', ')}`)), 'error');
+} else {
+  void showBuiltin(scene?.name ?? 'cornell', linked);
+}
+
+// ---- test hook ----
 
 declare global {
   interface Window {
-    lantern: { readonly state: string; readonly samples: number };
+    lantern: {
+      readonly state: string;
+      readonly samples: number;
+      readonly scene: string;
+      readonly loading: boolean;
+      readonly camera: Pose | undefined;
+      readonly gpuResources: ResourceCount;
+      readonly link: string;
+      simulateDeviceLoss(): void;
+    };
   }
 }
 window.lantern = {
@@ -73,4 +335,20 @@ window.lantern = {
   get samples() {
     return viewer.stats.samples;
   },
+  get scene() {
+    return viewer.stats.sceneName;
+  },
+  get loading() {
+    return loading !== undefined;
+  },
+  get camera() {
+    return viewer.controller?.pose;
+  },
+  get gpuResources() {
+    return viewer.stats.gpuResources;
+  },
+  get link() {
+    return viewLink();
+  },
+  simulateDeviceLoss: () => viewer.simulateDeviceLoss(),
 };

@@ -1,65 +1,143 @@
 /**
- * The page's render loop around the shared Renderer: acquire the device on the first Play, then one
- * frame (samples + tone map + present) per animation frame with at most one frame in flight, so a slow
- * GPU (or SwiftShader) never piles up work. Pause keeps the accumulated image.
+ * The page's render loop around the shared Renderer. It acquires the GPU on the first Play, then runs
+ * one frame per animation frame, with at most one frame in flight, so a slow GPU (or SwiftShader)
+ * never piles up work. Each frame:
+ *
+ *   camera input → samples (path trace) → tone map + present → ray counters and pass timings read back
+ *
+ * It owns everything the page must survive: a canvas resize, a tab in the background (no frames
+ * while hidden), a lost GPU device (a new device, the scene uploaded again, the view restored), and
+ * scene switches (the Renderer destroys what the old scene held; the GPU resource count shows it).
  */
-import { acquireGpu } from '../gpu/device.ts';
-import { builtinScene } from '../loaders/builtin/index.ts';
+import { LanternError } from '../errors.ts';
+import { acquireGpu, type GpuContext } from '../gpu/device.ts';
+import type { ResourceCount } from '../gpu/resource-count.ts';
+import { GpuTimer } from '../gpu/timestamps.ts';
+import { encodeExr } from '../image/exr.ts';
+import { encodePng } from '../image/png.ts';
 import { Renderer } from '../renderer/renderer.ts';
+import { DEFAULT_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
+import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
+import type { LoadedScene } from './scene-request.ts';
+import type { ViewParams } from './view-params.ts';
 
 export type ViewerState = 'idle' | 'starting' | 'playing' | 'paused' | 'failed';
+
+export interface ViewerSettings {
+  /** Paths per pixel traced each frame. */
+  readonly samplesPerFrame: number;
+  /** Render resolution relative to the canvas's device pixels. */
+  readonly scale: number;
+  /** Keep adding frames into one estimate while the view is still (off: every frame stands alone). */
+  readonly accumulate: boolean;
+  readonly render: RenderSettings;
+}
+
+export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, render: DEFAULT_SETTINGS });
+
+export interface PassTime {
+  readonly name: string;
+  readonly ms: number;
+}
 
 export interface ViewerStats {
   readonly samples: number;
   readonly framesPerSecond: number;
-  readonly scene: string;
+  /** Wall-clock milliseconds between the last two frames. */
+  readonly frameMs: number;
+  /** GPU milliseconds of each pass of the last timed frame (empty without timestamp queries). */
+  readonly gpuPasses: readonly PassTime[];
+  readonly raysPerSecond: number;
+  readonly width: number;
+  readonly height: number;
+  readonly triangles: number;
+  readonly bvhNodes: number;
+  readonly sceneName: string;
   readonly adapter: string;
+  readonly gpuResources: ResourceCount;
 }
+
+export interface ViewerHooks {
+  /** Anything shown changed (state, stats, scene). */
+  onChange(viewer: Viewer): void;
+  /** A message for the user; 'error' stays until the next message. */
+  onMessage(text: string, kind: 'info' | 'warning' | 'error'): void;
+}
+
+/** More losses than this within a minute and the viewer gives up instead of recreating the device. */
+const MAX_DEVICE_LOSSES_PER_MINUTE = 3;
+/** Frames over which frames per second and rays per second are averaged. */
+const STATS_WINDOW = 30;
 
 export class Viewer {
   state: ViewerState = 'idle';
   /** Why the viewer stopped, when state is 'failed'. */
   failure: unknown;
+  settings: ViewerSettings = DEFAULT_VIEWER_SETTINGS;
+  /** Where movement input comes from (the page's keyboard and mouse; tests may replace it). */
+  input: { readonly move: MoveInput; takeLook(): [number, number] } = { move: NO_INPUT, takeLook: () => [0, 0] };
+
+  private loaded?: LoadedScene;
+  private controllerValue?: CameraController;
+  private gpu?: GpuContext;
   private renderer?: Renderer;
   private context?: GPUCanvasContext;
-  private sceneName: string;
-  private lastFrameTimes: number[] = [];
+  private timer?: GpuTimer;
   private looping = false;
+  private lastFrame = 0;
+  private frames: { at: number; rays: number }[] = [];
+  private gpuPasses: PassTime[] = [];
+  private lastRayCount = 0;
+  private losses: number[] = [];
+  private expectingLoss = false;
+  private disposed = false;
 
   constructor(
     private readonly canvas: HTMLCanvasElement,
-    initialScene: string,
-    /** Render resolution relative to the canvas's pixels. */
-    private readonly scale: number,
-    private readonly onChange: (viewer: Viewer) => void,
+    private readonly hooks: ViewerHooks,
   ) {
-    this.sceneName = initialScene;
+    document.addEventListener('visibilitychange', () => {
+      // Hidden tabs get no frames; coming back resumes where it was.
+      if (!document.hidden && this.state === 'playing') this.loop();
+      this.hooks.onChange(this);
+    });
+  }
+
+  get controller(): CameraController | undefined {
+    return this.controllerValue;
+  }
+
+  get scene(): LoadedScene | undefined {
+    return this.loaded;
   }
 
   get stats(): ViewerStats {
-    const t = this.lastFrameTimes;
-    const fps = t.length > 1 ? ((t.length - 1) * 1000) / (t[t.length - 1]! - t[0]!) : 0;
-    return { samples: this.renderer?.sampleCount ?? 0, framesPerSecond: fps, scene: this.sceneName, adapter: this.renderer?.gpu.adapterName ?? '' };
+    const f = this.frames;
+    const span = f.length > 1 ? (f[f.length - 1]!.at - f[0]!.at) / 1000 : 0;
+    const rays = f.slice(1).reduce((n, x) => n + x.rays, 0);
+    const packed = this.loaded?.prepared.packed.counts;
+    return {
+      samples: this.renderer?.sampleCount ?? 0,
+      framesPerSecond: span > 0 ? (f.length - 1) / span : 0,
+      frameMs: f.length > 1 ? f[f.length - 1]!.at - f[f.length - 2]!.at : 0,
+      gpuPasses: this.gpuPasses,
+      raysPerSecond: span > 0 ? rays / span : 0,
+      width: this.renderer?.width ?? 0,
+      height: this.renderer?.height ?? 0,
+      triangles: packed?.triangles ?? 0,
+      bvhNodes: this.loaded ? this.loaded.prepared.bvh.stats.nodeCount : 0,
+      sceneName: this.loaded?.prepared.scene.name ?? '',
+      adapter: this.gpu?.adapterName ?? '',
+      gpuResources: this.gpu?.resources.count ?? { buffers: 0, textures: 0, bytes: 0 },
+    };
   }
 
-  /** Starts (acquiring the GPU on first use) or resumes accumulation. */
+  /** Starts (acquiring the GPU on first use) or resumes. */
   async play(): Promise<void> {
-    if (this.state === 'playing' || this.state === 'starting') return;
+    if (this.state === 'playing' || this.state === 'starting' || this.state === 'failed') return;
     if (!this.renderer) {
       this.setState('starting');
-      const gpu = await acquireGpu(navigator.gpu);
-      const context = this.canvas.getContext('webgpu');
-      if (!context) throw new Error('the canvas has no WebGPU context');
-      context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
-      this.context = context;
-      const renderer = await Renderer.create(gpu);
-      await renderer.enablePresentation();
-      await renderer.resize(Math.max(1, Math.round(this.canvas.width * this.scale)), Math.max(1, Math.round(this.canvas.height * this.scale)));
-      await renderer.setScene(builtinScene(this.sceneName));
-      this.renderer = renderer;
-      gpu.lost.then((info) => {
-        if (info.reason !== 'destroyed') this.fail(new Error(`the GPU device was lost (${info.message || info.reason}); reload the page`));
-      });
+      await this.start();
     }
     this.setState('playing');
     this.loop();
@@ -69,47 +147,240 @@ export class Viewer {
     if (this.state === 'playing') this.setState('paused');
   }
 
-  /** Switches scene; before the first Play it only remembers the choice (no GPU work). */
-  async selectScene(name: string): Promise<void> {
-    this.sceneName = name;
-    if (this.renderer) await this.renderer.setScene(builtinScene(name));
-    this.onChange(this);
+  /**
+   * Shows a loaded scene; before the first Play only remembers it (no GPU work). The torch keeps
+   * only on/off: its other settings belong to the previous scene.
+   */
+  async setScene(loaded: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number } = {}): Promise<void> {
+    const { scene, bvh } = loaded.prepared;
+    const b = bvh.bounds;
+    const diagonal = Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!);
+    const controller = new CameraController(scene.camera, sceneSpeed(diagonal, scene.metersPerUnit, scene.walkMap), scene.walkMap);
+    if (view.pose) controller.setPose(view.pose);
+    if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
+    controller.setMode(view.mode ?? (controller.canWalk ? 'walk' : 'fly'));
+    // Torch colour, intensity and range set for the last scene mean nothing in this one's units:
+    // only on/off carries over.
+    this.settings = { ...this.settings, render: { ...this.settings.render, torch: { enabled: this.settings.render.torch.enabled } } };
+    if (this.renderer) {
+      this.renderer.updateSettings(this.settings.render);
+      await this.renderer.setScene(loaded.prepared);
+      this.renderer.setCamera(controller.camera());
+    }
+    this.loaded = loaded;
+    this.controllerValue = controller;
+    this.frames = [];
+    this.hooks.onChange(this);
   }
 
-  /** Shows an error and stops; the page stays usable for reading the message. */
+  /** Applies settings; whatever changes the estimate restarts accumulation. */
+  async updateSettings(changes: Partial<Omit<ViewerSettings, 'render'>> & { render?: Partial<RenderSettings> }): Promise<void> {
+    const before = this.settings;
+    const render = { ...before.render, ...changes.render };
+    this.settings = { ...before, ...changes, render };
+    if (!this.renderer) return;
+    this.renderer.updateSettings(render);
+    if (this.settings.scale !== before.scale) await this.resizeRenderer();
+    if (this.settings.accumulate !== before.accumulate || this.settings.samplesPerFrame !== before.samplesPerFrame) this.renderer.resetAccumulation();
+    this.hooks.onChange(this);
+  }
+
+  setFieldOfView(degrees: number): void {
+    if (!this.controllerValue) return;
+    this.controllerValue.vfovDegrees = degrees;
+    this.renderer?.setCamera(this.controllerValue.camera());
+  }
+
+  setMoveMode(mode: MoveMode): boolean {
+    const ok = this.controllerValue?.setMode(mode) ?? false;
+    if (ok && this.controllerValue) this.renderer?.setCamera(this.controllerValue.camera());
+    return ok;
+  }
+
+  /** The canvas's new size in device pixels (the page watches its layout). */
+  async resizeCanvas(width: number, height: number): Promise<void> {
+    if (this.canvas.width === width && this.canvas.height === height) return;
+    this.canvas.width = width;
+    this.canvas.height = height;
+    await this.resizeRenderer();
+  }
+
+  /** The tone-mapped image as PNG bytes. */
+  async screenshotPng(): Promise<Uint8Array> {
+    const renderer = this.requireRenderer();
+    return encodePng(renderer.width, renderer.height, await renderer.readImage());
+  }
+
+  /** The linear radiance estimate as EXR bytes (float32 RGB, before exposure and tone mapping). */
+  async radianceExr(): Promise<Uint8Array> {
+    const { width, height, radiance } = await this.requireRenderer().readAccumulation();
+    return encodeExr(width, height, radiance);
+  }
+
+  /** The camera and settings as URL parameters (the page adds the scene's location). */
+  viewParams(): ViewParams {
+    const c = this.controllerValue;
+    const s = this.settings;
+    const t = s.render.torch;
+    return {
+      ...(c ? { pose: c.pose, fovDegrees: c.vfovDegrees, mode: c.mode } : {}),
+      samplesPerFrame: s.samplesPerFrame,
+      maxBounces: s.render.maxBounces,
+      scale: s.scale,
+      accumulate: s.accumulate,
+      toneMapper: s.render.toneMapper,
+      exposureStops: s.render.exposureStops,
+      torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
+    };
+  }
+
+  /** Shows an error and stops; the page stays usable for reading the message and choosing again. */
   fail(error: unknown): void {
     console.error(error);
     this.failure = error;
     this.setState('failed');
+    this.hooks.onMessage(describeError(error), 'error');
+  }
+
+  /** Test hook: loses the GPU device the way a driver reset would. */
+  simulateDeviceLoss(): void {
+    if (!this.gpu) return;
+    this.expectingLoss = true;
+    this.gpu.device.destroy();
+  }
+
+  destroy(): void {
+    this.disposed = true;
+    this.timer?.destroy();
+    this.renderer?.destroy();
+    this.gpu?.device.destroy();
+  }
+
+  private async start(): Promise<void> {
+    const gpu = await acquireGpu(navigator.gpu);
+    const context = this.canvas.getContext('webgpu');
+    if (!context) throw new LanternError('the canvas has no WebGPU context', 'Reload the page; if it persists, the browser has WebGPU disabled');
+    context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
+    const renderer = await Renderer.create(gpu);
+    await renderer.enablePresentation();
+    renderer.updateSettings(this.settings.render);
+    this.gpu = gpu;
+    this.context = context;
+    this.renderer = renderer;
+    this.timer = gpu.hasTimestamps ? new GpuTimer(gpu.device) : undefined;
+    await this.resizeRenderer();
+    if (this.loaded) await renderer.setScene(this.loaded.prepared);
+    if (this.controllerValue) renderer.setCamera(this.controllerValue.camera());
+    void gpu.lost.then((info) => this.onDeviceLost(gpu, info));
+  }
+
+  private async onDeviceLost(gpu: GpuContext, info: GPUDeviceLostInfo): Promise<void> {
+    if (this.disposed || gpu !== this.gpu) return;
+    const simulated = this.expectingLoss;
+    this.expectingLoss = false;
+    if (info.reason === 'destroyed' && !simulated) return;
+    const now = performance.now();
+    this.losses = [...this.losses.filter((t) => now - t < 60_000), now];
+    this.renderer = undefined;
+    this.timer = undefined;
+    this.gpu = undefined;
+    this.context?.unconfigure();
+    const wasRunning = this.state === 'playing' || this.state === 'paused';
+    const resume = this.state === 'playing';
+    if (!wasRunning) return;
+    if (this.losses.length > MAX_DEVICE_LOSSES_PER_MINUTE) {
+      this.fail(new LanternError(`the GPU device was lost ${this.losses.length} times in a minute (${info.message || info.reason})`, 'Reload the page; check the GPU driver if it keeps happening'));
+      return;
+    }
+    this.hooks.onMessage(`The GPU device was lost (${info.message || info.reason}); recreating it…`, 'warning');
+    this.setState('starting');
+    try {
+      await this.start();
+    } catch (e) {
+      this.fail(e);
+      return;
+    }
+    this.hooks.onMessage('Recovered from a lost GPU device: the scene was uploaded again and rendering goes on.', 'info');
+    this.setState(resume ? 'playing' : 'paused');
+    if (resume) this.loop();
+  }
+
+  private async resizeRenderer(): Promise<void> {
+    if (!this.renderer) return;
+    const w = Math.max(1, Math.round(this.canvas.width * this.settings.scale));
+    const h = Math.max(1, Math.round(this.canvas.height * this.settings.scale));
+    await this.renderer.resize(w, h);
+    if (this.controllerValue) this.renderer.setCamera(this.controllerValue.camera());
+  }
+
+  private requireRenderer(): Renderer {
+    if (!this.renderer || !this.loaded) throw new LanternError('nothing has been rendered yet', 'Press Play first');
+    return this.renderer;
   }
 
   private setState(state: ViewerState): void {
     this.state = state;
-    this.onChange(this);
+    this.hooks.onChange(this);
   }
 
   private loop(): void {
     if (this.looping) return;
     this.looping = true;
-    const frame = async () => {
-      if (this.state !== 'playing' || !this.renderer || !this.context) {
+    this.lastFrame = performance.now();
+    const frame = async (now: number) => {
+      const renderer = this.renderer;
+      const context = this.context;
+      if (this.state !== 'playing' || document.hidden || !renderer || !context || !this.loaded) {
         this.looping = false;
+        this.frames = [];
         return;
       }
       try {
-        this.renderer.accumulate(1);
-        this.renderer.present(this.context.getCurrentTexture());
-        await this.renderer.finish();
+        await this.renderFrame(renderer, context, Math.min(0.1, (now - this.lastFrame) / 1000));
       } catch (e) {
         this.looping = false;
+        // A frame cut short by a lost device is the loss handler's business, not a failure.
+        if (renderer !== this.renderer || (await lostSoon(renderer.gpu))) return;
         this.fail(e);
         return;
       }
-      this.lastFrameTimes.push(performance.now());
-      if (this.lastFrameTimes.length > 30) this.lastFrameTimes.shift();
-      this.onChange(this);
+      this.lastFrame = now;
+      this.hooks.onChange(this);
       requestAnimationFrame(frame);
     };
     requestAnimationFrame(frame);
   }
+
+  private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
+    const c = this.controllerValue;
+    if (c) {
+      const [lx, ly] = this.input.takeLook();
+      if (lx !== 0 || ly !== 0) c.look(lx, ly);
+      if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(c.camera());
+    }
+    if (!this.settings.accumulate) renderer.resetAccumulation();
+    const fresh = renderer.sampleCount === 0;
+    const timer = this.timer;
+    renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
+    renderer.present(context.getCurrentTexture(), timer);
+    // Reading the counters waits for the frame (one frame in flight) and counts its rays exactly.
+    const counts = await renderer.readRayCounts();
+    const total = counts.extension + counts.shadow;
+    const rays = fresh ? total : total - this.lastRayCount;
+    this.lastRayCount = total;
+    if (timer) this.gpuPasses = await timer.read();
+    this.frames.push({ at: performance.now(), rays });
+    if (this.frames.length > STATS_WINDOW) this.frames.shift();
+  }
+}
+
+/** Whether the device reports itself lost within a moment (frames fail before `lost` resolves). */
+async function lostSoon(gpu: GpuContext): Promise<boolean> {
+  const timeout = new Promise<false>((resolve) => setTimeout(() => resolve(false), 200));
+  return Promise.race([gpu.lost.then(() => true), timeout]);
+}
+
+export function describeError(error: unknown): string {
+  if (error instanceof LanternError) return error.userMessage;
+  return `Something went wrong: ${(error as Error)?.message ?? String(error)}`;
 }

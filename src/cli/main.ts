@@ -8,6 +8,7 @@ import { registerConvert } from './commands/convert.ts';
 import { registerInfo } from './commands/info.ts';
 import { registerRender } from './commands/render.ts';
 import { registerTextures } from './commands/textures.ts';
+import { registerView } from './commands/view.ts';
 import { createCliContext } from './context.ts';
 
 const program = new Command();
@@ -24,6 +25,7 @@ registerBench(program, context);
 registerInfo(program, context);
 registerConvert(program, context);
 registerTextures(program, context);
+registerView(program, context);
 
 await program.parseAsync(process.argv);
 // Dawn keeps native threads alive; leave as soon as the command is done.

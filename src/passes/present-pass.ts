@@ -3,6 +3,7 @@
  * fit. A render pipeline per canvas format; the bind group layout comes from reflection.
  */
 import { BindGroupFactory, compileShader, createBindGroupLayouts } from '../gpu/kernel.ts';
+import type { GpuTimer } from '../gpu/timestamps.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
 
 const MODULE = 'passes/present';
@@ -27,7 +28,7 @@ export class PresentPass {
     return new PresentPass(device, module, new BindGroupFactory(device, MODULE, layouts, slots), sampler);
   }
 
-  encode(encoder: GPUCommandEncoder, image: GPUTexture, target: GPUTexture): void {
+  encode(encoder: GPUCommandEncoder, image: GPUTexture, target: GPUTexture, timer?: GpuTimer): void {
     let group = this.groups.get(image);
     if (!group) {
       group = this.bindings.bindGroup(0, { image: image.createView(), image_sampler: this.sampler });
@@ -35,6 +36,7 @@ export class PresentPass {
     }
     const pass = encoder.beginRenderPass({
       label: 'present',
+      ...(timer ? { timestampWrites: timer.timestampWrites('present') } : {}),
       colorAttachments: [{ view: target.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 1] }],
     });
     pass.setPipeline(this.pipeline(target.format));

@@ -182,13 +182,14 @@ export class Renderer {
     this.samples += samples;
   }
 
-  /** Tone-maps the current estimate and draws it onto `target` (a canvas texture). */
-  present(target: GPUTexture): void {
+  /** Tone-maps the current estimate and draws it onto `target` (a canvas texture); with a timer, times both passes. */
+  present(target: GPUTexture, timer?: GpuTimer): void {
     const { targets } = this.ready();
     if (!this.presentPass) throw new Error('call enablePresentation() before present()');
     const encoder = this.device.createCommandEncoder({ label: 'present' });
-    this.encodeTonemap(encoder, targets);
-    this.presentPass.encode(encoder, targets.output, target);
+    this.encodeTonemap(encoder, targets, timer);
+    this.presentPass.encode(encoder, targets.output, target, timer);
+    timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
   }
 
@@ -256,13 +257,16 @@ export class Renderer {
     return { resources, view: this.view };
   }
 
-  private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets): void {
+  private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, timer?: GpuTimer): void {
     const s = this.settingsValue;
-    this.tonemap.encode(encoder, this.view, targets.accumulation, targets.output, {
-      exposureStops: (this.cameraValue?.exposureStops ?? 0) + s.exposureStops,
-      toneMapper: s.toneMapper,
-      sampleCount: this.samples,
-    });
+    this.tonemap.encode(
+      encoder,
+      this.view,
+      targets.accumulation,
+      targets.output,
+      { exposureStops: (this.cameraValue?.exposureStops ?? 0) + s.exposureStops, toneMapper: s.toneMapper, sampleCount: this.samples },
+      timer,
+    );
   }
 
   private ready(): { resources: SceneResources; targets: ImageTargets } {

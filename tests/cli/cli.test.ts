@@ -3,7 +3,7 @@
  * bad input gives one line that says what is wrong and what to do, a non-zero exit code, and no
  * stack trace unless --verbose.
  */
-import { spawnSync } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -11,6 +11,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { build } from 'vite';
 import { decodeExr } from '../../src/image/exr.ts';
 import { decodePng } from '../../src/image/png.ts';
+import { squareRoomWad } from '../../src/loaders/doom/test-wad.ts';
 
 let dir: string;
 let cli: string;
@@ -186,5 +187,72 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     expect(r.code).toBe(1);
     expect(r.stderr).toMatch(/cut\.wad/);
     expect(r.stderr.trim().split('\n')).toHaveLength(1);
+  });
+});
+
+describe('lantern view', () => {
+  /** Starts `lantern view`, waits for the address it prints, and returns it with a stop function. */
+  async function startView(args: string[]): Promise<{ link: string; stop: () => void }> {
+    const child = spawn(process.execPath, [cli, 'view', '--port', '0', ...args], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let out = '';
+    let err = '';
+    child.stderr.on('data', (d) => (err += d));
+    const link = await new Promise<string>((resolve, reject) => {
+      child.stdout.on('data', (d) => {
+        out += d;
+        const m = /Lantern viewer: (\S+)/.exec(out);
+        if (m) resolve(m[1]!);
+      });
+      child.on('exit', (code) => reject(new Error(`lantern view exited (${code}): ${err}`)));
+    });
+    return { link, stop: () => child.kill('SIGINT') };
+  }
+
+  it('serves the page and the WAD named on the command line, and a link that opens its map', async () => {
+    const app = join(dir, 'app');
+    mkdirSync(join(app, 'assets'), { recursive: true });
+    writeFileSync(join(app, 'index.html'), '<!doctype html><title>page</title>');
+    writeFileSync(join(app, 'assets', 'a.js'), 'export {};');
+    const wad = join(dir, 'room.wad');
+    writeFileSync(wad, squareRoomWad('MAP01'));
+    const { link, stop } = await startView([`${wad}#MAP01`, '--app', app]);
+    try {
+      const url = new URL(link);
+      expect(url.hostname).toBe('127.0.0.1');
+      expect(url.searchParams.get('map')).toBe('MAP01');
+      const fileUrl = url.searchParams.get('wad')!;
+      expect(fileUrl).toBe('files/0/room.wad');
+      expect(await (await fetch(link)).text()).toContain('<title>page</title>');
+      expect((await fetch(new URL('assets/a.js', link))).headers.get('content-type')).toMatch(/javascript/);
+      const served = new Uint8Array(await (await fetch(new URL(fileUrl, link))).arrayBuffer());
+      expect(served).toEqual(new Uint8Array(readFileSync(wad)));
+      // Nothing outside the page and the named files.
+      for (const path of ['files/1/x.wad', '../cli.test.ts', '%2e%2e/room.wad', 'assets/../../room.wad']) {
+        expect((await fetch(`${url.origin}/${path}`)).status, path).toBe(404);
+      }
+    } finally {
+      stop();
+    }
+    const builtin = await startView(['furnace', '--app', app]);
+    builtin.stop();
+    expect(new URL(builtin.link).searchParams.get('scene')).toBe('furnace');
+  });
+
+  it('refuses unknown scenes, missing maps and a page that was not built, before serving', () => {
+    const noApp = join(dir, 'no-app');
+    mkdirSync(noApp, { recursive: true });
+    const wad = join(dir, 'room2.wad');
+    writeFileSync(wad, squareRoomWad('MAP01'));
+    const cases: [string[], RegExp][] = [
+      [['view', 'nope', '--port', '0'], /unknown scene 'nope'/],
+      [['view', `${wad}#MAP07`, '--port', '0'], /has no map 'MAP07'.*MAP01/],
+      [['view', join(dir, 'absent.wad'), '--port', '0'], /cannot read .*absent\.wad.*no such file/],
+      [['view', 'cornell', '--port', '0', '--app', noApp], /the page is not built.*npm run build:app/],
+    ];
+    for (const [args, message] of cases) {
+      const r = lantern(args);
+      expect(r.code, args.join(' ')).toBe(1);
+      expect(r.stderr).toMatch(message);
+    }
   });
 });

@@ -1,12 +1,13 @@
 /**
  * Headless Chromium with WebGPU on SwiftShader (Debian's `chromium` package), driven by
- * playwright-core, and the production page served by `vite preview` from a fresh build.
+ * playwright-core, and the production page built fresh and served by `lantern view`'s server.
  */
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium, type Browser } from 'playwright-core';
-import { build, preview, type PreviewServer } from 'vite';
+import { build } from 'vite';
+import { startViewServer } from '../../src/cli/view-server.ts';
 
 export const CHROMIUM = process.env.LANTERN_CHROMIUM ?? '/usr/bin/chromium';
 
@@ -31,18 +32,22 @@ export async function launchBrowser(): Promise<Browser> {
 
 export interface ServedPage {
   readonly url: string;
+  /** Addresses of the offered files, relative to the page (files/<n>/<name>). */
+  readonly fileUrls: readonly string[];
   close(): Promise<void>;
 }
 
-/** Builds the page into a temporary folder and serves it on a free local port. */
-export async function servePage(): Promise<ServedPage> {
+/**
+ * Builds the page into a temporary folder and serves it, with `files`, on a free local port through
+ * the same server `lantern view` uses.
+ */
+export async function servePage(files: readonly string[] = []): Promise<ServedPage> {
   const outDir = mkdtempSync(join(tmpdir(), 'lantern-page-'));
   await build({ logLevel: 'warn', build: { outDir, emptyOutDir: true } });
-  const server: PreviewServer = await preview({ logLevel: 'warn', build: { outDir }, preview: { port: 0, host: '127.0.0.1', strictPort: false } });
-  const url = server.resolvedUrls?.local[0];
-  if (!url) throw new Error('vite preview did not report a URL');
+  const server = await startViewServer({ appDir: outDir, files, port: 0 });
   return {
-    url,
+    url: server.url,
+    fileUrls: server.fileUrls,
     async close() {
       await server.close();
       rmSync(outDir, { recursive: true, force: true });

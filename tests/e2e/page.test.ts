@@ -1,23 +1,35 @@
 /**
- * The page opens without touching the GPU, Play starts the shared renderer, and the canvas shows
- * the Cornell box: a red-dominant left wall and a green-dominant right wall.
+ * The viewer in headless Chromium (WebGPU on SwiftShader), driven as a user drives it: Play,
+ * keyboard, the settings panel, the file input, the map picker. Renders are tiny (a fraction of the
+ * canvas through the `scale` parameter) so SwiftShader frames stay short.
  */
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser } from 'playwright-core';
+import type { Browser, Page } from 'playwright-core';
 import { decodePng } from '../../src/image/png.ts';
+import { squareRoomsWad } from '../../src/loaders/doom/test-wad.ts';
 import { launchBrowser, servePage, type ServedPage } from './browser.ts';
 
 let browser: Browser;
 let served: ServedPage;
+let dir: string;
+/** Two maps: MAP01 a 256-unit room, MAP02 a 512-unit room. */
+const ROOMS = squareRoomsWad([{ name: 'MAP01' }, { name: 'MAP02', size: 512 }]);
+const VIEWPORT = { width: 640, height: 400 };
 
 beforeAll(async () => {
-  served = await servePage();
+  dir = mkdtempSync(join(tmpdir(), 'lantern-page-files-'));
+  writeFileSync(join(dir, 'rooms.wad'), ROOMS);
+  served = await servePage([join(dir, 'rooms.wad')]);
   browser = await launchBrowser();
 });
 
 afterAll(async () => {
   await browser?.close();
   await served?.close();
+  rmSync(dir, { recursive: true, force: true });
 });
 
 /** Mean RGB over a rectangle of an RGBA image given in fractions of its size. */
@@ -35,31 +47,49 @@ function meanRgb(img: { width: number; height: number; data: Uint8Array }, x0: n
   return [r / n, g / n, b / n];
 }
 
+/** Opens the page, collecting page errors; `query` without the leading '?'. */
+async function open(query: string): Promise<{ page: Page; errors: string[] }> {
+  const page = await browser.newPage({ viewport: VIEWPORT });
+  const errors: string[] = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(`${served.url}?${query}`);
+  await waitLoaded(page);
+  return { page, errors };
+}
+
+async function waitLoaded(page: Page, scene?: string): Promise<void> {
+  await page.waitForFunction((s) => window.lantern && !window.lantern.loading && window.lantern.scene !== '' && (!s || window.lantern.scene === s), scene, { timeout: 60_000 });
+}
+
+async function playUntil(page: Page, samples: number): Promise<void> {
+  if ((await page.evaluate(() => window.lantern.state)) !== 'playing') await page.click('#play');
+  await page.waitForFunction((n) => window.lantern.samples >= n, samples, { timeout: 120_000 });
+}
+
+const canvasImage = async (page: Page) => decodePng(await page.locator('#view').screenshot());
+const messageText = (page: Page) => page.locator('#message').textContent();
+
 describe('the page', () => {
   it('shows the Cornell box after Play, and nothing runs before', async () => {
-    const page = await browser.newPage();
-    const errors: string[] = [];
-    page.on('pageerror', (e) => errors.push(e.message));
-    // A 64×64 render (scale 1/8 of the 512×512 canvas) keeps SwiftShader frames short.
-    await page.goto(`${served.url}?scale=0.125`);
-    await expect.poll(() => page.evaluate(() => window.lantern?.state)).toBe('idle');
-    // No GPU work before Play: the canvas has no context and nothing accumulated.
-    await page.waitForTimeout(500);
+    // A render at 1/8 of the canvas keeps SwiftShader frames short.
+    const { page, errors } = await open('scale=0.125');
+    expect(await page.evaluate(() => window.lantern.state)).toBe('idle');
+    // No GPU work before Play: no device, nothing allocated, nothing accumulated.
+    await page.waitForTimeout(300);
     expect(await page.evaluate(() => window.lantern.samples)).toBe(0);
+    expect(await page.evaluate(() => window.lantern.gpuResources.buffers)).toBe(0);
     expect(await page.locator('#view').getAttribute('data-state')).toBe('idle');
 
-    await page.click('#play');
-    await page.waitForFunction(() => window.lantern.samples >= 8, undefined, { timeout: 240_000 });
+    await playUntil(page, 8);
     await page.click('#play'); // pause, so the screenshot sees a settled frame
     await expect.poll(() => page.evaluate(() => window.lantern.state)).toBe('paused');
 
-    const img = decodePng(await page.locator('#view').screenshot());
+    const img = await canvasImage(page);
     const left = meanRgb(img, 0.03, 0.12, 0.3, 0.7);
     const right = meanRgb(img, 0.88, 0.97, 0.3, 0.7);
     const centre = meanRgb(img, 0.3, 0.7, 0.3, 0.7);
     expect(left[0]).toBeGreaterThan(2 * left[1]);
     expect(right[1]).toBeGreaterThan(1.5 * right[0]);
-    // Not black: the lit room is there.
     expect(centre[0] + centre[1] + centre[2]).toBeGreaterThan(60);
     expect(errors).toEqual([]);
     expect(await page.locator('#message').isHidden()).toBe(true);
@@ -67,10 +97,162 @@ describe('the page', () => {
   });
 
   it('says plainly when an unknown scene is asked for, and still offers the built-ins', async () => {
-    const page = await browser.newPage();
-    await page.goto(`${served.url}?scene=nope`);
-    await expect.poll(() => page.locator('#message').textContent()).toMatch(/unknown scene 'nope'/);
+    const { page } = await open('scene=nope');
+    await expect.poll(() => messageText(page)).toMatch(/unknown scene 'nope'/);
     expect(await page.locator('#scene').inputValue()).toBe('cornell');
+    await page.close();
+  });
+
+  it('moves the camera with the keyboard, and restarts accumulation on a settings change', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.1');
+    await playUntil(page, 4);
+    const before = await page.evaluate(() => window.lantern.camera!);
+    const imageBefore = await canvasImage(page);
+    await page.keyboard.down('KeyW');
+    await page.waitForTimeout(700);
+    await page.keyboard.up('KeyW');
+    await page.keyboard.down('KeyE');
+    await page.waitForTimeout(300);
+    await page.keyboard.up('KeyE');
+    const after = await page.evaluate(() => window.lantern.camera!);
+    // The Cornell camera looks along +z: W moves toward the box, E turns right.
+    expect(after.position[2]).toBeGreaterThan(before.position[2] + 50);
+    expect(after.yaw).toBeGreaterThan(before.yaw + 0.2);
+    await playUntil(page, 3);
+    const imageAfter = await canvasImage(page);
+    let changed = 0;
+    for (let i = 0; i < imageBefore.data.length; i++) changed += Math.abs(imageBefore.data[i]! - imageAfter.data[i]!);
+    expect(changed / imageBefore.data.length).toBeGreaterThan(5);
+
+    // A settings change through the panel starts a new estimate.
+    await playUntil(page, 20);
+    const bounces = page.locator('.tp-lblv', { hasText: 'max bounces' }).locator('input');
+    await bounces.fill('2');
+    await bounces.press('Enter');
+    await expect.poll(() => page.evaluate(() => window.lantern.samples), { timeout: 10_000, interval: 50 }).toBeLessThan(15);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('opens a WAD through the file input, offers its maps, renders the one picked and walks in it', async () => {
+    const { page, errors } = await open('scene=furnace&scale=0.1');
+    await page.setInputFiles('#open-file', { name: 'rooms.wad', mimeType: 'application/octet-stream', buffer: Buffer.from(ROOMS) });
+    await waitLoaded(page, 'MAP01');
+    expect(await page.locator('#map-picker').isVisible()).toBe(true);
+    expect(await page.locator('#map option').allTextContents()).toEqual(['MAP01', 'MAP02']);
+    await page.selectOption('#map', 'MAP02');
+    await waitLoaded(page, 'MAP02');
+    await playUntil(page, 4);
+    // The player start (the room's centre) at eye height, in walk mode.
+    expect(await page.evaluate(() => window.lantern.camera!.position)).toEqual([256, 41, -256]);
+    const img = await canvasImage(page);
+    const [r, g, b] = meanRgb(img, 0.3, 0.7, 0.3, 0.7);
+    expect(r + g + b).toBeGreaterThan(30);
+    // Walking into the wall for a while: stopped one player radius (16) inside the room, at eye height.
+    await page.keyboard.down('KeyW');
+    await page.waitForTimeout(2500);
+    await page.keyboard.up('KeyW');
+    const [x, y, z] = await page.evaluate(() => window.lantern.camera!.position);
+    expect(y).toBeCloseTo(41, 3);
+    for (const v of [x, -z]) {
+      expect(v).toBeGreaterThanOrEqual(16 - 1e-3);
+      expect(v).toBeLessThanOrEqual(512 - 16 + 1e-3);
+    }
+    expect(Math.min(x, -z, 512 - x, 512 + z)).toBeLessThan(17);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('answers a garbage file with a readable error and keeps rendering', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.1');
+    await playUntil(page, 2);
+    const garbage = Buffer.from(Array.from({ length: 3000 }, (_, i) => (i * 7919) & 0xff));
+    await page.setInputFiles('#open-file', { name: 'garbage.wad', mimeType: 'application/octet-stream', buffer: garbage });
+    await expect.poll(() => messageText(page), { timeout: 20_000 }).toMatch(/garbage\.wad/);
+    expect(await page.locator('#message').getAttribute('data-kind')).toBe('error');
+    await page.setInputFiles('#open-file', { name: 'notes.txt', mimeType: 'text/plain', buffer: Buffer.from('hello') });
+    await expect.poll(() => messageText(page)).toMatch(/cannot open 'notes\.txt'.*WAD/);
+    // Still the Cornell box, still accumulating.
+    expect(await page.evaluate(() => window.lantern.scene)).toBe('cornell');
+    expect(await page.locator('#scene').inputValue()).toBe('cornell');
+    const samples = await page.evaluate(() => window.lantern.samples);
+    await playUntil(page, samples + 2);
+    expect(await page.evaluate(() => window.lantern.state)).toBe('playing');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('gives back every GPU buffer over 20 scene loads', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.05');
+    await playUntil(page, 1);
+    await page.click('#play');
+    // Let the frame in flight finish: its read-back buffer lives until the read completes.
+    await page.waitForTimeout(500);
+    const start = await page.evaluate(() => window.lantern.gpuResources);
+    expect(start.buffers).toBeGreaterThan(5);
+    for (let i = 0; i < 20; i++) {
+      const name = i % 2 === 0 ? 'furnace' : 'cornell';
+      await page.selectOption('#scene', name);
+      await waitLoaded(page, name);
+    }
+    // Loads of a WAD's maps too.
+    await page.setInputFiles('#open-file', { name: 'rooms.wad', mimeType: 'application/octet-stream', buffer: Buffer.from(ROOMS) });
+    await waitLoaded(page, 'MAP01');
+    await page.selectOption('#scene', 'cornell');
+    await waitLoaded(page, 'cornell');
+    expect(await page.evaluate(() => window.lantern.gpuResources)).toEqual(start);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('recreates a lost GPU device and goes on; stops while the tab is hidden', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.05');
+    await playUntil(page, 3);
+    await page.evaluate(() => window.lantern.simulateDeviceLoss());
+    await expect.poll(() => messageText(page), { timeout: 60_000 }).toMatch(/Recovered from a lost GPU device/);
+    await playUntil(page, 3);
+    expect(await page.evaluate(() => window.lantern.state)).toBe('playing');
+
+    await page.evaluate(() => {
+      Object.defineProperty(document, 'hidden', { configurable: true, get: () => true });
+      document.dispatchEvent(new Event('visibilitychange'));
+    });
+    await page.waitForTimeout(300);
+    const hidden = await page.evaluate(() => window.lantern.samples);
+    await page.waitForTimeout(700);
+    expect(await page.evaluate(() => window.lantern.samples)).toBe(hidden);
+    await page.evaluate(() => {
+      Object.defineProperty(document, 'hidden', { configurable: true, get: () => false });
+      document.dispatchEvent(new Event('visibilitychange'));
+    });
+    await playUntil(page, hidden + 2);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('opens a served WAD map from a link, and a copied link restores the camera and settings', async () => {
+    const { page, errors } = await open(`wad=${served.fileUrls[0]}&map=MAP02&scale=0.05&bounces=3`);
+    expect(await page.evaluate(() => window.lantern.scene)).toBe('MAP02');
+    await page.keyboard.down('KeyD');
+    await page.waitForTimeout(300);
+    await page.keyboard.up('KeyD');
+    // Movement happens in frames, so play a little.
+    await playUntil(page, 2);
+    await page.keyboard.down('KeyA');
+    await page.waitForTimeout(200);
+    await page.keyboard.up('KeyA');
+    await page.click('#play');
+    const camera = await page.evaluate(() => window.lantern.camera!);
+    const link = await page.evaluate(() => window.lantern.link);
+    expect(link).toMatch(/bounces=3/);
+    const second = await browser.newPage({ viewport: VIEWPORT });
+    await second.goto(link);
+    await waitLoaded(second, 'MAP02');
+    const restored = await second.evaluate(() => window.lantern.camera!);
+    for (let i = 0; i < 3; i++) expect(restored.position[i]).toBeCloseTo(camera.position[i]!, 2);
+    expect(restored.yaw).toBeCloseTo(camera.yaw, 3);
+    expect(errors).toEqual([]);
+    await second.close();
     await page.close();
   });
 });

@@ -310,11 +310,16 @@ export function encodeFlat(fill: number | ArrayLike<number>, size = 4096): Uint8
  * P_END. Enough to run the whole Doom pipeline in a test.
  */
 export function squareRoomWad(mapName = 'MAP01', kind: 'IWAD' | 'PWAD' = 'IWAD'): Uint8Array {
+  return squareRoomsWad([{ name: mapName }], kind);
+}
+
+/** Like squareRoomWad, with one square room map per entry (sizes default to 256 units). */
+export function squareRoomsWad(maps: readonly { name: string; size?: number }[], kind: 'IWAD' | 'PWAD' = 'IWAD'): Uint8Array {
+  const builder = new WadBuilder().lump('PLAYPAL', encodePalette());
+  for (const m of maps) builder.lumps(encodeMap(squareRoom(m.name, m.size)));
   const wall = Array.from({ length: 64 * 128 }, (_, i) => (i % 64 < 4 && i < 64 * 4 ? -1 : 100 + ((i % 64) % 4)));
   const sky = new Array<number>(256 * 128).fill(200);
-  return new WadBuilder()
-    .lump('PLAYPAL', encodePalette())
-    .lumps(encodeMap(squareRoom(mapName)))
+  return builder
     .lump('PNAMES', encodePnames(['WALLPAT', 'SKYPAT']))
     .lump('TEXTURE1', encodeTextureLump([
       { name: 'STARTAN3', width: 64, height: 128, patches: [{ x: 0, y: 0, patch: 0 }] },

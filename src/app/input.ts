@@ -1,0 +1,88 @@
+/**
+ * Keyboard and mouse for the viewer: held keys become MoveInput axes, mouse movement under pointer
+ * lock (click the canvas; Esc releases) becomes look deltas. Keys: WASD move, Q/E turn, Space or R
+ * up, C or F down, Shift run. Keys typed into form fields (the settings panel) are not movement.
+ */
+import type { MoveInput } from './camera-controller.ts';
+
+const AXES: Record<string, [keyof Omit<MoveInput, 'run'>, number]> = {
+  KeyW: ['forward', 1],
+  ArrowUp: ['forward', 1],
+  KeyS: ['forward', -1],
+  ArrowDown: ['forward', -1],
+  KeyD: ['right', 1],
+  KeyA: ['right', -1],
+  KeyE: ['turn', 1],
+  ArrowRight: ['turn', 1],
+  KeyQ: ['turn', -1],
+  ArrowLeft: ['turn', -1],
+  Space: ['up', 1],
+  KeyR: ['up', 1],
+  KeyC: ['up', -1],
+  KeyF: ['up', -1],
+};
+
+export class Input {
+  private readonly held = new Set<string>();
+  private lookX = 0;
+  private lookY = 0;
+  private readonly cleanup: (() => void)[] = [];
+
+  constructor(private readonly canvas: HTMLCanvasElement) {
+    const isTyping = (e: Event) => {
+      const t = e.target as HTMLElement | null;
+      return !!t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA' || t.isContentEditable);
+    };
+    this.listen(window, 'keydown', (e) => {
+      const k = e as KeyboardEvent;
+      if (isTyping(k) || k.ctrlKey || k.metaKey || k.altKey) return;
+      if (k.code in AXES || k.code.startsWith('Shift')) {
+        this.held.add(k.code);
+        k.preventDefault();
+      }
+    });
+    this.listen(window, 'keyup', (e) => this.held.delete((e as KeyboardEvent).code));
+    // Keys released while the window had no focus never send keyup.
+    this.listen(window, 'blur', () => this.held.clear());
+    this.listen(canvas, 'click', () => {
+      if (document.pointerLockElement !== canvas) canvas.requestPointerLock?.()?.catch?.(() => {});
+    });
+    this.listen(document, 'mousemove', (e) => {
+      if (document.pointerLockElement !== canvas) return;
+      this.lookX += (e as MouseEvent).movementX;
+      this.lookY += (e as MouseEvent).movementY;
+    });
+  }
+
+  /** The held keys as axes. */
+  get move(): MoveInput {
+    const axes = { forward: 0, right: 0, up: 0, turn: 0 };
+    for (const code of this.held) {
+      const axis = AXES[code];
+      if (axis) axes[axis[0]] += axis[1];
+    }
+    const clamp = (v: number) => Math.max(-1, Math.min(1, v));
+    return { forward: clamp(axes.forward), right: clamp(axes.right), up: clamp(axes.up), turn: clamp(axes.turn), run: this.held.has('ShiftLeft') || this.held.has('ShiftRight') };
+  }
+
+  /** Mouse movement since the last call, in pixels. */
+  takeLook(): [number, number] {
+    const look: [number, number] = [this.lookX, this.lookY];
+    this.lookX = this.lookY = 0;
+    return look;
+  }
+
+  get active(): boolean {
+    return this.held.size > 0;
+  }
+
+  destroy(): void {
+    for (const c of this.cleanup) c();
+    if (document.pointerLockElement === this.canvas) document.exitPointerLock();
+  }
+
+  private listen(target: EventTarget, type: string, handler: (e: Event) => void): void {
+    target.addEventListener(type, handler);
+    this.cleanup.push(() => target.removeEventListener(type, handler));
+  }
+}
