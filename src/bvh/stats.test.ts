@@ -39,3 +39,18 @@ describe('bvhStats', () => {
     expect(lines[2]).toMatch(/^ {2}node memory: [\d.]+ MiB \([\d.]+ bytes\/triangle\); built in [\d,]+ ms$/);
   });
 });
+
+describe('BVH layouts', () => {
+  it('each builds a valid tree whose statistics use its own node size', async () => {
+    const { BVH_LAYOUTS } = await import('./layouts.ts');
+    const positions = randomSoup(500, 9);
+    expect(BVH_LAYOUTS.map((l) => l.name)).toContain('binary-sah');
+    for (const layout of BVH_LAYOUTS) {
+      const bvh = layout.build(positions);
+      const s = bvhStats(bvh, { nodeBytes: layout.nodeBytes });
+      expect(s.triangleCount).toBe(500);
+      expect(s.nodeBytes).toBe(bvh.nodeCount * layout.nodeBytes);
+      expect(s.sahCost).toBeCloseTo(bvh.stats.sahCost, 9);
+    }
+  });
+});

@@ -225,12 +225,12 @@ function expectDrawnExactly(drawn: { line: boolean[]; leaf: boolean[] }, edges: 
 describe('wireframe', () => {
   it('at depth 0 draws exactly the scene bounds', async () => {
     const p = teaching.triangles.positions;
-    const min: Vec3 = [Infinity, Infinity, Infinity], max: Vec3 = [-Infinity, -Infinity, -Infinity];
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < p.length; i++) {
       min[i % 3] = Math.min(min[i % 3]!, p[i]!);
       max[i % 3] = Math.max(max[i % 3]!, p[i]!);
     }
-    const edges = projectedEdges(f32Basis(teaching), [{ min, max, leaf: false }]);
+    const edges = projectedEdges(f32Basis(teaching), [{ min: min as unknown as Vec3, max: max as unknown as Vec3, leaf: false }]);
     const drawn = await wireframePixels(0);
     expect(drawn.line.filter(Boolean).length).toBeGreaterThan(W);
     expectDrawnExactly(drawn, edges);
