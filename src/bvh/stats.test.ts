@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { buildBvh } from './build.ts';
+import { BVH_LAYOUTS } from './layouts.ts';
 import { BVH_NODE_BYTES, bvhStats, formatBvhStats } from './stats.ts';
 import { degenerateSoup, randomSoup } from './test-scenes.ts';
 
@@ -41,8 +42,7 @@ describe('bvhStats', () => {
 });
 
 describe('BVH layouts', () => {
-  it('each builds a valid tree whose statistics use its own node size', async () => {
-    const { BVH_LAYOUTS } = await import('./layouts.ts');
+  it('each builds a valid tree whose statistics use its own node size', () => {
     const positions = randomSoup(500, 9);
     expect(BVH_LAYOUTS.map((l) => l.name)).toContain('binary-sah');
     for (const layout of BVH_LAYOUTS) {
