@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { buildBvh } from './build.ts';
+import { BVH_LAYOUTS } from './layouts.ts';
 import { BVH_NODE_BYTES, bvhStats, formatBvhStats } from './stats.ts';
 import { degenerateSoup, randomSoup } from './test-scenes.ts';
 
@@ -37,5 +38,19 @@ describe('bvhStats', () => {
     expect(lines[0]).toMatch(/^BVH: [\d,]+ nodes, [\d,]+ leaves, depth \d+ \(mean leaf depth [\d.]+\), SAH cost [\d.]+$/);
     expect(lines[1]).toMatch(/^ {2}leaf sizes: 1:[\d,]+ .*\(mean [\d.]+\)$/);
     expect(lines[2]).toMatch(/^ {2}node memory: [\d.]+ MiB \([\d.]+ bytes\/triangle\); built in [\d,]+ ms$/);
+  });
+});
+
+describe('BVH layouts', () => {
+  it('each builds a valid tree whose statistics use its own node size', () => {
+    const positions = randomSoup(500, 9);
+    expect(BVH_LAYOUTS.map((l) => l.name)).toContain('binary-sah');
+    for (const layout of BVH_LAYOUTS) {
+      const bvh = layout.build(positions);
+      const s = bvhStats(bvh, { nodeBytes: layout.nodeBytes });
+      expect(s.triangleCount).toBe(500);
+      expect(s.nodeBytes).toBe(bvh.nodeCount * layout.nodeBytes);
+      expect(s.sahCost).toBeCloseTo(bvh.stats.sahCost, 9);
+    }
   });
 });

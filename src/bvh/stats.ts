@@ -15,6 +15,8 @@ export interface BvhStatsOptions {
   readonly intersectionCost?: number;
   /** GPU bytes per triangle to add to the node memory (default 0: nodes only). */
   readonly triangleBytes?: number;
+  /** Bytes of one node (default BVH_NODE_BYTES, the layout the GPU traverses). */
+  readonly nodeBytes?: number;
 }
 
 export interface BvhStats {
@@ -31,7 +33,7 @@ export interface BvhStats {
   readonly meanLeafSize: number;
   /** Same definition as BvhBuildStats.sahCost. */
   readonly sahCost: number;
-  /** Node buffer size: every slot (unused slot 1 included) × BVH_NODE_BYTES. */
+  /** Node buffer size: every slot (unused slot 1 included) × options.nodeBytes. */
   readonly nodeBytes: number;
   /** triangleCount × options.triangleBytes. */
   readonly triangleBytes: number;
@@ -72,7 +74,7 @@ export function bvhStats(bvh: Bvh, options: BvhStatsOptions = {}): BvhStats {
   }
   const rootArea = halfAreaAt(bounds, 0);
   const triangleCount = bvh.triIndices.length;
-  const nodeBytes = bvh.nodeCount * BVH_NODE_BYTES;
+  const nodeBytes = bvh.nodeCount * (options.nodeBytes ?? BVH_NODE_BYTES);
   const triangleBytes = triangleCount * (options.triangleBytes ?? 0);
   return {
     triangleCount,

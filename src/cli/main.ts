@@ -4,6 +4,7 @@
  */
 import { Command } from 'commander';
 import { registerBench } from './commands/bench.ts';
+import { registerBvhStats } from './commands/bvh-stats.ts';
 import { registerConvert } from './commands/convert.ts';
 import { registerInfo } from './commands/info.ts';
 import { registerRender } from './commands/render.ts';
@@ -23,6 +24,7 @@ program
 registerRender(program, context);
 registerBench(program, context);
 registerInfo(program, context);
+registerBvhStats(program, context);
 registerConvert(program, context);
 registerTextures(program, context);
 registerView(program, context);

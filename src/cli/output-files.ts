@@ -20,6 +20,14 @@ export async function writePng(renderer: Renderer, path: string): Promise<void> 
   writeFile(path, encodePng(renderer.width, renderer.height, await renderer.readImage()));
 }
 
+/** The debug view's raw values as EXR: R, G, B = the first three of shaders/passes/debug-view.wgsl's four. */
+export async function writeDebugExr(renderer: Renderer, path: string): Promise<void> {
+  const values = await renderer.readDebugValues();
+  const rgb = new Float32Array(renderer.width * renderer.height * 3);
+  for (let i = 0; i < rgb.length / 3; i++) rgb.set(values.subarray(i * 4, i * 4 + 3), i * 3);
+  writeFile(path, encodeExr(renderer.width, renderer.height, rgb));
+}
+
 export async function writeExr(renderer: Renderer, path: string): Promise<void> {
   const { width, height, radiance } = await renderer.readAccumulation();
   writeFile(path, encodeExr(width, height, radiance));

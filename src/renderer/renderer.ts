@@ -6,6 +6,8 @@
  *
  * Facade: setScene, setCamera, updateSettings, resize, accumulate, present, read*. Every method that
  * changes the estimate (scene, camera, size, bounces, light sampling, seed) restarts accumulation.
+ * With a debug view set (settings.debugView), present and readImage show it as settings.debugLayout
+ * asks (renderer/debug-views.ts); enableDebugViews() compiles its pipelines.
  */
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
@@ -17,6 +19,8 @@ import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
 import type { Camera, Scene } from '../scene/types.ts';
+import { debugLegend, type DebugLegend } from './debug-legend.ts';
+import { DebugViews } from './debug-views.ts';
 import { prepareScene, type PreparedScene } from './prepare.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
 import { ViewUniform } from './view.ts';
@@ -63,6 +67,7 @@ export class Renderer {
     private readonly pathTrace: PathTracePass,
     private readonly tonemap: TonemapPass,
     private presentPass?: PresentPass,
+    private debugViews?: DebugViews,
   ) {}
 
   static async create(gpu: GpuContext): Promise<Renderer> {
@@ -188,7 +193,7 @@ export class Renderer {
     if (!this.presentPass) throw new Error('call enablePresentation() before present()');
     const encoder = this.device.createCommandEncoder({ label: 'present' });
     this.encodeTonemap(encoder, targets, timer);
-    this.presentPass.encode(encoder, targets.output, target, timer);
+    this.presentPass.encode(encoder, this.encodeDebugView(encoder, targets), target, timer);
     timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
   }
@@ -198,13 +203,43 @@ export class Renderer {
     this.presentPass ??= await PresentPass.create(this.device);
   }
 
-  /** The tone-mapped sRGB image, RGBA8 row-major, top row first. */
+  /** Compiles the debug views' pipelines (readImage does it by itself; present needs it done first). */
+  async enableDebugViews(): Promise<void> {
+    this.debugViews ??= await DebugViews.create(this.device);
+  }
+
+  /** The tone-mapped sRGB image, RGBA8 row-major, top row first; with a debug view, composed with it. */
   async readImage(): Promise<Uint8Array> {
     const { targets } = this.ready();
+    if (this.settingsValue.debugView !== 'none') await this.enableDebugViews();
     const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
     this.encodeTonemap(encoder, targets);
+    const image = this.encodeDebugView(encoder, targets);
     this.device.queue.submit([encoder.finish()]);
-    return readTexture4x8(this.device, targets.output);
+    return readTexture4x8(this.device, image);
+  }
+
+  /**
+   * The debug view's raw values, 4 floats per pixel, row-major, top row first (what each view holds:
+   * shaders/passes/debug-view.wgsl), e.g. x = BVH nodes visited for 'heat-nodes'.
+   */
+  async readDebugValues(): Promise<Float32Array> {
+    await this.renderDebugView();
+    return this.debugViews!.readValues();
+  }
+
+  /** What the current debug view shows, with the numbers and colours of its scale (draw it as legendGradientCss()). */
+  async debugLegend(): Promise<DebugLegend> {
+    const { resources } = this.ready();
+    const settings = this.settingsValue;
+    if (settings.debugView === 'none') return debugLegend(settings, { maxDepth: this.bvhMaxDepth, maxLeafSize: 0, imageMax: 0 });
+    await this.renderDebugView();
+    return this.debugViews!.legend(this.settingsValue, this.prepared!, resources);
+  }
+
+  /** Depth of the deepest node of the scene's BVH (root = 0): the wireframe depth's upper bound. */
+  get bvhMaxDepth(): number {
+    return this.prepared?.bvh.stats.maxDepth ?? 0;
   }
 
   /** The linear radiance estimate and its per-pixel luminance variance. */
@@ -249,6 +284,7 @@ export class Renderer {
     this.view.destroy();
     this.pathTrace.destroy();
     this.tonemap.destroy();
+    this.debugViews?.destroy();
   }
 
   /** For passes outside the facade (benchmarks, tests): the scene's GPU resources and the view. */
@@ -267,6 +303,25 @@ export class Renderer {
       { exposureStops: (this.cameraValue?.exposureStops ?? 0) + s.exposureStops, toneMapper: s.toneMapper, sampleCount: this.samples },
       timer,
     );
+  }
+
+  /** Encodes the debug view when one is set and returns the image to show: the composed one, or the tone-mapped one. */
+  private encodeDebugView(encoder: GPUCommandEncoder, targets: ImageTargets): GPUTexture {
+    const settings = this.settingsValue;
+    if (settings.debugView === 'none') return targets.output;
+    if (!this.debugViews) throw new Error('call enableDebugViews() before showing a debug view');
+    return this.debugViews.encode(encoder, { prepared: this.prepared!, resources: this.resources!, view: this.view, image: targets.output, settings });
+  }
+
+  /** Runs the current debug view once (a debug view must be set) and waits for it. */
+  private async renderDebugView(): Promise<void> {
+    const { targets } = this.ready();
+    if (this.settingsValue.debugView === 'none') throw new Error("Renderer: set a debugView other than 'none' first");
+    await this.enableDebugViews();
+    const encoder = this.device.createCommandEncoder({ label: 'debug view' });
+    this.encodeDebugView(encoder, targets);
+    this.device.queue.submit([encoder.finish()]);
+    await this.finish();
   }
 
   private ready(): { resources: SceneResources; targets: ImageTargets } {

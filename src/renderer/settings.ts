@@ -1,7 +1,8 @@
 /**
  * Render settings: what a user can change without changing the scene. The closed lists mirror WGSL
  * constants by position (TONEMAP_* in shaders/lib/color.wgsl, LIGHT_SAMPLING_* in
- * shaders/passes/path-trace.wgsl); a unit test keeps the two in step.
+ * shaders/passes/path-trace.wgsl, DEBUG_VIEW_* and DEBUG_LAYOUT_* in shaders/lib/debug-views.wgsl);
+ * a unit test keeps the two in step.
  */
 import { LanternError } from '../errors.ts';
 import type { Vec3 } from '../math/vec3.ts';
@@ -26,6 +27,21 @@ export interface TorchSettings {
   readonly radius?: number;
 }
 
+/**
+ * What the debug views show instead of (or beside, or over) the rendered image: BVH work per primary
+ * ray (nodes visited, triangles tested), the boxes at one depth, the size and depth of the leaf hit,
+ * and surface attributes. 'none' shows the rendered image only. See renderer/debug-views.ts.
+ */
+export const DEBUG_VIEWS = ['none', 'heat-nodes', 'heat-triangles', 'wireframe', 'leaf-size', 'bvh-depth', 'normals', 'albedo', 'barycentrics', 'triangle-id'] as const;
+export type DebugView = (typeof DEBUG_VIEWS)[number];
+
+/** How a debug view meets the image: instead of it, in a pane beside it (both at half size), or blended over it. */
+export const DEBUG_LAYOUTS = ['replace', 'side-by-side', 'overlay'] as const;
+export type DebugLayout = (typeof DEBUG_LAYOUTS)[number];
+
+/** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
+export const MAX_WIREFRAME_DEPTH = 64;
+
 export interface RenderSettings {
   /** Scattering events per path: 0 shows emitters only, 1 direct light, ... */
   readonly maxBounces: number;
@@ -36,6 +52,12 @@ export interface RenderSettings {
   /** Seed of every random stream: the same seed, scene and settings give the same image. */
   readonly seed: number;
   readonly torch: TorchSettings;
+  readonly debugView: DebugView;
+  readonly debugLayout: DebugLayout;
+  /** Wireframe view: the depth whose boxes are drawn (0 = the root, the scene bounds). */
+  readonly wireframeDepth: number;
+  /** Heat views: the count at the top of the colour scale, or 'auto' for the image's own maximum. */
+  readonly heatMax: number | 'auto';
 }
 
 export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
@@ -45,6 +67,10 @@ export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
   exposureStops: 0,
   seed: 1,
   torch: Object.freeze({ enabled: true }),
+  debugView: 'none',
+  debugLayout: 'replace',
+  wireframeDepth: 0,
+  heatMax: 'auto',
 });
 
 /** Settings that change the estimate itself: changing one restarts accumulation. */
@@ -85,5 +111,11 @@ export function validateSettings(s: RenderSettings): RenderSettings {
   if (t.intensity !== undefined && !(Number.isFinite(t.intensity) && t.intensity >= 0)) throw new LanternError(`torch intensity must be a non-negative number, not ${t.intensity}`);
   if (t.range !== undefined && !(Number.isFinite(t.range) && t.range > 0)) throw new LanternError(`torch range must be a positive number, not ${t.range}`);
   if (t.radius !== undefined && !(Number.isFinite(t.radius) && t.radius > 0)) throw new LanternError(`torch radius must be a positive number, not ${t.radius}`);
+  if (!DEBUG_VIEWS.includes(s.debugView)) throw new LanternError(`unknown debug view '${s.debugView}'`, `Use one of: ${DEBUG_VIEWS.join(', ')}`);
+  if (!DEBUG_LAYOUTS.includes(s.debugLayout)) throw new LanternError(`unknown debug layout '${s.debugLayout}'`, `Use one of: ${DEBUG_LAYOUTS.join(', ')}`);
+  if (!Number.isInteger(s.wireframeDepth) || s.wireframeDepth < 0 || s.wireframeDepth > MAX_WIREFRAME_DEPTH) {
+    throw new LanternError(`wireframe depth must be a whole number from 0 to ${MAX_WIREFRAME_DEPTH}, not ${s.wireframeDepth}`);
+  }
+  if (s.heatMax !== 'auto' && !(Number.isFinite(s.heatMax) && s.heatMax > 0)) throw new LanternError(`heat map maximum must be a positive number or 'auto', not ${s.heatMax}`);
   return s;
 }

@@ -70,6 +70,49 @@ describe('lantern render', () => {
   });
 });
 
+describe('lantern render --debug', () => {
+  it('writes the heat map as PNG and its raw counts as EXR, and reports the legend', () => {
+    const png = join(dir, 'heat.png'), exr = join(dir, 'heat.exr');
+    const r = lantern(['render', 'bvh-teaching', '-W', '32', '-H', '24', '--debug', 'heat-nodes', '--out', png, '--exr', exr, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const report = JSON.parse(r.stdout);
+    // Replacing the image needs no path tracing.
+    expect(report).toMatchObject({ spp: 0, debug: { view: 'heat-nodes', layout: 'replace', label: 'BVH nodes visited per primary ray', scale: { min: 0, auto: true } } });
+    const counts = decodeExr(readFileSync(exr)).channels.R!;
+    expect(counts.every((c) => Number.isInteger(c) && c >= 1)).toBe(true);
+    expect(report.debug.scale.max).toBe(Math.max(...counts));
+    const image = decodePng(readFileSync(png));
+    expect([image.width, image.height]).toEqual([32, 24]);
+  });
+
+  it('draws the wireframe over the rendered image with a fixed depth', () => {
+    const png = join(dir, 'wire.png');
+    const r = lantern(['render', 'cornell', '-W', '16', '-H', '16', '-s', '1', '--debug', 'wireframe', '--debug-layout', 'overlay', '--wireframe-depth', '2', '--out', png]);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(r.stdout).toMatch(/debug view wireframe, overlay: BVH boxes at depth 2 of \d+/);
+    expect(decodePng(readFileSync(png)).width).toBe(16);
+  });
+});
+
+describe('lantern bvh-stats', () => {
+  it('reports every BVH layout with its statistics', () => {
+    const r = lantern(['bvh-stats', 'cornell', '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const stats = JSON.parse(r.stdout);
+    expect(stats).toMatchObject({ scene: 'cornell', triangles: 32 });
+    const [layout] = stats.layouts;
+    expect(layout).toMatchObject({ name: 'binary-sah', triangleCount: 32, nodeCount: 2 * layout.leafCount - 1 });
+    expect(layout.leafSizeHistogram.reduce((a: number, n: number, size: number) => a + n * size, 0)).toBe(32);
+    expect(layout.maxDepth).toBeGreaterThanOrEqual(Math.ceil(Math.log2(layout.leafCount)));
+    expect(layout.sahCost).toBeGreaterThan(0);
+    expect(layout.nodeBytesPerTriangle).toBeCloseTo(((layout.nodeCount + 1) * 32) / 32, 9);
+    expect(layout.buildMs).toBeGreaterThan(0);
+    const text = lantern(['bvh-stats', 'bvh-teaching']);
+    expect(text.stdout).toMatch(/^bvh-teaching: 2,508 triangles/);
+    expect(text.stdout).toMatch(/binary-sah: binary BVH.*\n.*SAH cost [\d.]+\n.*leaf sizes: .*\n.*bytes\/triangle.*built in/);
+  });
+});
+
 describe('bad input', () => {
   const oneLine = (s: string) => s.trim().split('\n').length === 1;
 
@@ -82,6 +125,10 @@ describe('bad input', () => {
     [['render', 'cornell', '--tonemap', 'filmic'], /--tonemap must be one of linear, reinhard, aces/],
     [['render', 'cornell', '-W', '16384', '-H', '16384'], /image 16384×16384 is too large/],
     [['info', 'nope.obj'], /unknown scene 'nope\.obj'/],
+    [['render', 'cornell', '--debug', 'heat'], /--debug must be one of heat-nodes, heat-triangles, wireframe/],
+    [['render', 'cornell', '--debug', 'wireframe', '--wireframe-depth', '99'], /--wireframe-depth must be from 0 to 64/],
+    [['render', 'cornell', '--debug', 'heat-nodes', '--heat-max', '0'], /--heat-max must be from/],
+    [['bvh-stats', 'nope'], /unknown scene 'nope'/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);

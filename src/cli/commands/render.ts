@@ -2,10 +2,13 @@
 import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
-import { DEFAULT_SETTINGS, LIGHT_SAMPLING, TONE_MAPPERS, type LightSampling, type ToneMapper } from '../../renderer/settings.ts';
+import {
+  DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, LIGHT_SAMPLING, MAX_WIREFRAME_DEPTH, TONE_MAPPERS,
+  type DebugLayout, type DebugView, type LightSampling, type ToneMapper,
+} from '../../renderer/settings.ts';
 import { cameraFromOptions } from '../camera-option.ts';
 import { choiceOption, integerOption, numberListOption, numberOption, withImageOptions, withSceneOptions } from '../options.ts';
-import { writeExr, writePng } from '../output-files.ts';
+import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
@@ -29,6 +32,16 @@ interface RenderOptions {
   torchColor?: number[];
   lightTable?: string;
   json?: boolean;
+  debug?: Exclude<DebugView, 'none'>;
+  debugLayout: DebugLayout;
+  wireframeDepth: number;
+  heatMax: number | 'auto';
+}
+
+const SHOWN_DEBUG_VIEWS = DEBUG_VIEWS.filter((v): v is Exclude<DebugView, 'none'> => v !== 'none');
+
+function heatMaxOption(value: string): number | 'auto' {
+  return value === 'auto' ? 'auto' : numberOption('--heat-max', 1e-6, 1e12)(value);
 }
 
 export function registerRender(program: Command, context: CliContext): void {
@@ -50,6 +63,10 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--torch-intensity <W/sr>', 'torch intensity (with --torch-range, gives any scene a torch)', numberOption('--torch-intensity', 0, 1e12))
     .option('--torch-range <distance>', 'distance at which the torch fades out', numberOption('--torch-range', 1e-6, 1e12))
     .option('--torch-color <r,g,b>', 'torch colour, linear RGB', numberListOption('--torch-color', [3]))
+    .option('--debug <view>', `show a debug view: ${SHOWN_DEBUG_VIEWS.join(', ')} (from pixel-centre primary rays; the EXR then holds its raw values)`, choiceOption('--debug', SHOWN_DEBUG_VIEWS))
+    .option('--debug-layout <layout>', `${DEBUG_LAYOUTS.join(', ')}: the debug view instead of the image (no path tracing), beside it, or over it`, choiceOption('--debug-layout', DEBUG_LAYOUTS), DEFAULT_SETTINGS.debugLayout)
+    .option('--wireframe-depth <d>', 'wireframe view: the BVH depth whose boxes are drawn (0 = the scene bounds)', integerOption('--wireframe-depth', 0, MAX_WIREFRAME_DEPTH), DEFAULT_SETTINGS.wireframeDepth)
+    .option('--heat-max <n|auto>', "heat views: the count at the top of the colour scale ('auto': the image's maximum)", heatMaxOption, DEFAULT_SETTINGS.heatMax)
     .option('--json', 'print what was done as JSON')
     .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
 }
@@ -71,16 +88,23 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
       ...(o.torchRange !== undefined ? { range: o.torchRange } : {}),
       ...(o.torchColor ? { color: [o.torchColor[0]!, o.torchColor[1]!, o.torchColor[2]!] as const } : {}),
     },
+    debugView: o.debug ?? 'none',
+    debugLayout: o.debugLayout,
+    wireframeDepth: o.wireframeDepth,
+    heatMax: o.heatMax,
   });
+  // A debug view that replaces the image needs no path tracing.
+  const spp = o.debug && o.debugLayout === 'replace' ? 0 : o.spp;
 
   const bar = !o.json && process.stderr.isTTY ? new SingleBar({ format: 'rendering [{bar}] {value}/{total} spp | {eta_formatted} left', hideCursor: true, stream: process.stderr }) : undefined;
-  bar?.start(o.spp, 0);
-  const { seconds } = await renderProgressive(renderer, { spp: o.spp, onProgress: (done) => bar?.update(done) });
+  bar?.start(spp, 0);
+  const { seconds } = await renderProgressive(renderer, { spp, onProgress: (done) => bar?.update(done) });
   bar?.stop();
 
   const rays = await renderer.readRayCounts();
   if (png) await writePng(renderer, png);
-  if (o.exr) await writeExr(renderer, o.exr);
+  if (o.exr) await (o.debug ? writeDebugExr(renderer, o.exr) : writeExr(renderer, o.exr));
+  const legend = o.debug ? await renderer.debugLegend() : undefined;
   const total = rays.extension + rays.shadow;
   const report = {
     scene: prepared.scene.name,
@@ -95,13 +119,18 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     loadSeconds: loadMs / 1000,
     seconds,
     rays: { extension: rays.extension, shadow: rays.shadow, total },
-    raysPerSecond: total / seconds,
+    raysPerSecond: seconds > 0 ? total / seconds : 0,
+    ...(legend ? { debug: { view: legend.view, layout: o.debugLayout, label: legend.label, ...(legend.scale ? { scale: { min: legend.scale.min, max: legend.scale.max, auto: legend.scale.auto } } : {}) } } : {}),
     outputs: { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) },
   };
   if (o.json) {
     context.print(JSON.stringify(report, null, 2));
   } else {
     const files = [png, o.exr].filter(Boolean).join(' and ');
+    if (legend) {
+      const range = legend.scale ? ` (colour scale ${legend.scale.min} to ${legend.scale.max}${legend.scale.auto ? ', the image maximum' : ''})` : '';
+      context.print(`debug view ${legend.view}, ${o.debugLayout}: ${legend.label}${range}`);
+    }
     context.print(
       `${report.scene}: ${o.width}×${o.height}, ${report.spp} spp, ${o.bounces} bounces in ${seconds.toFixed(2)} s on ${report.adapter} ` +
         `(${(report.raysPerSecond / 1e6).toFixed(1)} Mrays/s) -> ${files}`,

@@ -1,12 +1,14 @@
 /** The closed list of built-in scenes, selectable by name from the CLI and the page. */
 import { LanternError } from '../../errors.ts';
 import type { Scene } from '../../scene/types.ts';
+import { bvhTeaching } from './bvh-teaching.ts';
 import { cornellBox } from './cornell.ts';
 import { whiteFurnace } from './furnace.ts';
 
 export const BUILTIN_SCENES = {
   cornell: { description: 'the Cornell box, from the published measurements (mm)', make: cornellBox },
   furnace: { description: 'white furnace: every pixel converges to 5.0', make: whiteFurnace },
+  'bvh-teaching': { description: 'BVH teaching room: separated cubes, a dense cluster and a diagonal slab', make: bvhTeaching },
 } as const satisfies Record<string, { description: string; make: () => Scene }>;
 
 export type BuiltinSceneName = keyof typeof BUILTIN_SCENES;

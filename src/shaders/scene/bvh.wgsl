@@ -1,7 +1,8 @@
 // BVH traversal: closest hit with an ordered stack (nearer child first, the closest hit so far prunes
 // boxes), and any hit for shadow rays. Alpha-masked triangles count only where their texture is
 // opaque. Expects the scene bindings (group 0). The CPU oracle bvh/traverse.ts runs the same
-// algorithm (without alpha masks), so hits and visited-node counts agree.
+// algorithm (without alpha masks), so hits and visited-node counts agree; with BVH_COUNT_WORK,
+// trace_closest reports those counts in bvh_work (the debug views' heat map).
 
 // Whether the scene has alpha-masked triangles. A pipeline constant: without masks the alpha test
 // folds away and traversal keeps its registers (5–8% faster on an H200 than testing the flag).
@@ -19,6 +20,23 @@ fn accept_hit(tri: TriangleHot, triangle: u32, bary: vec2f) -> bool {
 #import scene/intersect
 #import scene/materials
 
+// Whether trace_closest counts its work into bvh_work. A pipeline constant, off by default: the path
+// tracer's traversal compiles without the counters; only passes/debug-view turns them on.
+override BVH_COUNT_WORK: bool = false;
+
+// A leaf index meaning "no leaf" (the ray hit nothing).
+const NO_NODE: u32 = 0xffffffffu;
+
+// The work of the last trace_closest, counted as bvh/traverse.ts counts it: nodes whose record the
+// loop fetched (1 when the root box is missed), ray/triangle tests run, and the leaf holding the hit.
+struct TraversalWork {
+  nodes_visited: u32,
+  triangles_tested: u32,
+  hit_leaf: u32,
+}
+
+var<private> bvh_work: TraversalWork;
+
 // The builder caps depth at 60 (bvh/build.ts); a push happens at most once per level.
 const BVH_STACK_SIZE: u32 = 64u;
 
@@ -29,21 +47,36 @@ fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
 
 fn trace_closest(ray: Ray) -> Hit {
   var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0);
+  if (BVH_COUNT_WORK) {
+    bvh_work = TraversalWork(1u, 0u, NO_NODE);
+  }
   let inv_dir = safe_inverse(ray.direction);
   if (node_entry(0u, ray.origin, inv_dir, hit.t) == T_MISS) {
     return hit;
+  }
+  if (BVH_COUNT_WORK) {
+    bvh_work.nodes_visited = 0u;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
   var sp = 0u;
   var node = 0u;
   loop {
     let n = bvh_nodes[node];
+    if (BVH_COUNT_WORK) {
+      bvh_work.nodes_visited += 1u;
+    }
     if (n.tri_count > 0u) {
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
         let r = intersect_triangle(ray.origin, ray.direction, tri, ray.t_min, hit.t);
+        if (BVH_COUNT_WORK) {
+          bvh_work.triangles_tested += 1u;
+        }
         if (r.x < hit.t && accept_hit(tri, i, r.yz)) {
           hit = Hit(r.x, i, r.y, r.z);
+          if (BVH_COUNT_WORK) {
+            bvh_work.hit_leaf = node;
+          }
         }
       }
       if (sp == 0u) {
