@@ -17,6 +17,7 @@ import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
 import { describeError, Viewer } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
+import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 const canvas = $<HTMLCanvasElement>('view');
@@ -29,6 +30,7 @@ const progress = $<HTMLProgressElement>('progress');
 const stats = $<HTMLSpanElement>('stats');
 const message = $<HTMLParagraphElement>('message');
 const dropZone = $<HTMLDivElement>('drop-zone');
+const legend = $<HTMLDivElement>('legend');
 
 /** The option of the scene picker that stands for a scene opened from a file. */
 const FILE_OPTION = '__file__';
@@ -73,7 +75,24 @@ function showViewer(v: Viewer): void {
     : v.state === 'starting' ? 'starting the GPU…'
     : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter}${hidden}`;
   panel?.showStats();
+  showLegend(v.legend);
 }
+
+/** The debug view's legend under the image: what it shows and, for scalar views, the colour scale with its numbers. */
+function showLegend(l: DebugLegend | undefined): void {
+  legend.hidden = !l;
+  if (!l) return;
+  legend.querySelector('.label')!.textContent = l.label;
+  const bar = legend.querySelector<HTMLDivElement>('.bar')!;
+  bar.hidden = !l.scale;
+  if (l.scale) {
+    bar.style.background = legendGradientCss();
+    bar.querySelector('.min')!.textContent = formatScale(l.scale.min);
+    bar.querySelector('.max')!.textContent = `${formatScale(l.scale.max)}${l.scale.auto ? ' (image max)' : ''}`;
+  }
+}
+
+const formatScale = (v: number) => (Number.isInteger(v) ? String(v) : v.toFixed(1));
 
 // ---- loading scenes ----
 
@@ -286,6 +305,10 @@ await viewer.updateSettings({
     ...(linked.maxBounces !== undefined ? { maxBounces: linked.maxBounces } : {}),
     ...(linked.toneMapper ? { toneMapper: linked.toneMapper } : {}),
     ...(linked.exposureStops !== undefined ? { exposureStops: linked.exposureStops } : {}),
+    ...(linked.debugView ? { debugView: linked.debugView } : {}),
+    ...(linked.debugLayout ? { debugLayout: linked.debugLayout } : {}),
+    ...(linked.wireframeDepth !== undefined ? { wireframeDepth: linked.wireframeDepth } : {}),
+    ...(linked.heatMax !== undefined ? { heatMax: linked.heatMax } : {}),
     ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}),
   },
 });

@@ -5,7 +5,8 @@
  * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters.
  */
 import { Pane } from 'tweakpane';
-import { effectiveTorch, TONE_MAPPERS } from '../renderer/settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, effectiveTorch, TONE_MAPPERS, type DebugLayout, type DebugView } from '../renderer/settings.ts';
+import type { BindingApi } from '@tweakpane/core';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
@@ -33,7 +34,13 @@ export class SettingsPanel {
     torchColor: { r: 1, g: 1, b: 1 },
     torchIntensity: 0,
     torchRange: 1,
+    debugView: 'none' as string,
+    debugLayout: 'replace' as string,
+    wireframeDepth: 0,
+    heatMax: 0,
   };
+  private depthBinding?: BindingApi;
+  private debugFolder?: ReturnType<Pane['addFolder']>;
   private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, rays: '', image: '', scene: '', gpuMemory: '' };
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
@@ -68,6 +75,13 @@ export class SettingsPanel {
     camera.addBinding(p, 'torchIntensity', { label: 'intensity (W/sr)', min: 0 }).on('change', () => this.applyTorch());
     camera.addBinding(p, 'torchRange', { label: 'range', min: 1e-3 }).on('change', () => this.applyTorch());
 
+    const debug = this.pane.addFolder({ title: 'Debug views', expanded: false });
+    this.debugFolder = debug;
+    debug.addBinding(p, 'debugView', { label: 'view', options: options(DEBUG_VIEWS) }).on('change', (e) => this.apply({ render: { debugView: e.value as DebugView } }));
+    debug.addBinding(p, 'debugLayout', { label: 'layout', options: options(DEBUG_LAYOUTS) }).on('change', (e) => this.apply({ render: { debugLayout: e.value as DebugLayout } }));
+    debug.addBinding(p, 'heatMax', { label: 'scale max (0: auto)', min: 0, step: 1 }).on('change', (e) => this.apply({ render: { heatMax: e.value > 0 ? e.value : 'auto' } }));
+    this.addDepthBinding();
+
     const numbers = this.pane.addFolder({ title: 'GPU' });
     const m = this.monitor;
     numbers.addBinding(m, 'fps', { label: 'frames/s', readonly: true, view: 'graph', min: 0, max: 120 });
@@ -90,6 +104,8 @@ export class SettingsPanel {
     this.syncing = true;
     try {
       this.read();
+      // The depth slider's range is the scene's BVH depth.
+      this.addDepthBinding();
       this.pane?.refresh();
     } finally {
       this.syncing = false;
@@ -105,6 +121,10 @@ export class SettingsPanel {
     p.accumulate = s.accumulate;
     p.toneMapper = s.render.toneMapper;
     p.exposure = s.render.exposureStops;
+    p.debugView = s.render.debugView;
+    p.debugLayout = s.render.debugLayout;
+    p.wireframeDepth = s.render.wireframeDepth;
+    p.heatMax = s.render.heatMax === 'auto' ? 0 : s.render.heatMax;
     const c = this.viewer.controller;
     if (c) {
       p.fov = c.vfovDegrees;
@@ -134,6 +154,15 @@ export class SettingsPanel {
     m.image = s.width > 0 ? `${s.width}×${s.height}` : '–';
     m.scene = s.sceneName ? `${s.sceneName}\n${s.triangles.toLocaleString('en')} triangles · ${s.bvhNodes.toLocaleString('en')} BVH nodes` : '–';
     m.gpuMemory = s.adapter ? `${(s.gpuResources.bytes / 2 ** 20).toFixed(1)} MiB in ${s.gpuResources.buffers} buffers, ${s.gpuResources.textures} textures` : '–';
+  }
+
+  private addDepthBinding(): void {
+    if (!this.debugFolder) return;
+    this.depthBinding?.dispose();
+    const max = Math.max(1, this.viewer.bvhMaxDepth);
+    this.params.wireframeDepth = Math.min(this.params.wireframeDepth, max);
+    this.depthBinding = this.debugFolder.addBinding(this.params, 'wireframeDepth', { label: `box depth (0–${max})`, min: 0, max, step: 1 });
+    this.depthBinding.on('change', (e) => this.apply({ render: { wireframeDepth: e.value as number } }));
   }
 
   dispose(): void {

@@ -14,6 +14,10 @@ describe('view parameters', () => {
       accumulate: false,
       toneMapper: 'reinhard',
       exposureStops: -1.5,
+      debugView: 'wireframe',
+      debugLayout: 'overlay',
+      wireframeDepth: 3,
+      heatMax: 'auto',
       torch: { enabled: true, color: [1, 0.8, 0.6], intensity: 2000, range: 900 },
     };
     const { view: back, problems } = parseViewParams(new URLSearchParams(formatViewParams(view).toString()));
@@ -29,9 +33,9 @@ describe('view parameters', () => {
   });
 
   it('names every parameter it refuses and keeps the rest', () => {
-    const { view, problems } = parseViewParams(new URLSearchParams('cam=1,2,3&spf=0&bounces=2.5&scale=9&tonemap=filmic&mode=swim&torch-color=2,0,0&exposure=1'));
-    expect(view).toEqual({ exposureStops: 1 });
-    expect(problems).toHaveLength(7);
+    const { view, problems } = parseViewParams(new URLSearchParams('cam=1,2,3&spf=0&bounces=2.5&scale=9&tonemap=filmic&mode=swim&torch-color=2,0,0&exposure=1&debug=rainbow&depth=-1&heat-max=40'));
+    expect(view).toEqual({ exposureStops: 1, heatMax: 40 });
+    expect(problems).toHaveLength(9);
     expect(problems.join('\n')).toMatch(/cam=1,2,3 is not 5 numbers/);
     expect(problems.join('\n')).toMatch(/spf=0 is outside 1–64/);
   });

@@ -7,9 +7,10 @@
  *   ply=<url>                          a PLY mesh the server offers
  *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly
  *   spf, bounces, scale, acc=0|1, tonemap, exposure, torch=on|off, torch-color=r,g,b,
- *   torch-intensity, torch-range
+ *   torch-intensity, torch-range, debug=<view>, layout=replace|side-by-side|overlay, depth=<d>,
+ *   heat-max=<n>|auto
  */
-import { TONE_MAPPERS, type ToneMapper } from '../renderer/settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, MAX_WIREFRAME_DEPTH, TONE_MAPPERS, type DebugLayout, type DebugView, type ToneMapper } from '../renderer/settings.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 
 export type SceneLocation =
@@ -29,6 +30,10 @@ export interface ViewParams {
   readonly accumulate?: boolean;
   readonly toneMapper?: ToneMapper;
   readonly exposureStops?: number;
+  readonly debugView?: DebugView;
+  readonly debugLayout?: DebugLayout;
+  readonly wireframeDepth?: number;
+  readonly heatMax?: number | 'auto';
   readonly torch?: {
     readonly enabled?: boolean;
     readonly color?: readonly [number, number, number];
@@ -102,6 +107,24 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   }
   const exposure = ranged('exposure', LIMITS.exposureStops);
   if (exposure !== undefined) view.exposureStops = exposure;
+  const oneOf = <T extends string>(name: string, values: readonly T[]): T | undefined => {
+    const v = params.get(name);
+    if (v === null) return undefined;
+    if ((values as readonly string[]).includes(v)) return v as T;
+    problems.push(`${name}=${v} is not one of ${values.join(', ')}`);
+    return undefined;
+  };
+  const debugView = oneOf('debug', DEBUG_VIEWS);
+  if (debugView) view.debugView = debugView;
+  const debugLayout = oneOf('layout', DEBUG_LAYOUTS);
+  if (debugLayout) view.debugLayout = debugLayout;
+  const depth = ranged('depth', [0, MAX_WIREFRAME_DEPTH], true);
+  if (depth !== undefined) view.wireframeDepth = depth;
+  if (params.get('heat-max') === 'auto') view.heatMax = 'auto';
+  else {
+    const heatMax = ranged('heat-max', [1e-6, 1e9]);
+    if (heatMax !== undefined) view.heatMax = heatMax;
+  }
 
   const torch: { enabled?: boolean; color?: [number, number, number]; intensity?: number; range?: number } = {};
   const on = params.get('torch');
@@ -134,6 +157,10 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
   if (view.toneMapper) p.set('tonemap', view.toneMapper);
   if (view.exposureStops !== undefined) p.set('exposure', String(round(view.exposureStops)));
+  if (view.debugView) p.set('debug', view.debugView);
+  if (view.debugLayout) p.set('layout', view.debugLayout);
+  if (view.wireframeDepth !== undefined) p.set('depth', String(view.wireframeDepth));
+  if (view.heatMax !== undefined) p.set('heat-max', String(view.heatMax));
   const t = view.torch;
   if (t?.enabled !== undefined) p.set('torch', t.enabled ? 'on' : 'off');
   if (t?.color) p.set('torch-color', t.color.map(round).join(','));

@@ -16,6 +16,7 @@ import { GpuTimer } from '../gpu/timestamps.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
 import { Renderer } from '../renderer/renderer.ts';
+import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
 import type { LoadedScene } from './scene-request.ts';
@@ -68,6 +69,8 @@ export interface ViewerHooks {
 const MAX_DEVICE_LOSSES_PER_MINUTE = 3;
 /** Frames over which frames per second and rays per second are averaged. */
 const STATS_WINDOW = 30;
+/** How often the debug view's legend is read back (its 'auto' maximum follows the image). */
+const LEGEND_INTERVAL_MS = 400;
 
 export class Viewer {
   state: ViewerState = 'idle';
@@ -89,6 +92,8 @@ export class Viewer {
   private gpuPasses: PassTime[] = [];
   private lastRayCount = 0;
   private losses: number[] = [];
+  private legendValue?: DebugLegend;
+  private legendAt = 0;
   private expectingLoss = false;
   private disposed = false;
 
@@ -109,6 +114,16 @@ export class Viewer {
 
   get scene(): LoadedScene | undefined {
     return this.loaded;
+  }
+
+  /** The current debug view's legend (label and colour scale), while one is shown. */
+  get legend(): DebugLegend | undefined {
+    return this.settings.render.debugView === 'none' ? undefined : this.legendValue;
+  }
+
+  /** Depth of the scene's deepest BVH node (the wireframe depth's upper bound). */
+  get bvhMaxDepth(): number {
+    return this.loaded?.prepared.bvh.stats.maxDepth ?? 0;
   }
 
   get stats(): ViewerStats {
@@ -178,7 +193,9 @@ export class Viewer {
     const before = this.settings;
     const render = { ...before.render, ...changes.render };
     this.settings = { ...before, ...changes, render };
+    this.legendAt = 0;
     if (!this.renderer) return;
+    if (render.debugView !== 'none') await this.renderer.enableDebugViews();
     this.renderer.updateSettings(render);
     if (this.settings.scale !== before.scale) await this.resizeRenderer();
     if (this.settings.accumulate !== before.accumulate || this.settings.samplesPerFrame !== before.samplesPerFrame) this.renderer.resetAccumulation();
@@ -230,6 +247,10 @@ export class Viewer {
       accumulate: s.accumulate,
       toneMapper: s.render.toneMapper,
       exposureStops: s.render.exposureStops,
+      debugView: s.render.debugView,
+      debugLayout: s.render.debugLayout,
+      wireframeDepth: s.render.wireframeDepth,
+      heatMax: s.render.heatMax,
       torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
     };
   }
@@ -263,6 +284,7 @@ export class Viewer {
     context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
     const renderer = await Renderer.create(gpu);
     await renderer.enablePresentation();
+    if (this.settings.render.debugView !== 'none') await renderer.enableDebugViews();
     renderer.updateSettings(this.settings.render);
     this.gpu = gpu;
     this.context = context;
@@ -361,7 +383,10 @@ export class Viewer {
     if (!this.settings.accumulate) renderer.resetAccumulation();
     const fresh = renderer.sampleCount === 0;
     const timer = this.timer;
-    renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
+    const render = this.settings.render;
+    // A debug view that replaces the image needs no path tracing.
+    const debugOnly = render.debugView !== 'none' && render.debugLayout === 'replace';
+    if (!debugOnly) renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
     renderer.present(context.getCurrentTexture(), timer);
     // Reading the counters waits for the frame (one frame in flight) and counts its rays exactly.
     const counts = await renderer.readRayCounts();
@@ -369,6 +394,10 @@ export class Viewer {
     const rays = fresh ? total : total - this.lastRayCount;
     this.lastRayCount = total;
     if (timer) this.gpuPasses = await timer.read();
+    if (render.debugView !== 'none' && performance.now() - this.legendAt > LEGEND_INTERVAL_MS) {
+      this.legendValue = await renderer.debugLegend();
+      this.legendAt = performance.now();
+    }
     this.frames.push({ at: performance.now(), rays });
     if (this.frames.length > STATS_WINDOW) this.frames.shift();
   }

@@ -230,6 +230,24 @@ describe('the page', () => {
     await page.close();
   });
 
+  it('shows a BVH debug view with its legend, chosen from the panel', async () => {
+    const { page, errors } = await open('scene=bvh-teaching&scale=0.1&debug=heat-nodes');
+    await playUntil(page, 0);
+    await page.waitForFunction(() => !document.getElementById('legend')!.hidden, undefined, { timeout: 60_000 });
+    expect(await page.locator('#legend .label').textContent()).toMatch(/node/i);
+    const max = Number((await page.locator('#legend .max').textContent())!.split(' ')[0]);
+    expect(max).toBeGreaterThan(3);
+    // 'replace' shows the counts only: nothing is path traced.
+    expect(await page.evaluate(() => window.lantern.samples)).toBe(0);
+    await page.locator('.tp-fldv_b', { hasText: 'Debug views' }).click();
+    await page.locator('.tp-lblv', { hasText: 'layout' }).locator('select').selectOption('side-by-side');
+    await playUntil(page, 2);
+    await page.locator('.tp-lblv', { hasText: /^view/ }).locator('select').selectOption('none');
+    await expect.poll(() => page.locator('#legend').isHidden()).toBe(true);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
   it('opens a served WAD map from a link, and a copied link restores the camera and settings', async () => {
     const { page, errors } = await open(`wad=${served.fileUrls[0]}&map=MAP02&scale=0.05&bounces=3`);
     expect(await page.evaluate(() => window.lantern.scene)).toBe('MAP02');
