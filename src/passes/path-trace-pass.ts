@@ -14,9 +14,25 @@ function torchUniform(torch: Torch | undefined): { radiance: number[]; radius: n
   return { radiance: torch.color.map((c) => c * l), radius: torch.radius, range: torch.range };
 }
 
-const MODULE = 'passes/path-trace';
-/** Must match @workgroup_size of path_trace. */
-const WORKGROUP = 8;
+/** The `params` uniform of passes/path-trace for one dispatch (shared with the real-time frame kernel). */
+export function pathTraceParams(d: PathTraceDispatch): UniformValues {
+  return {
+    tile_origin: [d.tile.x, d.tile.y],
+    tile_size: [d.tile.width, d.tile.height],
+    sample_index: d.sampleIndex >>> 0,
+    samples: d.samples,
+    max_bounces: d.maxBounces,
+    seed: d.seed >>> 0,
+    light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
+    torch: torchUniform(d.torch),
+  };
+}
+
+export const PATH_TRACE_MODULE = 'passes/path-trace';
+const MODULE = PATH_TRACE_MODULE;
+/** Must match @workgroup_size of path_trace (and path_trace_frame). */
+export const PATH_TRACE_WORKGROUP = 8;
+const WORKGROUP = PATH_TRACE_WORKGROUP;
 
 export interface Tile {
   readonly x: number;
@@ -63,16 +79,7 @@ export class PathTracePass {
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
   encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
-    this.params.write({
-      tile_origin: [d.tile.x, d.tile.y],
-      tile_size: [d.tile.width, d.tile.height],
-      sample_index: d.sampleIndex >>> 0,
-      samples: d.samples,
-      max_bounces: d.maxBounces,
-      seed: d.seed >>> 0,
-      light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
-      torch: torchUniform(d.torch),
-    });
+    this.params.write(pathTraceParams(d));
     const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
     const pass = encoder.beginComputePass({ label: 'path trace', ...(timer ? { timestampWrites: timer.timestampWrites('path trace') } : {}) });
     kernel.dispatch(
@@ -96,7 +103,7 @@ export class PathTracePass {
 }
 
 /** A bind group cached per kernel and resource (both weakly held). */
-function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
+export function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
   let perKernel = cache.get(kernel);
   if (!perKernel) cache.set(kernel, (perKernel = new WeakMap()));
   let group = perKernel.get(key);

@@ -26,6 +26,17 @@ export interface TorchSettings {
   readonly radius?: number;
 }
 
+/**
+ * What the real-time chain (Renderer.renderFrame) shows: its output, or one of the denoiser's debug
+ * views. Mirrors DENOISE_VIEW_* in shaders/passes/denoise-output.wgsl by position.
+ */
+export const DENOISE_VIEWS = ['output', 'history-length', 'variance', 'normal', 'depth', 'albedo', 'motion', 'id'] as const;
+export type DenoiseView = (typeof DENOISE_VIEWS)[number];
+
+/** Frames of temporal history: a cap, or no cap (a still camera then converges like progressive rendering). */
+export type HistoryCap = number | 'unlimited';
+export const MAX_HISTORY_CAP = 65536;
+
 export interface RenderSettings {
   /** Scattering events per path: 0 shows emitters only, 1 direct light, ... */
   readonly maxBounces: number;
@@ -36,6 +47,15 @@ export interface RenderSettings {
   /** Seed of every random stream: the same seed, scene and settings give the same image. */
   readonly seed: number;
   readonly torch: TorchSettings;
+  /** Real-time frames: accumulate each pixel's history over frames, reprojected as the camera moves. */
+  readonly temporal: boolean;
+  /** Real-time frames: the edge-aware spatial (à-trous) filter. */
+  readonly denoise: boolean;
+  /** Temporal history clamp: mean ± clampK·σ of the current 3×3 neighbourhood (0: no clamp). */
+  readonly clampK: number;
+  /** Largest history length N (blend weight 1/N); 'unlimited' also lifts the clamp while the camera is still. */
+  readonly historyCap: HistoryCap;
+  readonly denoiseView: DenoiseView;
 }
 
 export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
@@ -45,6 +65,11 @@ export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
   exposureStops: 0,
   seed: 1,
   torch: Object.freeze({ enabled: true }),
+  temporal: true,
+  denoise: true,
+  clampK: 1.25,
+  historyCap: 32,
+  denoiseView: 'output',
 });
 
 /** Settings that change the estimate itself: changing one restarts accumulation. */
@@ -85,5 +110,19 @@ export function validateSettings(s: RenderSettings): RenderSettings {
   if (t.intensity !== undefined && !(Number.isFinite(t.intensity) && t.intensity >= 0)) throw new LanternError(`torch intensity must be a non-negative number, not ${t.intensity}`);
   if (t.range !== undefined && !(Number.isFinite(t.range) && t.range > 0)) throw new LanternError(`torch range must be a positive number, not ${t.range}`);
   if (t.radius !== undefined && !(Number.isFinite(t.radius) && t.radius > 0)) throw new LanternError(`torch radius must be a positive number, not ${t.radius}`);
+  validateDenoiseSettings(s);
   return s;
+}
+
+function validateDenoiseSettings(s: RenderSettings): void {
+  if (typeof s.temporal !== 'boolean') throw new LanternError(`temporal must be true or false, not ${String(s.temporal)}`);
+  if (typeof s.denoise !== 'boolean') throw new LanternError(`denoise must be true or false, not ${String(s.denoise)}`);
+  if (!Number.isFinite(s.clampK) || s.clampK < 0 || s.clampK > 16) throw new LanternError(`clamp k must be a number from 0 (no clamp) to 16, not ${s.clampK}`);
+  const cap = s.historyCap;
+  if (cap !== 'unlimited' && !(Number.isInteger(cap) && cap >= 1 && cap <= MAX_HISTORY_CAP)) {
+    throw new LanternError(`history cap must be a whole number of frames from 1 to ${MAX_HISTORY_CAP}, or 'unlimited', not ${String(cap)}`);
+  }
+  if (!DENOISE_VIEWS.includes(s.denoiseView)) {
+    throw new LanternError(`unknown denoise view '${s.denoiseView}'`, `Use one of: ${DENOISE_VIEWS.join(', ')}`);
+  }
 }
