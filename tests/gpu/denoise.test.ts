@@ -106,3 +106,106 @@ describe('reprojection', () => {
     expect(kept).toBeGreaterThan(SIZE * SIZE / 2);
   });
 });
+
+const CORNELL = prepareScene(builtinScene('cornell'));
+const Q = 40;
+
+/** Relative MSE, (a − b)² / (b² + 0.01) averaged over pixels and channels: bright pixels do not dominate. */
+function relativeMse(a: LinearImage, b: LinearImage): number {
+  let sum = 0;
+  for (let i = 0; i < a.radiance.length; i++) sum += (a.radiance[i]! - b.radiance[i]!) ** 2 / (b.radiance[i]! ** 2 + 0.01);
+  return sum / a.radiance.length;
+}
+
+/** Mean luminance and the standard error of that mean (pixels of a raw frame are independent). */
+function meanLuminance(img: LinearImage): { mean: number; se: number } {
+  const n = img.width * img.height;
+  let sum = 0, sum2 = 0;
+  for (let i = 0; i < n; i++) {
+    const l = 0.2126 * img.radiance[i * 3]! + 0.7152 * img.radiance[i * 3 + 1]! + 0.0722 * img.radiance[i * 3 + 2]!;
+    sum += l;
+    sum2 += l * l;
+  }
+  const mean = sum / n;
+  return { mean, se: Math.sqrt(Math.max(sum2 / n - mean * mean, 0) / n) };
+}
+
+describe('denoising the Cornell box at 1 spp', () => {
+  it('comes much closer to the converged image than the raw frame, with the same mean', async () => {
+    const r = renderer;
+    await r.setScene(CORNELL);
+    await r.resize(Q, Q);
+    // Looking down at the boxes, the light out of view: its edge pixels (emission, not filtered) would
+    // otherwise dominate the error of both images.
+    r.setCamera({ ...CORNELL.scene.camera, forward: [0, -0.12, 1], vfovDegrees: 30 });
+    r.updateSettings({ maxBounces: 1, seed: 5, denoiseView: 'output', historyCap: 32 });
+    await renderProgressive(r, { spp: 256 });
+    const acc = await r.readAccumulation();
+    const reference: LinearImage = { width: Q, height: Q, radiance: acc.radiance };
+
+    const frames = async (settings: { temporal: boolean; denoise: boolean }, count: number) => {
+      r.updateSettings(settings);
+      r.resetHistory();
+      for (let f = 0; f < count; f++) r.renderFrame(1);
+      return r.readFrame();
+    };
+    const raw = await frames({ temporal: false, denoise: false }, 1);
+    const spatial = await frames({ temporal: false, denoise: true }, 1);
+    const both = await frames({ temporal: true, denoise: true }, 8);
+    const mse = { raw: relativeMse(raw, reference), spatial: relativeMse(spatial, reference), both: relativeMse(both, reference) };
+    console.log(`Cornell ${Q}×${Q}, 1 spp, relMSE vs 256 spp: raw ${mse.raw.toExponential(3)}, spatial ${mse.spatial.toExponential(3)} (×${(mse.raw / mse.spatial).toFixed(1)}), temporal+spatial after 8 frames ${mse.both.toExponential(3)} (×${(mse.raw / mse.both).toFixed(1)})`);
+    // Measured on SwiftShader: ×4.3 spatial only, ×7.6 temporal + spatial.
+    expect(mse.raw / mse.spatial).toBeGreaterThan(2.5);
+    expect(mse.raw / mse.both).toBeGreaterThan(4.5);
+
+    // No energy lost or gained: the filtered means stay within the raw frame's Monte Carlo error.
+    const m = { raw: meanLuminance(raw), spatial: meanLuminance(spatial), both: meanLuminance(both), reference: meanLuminance(reference) };
+    console.log(`mean luminance: raw ${m.raw.mean.toFixed(4)} ± ${m.raw.se.toFixed(4)}, spatial ${m.spatial.mean.toFixed(4)}, both ${m.both.mean.toFixed(4)}, reference ${m.reference.mean.toFixed(4)}`);
+    expect(Math.abs(m.spatial.mean - m.raw.mean)).toBeLessThan(4 * m.raw.se);
+    expect(Math.abs(m.both.mean - m.reference.mean)).toBeLessThan(4 * m.raw.se);
+  });
+});
+
+describe('a moving object', () => {
+  it('leaves no trail longer than a few frames', async () => {
+    await renderer.resize(SIZE, SIZE);
+    // A black square sliding across an emissive wall at 1 unit (about 7 pixels) per frame: once it
+    // has left a pixel, the pixel must show the wall again within TRAIL_LIMIT frames.
+    const TRAIL_LIMIT = 2;
+    const FRAMES = 10;
+    renderer.updateSettings({ maxBounces: 0, temporal: true, denoise: true, historyCap: 32, denoiseView: 'output' });
+    renderer.resetHistory();
+    renderer.setCamera(camera(0));
+    const c = camera(0);
+    const covered = (f: number, x: number, y: number, margin: number) => {
+      const [x0, y0] = project(c, [-4 + f + 1, 1, OCCLUDER_Z]), [x1, y1] = project(c, [-4 + f - 1, -1, OCCLUDER_Z]);
+      return x + 0.5 > Math.min(x0, x1) - margin && x + 0.5 < Math.max(x0, x1) + margin && y + 0.5 > y0 - margin && y + 0.5 < y1 + margin;
+    };
+    const images: LinearImage[] = [];
+    for (let f = 0; f < FRAMES; f++) {
+      await renderer.setScene(wallScene(-4 + f, { albedo: 0, emission: 0, sameMaterial: false }));
+      renderer.setCamera(c);
+      renderer.renderFrame(1);
+      images.push(await renderer.readFrame());
+    }
+    let longest = 0, uncovered = 0;
+    for (let y = 0; y < SIZE; y++) {
+      for (let x = 0; x < SIZE; x++) {
+        for (let f = 1; f < FRAMES; f++) {
+          // Left uncovered at frame f: covered before, clear of the square from f on.
+          if (!covered(f - 1, x, y, -1.5)) continue;
+          let clear = true;
+          for (let g = f; g < FRAMES; g++) clear &&= !covered(g, x, y, 1.5);
+          if (!clear) continue;
+          uncovered++;
+          let trail = 0;
+          for (let g = f; g < FRAMES; g++) if (Math.abs(px(images[g]!, x, y) - 1) > 0.1) trail = g - f + 1;
+          longest = Math.max(longest, trail);
+        }
+      }
+    }
+    console.log(`moving square: ${uncovered} pixels uncovered, longest trail ${longest} frames`);
+    expect(uncovered).toBeGreaterThan(100);
+    expect(longest).toBeLessThanOrEqual(TRAIL_LIMIT);
+  });
+});

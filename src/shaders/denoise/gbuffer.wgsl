@@ -9,6 +9,9 @@ const NO_ID: u32 = 0xffffffffu;
 // previous_position of a point that was behind the previous camera.
 const OFF_SCREEN: f32 = -1e9;
 
+// Describes the surface through the pixel centre (stable while the camera is still, whatever the
+// samples' jitter), except albedo and emission, which are the means over the frame's jittered samples
+// (so remodulation inverts their demodulation).
 struct GBufferTexel {
   // Unit world-space shading normal turned toward the camera (for a miss: minus the ray direction).
   normal: vec3f,
@@ -18,10 +21,12 @@ struct GBufferTexel {
   albedo: vec3f,
   // Material index of the first hit, NO_ID for a miss.
   id: u32,
-  // Where the first hit was in the previous frame: image point in pixels (motion = this − pixel centre).
-  previous_position: vec2f,
+  // Mean radiance emitted by the samples' first hits: added back after filtering, never filtered.
+  emission: vec3f,
   // Linear depth of the first hit seen from the previous camera (MISS_DEPTH for a miss).
   previous_depth: f32,
+  // Where the first hit was in the previous frame: image point in pixels (motion = this − pixel centre).
+  previous_position: vec2f,
 }
 
 struct HistoryTexel {
@@ -31,6 +36,8 @@ struct HistoryTexel {
   length: f32,
   // Accumulated first and second moments of each frame's illumination luminance (SVGF's variance source).
   moments: vec2f,
+  // Accumulated first-hit emission (G-buffer emission), blended like the illumination but never filtered.
+  emission: vec3f,
 }
 
 fn is_miss(g: GBufferTexel) -> bool {

@@ -1,5 +1,5 @@
-// The end of the real-time chain: remodulates the (filtered) illumination by the G-buffer albedo into
-// linear radiance for the tone mapper, or shows one of the denoiser's debug views instead. The
+// The end of the real-time chain: remodulates the (filtered) illumination by the G-buffer albedo and
+// adds the (temporally accumulated) first-hit emission back, giving linear radiance for the tone mapper, or shows one of the denoiser's debug views instead. The
 // closed set of views is DENOISE_VIEW_*, mirrored by position in renderer/settings.ts.
 // Expects the view (group 1) and denoise/gbuffer.
 
@@ -79,7 +79,7 @@ fn denoise_output(@builtin(global_invocation_id) id: vec3u) {
       c = id_colour(g.id);
     }
     default: {
-      c = illumination[i].rgb * demodulation(g.albedo);
+      c = history[i].emission + illumination[i].rgb * demodulation(g.albedo);
     }
   }
   output[i] = vec4f(c, 1.0);

@@ -1,8 +1,10 @@
 // The real-time frame: `samples` jittered paths per pixel (trace_path of passes/path-trace, compiled
 // with CAPTURE_PRIMARY), written — not added — as the frame's demodulated radiance, plus the
-// G-buffer of the first sample's first hit, reprojected into the previous camera for the temporal
-// pass. Demodulation divides each sample by its own first-hit albedo, so textures are not blurred by
-// the spatial filter (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering", §4).
+// G-buffer: the surface through the pixel centre (one extra primary ray, so that depth, normal and
+// id do not flicker with the jitter and the temporal tests stay stable while the camera is still),
+// reprojected into the previous camera. Each sample's emission seen at its first hit is kept apart
+// (it needs no filtering) and the rest is divided by its first-hit albedo, so textures and lights are
+// not blurred by the spatial filter (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering", §4).
 // Expects the scene (group 0) and view (group 1); group 2 adds the previous camera and the outputs.
 
 #import passes/path-trace
@@ -19,17 +21,21 @@ struct FrameParams {
 @group(2) @binding(4) var<storage, read_write> frame_radiance: array<vec4f>;
 @group(2) @binding(5) var<storage, read_write> gbuffer: array<GBufferTexel>;
 
-fn miss_texel(direction: vec3f) -> GBufferTexel {
-  let previous = project_offset(frame.previous_camera, view.image_size, direction);
+// The G-buffer record of the surface through the pixel centre (albedo and emission are filled in from the samples).
+fn centre_texel(pixel: vec2u) -> GBufferTexel {
+  let ray = camera_ray(vec2f(pixel) + 0.5);
+  let hit = trace_closest(ray);
+  if (hit.triangle == NO_TRIANGLE) {
+    let previous = project_offset(frame.previous_camera, view.image_size, ray.direction);
+    let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
+    return GBufferTexel(-ray.direction, MISS_DEPTH, vec3f(1.0), NO_ID, vec3f(0.0), MISS_DEPTH, position);
+  }
+  let surface = surface_at(hit);
+  let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
+  let previous = project_point(frame.previous_camera, view.image_size, surface.position);
   let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
-  return GBufferTexel(-direction, MISS_DEPTH, vec3f(1.0), NO_ID, position, MISS_DEPTH);
-}
-
-fn hit_texel(h: PrimaryHit) -> GBufferTexel {
-  let previous = project_point(frame.previous_camera, view.image_size, h.position);
-  let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
-  let depth = dot(h.position - view.camera.position, view.camera.forward);
-  return GBufferTexel(h.normal, depth, h.albedo, h.material, position, previous.z);
+  let depth = dot(surface.position - view.camera.position, view.camera.forward);
+  return GBufferTexel(normal, depth, vec3f(1.0), surface.material, vec3f(0.0), previous.z, position);
 }
 
 @compute @workgroup_size(8, 8)
@@ -42,25 +48,20 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u) {
   var rng = rng_seed(pixel_index, params.sample_index, params.seed);
   var illumination = vec3f(0.0);
   var albedo = vec3f(0.0);
-  var texel: GBufferTexel;
+  var emission = vec3f(0.0);
   for (var s = 0u; s < params.samples; s++) {
-    let ray = camera_ray(vec2f(pixel) + rng_next_2d(&rng));
-    primary.hit = false;
-    primary.albedo = vec3f(1.0);
-    let path = trace_path(ray, &rng);
+    primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
+    let path = trace_path(camera_ray(vec2f(pixel) + rng_next_2d(&rng)), &rng);
     let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
-    illumination += radiance / demodulation(primary.albedo);
+    let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
+    illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);
     albedo += primary.albedo;
-    if (s == 0u) {
-      if (primary.hit) {
-        texel = hit_texel(primary);
-      } else {
-        texel = miss_texel(ray.direction);
-      }
-    }
+    emission += emitted;
   }
   let inv = 1.0 / f32(params.samples);
+  var texel = centre_texel(pixel);
   texel.albedo = albedo * inv;
+  texel.emission = emission * inv;
   frame_radiance[pixel_index] = vec4f(illumination * inv, 1.0);
   gbuffer[pixel_index] = texel;
 }

@@ -26,21 +26,15 @@ const ROULETTE_START_BOUNCE: u32 = 3u;
 const SHADOW_RAY_SHORTEN: f32 = 1e-4;
 
 // Set only by the real-time frame kernel (passes/path-trace-frame): trace_path then records its first
-// hit in `primary` for the G-buffer and albedo demodulation. path_trace leaves it false, so the
+// hit's albedo and emission in `primary`, for demodulation. path_trace leaves it false, so the
 // branch is constant-folded away and the progressive kernel is unchanged.
 override CAPTURE_PRIMARY: bool = false;
 
-// The first surface a camera ray hit; `hit` false for a miss (the other fields then keep their reset values).
+// What a camera ray's first hit contributes, for demodulation: the albedo there (1 for a miss) and the
+// emission seen there (radiance that needs no filtering).
 struct PrimaryHit {
-  hit: bool,
-  // World space.
-  position: vec3f,
-  // Unit shading normal turned toward the camera.
-  normal: vec3f,
-  // Distance along the unit camera ray.
-  t: f32,
   albedo: vec3f,
-  material: u32,
+  emission: vec3f,
 }
 var<private> primary: PrimaryHit;
 
@@ -95,10 +89,6 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
     }
     let surface = surface_at(hit);
     let material = materials[surface.material];
-    if (CAPTURE_PRIMARY && bounce == 0u) {
-      let toward = select(1.0, -1.0, dot(surface.shading_normal, ray.direction) > 0.0);
-      primary = PrimaryHit(true, surface.position, toward * surface.shading_normal, hit.t, material_albedo(material, surface.uv).rgb, surface.material);
-    }
 
     // Emission, seen only from the side the geometric normal faces.
     let cos_emitter = -dot(surface.geometric_normal, ray.direction);
@@ -109,6 +99,9 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
         weight = power_heuristic(bsdf_pdf, light_pdf);
       }
       result.radiance += throughput * material_emission(material, surface.uv, ray.direction) * weight;
+    }
+    if (CAPTURE_PRIMARY && bounce == 0u) {
+      primary = PrimaryHit(material_albedo(material, surface.uv).rgb, result.radiance);
     }
     if (bounce == params.max_bounces) {
       break;

@@ -52,7 +52,7 @@ fn same_surface(g: GBufferTexel, p: GBufferTexel) -> bool {
 
 // The history at the reprojected point: bilinear over the taps that pass same_surface. length 0: rejected.
 fn reprojected_history(g: GBufferTexel) -> HistoryTexel {
-  var sum = HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0));
+  var sum = HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0), vec3f(0.0));
   let size = vec2i(view.image_size);
   let point = g.previous_position - 0.5;
   let base = vec2i(floor(point));
@@ -73,12 +73,13 @@ fn reprojected_history(g: GBufferTexel) -> HistoryTexel {
     sum.illumination += w * h.illumination;
     sum.length += w * h.length;
     sum.moments += w * h.moments;
+    sum.emission += w * h.emission;
     weight_sum += w;
   }
   if (weight_sum < 1e-3) {
-    return HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0));
+    return HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0), vec3f(0.0));
   }
-  return HistoryTexel(sum.illumination / weight_sum, sum.length / weight_sum, sum.moments / weight_sum);
+  return HistoryTexel(sum.illumination / weight_sum, sum.length / weight_sum, sum.moments / weight_sum, sum.emission / weight_sum);
 }
 
 @compute @workgroup_size(8, 8)
@@ -120,11 +121,11 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
 
   let l = luminance(current);
   let frame_moments = vec2f(l, l * l);
-  var h = HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0));
+  var h = HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0), vec3f(0.0));
   if (params.use_history != 0u) {
     h = reprojected_history(g);
   }
-  var out = HistoryTexel(current, 1.0, frame_moments);
+  var out = HistoryTexel(current, 1.0, frame_moments, g.emission);
   if (h.length > 0.0) {
     var history_length = min(h.length + 1.0, params.history_cap);
     if (params.clamp_k > 0.0) {
@@ -141,7 +142,7 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
       h.illumination = ycocg_to_rgb(clamped);
     }
     let alpha = 1.0 / history_length;
-    out = HistoryTexel(mix(h.illumination, current, alpha), history_length, mix(h.moments, frame_moments, alpha));
+    out = HistoryTexel(mix(h.illumination, current, alpha), history_length, mix(h.moments, frame_moments, alpha), mix(h.emission, g.emission, alpha));
   }
   history[i] = out;
 
