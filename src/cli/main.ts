@@ -5,6 +5,7 @@
 import { Command } from 'commander';
 import { registerBench } from './commands/bench.ts';
 import { registerConvert } from './commands/convert.ts';
+import { registerDiff } from './commands/diff.ts';
 import { registerInfo } from './commands/info.ts';
 import { registerRender } from './commands/render.ts';
 import { registerTextures } from './commands/textures.ts';
@@ -24,6 +25,7 @@ registerBench(program, context);
 registerInfo(program, context);
 registerConvert(program, context);
 registerTextures(program, context);
+registerDiff(program, context);
 
 await program.parseAsync(process.argv);
 // Dawn keeps native threads alive; leave as soon as the command is done.

@@ -2,15 +2,16 @@
 import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
-import { DEFAULT_SETTINGS, LIGHT_SAMPLING, TONE_MAPPERS, type LightSampling, type ToneMapper } from '../../renderer/settings.ts';
+import { DEFAULT_SETTINGS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS, type LightSampling, type ToneMapper } from '../../renderer/settings.ts';
 import { cameraFromOptions } from '../camera-option.ts';
 import { choiceOption, integerOption, numberListOption, numberOption, withImageOptions, withSceneOptions } from '../options.ts';
 import { writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
+import { historyCapOption, isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
 
-interface RenderOptions {
+interface RenderOptions extends FrameModeOptions {
   width: number;
   height: number;
   spp: number;
@@ -51,11 +52,20 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--torch-range <distance>', 'distance at which the torch fades out', numberOption('--torch-range', 1e-6, 1e12))
     .option('--torch-color <r,g,b>', 'torch colour, linear RGB', numberListOption('--torch-color', [3]))
     .option('--json', 'print what was done as JSON')
+    .option('--temporal', 'frame mode: accumulate over frames with reprojection (temporal denoising)')
+    .option('--denoise', 'frame mode: the edge-aware spatial (à-trous) filter')
+    .option('--frames <n>', 'frame mode: frames to render, --spp samples each; with more than one, --out and --exr name folders', integerOption('--frames', 1, 100_000))
+    .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)')
+    .option('--history-cap <n|unlimited>', 'frame mode: longest temporal history in frames', historyCapOption)
+    .option('--clamp-k <k>', 'frame mode: history clamp to mean ± k·σ of the 3×3 neighbourhood (0: off)', numberOption('--clamp-k', 0, 16))
+    .option('--denoise-view <view>', `frame mode: ${DENOISE_VIEWS.join(', ')}`, choiceOption('--denoise-view', DENOISE_VIEWS))
     .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
 }
 
 async function render(sceneArg: string, o: RenderOptions, context: CliContext): Promise<void> {
-  const png = o.out ?? (o.exr ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
+  // A sequence of frames writes only what was asked for.
+  const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
+  const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
   await renderer.resize(o.width, o.height);
   renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
@@ -73,6 +83,15 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     },
   });
 
+  if (isFrameMode(o)) {
+    const camera = renderer.camera!;
+    const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) });
+    const report = { scene: prepared.scene.name, width: o.width, height: o.height, sppPerFrame: o.spp, bounces: o.bounces, temporal: Boolean(o.temporal), denoise: Boolean(o.denoise), adapter: renderer.gpu.adapterName, ...result };
+    const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
+    context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${o.spp} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
+    renderer.destroy();
+    return;
+  }
   const bar = !o.json && process.stderr.isTTY ? new SingleBar({ format: 'rendering [{bar}] {value}/{total} spp | {eta_formatted} left', hideCursor: true, stream: process.stderr }) : undefined;
   bar?.start(o.spp, 0);
   const { seconds } = await renderProgressive(renderer, { spp: o.spp, onProgress: (done) => bar?.update(done) });

@@ -2,8 +2,8 @@
 // previous frame (the path tracer's previous_position); the four bilinear taps there are kept only
 // where the previous G-buffer agrees (same side of the sky, same material, depth within a relative
 // tolerance, normals within an angle) and inside the image, else the history is rejected
-// (disocclusion). Accepted history is clamped in YCoCg to the current 3×3 neighbourhood's
-// mean ± k·σ (Karis 2014), a large overshoot counts as a change of the pixel and shortens its
+// (disocclusion). Accepted history is clamped in YCoCg to the current 3×3 neighbourhood's mean ± k·σ
+// (Karis 2014; its emission to the neighbourhood's range), a large overshoot counts as a change of the pixel and shortens its
 // history, and the result blends with weight 1/N up to the history cap. Luminance moments are
 // integrated alongside, giving SVGF's per-pixel variance (Schied et al. 2017, §4.2), with a spatial
 // 3×3 estimate while the history is short. Expects the view (group 1) and denoise/gbuffer.
@@ -98,6 +98,8 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
   var l_sum = 0.0;
   var l_sum2 = 0.0;
   var n = 0.0;
+  var emission_min = vec3f(3.4e38);
+  var emission_max = vec3f(0.0);
   let size = vec2i(view.image_size);
   for (var dy = -1; dy <= 1; dy++) {
     for (var dx = -1; dx <= 1; dx++) {
@@ -105,7 +107,11 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
       if (any(q < vec2i(0)) || any(q >= size)) {
         continue;
       }
-      let c = frame_radiance[u32(q.y) * view.image_size.x + u32(q.x)].rgb;
+      let qi = u32(q.y) * view.image_size.x + u32(q.x);
+      let c = frame_radiance[qi].rgb;
+      let e = gbuffer[qi].emission;
+      emission_min = min(emission_min, e);
+      emission_max = max(emission_max, e);
       let y = rgb_to_ycocg(c);
       sum += y;
       sum2 += y * y;
@@ -140,6 +146,9 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
         history_length = min(history_length, CHANGED_HISTORY);
       }
       h.illumination = ycocg_to_rgb(clamped);
+      // Emission is nearly free of noise, so its history is clamped to the neighbourhood's range
+      // (Karis 2014): resampling in reprojection would otherwise smear lamp textures as the camera moves.
+      h.emission = clamp(h.emission, emission_min, emission_max);
     }
     let alpha = 1.0 / history_length;
     out = HistoryTexel(mix(h.illumination, current, alpha), history_length, mix(h.moments, frame_moments, alpha), mix(h.emission, g.emission, alpha));
