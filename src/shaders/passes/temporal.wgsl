@@ -58,6 +58,7 @@ fn reprojected_history(g: GBufferTexel) -> HistoryTexel {
   let base = vec2i(floor(point));
   let f = point - floor(point);
   var weight_sum = 0.0;
+  var nearest_weight = 0.0;
   for (var tap = 0u; tap < 4u; tap++) {
     let offset = vec2i(i32(tap & 1u), i32(tap >> 1u));
     let q = base + offset;
@@ -73,13 +74,18 @@ fn reprojected_history(g: GBufferTexel) -> HistoryTexel {
     sum.illumination += w * h.illumination;
     sum.length += w * h.length;
     sum.moments += w * h.moments;
-    sum.emission += w * h.emission;
+    // Emission comes from the nearest accepted tap instead: lamp textures are sharp and nearly
+    // noise-free, and repeated bilinear resampling while the camera moves would smear them.
+    if (w > nearest_weight) {
+      nearest_weight = w;
+      sum.emission = h.emission;
+    }
     weight_sum += w;
   }
   if (weight_sum < 1e-3) {
     return HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0), vec3f(0.0));
   }
-  return HistoryTexel(sum.illumination / weight_sum, sum.length / weight_sum, sum.moments / weight_sum, sum.emission / weight_sum);
+  return HistoryTexel(sum.illumination / weight_sum, sum.length / weight_sum, sum.moments / weight_sum, sum.emission);
 }
 
 @compute @workgroup_size(8, 8)
@@ -146,8 +152,7 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
         history_length = min(history_length, CHANGED_HISTORY);
       }
       h.illumination = ycocg_to_rgb(clamped);
-      // Emission is nearly free of noise, so its history is clamped to the neighbourhood's range
-      // (Karis 2014): resampling in reprojection would otherwise smear lamp textures as the camera moves.
+      // Emission is nearly free of noise: its history is clamped to the neighbourhood's range (Karis 2014).
       h.emission = clamp(h.emission, emission_min, emission_max);
     }
     let alpha = 1.0 / history_length;
