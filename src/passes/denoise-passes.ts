@@ -18,6 +18,8 @@ export interface TemporalValues {
   /** 0: no clamp. */
   readonly clampK: number;
   readonly useHistory: boolean;
+  /** The camera is where it was in the previous frame (first-hit emission is averaged only then). */
+  readonly stillCamera: boolean;
 }
 
 export interface DenoisePasses {
@@ -42,6 +44,7 @@ export const temporalParams = (t: TemporalValues): UniformValues => ({
   history_cap: Number.isFinite(t.historyCap) ? t.historyCap : NO_CAP,
   clamp_k: t.clampK,
   use_history: t.useHistory ? 1 : 0,
+  still_camera: t.stillCamera ? 1 : 0,
 });
 
 export const atrousParams = (iteration: number): UniformValues => ({

@@ -113,6 +113,7 @@ export class Denoiser {
       // A still camera with no cap converges without limit: nothing to clamp against.
       clampK: unlimited && still ? 0 : s.clampK,
       useHistory: s.temporal && this.historyValid,
+      stillCamera: still,
     }));
     this.passes.temporal.encode(encoder, groups.temporal, b.width, b.height, r.timer);
     if (s.denoise) {

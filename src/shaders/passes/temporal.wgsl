@@ -3,7 +3,7 @@
 // where the previous G-buffer agrees (same side of the sky, same material, depth within a relative
 // tolerance, normals within an angle) and inside the image, else the history is rejected
 // (disocclusion). Accepted history is clamped in YCoCg to the current 3×3 neighbourhood's mean ± k·σ
-// (Karis 2014; its emission to the neighbourhood's range), a large overshoot counts as a change of the pixel and shortens its
+// (Karis 2014), a large overshoot counts as a change of the pixel and shortens its
 // history, and the result blends with weight 1/N up to the history cap. Luminance moments are
 // integrated alongside, giving SVGF's per-pixel variance (Schied et al. 2017, §4.2), with a spatial
 // 3×3 estimate while the history is short. Expects the view (group 1) and denoise/gbuffer.
@@ -19,6 +19,8 @@ struct TemporalParams {
   clamp_k: f32,
   // 0: ignore the history (temporal accumulation off, or the first frame): pass the frame through.
   use_history: u32,
+  // 0: the camera moved, so the emission of this frame replaces its history (see below).
+  still_camera: u32,
 }
 
 // Reprojection tests: relative depth difference and cosine between normals.
@@ -58,7 +60,6 @@ fn reprojected_history(g: GBufferTexel) -> HistoryTexel {
   let base = vec2i(floor(point));
   let f = point - floor(point);
   var weight_sum = 0.0;
-  var nearest_weight = 0.0;
   for (var tap = 0u; tap < 4u; tap++) {
     let offset = vec2i(i32(tap & 1u), i32(tap >> 1u));
     let q = base + offset;
@@ -74,18 +75,13 @@ fn reprojected_history(g: GBufferTexel) -> HistoryTexel {
     sum.illumination += w * h.illumination;
     sum.length += w * h.length;
     sum.moments += w * h.moments;
-    // Emission comes from the nearest accepted tap instead: lamp textures are sharp and nearly
-    // noise-free, and repeated bilinear resampling while the camera moves would smear them.
-    if (w > nearest_weight) {
-      nearest_weight = w;
-      sum.emission = h.emission;
-    }
+    sum.emission += w * h.emission;
     weight_sum += w;
   }
   if (weight_sum < 1e-3) {
     return HistoryTexel(vec3f(0.0), 0.0, vec2f(0.0), vec3f(0.0));
   }
-  return HistoryTexel(sum.illumination / weight_sum, sum.length / weight_sum, sum.moments / weight_sum, sum.emission);
+  return HistoryTexel(sum.illumination / weight_sum, sum.length / weight_sum, sum.moments / weight_sum, sum.emission / weight_sum);
 }
 
 @compute @workgroup_size(8, 8)
@@ -104,8 +100,6 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
   var l_sum = 0.0;
   var l_sum2 = 0.0;
   var n = 0.0;
-  var emission_min = vec3f(3.4e38);
-  var emission_max = vec3f(0.0);
   let size = vec2i(view.image_size);
   for (var dy = -1; dy <= 1; dy++) {
     for (var dx = -1; dx <= 1; dx++) {
@@ -115,9 +109,6 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
       }
       let qi = u32(q.y) * view.image_size.x + u32(q.x);
       let c = frame_radiance[qi].rgb;
-      let e = gbuffer[qi].emission;
-      emission_min = min(emission_min, e);
-      emission_max = max(emission_max, e);
       let y = rgb_to_ycocg(c);
       sum += y;
       sum2 += y * y;
@@ -152,11 +143,13 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
         history_length = min(history_length, CHANGED_HISTORY);
       }
       h.illumination = ycocg_to_rgb(clamped);
-      // Emission is nearly free of noise: its history is clamped to the neighbourhood's range (Karis 2014).
-      h.emission = clamp(h.emission, emission_min, emission_max);
     }
     let alpha = 1.0 / history_length;
-    out = HistoryTexel(mix(h.illumination, current, alpha), history_length, mix(h.moments, frame_moments, alpha), mix(h.emission, g.emission, alpha));
+    // First-hit emission is sharp (lamp textures) and its only noise is the jitter across texel and
+    // light edges, so it is averaged only while the camera is still: reprojected, a lamp's emission
+    // survives in its neighbours (inside their 3×3 range) and fades at 1/N, a visible ghost.
+    let emission = select(g.emission, mix(h.emission, g.emission, alpha), params.still_camera != 0u);
+    out = HistoryTexel(mix(h.illumination, current, alpha), history_length, mix(h.moments, frame_moments, alpha), emission);
   }
   history[i] = out;
 
