@@ -12,6 +12,7 @@ import { Renderer, type LinearImage } from '../../src/renderer/renderer.ts';
 import { cameraBasis } from '../../src/renderer/view.ts';
 import { MeshBuilder } from '../../src/scene/builder.ts';
 import type { Camera, Scene } from '../../src/scene/types.ts';
+import { outputBuffer, runOnce, storageBuffer, testKernel } from './compute.ts';
 import { testGpu } from './gpu-context.ts';
 
 const SIZE = 48;
@@ -207,5 +208,27 @@ describe('a moving object', () => {
     console.log(`moving square: ${uncovered} pixels uncovered, longest trail ${longest} frames`);
     expect(uncovered).toBeGreaterThan(100);
     expect(longest).toBeLessThanOrEqual(TRAIL_LIMIT);
+  });
+});
+
+describe('YCoCg (lib/color)', () => {
+  it('has the textbook values and inverts exactly', async () => {
+    const { device } = await testGpu();
+    const kernel = await testKernel(device, 'test/ycocg', `
+#import lib/color
+@group(0) @binding(0) var<storage, read> input: array<vec4f>;
+@group(0) @binding(1) var<storage, read_write> output: array<vec4f>;
+@compute @workgroup_size(1) fn main(@builtin(global_invocation_id) id: vec3u) {
+  let y = rgb_to_ycocg(input[id.x].rgb);
+  output[2u * id.x] = vec4f(y, 0.0);
+  output[2u * id.x + 1u] = vec4f(ycocg_to_rgb(y), 0.0);
+}`, 'main');
+    const colours = [[1, 0, 0], [0, 1, 0], [0, 0, 1], [0.3, 7.5, 0.02]];
+    const input = storageBuffer(device, 'colours', new Float32Array(colours.flatMap((c) => [...c, 0])));
+    const output = outputBuffer(device, 'ycocg', colours.length * 32);
+    const out = new Float32Array(await runOnce(device, kernel, { 0: kernel.bindGroup(0, { input, output }) }, [colours.length], output));
+    const expected = [[0.25, 0.5, -0.25], [0.5, 0, 0.5], [0.25, -0.5, -0.25]];
+    expected.forEach((e, i) => e.forEach((v, k) => expect(out[8 * i + k]).toBeCloseTo(v, 6)));
+    colours.forEach((c, i) => c.forEach((v, k) => expect(out[8 * i + 4 + k]).toBeCloseTo(v, 5)));
   });
 });
