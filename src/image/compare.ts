@@ -62,34 +62,24 @@ const C2 = 0.03 ** 2;
 /** Mean SSIM of two single-channel images in [0, 1], Gaussian-windowed (windows clipped at the borders). */
 export function ssim(x: Float32Array, y: Float32Array, width: number, height: number): number {
   const kernel = Array.from({ length: 2 * SSIM_RADIUS + 1 }, (_, i) => Math.exp(-((i - SSIM_RADIUS) ** 2) / (2 * SSIM_SIGMA ** 2)));
-  // Separable blur of x, y, x², y², xy.
-  const blur = (f: (i: number) => number): Float64Array => {
-    const tmp = new Float64Array(width * height), out = new Float64Array(width * height);
-    for (let r = 0; r < height; r++) {
-      for (let c = 0; c < width; c++) {
-        let s = 0, w = 0;
-        for (let k = -SSIM_RADIUS; k <= SSIM_RADIUS; k++) {
-          const cc = c + k;
-          if (cc < 0 || cc >= width) continue;
-          s += kernel[k + SSIM_RADIUS]! * f(r * width + cc);
-          w += kernel[k + SSIM_RADIUS]!;
-        }
-        tmp[r * width + c] = s / w;
+  // Separable blur of x, y, x², y², xy: along rows, then along columns.
+  const pass = (src: (i: number) => number, along: 'row' | 'column'): Float64Array => {
+    const out = new Float64Array(width * height);
+    const [n, stride] = along === 'row' ? [width, 1] : [height, width];
+    for (let i = 0; i < width * height; i++) {
+      const at = along === 'row' ? i % width : Math.floor(i / width);
+      let s = 0, w = 0;
+      for (let k = Math.max(-SSIM_RADIUS, -at); k <= Math.min(SSIM_RADIUS, n - 1 - at); k++) {
+        s += kernel[k + SSIM_RADIUS]! * src(i + k * stride);
+        w += kernel[k + SSIM_RADIUS]!;
       }
-    }
-    for (let r = 0; r < height; r++) {
-      for (let c = 0; c < width; c++) {
-        let s = 0, w = 0;
-        for (let k = -SSIM_RADIUS; k <= SSIM_RADIUS; k++) {
-          const rr = r + k;
-          if (rr < 0 || rr >= height) continue;
-          s += kernel[k + SSIM_RADIUS]! * tmp[rr * width + c]!;
-          w += kernel[k + SSIM_RADIUS]!;
-        }
-        out[r * width + c] = s / w;
-      }
+      out[i] = s / w;
     }
     return out;
+  };
+  const blur = (f: (i: number) => number): Float64Array => {
+    const rows = pass(f, 'row');
+    return pass((i) => rows[i]!, 'column');
   };
   const mx = blur((i) => x[i]!), my = blur((i) => y[i]!);
   const xx = blur((i) => x[i]! * x[i]!), yy = blur((i) => y[i]! * y[i]!), xy = blur((i) => x[i]! * y[i]!);

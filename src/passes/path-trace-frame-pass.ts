@@ -4,20 +4,14 @@
  * radiance, plus the G-buffer. Compiled with CAPTURE_PRIMARY = 1, so the progressive kernel
  * (PathTracePass, CAPTURE_PRIMARY = 0) is untouched by the G-buffer writes.
  */
-import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type ComputeKernel, type TraversalVariant } from '../gpu/kernel.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { cameraBasis, type ViewUniform } from '../renderer/view.ts';
 import type { Camera } from '../scene/types.ts';
-import { cached, PATH_TRACE_MODULE, PATH_TRACE_WORKGROUP, pathTraceParams, type PathTraceDispatch } from './path-trace-pass.ts';
+import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/path-trace-frame';
-
-const FRAME_VARIANTS: Record<TraversalVariant, Record<string, number>> = {
-  masked: { ...TRAVERSAL_VARIANTS.masked, CAPTURE_PRIMARY: 1 },
-  opaque: { ...TRAVERSAL_VARIANTS.opaque, CAPTURE_PRIMARY: 1 },
-};
 
 /** What the frame kernel writes. */
 export interface FrameTarget {
@@ -28,18 +22,14 @@ export interface FrameTarget {
 }
 
 export class PathTraceFramePass {
-  private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
-  private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
-  private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
-
   private constructor(
-    private readonly kernels: KernelVariants<TraversalVariant>,
+    private readonly kernels: TracingKernels,
     private readonly params: UniformParams<UniformValues>,
     private readonly frame: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<PathTraceFramePass> {
-    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'path_trace_frame' }, FRAME_VARIANTS);
+    const kernels = await TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1 });
     return new PathTraceFramePass(kernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
   }
 
@@ -56,21 +46,8 @@ export class PathTraceFramePass {
     this.params.write(pathTraceParams(d));
     const b = cameraBasis(previousCamera, view.width / view.height);
     this.frame.write({ previous_camera: { position: b.position, right: b.right, up: b.up, forward: b.forward } });
-    const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
-    const pass = encoder.beginComputePass({ label: 'path trace (frame)', ...(timer ? { timestampWrites: timer.timestampWrites('path trace (frame)') } : {}) });
-    kernel.dispatch(
-      pass,
-      {
-        0: cached(this.sceneGroups, kernel, scene, () => kernel.bindGroup(0, scene.bindings)),
-        1: cached(this.viewGroups, kernel, view, () => kernel.bindGroup(1, { view: view.buffer })),
-        2: cached(this.targetGroups, kernel, target.gbuffer, () =>
-          kernel.bindGroup(2, { params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer }),
-        ),
-      },
-      Math.ceil(d.tile.width / PATH_TRACE_WORKGROUP),
-      Math.ceil(d.tile.height / PATH_TRACE_WORKGROUP),
-    );
-    pass.end();
+    const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer });
+    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.gbuffer, targets, d.tile, timer);
   }
 
   destroy(): void {

@@ -31,8 +31,7 @@ export function pathTraceParams(d: PathTraceDispatch): UniformValues {
 export const PATH_TRACE_MODULE = 'passes/path-trace';
 const MODULE = PATH_TRACE_MODULE;
 /** Must match @workgroup_size of path_trace (and path_trace_frame). */
-export const PATH_TRACE_WORKGROUP = 8;
-const WORKGROUP = PATH_TRACE_WORKGROUP;
+const WORKGROUP = 8;
 
 export interface Tile {
   readonly x: number;
@@ -61,40 +60,56 @@ export interface PathTraceTarget {
   readonly rayCounters: GPUBuffer;
 }
 
-export class PathTracePass {
-  // Bind groups per kernel variant (each pipeline has its own layouts) and resource.
+/**
+ * The traversal variants of a tracing entry point (shaders/passes/path-trace or an entry point that
+ * imports it) with their bind groups cached per kernel and resource: each pipeline has its own
+ * layouts. Group 0 is the scene, 1 the view, 2 the pass's own, keyed by one of its buffers.
+ */
+export class TracingKernels {
   private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
   private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
 
-  private constructor(
-    private readonly kernels: KernelVariants<TraversalVariant>,
-    private readonly params: UniformParams<UniformValues>,
-  ) {}
+  private constructor(private readonly kernels: KernelVariants<TraversalVariant>) {}
 
-  static async create(device: GPUDevice): Promise<PathTracePass> {
-    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'path_trace' }, TRAVERSAL_VARIANTS);
-    return new PathTracePass(kernels, new UniformParams(device, MODULE));
+  static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}): Promise<TracingKernels> {
+    const variants = Object.fromEntries(Object.entries(TRAVERSAL_VARIANTS).map(([k, c]) => [k, { ...c, ...extraConstants }])) as Record<TraversalVariant, Record<string, number>>;
+    return new TracingKernels(await KernelVariants.create(device, { module, entryPoint }, variants));
   }
 
-  /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
-    this.params.write(pathTraceParams(d));
+  /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
+  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, timer?: GpuTimer): void {
     const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
-    const pass = encoder.beginComputePass({ label: 'path trace', ...(timer ? { timestampWrites: timer.timestampWrites('path trace') } : {}) });
+    const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     kernel.dispatch(
       pass,
       {
         0: cached(this.sceneGroups, kernel, scene, () => kernel.bindGroup(0, scene.bindings)),
         1: cached(this.viewGroups, kernel, view, () => kernel.bindGroup(1, { view: view.buffer })),
-        2: cached(this.targetGroups, kernel, target.accumulation, () =>
-          kernel.bindGroup(2, { params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters }),
-        ),
+        2: cached(this.targetGroups, kernel, targetKey, () => kernel.bindGroup(2, targets())),
       },
-      Math.ceil(d.tile.width / WORKGROUP),
-      Math.ceil(d.tile.height / WORKGROUP),
+      Math.ceil(tile.width / WORKGROUP),
+      Math.ceil(tile.height / WORKGROUP),
     );
     pass.end();
+  }
+}
+
+export class PathTracePass {
+  private constructor(
+    private readonly kernels: TracingKernels,
+    private readonly params: UniformParams<UniformValues>,
+  ) {}
+
+  static async create(device: GPUDevice): Promise<PathTracePass> {
+    return new PathTracePass(await TracingKernels.create(device, MODULE, 'path_trace'), new UniformParams(device, MODULE));
+  }
+
+  /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
+  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+    this.params.write(pathTraceParams(d));
+    const targets = () => ({ params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters });
+    this.kernels.dispatch(encoder, 'path trace', scene, view, target.accumulation, targets, d.tile, timer);
   }
 
   destroy(): void {
@@ -103,7 +118,7 @@ export class PathTracePass {
 }
 
 /** A bind group cached per kernel and resource (both weakly held). */
-export function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
+function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
   let perKernel = cache.get(kernel);
   if (!perKernel) cache.set(kernel, (perKernel = new WeakMap()));
   let group = perKernel.get(key);

@@ -3,18 +3,17 @@
  * (Renderer.renderFrame) run frame by frame, --spp samples per frame, the camera still or following
  * a camera path; each frame written as PNG and/or EXR, GPU milliseconds per pass in the report.
  */
-import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { LanternError } from '../../errors.ts';
 import { rmse } from '../../image/compare.ts';
 import { encodeExr } from '../../image/exr.ts';
 import { encodePng } from '../../image/png.ts';
 import { GpuTimer } from '../../gpu/timestamps.ts';
 import type { Renderer } from '../../renderer/renderer.ts';
 import type { DenoiseView, HistoryCap } from '../../renderer/settings.ts';
-import { cameraAt, frameTime, parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
+import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { writeFile } from '../output-files.ts';
+import { readJsonFile } from '../wad-files.ts';
 
 export interface FrameModeOptions {
   readonly denoise?: boolean;
@@ -33,22 +32,6 @@ export function historyCapOption(value: string): HistoryCap {
   return value === 'unlimited' ? 'unlimited' : Number(value);
 }
 
-function readPath(file: string): CameraPath {
-  let text: string;
-  try {
-    text = readFileSync(file, 'utf8');
-  } catch (e) {
-    throw new LanternError(`cannot read the camera path '${file}': ${(e as NodeJS.ErrnoException).code ?? (e as Error).message}`);
-  }
-  let json: unknown;
-  try {
-    json = JSON.parse(text);
-  } catch (e) {
-    throw new LanternError(`${file} is not valid JSON: ${(e as Error).message}`);
-  }
-  return parseCameraPath(json, file);
-}
-
 export interface FrameModeResult {
   readonly frames: number;
   readonly seconds: number;
@@ -64,7 +47,7 @@ export interface FrameModeResult {
  * receive frame-0000.png, ...; with one frame they name files.
  */
 export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }): Promise<FrameModeResult> {
-  const path = o.path !== undefined ? readPath(o.path) : undefined;
+  const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
   await renderer.enableRealTime();
