@@ -33,6 +33,8 @@ interface Buffers {
   readonly width: number;
   readonly height: number;
   readonly frameRadiance: GPUBuffer;
+  /** Normal and depth of the current frame (vec4f), read by the à-trous iterations. */
+  readonly guide: GPUBuffer;
   /** [current, previous] swap every frame, as do the histories. */
   readonly gbuffers: readonly [GPUBuffer, GPUBuffer];
   readonly histories: readonly [GPUBuffer, GPUBuffer];
@@ -104,7 +106,7 @@ export class Denoiser {
     const previousCamera = this.previousCamera ?? r.camera;
     const still = sameCamera(previousCamera, r.camera);
     const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex: this.sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, ...(r.torch ? { torch: r.torch } : {}) };
-    const target = { frameRadiance: b.frameRadiance, gbuffer: b.gbuffers[this.parity]! };
+    const target = { frameRadiance: b.frameRadiance, gbuffer: b.gbuffers[this.parity]!, guide: b.guide };
     this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer);
 
     const unlimited = s.historyCap === 'unlimited';
@@ -154,6 +156,7 @@ export class Denoiser {
     const gbuffers = [make('g-buffer 0', gbufferBytes), make('g-buffer 1', gbufferBytes)] as const;
     const histories = [make('history 0', historyBytes), make('history 1', historyBytes)] as const;
     const frameRadiance = make('frame radiance', pixels * VEC4_BYTES);
+    const guide = make('a-trous guide', pixels * VEC4_BYTES);
     const temporalOut = make('temporal output', pixels * VEC4_BYTES);
     const filterA = make('a-trous A', pixels * VEC4_BYTES);
     const filterB = make('a-trous B', pixels * VEC4_BYTES);
@@ -166,19 +169,19 @@ export class Denoiser {
       const outputGroups = (illumination: GPUBuffer) => out.bindGroups(view, { gbuffer, history, filter_input: temporalOut, illumination, output });
       return {
         temporal: temporal.bindGroups(view, { frame_radiance: frameRadiance, gbuffer, previous_gbuffer: gbuffers[1 - p]!, previous_history: histories[1 - p]!, history, filter_input: temporalOut }),
-        atrous: ATROUS_STEPS.map((_, i) => atrous.bindGroups(view, { gbuffer, filter_source: chain[i]!, filter_result: chain[i + 1]! }, i)),
+        atrous: ATROUS_STEPS.map((_, i) => atrous.bindGroups(view, { guide, filter_source: chain[i]!, filter_result: chain[i + 1]! }, i)),
         outputFiltered: outputGroups(chain[ATROUS_STEPS.length]!),
         outputUnfiltered: outputGroups(temporalOut),
       };
     });
-    this.buffers = { width, height, frameRadiance, gbuffers, histories, temporalOut, filterA, filterB, output, groups };
+    this.buffers = { width, height, frameRadiance, guide, gbuffers, histories, temporalOut, filterA, filterB, output, groups };
     return this.buffers;
   }
 
   private destroyBuffers(): void {
     const b = this.buffers;
     if (!b) return;
-    for (const buffer of [b.frameRadiance, ...b.gbuffers, ...b.histories, b.temporalOut, b.filterA, b.filterB, b.output]) buffer.destroy();
+    for (const buffer of [b.frameRadiance, b.guide, ...b.gbuffers, ...b.histories, b.temporalOut, b.filterA, b.filterB, b.output]) buffer.destroy();
     this.buffers = undefined;
   }
 }

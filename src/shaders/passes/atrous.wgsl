@@ -3,11 +3,10 @@
 // edge-stopping functions of normal, depth (relative to the local depth gradient) and luminance
 // (relative to the standard deviation of the 3×3-blurred variance). Filters the demodulated
 // illumination (rgb) and carries its variance (a) through with squared weights. Expects the view
-// (group 1) and denoise/gbuffer.
+// (group 1).
 
 #import lib/color
 #import view/bindings
-#import denoise/gbuffer
 
 struct AtrousParams {
   // Distance between taps in pixels: 1, 2, 4, 8, 16 over the five iterations.
@@ -19,7 +18,8 @@ struct AtrousParams {
 }
 
 @group(2) @binding(0) var<uniform> params: AtrousParams;
-@group(2) @binding(1) var<storage, read> gbuffer: array<GBufferTexel>;
+// Per pixel: xyz = normal, w = linear depth (MISS_DEPTH for a miss), copied from the G-buffer.
+@group(2) @binding(1) var<storage, read> guide: array<vec4f>;
 @group(2) @binding(2) var<storage, read> filter_source: array<vec4f>;
 @group(2) @binding(3) var<storage, read_write> filter_result: array<vec4f>;
 
@@ -59,9 +59,9 @@ fn depth_slope(p: vec2i, axis: vec2i, z: f32) -> f32 {
   for (var s = -1; s <= 1; s += 2) {
     let q = p + s * axis;
     if (inside(q)) {
-      let g = gbuffer[texel_index(q)];
-      if (!is_miss(g)) {
-        slope = min(slope, abs(g.linear_depth - z));
+      let depth = guide[texel_index(q)].w;
+      if (depth >= 0.0) {
+        slope = min(slope, abs(depth - z));
       }
     }
   }
@@ -76,10 +76,11 @@ fn atrous_step(@builtin(global_invocation_id) id: vec3u) {
   let p = vec2i(id.xy);
   let i = texel_index(p);
   let centre = filter_source[i];
-  let g = gbuffer[i];
+  let g = guide[i];
+  let miss = g.w < 0.0;
   let l_p = luminance(centre.rgb);
   let luminance_scale = params.sigma_luminance * sqrt(max(blurred_variance(p), 0.0)) + 1e-10;
-  let slope = vec2f(depth_slope(p, vec2i(1, 0), g.linear_depth), depth_slope(p, vec2i(0, 1), g.linear_depth));
+  let slope = vec2f(depth_slope(p, vec2i(1, 0), g.w), depth_slope(p, vec2i(0, 1), g.w));
 
   var colour = vec3f(0.0);
   var variance = 0.0;
@@ -91,17 +92,17 @@ fn atrous_step(@builtin(global_invocation_id) id: vec3u) {
         continue;
       }
       let s = filter_source[texel_index(q)];
-      let gq = gbuffer[texel_index(q)];
+      let gq = guide[texel_index(q)];
       var w = b3(abs(dx)) * b3(abs(dy));
       if (dx != 0 || dy != 0) {
-        if (is_miss(g) != is_miss(gq)) {
+        if (miss != (gq.w < 0.0)) {
           continue;
         }
-        if (!is_miss(g)) {
+        if (!miss) {
           let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
-          let depth_scale = params.sigma_depth * dot(slope, offset) + 1e-3 * g.linear_depth;
-          w *= exp(-abs(g.linear_depth - gq.linear_depth) / depth_scale);
-          w *= pow(max(dot(g.normal, gq.normal), 0.0), params.sigma_normal);
+          let depth_scale = params.sigma_depth * dot(slope, offset) + 1e-3 * g.w;
+          w *= exp(-abs(g.w - gq.w) / depth_scale);
+          w *= pow(max(dot(g.xyz, gq.xyz), 0.0), params.sigma_normal);
         }
         w *= exp(-abs(l_p - luminance(s.rgb)) / luminance_scale);
       }

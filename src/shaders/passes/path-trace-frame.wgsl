@@ -20,6 +20,9 @@ struct FrameParams {
 // Per pixel: rgb = the frame's mean demodulated radiance; a = 1.
 @group(2) @binding(4) var<storage, read_write> frame_radiance: array<vec4f>;
 @group(2) @binding(5) var<storage, read_write> gbuffer: array<GBufferTexel>;
+// The à-trous filter's edge-stopping guide, apart from the 64-byte G-buffer records so that its 25
+// taps per pixel read 16 bytes each: xyz = normal, w = linear depth (as in GBufferTexel).
+@group(2) @binding(6) var<storage, read_write> guide: array<vec4f>;
 
 // The G-buffer record of the surface through the pixel centre (albedo and emission are filled in from the samples).
 fn centre_texel(pixel: vec2u) -> GBufferTexel {
@@ -64,4 +67,5 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u) {
   texel.emission = emission * inv;
   frame_radiance[pixel_index] = vec4f(illumination * inv, 1.0);
   gbuffer[pixel_index] = texel;
+  guide[pixel_index] = vec4f(texel.normal, texel.linear_depth);
 }
