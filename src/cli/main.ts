@@ -6,6 +6,7 @@ import { Command } from 'commander';
 import { registerBench } from './commands/bench.ts';
 import { registerBvhStats } from './commands/bvh-stats.ts';
 import { registerConvert } from './commands/convert.ts';
+import { registerDiff } from './commands/diff.ts';
 import { registerInfo } from './commands/info.ts';
 import { registerRender } from './commands/render.ts';
 import { registerTextures } from './commands/textures.ts';
@@ -28,6 +29,7 @@ registerBvhStats(program, context);
 registerConvert(program, context);
 registerTextures(program, context);
 registerView(program, context);
+registerDiff(program, context);
 
 await program.parseAsync(process.argv);
 // Dawn keeps native threads alive; leave as soon as the command is done.

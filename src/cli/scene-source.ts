@@ -10,7 +10,7 @@ import { LanternError } from '../errors.ts';
 import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { loadPly } from '../loaders/ply/ply.ts';
 import type { Scene } from '../scene/types.ts';
-import { openWads, readFileOrExplain } from './wad-files.ts';
+import { openWads, readFileOrExplain, readJsonFile } from './wad-files.ts';
 import { isDoomUri } from '../loaders/doom/uri.ts';
 import { loadDoomMap } from '../loaders/doom/load.ts';
 import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
@@ -75,12 +75,5 @@ export function loadSceneArgument(arg: string, options: SceneLoadOptions = {}): 
 }
 
 function readLightTable(path: string): Partial<LightTable> {
-  const text = new TextDecoder().decode(readFileOrExplain(path));
-  let json: unknown;
-  try {
-    json = JSON.parse(text);
-  } catch (e) {
-    throw new LanternError(`${path} is not valid JSON: ${(e as Error).message}`);
-  }
-  return parseLightTable(json, path);
+  return parseLightTable(readJsonFile(path), path);
 }

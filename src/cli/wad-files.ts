@@ -15,6 +15,16 @@ export function readFileOrExplain(path: string): Uint8Array {
   }
 }
 
+/** A JSON file's parsed contents; unreadable or malformed files are LanternErrors naming the path. */
+export function readJsonFile(path: string): unknown {
+  const text = new TextDecoder().decode(readFileOrExplain(path));
+  try {
+    return JSON.parse(text);
+  } catch (e) {
+    throw new LanternError(`${path} is not valid JSON: ${(e as Error).message}`);
+  }
+}
+
 export function openWads(uri: string): { stack: WadStack; map?: string } {
   const { files, map } = parseDoomUri(uri);
   const stack = new WadStack(files.map((f) => readWad(readFileOrExplain(f), basename(f))));

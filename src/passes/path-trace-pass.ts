@@ -14,8 +14,23 @@ function torchUniform(torch: Torch | undefined): { radiance: number[]; radius: n
   return { radiance: torch.color.map((c) => c * l), radius: torch.radius, range: torch.range };
 }
 
-const MODULE = 'passes/path-trace';
-/** Must match @workgroup_size of path_trace. */
+/** The `params` uniform of passes/path-trace for one dispatch (shared with the real-time frame kernel). */
+export function pathTraceParams(d: PathTraceDispatch): UniformValues {
+  return {
+    tile_origin: [d.tile.x, d.tile.y],
+    tile_size: [d.tile.width, d.tile.height],
+    sample_index: d.sampleIndex >>> 0,
+    samples: d.samples,
+    max_bounces: d.maxBounces,
+    seed: d.seed >>> 0,
+    light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
+    torch: torchUniform(d.torch),
+  };
+}
+
+export const PATH_TRACE_MODULE = 'passes/path-trace';
+const MODULE = PATH_TRACE_MODULE;
+/** Must match @workgroup_size of path_trace (and path_trace_frame). */
 const WORKGROUP = 8;
 
 export interface Tile {
@@ -45,49 +60,56 @@ export interface PathTraceTarget {
   readonly rayCounters: GPUBuffer;
 }
 
-export class PathTracePass {
-  // Bind groups per kernel variant (each pipeline has its own layouts) and resource.
+/**
+ * The traversal variants of a tracing entry point (shaders/passes/path-trace or an entry point that
+ * imports it) with their bind groups cached per kernel and resource: each pipeline has its own
+ * layouts. Group 0 is the scene, 1 the view, 2 the pass's own, keyed by one of its buffers.
+ */
+export class TracingKernels {
   private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
   private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
 
-  private constructor(
-    private readonly kernels: KernelVariants<TraversalVariant>,
-    private readonly params: UniformParams<UniformValues>,
-  ) {}
+  private constructor(private readonly kernels: KernelVariants<TraversalVariant>) {}
 
-  static async create(device: GPUDevice): Promise<PathTracePass> {
-    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'path_trace' }, TRAVERSAL_VARIANTS);
-    return new PathTracePass(kernels, new UniformParams(device, MODULE));
+  static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}): Promise<TracingKernels> {
+    const variants = Object.fromEntries(Object.entries(TRAVERSAL_VARIANTS).map(([k, c]) => [k, { ...c, ...extraConstants }])) as Record<TraversalVariant, Record<string, number>>;
+    return new TracingKernels(await KernelVariants.create(device, { module, entryPoint }, variants));
   }
 
-  /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
-    this.params.write({
-      tile_origin: [d.tile.x, d.tile.y],
-      tile_size: [d.tile.width, d.tile.height],
-      sample_index: d.sampleIndex >>> 0,
-      samples: d.samples,
-      max_bounces: d.maxBounces,
-      seed: d.seed >>> 0,
-      light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
-      torch: torchUniform(d.torch),
-    });
+  /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
+  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, timer?: GpuTimer): void {
     const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
-    const pass = encoder.beginComputePass({ label: 'path trace', ...(timer ? { timestampWrites: timer.timestampWrites('path trace') } : {}) });
+    const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     kernel.dispatch(
       pass,
       {
         0: cached(this.sceneGroups, kernel, scene, () => kernel.bindGroup(0, scene.bindings)),
         1: cached(this.viewGroups, kernel, view, () => kernel.bindGroup(1, { view: view.buffer })),
-        2: cached(this.targetGroups, kernel, target.accumulation, () =>
-          kernel.bindGroup(2, { params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters }),
-        ),
+        2: cached(this.targetGroups, kernel, targetKey, () => kernel.bindGroup(2, targets())),
       },
-      Math.ceil(d.tile.width / WORKGROUP),
-      Math.ceil(d.tile.height / WORKGROUP),
+      Math.ceil(tile.width / WORKGROUP),
+      Math.ceil(tile.height / WORKGROUP),
     );
     pass.end();
+  }
+}
+
+export class PathTracePass {
+  private constructor(
+    private readonly kernels: TracingKernels,
+    private readonly params: UniformParams<UniformValues>,
+  ) {}
+
+  static async create(device: GPUDevice): Promise<PathTracePass> {
+    return new PathTracePass(await TracingKernels.create(device, MODULE, 'path_trace'), new UniformParams(device, MODULE));
+  }
+
+  /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
+  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+    this.params.write(pathTraceParams(d));
+    const targets = () => ({ params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters });
+    this.kernels.dispatch(encoder, 'path trace', scene, view, target.accumulation, targets, d.tile, timer);
   }
 
   destroy(): void {

@@ -8,6 +8,9 @@
  * changes the estimate (scene, camera, size, bounces, light sampling, seed) restarts accumulation.
  * With a debug view set (settings.debugView), present and readImage show it as settings.debugLayout
  * asks (renderer/debug-views.ts); enableDebugViews() compiles its pipelines.
+ *
+ * Real time (after enableRealTime): renderFrame(spp) runs the denoiser's frame recipe (renderer/
+ * denoiser.ts) instead; present and readImage then show its output until the next accumulate().
  */
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
@@ -21,6 +24,7 @@ import { TonemapPass } from '../passes/tonemap-pass.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
+import { Denoiser } from './denoiser.ts';
 import { prepareScene, type PreparedScene } from './prepare.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
 import { ViewUniform } from './view.ts';
@@ -45,6 +49,14 @@ export interface Accumulation {
   readonly luminanceVariance: Float32Array;
 }
 
+/** Linear radiance of a real-time frame. */
+export interface LinearImage {
+  readonly width: number;
+  readonly height: number;
+  /** 3 floats per pixel, row-major, top row first. */
+  readonly radiance: Float32Array;
+}
+
 interface ImageTargets {
   readonly width: number;
   readonly height: number;
@@ -60,6 +72,9 @@ export class Renderer {
   private cameraValue?: Camera;
   private settingsValue: RenderSettings = DEFAULT_SETTINGS;
   private samples = 0;
+  private denoiser?: Denoiser;
+  /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
+  private shown: 'accumulation' | 'frame' = 'accumulation';
 
   private constructor(
     readonly gpu: GpuContext,
@@ -185,6 +200,57 @@ export class Renderer {
       this.device.queue.submit([encoder.finish()]);
     });
     this.samples += samples;
+    this.shown = 'accumulation';
+  }
+
+  /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output). */
+  async enableRealTime(): Promise<void> {
+    this.denoiser ??= await Denoiser.create(this.device);
+  }
+
+  /**
+   * One real-time frame: `samples` paths per pixel, then temporal accumulation (settings.temporal)
+   * and the spatial filter (settings.denoise), in one submit. The history survives setCamera (it is
+   * reprojected) and setScene (changed pixels fail the G-buffer tests); resize or resetHistory()
+   * drop it. With a timer, every pass is timed. present(), readImage() and readFrame() show the result.
+   */
+  renderFrame(samples: number, timer?: GpuTimer): void {
+    const { resources } = this.ready();
+    if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
+    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
+    const s = this.settingsValue;
+    const torch = effectiveTorch(this.prepared?.scene, s.torch);
+    const encoder = this.device.createCommandEncoder({ label: 'real-time frame' });
+    this.denoiser.encodeFrame(encoder, {
+      scene: resources,
+      view: this.view,
+      camera: this.cameraValue,
+      settings: s,
+      samples,
+      depthScale: this.sceneSize(),
+      ...(torch ? { torch } : {}),
+      ...(timer ? { timer } : {}),
+    });
+    timer?.resolve(encoder);
+    this.device.queue.submit([encoder.finish()]);
+    this.shown = 'frame';
+  }
+
+  /** Drops the real-time history: the next frame starts from its own samples. */
+  resetHistory(): void {
+    this.denoiser?.resetHistory();
+  }
+
+  /** The linear radiance of the last real-time frame (before tone mapping; a debug view if one is chosen). */
+  async readFrame(): Promise<LinearImage> {
+    const { targets } = this.ready();
+    const output = this.denoiser?.output;
+    if (!output) throw new Error('Renderer: renderFrame() before readFrame()');
+    const raw = new Float32Array(await readBuffer(this.device, output));
+    const n = targets.width * targets.height;
+    const radiance = new Float32Array(n * 3);
+    for (let i = 0; i < n; i++) for (let c = 0; c < 3; c++) radiance[i * 3 + c] = raw[i * 4 + c]!;
+    return { width: targets.width, height: targets.height, radiance };
   }
 
   /** Tone-maps the current estimate and draws it onto `target` (a canvas texture); with a timer, times both passes. */
@@ -282,6 +348,8 @@ export class Renderer {
     this.resources = undefined;
     this.destroyTargets();
     this.view.destroy();
+    this.denoiser?.destroy();
+    this.denoiser = undefined;
     this.pathTrace.destroy();
     this.tonemap.destroy();
     this.debugViews?.destroy();
@@ -295,6 +363,20 @@ export class Renderer {
 
   private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, timer?: GpuTimer): void {
     const s = this.settingsValue;
+    const frame = this.shown === 'frame' ? this.denoiser?.output : undefined;
+    if (frame) {
+      // Debug views are shown as computed: no exposure, no tone curve.
+      const debug = s.denoiseView !== 'output';
+      this.tonemap.encode(
+        encoder,
+        this.view,
+        frame,
+        targets.output,
+        { exposureStops: debug ? 0 : (this.cameraValue?.exposureStops ?? 0) + s.exposureStops, toneMapper: debug ? 'linear' : s.toneMapper, sampleCount: 1 },
+        timer,
+      );
+      return;
+    }
     this.tonemap.encode(
       encoder,
       this.view,
@@ -322,6 +404,13 @@ export class Renderer {
     this.encodeDebugView(encoder, targets);
     this.device.queue.submit([encoder.finish()]);
     await this.finish();
+  }
+
+  /** Half the diagonal of the scene's bounds (the depth view's scale). */
+  private sceneSize(): number {
+    const b = this.prepared?.bvh.bounds;
+    if (!b || b.length < 6) return 1;
+    return 0.5 * Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) || 1;
   }
 
   private ready(): { resources: SceneResources; targets: ImageTargets } {

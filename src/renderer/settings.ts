@@ -42,6 +42,17 @@ export type DebugLayout = (typeof DEBUG_LAYOUTS)[number];
 /** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
 export const MAX_WIREFRAME_DEPTH = 64;
 
+/**
+ * What the real-time chain (Renderer.renderFrame) shows: its output, or one of the denoiser's debug
+ * views. Mirrors DENOISE_VIEW_* in shaders/passes/denoise-output.wgsl by position.
+ */
+export const DENOISE_VIEWS = ['output', 'history-length', 'variance', 'normal', 'depth', 'albedo', 'motion', 'id'] as const;
+export type DenoiseView = (typeof DENOISE_VIEWS)[number];
+
+/** Frames of temporal history: a cap, or no cap (a still camera then converges like progressive rendering). */
+export type HistoryCap = number | 'unlimited';
+export const MAX_HISTORY_CAP = 65536;
+
 export interface RenderSettings {
   /** Scattering events per path: 0 shows emitters only, 1 direct light, ... */
   readonly maxBounces: number;
@@ -58,6 +69,15 @@ export interface RenderSettings {
   readonly wireframeDepth: number;
   /** Heat views: the count at the top of the colour scale, or 'auto' for the image's own maximum. */
   readonly heatMax: number | 'auto';
+  /** Real-time frames: accumulate each pixel's history over frames, reprojected as the camera moves. */
+  readonly temporal: boolean;
+  /** Real-time frames: the edge-aware spatial (à-trous) filter. */
+  readonly denoise: boolean;
+  /** Temporal history clamp: mean ± clampK·σ of the current 3×3 neighbourhood (0: no clamp). */
+  readonly clampK: number;
+  /** Largest history length N (blend weight 1/N); 'unlimited' also lifts the clamp while the camera is still. */
+  readonly historyCap: HistoryCap;
+  readonly denoiseView: DenoiseView;
 }
 
 export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
@@ -71,6 +91,11 @@ export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
   debugLayout: 'replace',
   wireframeDepth: 0,
   heatMax: 'auto',
+  temporal: true,
+  denoise: true,
+  clampK: 1.25,
+  historyCap: 32,
+  denoiseView: 'output',
 });
 
 /** Settings that change the estimate itself: changing one restarts accumulation. */
@@ -117,5 +142,19 @@ export function validateSettings(s: RenderSettings): RenderSettings {
     throw new LanternError(`wireframe depth must be a whole number from 0 to ${MAX_WIREFRAME_DEPTH}, not ${s.wireframeDepth}`);
   }
   if (s.heatMax !== 'auto' && !(Number.isFinite(s.heatMax) && s.heatMax > 0)) throw new LanternError(`heat map maximum must be a positive number or 'auto', not ${s.heatMax}`);
+  validateDenoiseSettings(s);
   return s;
+}
+
+function validateDenoiseSettings(s: RenderSettings): void {
+  if (typeof s.temporal !== 'boolean') throw new LanternError(`temporal must be true or false, not ${String(s.temporal)}`);
+  if (typeof s.denoise !== 'boolean') throw new LanternError(`denoise must be true or false, not ${String(s.denoise)}`);
+  if (!Number.isFinite(s.clampK) || s.clampK < 0 || s.clampK > 16) throw new LanternError(`clamp k must be a number from 0 (no clamp) to 16, not ${s.clampK}`);
+  const cap = s.historyCap;
+  if (cap !== 'unlimited' && !(Number.isInteger(cap) && cap >= 1 && cap <= MAX_HISTORY_CAP)) {
+    throw new LanternError(`history cap must be a whole number of frames from 1 to ${MAX_HISTORY_CAP}, or 'unlimited', not ${String(cap)}`);
+  }
+  if (!DENOISE_VIEWS.includes(s.denoiseView)) {
+    throw new LanternError(`unknown denoise view '${s.denoiseView}'`, `Use one of: ${DENOISE_VIEWS.join(', ')}`);
+  }
 }

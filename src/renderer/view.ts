@@ -32,6 +32,9 @@ export function cameraBasis(camera: Camera, aspect: number): CameraBasis {
 export class ViewUniform {
   readonly buffer: GPUBuffer;
   private readonly values = makeStructuredView(reflectModule('view/bindings').defs.uniforms.view!);
+  /** The image size of the last update (for passes that project into another camera). */
+  width = 1;
+  height = 1;
 
   constructor(private readonly device: GPUDevice) {
     this.buffer = device.createBuffer({ label: 'view', size: this.values.arrayBuffer.byteLength, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
@@ -39,6 +42,8 @@ export class ViewUniform {
 
   update(camera: Camera, width: number, height: number): void {
     const b = cameraBasis(camera, width / height);
+    this.width = width;
+    this.height = height;
     this.values.set({ camera: { position: b.position, right: b.right, up: b.up, forward: b.forward }, image_size: [width, height] });
     this.device.queue.writeBuffer(this.buffer, 0, this.values.arrayBuffer);
   }

@@ -113,6 +113,39 @@ describe('lantern bvh-stats', () => {
   });
 });
 
+describe('lantern render in frame mode, and lantern diff', () => {
+  it('renders a camera path frame by frame and compares images', () => {
+    const path = join(dir, 'path.json'), frames = join(dir, 'frames');
+    writeFileSync(path, JSON.stringify({ keyframes: [{ time: 0, position: [300, 273, -800], target: [278, 273, 0] }, { time: 1, position: [278, 273, -800], target: [278, 273, 0], fov: 35 }] }));
+    const r = lantern(['render', 'cornell', '-W', '16', '-H', '12', '-s', '1', '-b', '2', '--frames', '3', '--temporal', '--denoise', '--path', path, '--out', frames, '--exr', frames, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const report = JSON.parse(r.stdout);
+    expect(report).toMatchObject({ scene: 'cornell', frames: 3, sppPerFrame: 1, temporal: true, denoise: true });
+    expect(report.frameChangeRmse).toBeGreaterThan(0);
+    expect(readdirSync(frames).sort()).toEqual(['frame-0000.exr', 'frame-0000.png', 'frame-0001.exr', 'frame-0001.png', 'frame-0002.exr', 'frame-0002.png']);
+
+    const [a, b] = [join(frames, 'frame-0001.exr'), join(frames, 'frame-0002.exr')];
+    const same = JSON.parse(lantern(['diff', a, a, '--json']).stdout);
+    expect(same).toMatchObject({ rmse: 0, relMse: 0, ssim: 1, width: 16, height: 12 });
+    const heat = join(dir, 'heat.png');
+    const d = lantern(['diff', a, b, '--heatmap', heat]);
+    expect(d.code, d.rawStderr).toBe(0);
+    expect(d.stdout).toMatch(/^RMSE [0-9.e-]+ {2}relMSE [0-9.e-]+ {2}SSIM 0\.\d+ {2}\(16×12\)/);
+    expect(decodePng(readFileSync(heat)).width).toBe(16);
+
+    const small = join(dir, 'small.exr');
+    expect(lantern(['render', 'cornell', '-W', '8', '-H', '8', '-s', '1', '--exr', small]).code).toBe(0);
+    const mismatch = lantern(['diff', a, small]);
+    expect(mismatch.code).toBe(1);
+    expect(mismatch.stderr).toMatch(/is 16×12 but .* is 8×8/);
+    const badPath = join(dir, 'bad-path.json');
+    writeFileSync(badPath, JSON.stringify({ keyframes: [{ time: 0, position: [0, 0, 0] }] }));
+    const bad = lantern(['render', 'cornell', '-W', '8', '-H', '8', '--path', badPath]);
+    expect(bad.code).toBe(1);
+    expect(bad.stderr).toMatch(/keyframe 0: "target" must be three numbers/);
+  });
+});
+
 describe('bad input', () => {
   const oneLine = (s: string) => s.trim().split('\n').length === 1;
 

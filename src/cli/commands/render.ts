@@ -3,7 +3,7 @@ import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import {
-  DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, LIGHT_SAMPLING, MAX_WIREFRAME_DEPTH, TONE_MAPPERS,
+  DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, DENOISE_VIEWS, LIGHT_SAMPLING, MAX_WIREFRAME_DEPTH, TONE_MAPPERS,
   type DebugLayout, type DebugView, type LightSampling, type ToneMapper,
 } from '../../renderer/settings.ts';
 import { cameraFromOptions } from '../camera-option.ts';
@@ -12,8 +12,9 @@ import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
+import { historyCapOption, isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
 
-interface RenderOptions {
+interface RenderOptions extends FrameModeOptions {
   width: number;
   height: number;
   spp: number;
@@ -68,11 +69,20 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--wireframe-depth <d>', 'wireframe view: the BVH depth whose boxes are drawn (0 = the scene bounds)', integerOption('--wireframe-depth', 0, MAX_WIREFRAME_DEPTH), DEFAULT_SETTINGS.wireframeDepth)
     .option('--heat-max <n|auto>', "heat views: the count at the top of the colour scale ('auto': the image's maximum)", heatMaxOption, DEFAULT_SETTINGS.heatMax)
     .option('--json', 'print what was done as JSON')
+    .option('--temporal', 'frame mode: accumulate over frames with reprojection (temporal denoising)')
+    .option('--denoise', 'frame mode: the edge-aware spatial (à-trous) filter')
+    .option('--frames <n>', 'frame mode: frames to render, --spp samples each; with more than one, --out and --exr name folders', integerOption('--frames', 1, 100_000))
+    .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)')
+    .option('--history-cap <n|unlimited>', 'frame mode: longest temporal history in frames', historyCapOption)
+    .option('--clamp-k <k>', 'frame mode: history clamp to mean ± k·σ of the 3×3 neighbourhood (0: off)', numberOption('--clamp-k', 0, 16))
+    .option('--denoise-view <view>', `frame mode: ${DENOISE_VIEWS.join(', ')}`, choiceOption('--denoise-view', DENOISE_VIEWS))
     .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
 }
 
 async function render(sceneArg: string, o: RenderOptions, context: CliContext): Promise<void> {
-  const png = o.out ?? (o.exr ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
+  // A sequence of frames writes only what was asked for.
+  const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
+  const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
   await renderer.resize(o.width, o.height);
   renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
@@ -96,6 +106,15 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   // A debug view that replaces the image needs no path tracing.
   const spp = o.debug && o.debugLayout === 'replace' ? 0 : o.spp;
 
+  if (isFrameMode(o)) {
+    const camera = renderer.camera!;
+    const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) });
+    const report = { scene: prepared.scene.name, width: o.width, height: o.height, sppPerFrame: o.spp, bounces: o.bounces, temporal: Boolean(o.temporal), denoise: Boolean(o.denoise), adapter: renderer.gpu.adapterName, ...result };
+    const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
+    context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${o.spp} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
+    renderer.destroy();
+    return;
+  }
   const bar = !o.json && process.stderr.isTTY ? new SingleBar({ format: 'rendering [{bar}] {value}/{total} spp | {eta_formatted} left', hideCursor: true, stream: process.stderr }) : undefined;
   bar?.start(spp, 0);
   const { seconds } = await renderProgressive(renderer, { spp, onProgress: (done) => bar?.update(done) });

@@ -57,3 +57,14 @@ fn is_finite_vec3(v: vec3f) -> bool {
   let exponent = bitcast<vec3u>(v) & vec3u(0x7f800000u);
   return all(exponent != vec3u(0x7f800000u));
 }
+
+// YCoCg (Malvar and Sullivan 2003): luma and two chroma axes, a cheap decorrelation in which a
+// neighbourhood's colour box hugs the samples more tightly than in RGB (Karis 2014, "High quality
+// temporal supersampling"). Exactly invertible.
+fn rgb_to_ycocg(c: vec3f) -> vec3f {
+  return vec3f(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
+}
+
+fn ycocg_to_rgb(c: vec3f) -> vec3f {
+  return vec3f(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
+}

@@ -25,6 +25,19 @@ const ROULETTE_START_BOUNCE: u32 = 3u;
 // Shadow rays stop this fraction short of the light so they do not hit the light itself.
 const SHADOW_RAY_SHORTEN: f32 = 1e-4;
 
+// Set only by the real-time frame kernel (passes/path-trace-frame): trace_path then records its first
+// hit's albedo and emission in `primary`, for demodulation. path_trace leaves it false, so the
+// branch is constant-folded away and the progressive kernel is unchanged.
+override CAPTURE_PRIMARY: bool = false;
+
+// What a camera ray's first hit contributes, for demodulation: the albedo there (1 for a miss) and the
+// emission seen there (radiance that needs no filtering).
+struct PrimaryHit {
+  albedo: vec3f,
+  emission: vec3f,
+}
+var<private> primary: PrimaryHit;
+
 struct PathTraceParams {
   // Pixels.
   tile_origin: vec2u,
@@ -86,6 +99,9 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>) -> PathResult {
         weight = power_heuristic(bsdf_pdf, light_pdf);
       }
       result.radiance += throughput * material_emission(material, surface.uv, ray.direction) * weight;
+    }
+    if (CAPTURE_PRIMARY && bounce == 0u) {
+      primary = PrimaryHit(material_albedo(material, surface.uv).rgb, result.radiance);
     }
     if (bounce == params.max_bounces) {
       break;

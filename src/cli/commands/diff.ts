@@ -1,0 +1,53 @@
+/** `lantern diff a.exr b.exr`: RMSE, relative MSE and SSIM of an image against a reference, and a heat map. */
+import { readFileSync } from 'node:fs';
+import type { Command } from 'commander';
+import { LanternError } from '../../errors.ts';
+import { compareImages, errorHeatmap, type LinearRgbImage } from '../../image/compare.ts';
+import { decodeExr, exrToRgb } from '../../image/exr.ts';
+import { encodePng } from '../../image/png.ts';
+import type { CliContext } from '../context.ts';
+import { numberOption } from '../options.ts';
+import { writeFile } from '../output-files.ts';
+
+interface DiffOptions {
+  heatmap?: string;
+  heatmapScale: number;
+  json?: boolean;
+}
+
+export function registerDiff(program: Command, context: CliContext): void {
+  program
+    .command('diff')
+    .description('compare a linear EXR image with a reference EXR: RMSE, relative MSE, SSIM')
+    .argument('<image.exr>', 'the image to judge')
+    .argument('<reference.exr>', 'the reference (relative MSE divides by it)')
+    .option('--heatmap <file.png>', 'write the per-pixel relative luminance error as a PNG heat map (black 0, red, yellow, white at --heatmap-scale)')
+    .option('--heatmap-scale <ratio>', 'relative error shown as white', numberOption('--heatmap-scale', 1e-6, 1e6), 1)
+    .option('--json', 'print the figures as JSON')
+    .action((a: string, b: string, options: DiffOptions) => context.run(async () => diff(a, b, options, context)));
+}
+
+function readExr(path: string): LinearRgbImage {
+  let bytes: Uint8Array;
+  try {
+    bytes = readFileSync(path);
+  } catch (e) {
+    throw new LanternError(`cannot read '${path}': ${(e as NodeJS.ErrnoException).code ?? (e as Error).message}`);
+  }
+  const image = decodeExr(bytes, path);
+  return { width: image.width, height: image.height, rgb: exrToRgb(image, path) };
+}
+
+function diff(imagePath: string, referencePath: string, o: DiffOptions, context: CliContext): void {
+  const image = readExr(imagePath), reference = readExr(referencePath);
+  if (image.width !== reference.width || image.height !== reference.height) {
+    throw new LanternError(`'${imagePath}' is ${image.width}×${image.height} but '${referencePath}' is ${reference.width}×${reference.height}`, 'Compare images of the same size.');
+  }
+  const d = compareImages(image, reference);
+  if (o.heatmap) writeFile(o.heatmap, encodePng(image.width, image.height, errorHeatmap(image, reference, o.heatmapScale)));
+  if (o.json) {
+    context.print(JSON.stringify({ image: imagePath, reference: referencePath, width: image.width, height: image.height, ...d, ...(o.heatmap ? { heatmap: o.heatmap } : {}) }, null, 2));
+  } else {
+    context.print(`RMSE ${d.rmse.toPrecision(4)}  relMSE ${d.relMse.toPrecision(4)}  SSIM ${d.ssim.toFixed(4)}  (${image.width}×${image.height})`);
+  }
+}

@@ -1,0 +1,86 @@
+/**
+ * `lantern render` in frame mode (--denoise, --temporal, --frames, --path): the real-time chain
+ * (Renderer.renderFrame) run frame by frame, --spp samples per frame, the camera still or following
+ * a camera path; each frame written as PNG and/or EXR, GPU milliseconds per pass in the report.
+ */
+import { join } from 'node:path';
+import { rmse } from '../../image/compare.ts';
+import { encodeExr } from '../../image/exr.ts';
+import { encodePng } from '../../image/png.ts';
+import { GpuTimer } from '../../gpu/timestamps.ts';
+import type { Renderer } from '../../renderer/renderer.ts';
+import type { DenoiseView, HistoryCap } from '../../renderer/settings.ts';
+import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
+import type { Camera } from '../../scene/types.ts';
+import { writeFile } from '../output-files.ts';
+import { readJsonFile } from '../wad-files.ts';
+
+export interface FrameModeOptions {
+  readonly denoise?: boolean;
+  readonly temporal?: boolean;
+  readonly path?: string;
+  readonly frames?: number;
+  readonly historyCap?: HistoryCap;
+  readonly clampK?: number;
+  readonly denoiseView?: DenoiseView;
+}
+
+export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined);
+
+/** --history-cap: a whole number of frames or 'unlimited'. */
+export function historyCapOption(value: string): HistoryCap {
+  return value === 'unlimited' ? 'unlimited' : Number(value);
+}
+
+export interface FrameModeResult {
+  readonly frames: number;
+  readonly seconds: number;
+  /** Median GPU milliseconds of each pass over the frames (absent without timestamp queries). */
+  readonly gpuMs?: Record<string, number>;
+  /** With --exr: RMSE between consecutive frames' linear radiance, mean over the second half of the frames (temporal stability). */
+  readonly frameChangeRmse?: number;
+  readonly outputs: { png?: string; exr?: string };
+}
+
+/**
+ * Renders the frames. With more than one frame (or a path), `png` and `exr` name folders that
+ * receive frame-0000.png, ...; with one frame they name files.
+ */
+export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }): Promise<FrameModeResult> {
+  const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
+  const frames = o.frames ?? (path ? 30 : 1);
+  const sequence = frames > 1 || path !== undefined;
+  await renderer.enableRealTime();
+  renderer.updateSettings({
+    temporal: Boolean(o.temporal),
+    denoise: Boolean(o.denoise),
+    ...(o.historyCap !== undefined ? { historyCap: o.historyCap } : {}),
+    ...(o.clampK !== undefined ? { clampK: o.clampK } : {}),
+    ...(o.denoiseView !== undefined ? { denoiseView: o.denoiseView } : {}),
+  });
+  const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
+  const samples = new Map<string, number[]>();
+  const changes: number[] = [];
+  let previous: Float32Array | undefined;
+  const start = performance.now();
+  for (let f = 0; f < frames; f++) {
+    renderer.setCamera(path ? cameraAt(path, frameTime(path, f, frames), base) : base);
+    renderer.renderFrame(spp, timer);
+    if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
+    const name = `frame-${String(f).padStart(4, '0')}`;
+    if (out.png) writeFile(sequence ? join(out.png, `${name}.png`) : out.png, encodePng(renderer.width, renderer.height, await renderer.readImage()));
+    if (out.exr) {
+      const { width, height, radiance } = await renderer.readFrame();
+      if (previous && f >= frames / 2) changes.push(rmse(radiance, previous));
+      previous = radiance;
+      writeFile(sequence ? join(out.exr, `${name}.exr`) : out.exr, encodeExr(width, height, radiance));
+    }
+  }
+  await renderer.finish();
+  const seconds = (performance.now() - start) / 1000;
+  timer?.destroy();
+  const median = (xs: number[]) => [...xs].sort((a, b) => a - b)[xs.length >> 1]!;
+  const gpuMs = timer ? Object.fromEntries([...samples].map(([name, ms]) => [name, median(ms)])) : undefined;
+  const frameChangeRmse = changes.length > 0 ? changes.reduce((a, b) => a + b, 0) / changes.length : undefined;
+  return { frames, seconds, ...(gpuMs ? { gpuMs } : {}), ...(frameChangeRmse !== undefined ? { frameChangeRmse } : {}), outputs: out };
+}
