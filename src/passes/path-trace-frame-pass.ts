@@ -21,6 +21,8 @@ export interface FrameTarget {
   readonly gbuffer: GPUBuffer;
   /** vec4f per pixel: normal and linear depth, the à-trous filter's guide. */
   readonly guide: GPUBuffer;
+  /** The renderer's ray counters (as PathTraceTarget's): extension and shadow rays are added. */
+  readonly rayCounters: GPUBuffer;
 }
 
 export class PathTraceFramePass {
@@ -48,7 +50,7 @@ export class PathTraceFramePass {
     this.params.write(pathTraceParams(d));
     const b = cameraBasis(previousCamera, view.width / view.height);
     this.frame.write({ previous_camera: { position: b.position, right: b.right, up: b.up, forward: b.forward } });
-    const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer, guide: target.guide });
+    const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer, guide: target.guide, ray_counters: target.rayCounters });
     this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.gbuffer, targets, d.tile, timer);
   }
 

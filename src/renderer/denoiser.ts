@@ -63,6 +63,8 @@ export interface FrameRequest {
   readonly settings: RenderSettings;
   readonly torch?: Torch;
   readonly samples: number;
+  /** Where extension and shadow rays are counted (the renderer's counters). */
+  readonly rayCounters: GPUBuffer;
   /** Linear depth shown as mid grey in the depth view. */
   readonly depthScale: number;
   readonly timer?: GpuTimer;
@@ -106,7 +108,7 @@ export class Denoiser {
     const previousCamera = this.previousCamera ?? r.camera;
     const still = sameCamera(previousCamera, r.camera);
     const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex: this.sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, ...(r.torch ? { torch: r.torch } : {}) };
-    const target = { frameRadiance: b.frameRadiance, gbuffer: b.gbuffers[this.parity]!, guide: b.guide };
+    const target = { frameRadiance: b.frameRadiance, gbuffer: b.gbuffers[this.parity]!, guide: b.guide, rayCounters: r.rayCounters };
     this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer);
 
     const unlimited = s.historyCap === 'unlimited';

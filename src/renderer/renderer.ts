@@ -215,7 +215,7 @@ export class Renderer {
    * drop it. With a timer, every pass is timed. present(), readImage() and readFrame() show the result.
    */
   renderFrame(samples: number, timer?: GpuTimer): void {
-    const { resources } = this.ready();
+    const { resources, targets } = this.ready();
     if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
     const s = this.settingsValue;
@@ -227,6 +227,7 @@ export class Renderer {
       camera: this.cameraValue,
       settings: s,
       samples,
+      rayCounters: targets.rayCounters,
       depthScale: this.sceneSize(),
       ...(torch ? { torch } : {}),
       ...(timer ? { timer } : {}),

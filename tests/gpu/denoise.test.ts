@@ -50,6 +50,19 @@ beforeAll(async () => {
 
 const px = (img: LinearImage, x: number, y: number, c = 0) => img.radiance[(y * img.width + x) * 3 + c]!;
 
+describe('ray counting', () => {
+  it('counts every ray of a real-time frame: each sample path and the G-buffer ray', async () => {
+    await renderer.setScene(wallScene(0, { albedo: 0, emission: 0, sameMaterial: true }));
+    renderer.updateSettings({ maxBounces: 0, temporal: true, denoise: true, denoiseView: 'output' });
+    renderer.setCamera(camera(0)); // restarts the counters
+    renderer.renderFrame(2);
+    const rays = await renderer.readRayCounts();
+    // With no bounce a path is its camera ray alone: 2 samples + 1 centre ray per pixel.
+    expect(rays.extension).toBe(SIZE * SIZE * 3);
+    expect(rays.shadow).toBe(0);
+  });
+});
+
 describe('reprojection', () => {
   it('matches the analytic motion of a known camera move and rejects disoccluded pixels', async () => {
     await renderer.setScene(wallScene(0, { albedo: 0, emission: 0, sameMaterial: true }));

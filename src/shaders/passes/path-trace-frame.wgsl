@@ -42,30 +42,49 @@ fn centre_texel(pixel: vec2u) -> GBufferTexel {
 }
 
 @compute @workgroup_size(8, 8)
-fn path_trace_frame(@builtin(global_invocation_id) id: vec3u) {
+fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+  if (local == 0u) {
+    atomicStore(&workgroup_extension_rays, 0u);
+    atomicStore(&workgroup_shadow_rays, 0u);
+  }
+  workgroupBarrier();
+
   let pixel = params.tile_origin + id.xy;
-  if (any(id.xy >= params.tile_size) || any(pixel >= view.image_size)) {
-    return;
+  if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
+    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+    var rng = rng_seed(pixel_index, params.sample_index, params.seed);
+    var illumination = vec3f(0.0);
+    var albedo = vec3f(0.0);
+    var emission = vec3f(0.0);
+    // The pixel-centre ray of the G-buffer counts as one more extension ray.
+    var extension_rays = 1u;
+    var shadow_rays = 0u;
+    for (var s = 0u; s < params.samples; s++) {
+      primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
+      let path = trace_path(camera_ray(vec2f(pixel) + rng_next_2d(&rng)), &rng);
+      let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
+      let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
+      illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);
+      albedo += primary.albedo;
+      emission += emitted;
+      extension_rays += path.extension_rays;
+      shadow_rays += path.shadow_rays;
+    }
+    let inv = 1.0 / f32(params.samples);
+    var texel = centre_texel(pixel);
+    texel.albedo = albedo * inv;
+    texel.emission = emission * inv;
+    frame_radiance[pixel_index] = vec4f(illumination * inv, 1.0);
+    gbuffer[pixel_index] = texel;
+    guide[pixel_index] = vec4f(texel.normal, texel.linear_depth);
+    atomicAdd(&workgroup_extension_rays, extension_rays);
+    atomicAdd(&workgroup_shadow_rays, shadow_rays);
   }
-  let pixel_index = pixel.y * view.image_size.x + pixel.x;
-  var rng = rng_seed(pixel_index, params.sample_index, params.seed);
-  var illumination = vec3f(0.0);
-  var albedo = vec3f(0.0);
-  var emission = vec3f(0.0);
-  for (var s = 0u; s < params.samples; s++) {
-    primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
-    let path = trace_path(camera_ray(vec2f(pixel) + rng_next_2d(&rng)), &rng);
-    let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
-    let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
-    illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);
-    albedo += primary.albedo;
-    emission += emitted;
+
+  // The same ray counters as the progressive kernel, so the viewer's rays per second stay honest.
+  workgroupBarrier();
+  if (local == 0u) {
+    add_to_counter(COUNTER_EXTENSION_RAYS, atomicLoad(&workgroup_extension_rays));
+    add_to_counter(COUNTER_SHADOW_RAYS, atomicLoad(&workgroup_shadow_rays));
   }
-  let inv = 1.0 / f32(params.samples);
-  var texel = centre_texel(pixel);
-  texel.albedo = albedo * inv;
-  texel.emission = emission * inv;
-  frame_radiance[pixel_index] = vec4f(illumination * inv, 1.0);
-  gbuffer[pixel_index] = texel;
-  guide[pixel_index] = vec4f(texel.normal, texel.linear_depth);
 }
