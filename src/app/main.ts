@@ -309,6 +309,11 @@ await viewer.updateSettings({
     ...(linked.debugLayout ? { debugLayout: linked.debugLayout } : {}),
     ...(linked.wireframeDepth !== undefined ? { wireframeDepth: linked.wireframeDepth } : {}),
     ...(linked.heatMax !== undefined ? { heatMax: linked.heatMax } : {}),
+    ...(linked.temporal !== undefined ? { temporal: linked.temporal } : {}),
+    ...(linked.denoise !== undefined ? { denoise: linked.denoise } : {}),
+    ...(linked.clampK !== undefined ? { clampK: linked.clampK } : {}),
+    ...(linked.historyCap !== undefined ? { historyCap: linked.historyCap } : {}),
+    ...(linked.denoiseView ? { denoiseView: linked.denoiseView } : {}),
     ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}),
   },
 });

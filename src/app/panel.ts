@@ -5,7 +5,7 @@
  * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters.
  */
 import { Pane } from 'tweakpane';
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, effectiveTorch, TONE_MAPPERS, type DebugLayout, type DebugView } from '../renderer/settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, effectiveTorch, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView } from '../renderer/settings.ts';
 import type { BindingApi } from '@tweakpane/core';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
@@ -38,6 +38,12 @@ export class SettingsPanel {
     debugLayout: 'replace' as string,
     wireframeDepth: 0,
     heatMax: 0,
+    temporal: false,
+    denoise: false,
+    clampK: 1.25,
+    historyCap: 32,
+    unlimitedHistory: false,
+    denoiseView: 'output' as string,
   };
   private depthBinding?: BindingApi;
   private debugFolder?: ReturnType<Pane['addFolder']>;
@@ -74,6 +80,14 @@ export class SettingsPanel {
     camera.addBinding(p, 'torchColor', { label: 'torch colour', color: { type: 'float' } }).on('change', () => this.applyTorch());
     camera.addBinding(p, 'torchIntensity', { label: 'intensity (W/sr)', min: 0 }).on('change', () => this.applyTorch());
     camera.addBinding(p, 'torchRange', { label: 'range', min: 1e-3 }).on('change', () => this.applyTorch());
+
+    const realTime = this.pane.addFolder({ title: 'Denoising (real time)' });
+    realTime.addBinding(p, 'temporal', { label: 'temporal' }).on('change', (e) => this.apply({ render: { temporal: e.value } }));
+    realTime.addBinding(p, 'denoise', { label: 'spatial (à-trous)' }).on('change', (e) => this.apply({ render: { denoise: e.value } }));
+    realTime.addBinding(p, 'clampK', { label: 'clamp k·σ (0: off)', min: 0, max: 4, step: 0.05 }).on('change', (e) => this.apply({ render: { clampK: e.value } }));
+    realTime.addBinding(p, 'historyCap', { label: 'history cap', min: 1, max: 256, step: 1 }).on('change', () => this.applyHistory());
+    realTime.addBinding(p, 'unlimitedHistory', { label: 'converge when still' }).on('change', () => this.applyHistory());
+    realTime.addBinding(p, 'denoiseView', { label: 'show', options: options(DENOISE_VIEWS) }).on('change', (e) => this.apply({ render: { denoiseView: e.value as DenoiseView } }));
 
     const debug = this.pane.addFolder({ title: 'Debug views', expanded: false });
     this.debugFolder = debug;
@@ -125,6 +139,12 @@ export class SettingsPanel {
     p.debugLayout = s.render.debugLayout;
     p.wireframeDepth = s.render.wireframeDepth;
     p.heatMax = s.render.heatMax === 'auto' ? 0 : s.render.heatMax;
+    p.temporal = s.render.temporal;
+    p.denoise = s.render.denoise;
+    p.clampK = s.render.clampK;
+    p.unlimitedHistory = s.render.historyCap === 'unlimited';
+    if (s.render.historyCap !== 'unlimited') p.historyCap = s.render.historyCap;
+    p.denoiseView = s.render.denoiseView;
     const c = this.viewer.controller;
     if (c) {
       p.fov = c.vfovDegrees;
@@ -172,6 +192,11 @@ export class SettingsPanel {
   private apply(changes: Parameters<Viewer['updateSettings']>[0]): void {
     if (this.syncing) return;
     this.viewer.updateSettings(changes).catch((e) => this.viewer.fail(e));
+  }
+
+  private applyHistory(): void {
+    const p = this.params;
+    this.apply({ render: { historyCap: p.unlimitedHistory ? 'unlimited' : p.historyCap } });
   }
 
   private applyTorch(): void {

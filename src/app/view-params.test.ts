@@ -18,6 +18,11 @@ describe('view parameters', () => {
       debugLayout: 'overlay',
       wireframeDepth: 3,
       heatMax: 'auto',
+      temporal: true,
+      denoise: false,
+      clampK: 1.5,
+      historyCap: 'unlimited',
+      denoiseView: 'variance',
       torch: { enabled: true, color: [1, 0.8, 0.6], intensity: 2000, range: 900 },
     };
     const { view: back, problems } = parseViewParams(new URLSearchParams(formatViewParams(view).toString()));

@@ -8,9 +8,9 @@
  *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly
  *   spf, bounces, scale, acc=0|1, tonemap, exposure, torch=on|off, torch-color=r,g,b,
  *   torch-intensity, torch-range, debug=<view>, layout=replace|side-by-side|overlay, depth=<d>,
- *   heat-max=<n>|auto
+ *   heat-max=<n>|auto, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited, denoise-view
  */
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, MAX_WIREFRAME_DEPTH, TONE_MAPPERS, type DebugLayout, type DebugView, type ToneMapper } from '../renderer/settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, MAX_HISTORY_CAP, MAX_WIREFRAME_DEPTH, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView, type HistoryCap, type ToneMapper } from '../renderer/settings.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 
 export type SceneLocation =
@@ -34,6 +34,11 @@ export interface ViewParams {
   readonly debugLayout?: DebugLayout;
   readonly wireframeDepth?: number;
   readonly heatMax?: number | 'auto';
+  readonly temporal?: boolean;
+  readonly denoise?: boolean;
+  readonly clampK?: number;
+  readonly historyCap?: HistoryCap;
+  readonly denoiseView?: DenoiseView;
   readonly torch?: {
     readonly enabled?: boolean;
     readonly color?: readonly [number, number, number];
@@ -126,6 +131,20 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
     if (heatMax !== undefined) view.heatMax = heatMax;
   }
 
+  const temporal = params.get('temporal');
+  if (temporal !== null) view.temporal = temporal !== '0';
+  const denoise = params.get('denoise');
+  if (denoise !== null) view.denoise = denoise !== '0';
+  const clampK = ranged('clamp-k', [0, 16]);
+  if (clampK !== undefined) view.clampK = clampK;
+  if (params.get('history-cap') === 'unlimited') view.historyCap = 'unlimited';
+  else {
+    const cap = ranged('history-cap', [1, MAX_HISTORY_CAP], true);
+    if (cap !== undefined) view.historyCap = cap;
+  }
+  const denoiseView = oneOf('denoise-view', DENOISE_VIEWS);
+  if (denoiseView) view.denoiseView = denoiseView;
+
   const torch: { enabled?: boolean; color?: [number, number, number]; intensity?: number; range?: number } = {};
   const on = params.get('torch');
   if (on !== null) torch.enabled = on !== 'off';
@@ -161,6 +180,11 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.debugLayout) p.set('layout', view.debugLayout);
   if (view.wireframeDepth !== undefined) p.set('depth', String(view.wireframeDepth));
   if (view.heatMax !== undefined) p.set('heat-max', String(view.heatMax));
+  if (view.temporal !== undefined) p.set('temporal', view.temporal ? '1' : '0');
+  if (view.denoise !== undefined) p.set('denoise', view.denoise ? '1' : '0');
+  if (view.clampK !== undefined) p.set('clamp-k', String(round(view.clampK)));
+  if (view.historyCap !== undefined) p.set('history-cap', String(view.historyCap));
+  if (view.denoiseView) p.set('denoise-view', view.denoiseView);
   const t = view.torch;
   if (t?.enabled !== undefined) p.set('torch', t.enabled ? 'on' : 'off');
   if (t?.color) p.set('torch-color', t.color.map(round).join(','));

@@ -17,7 +17,7 @@ import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
 import { Renderer } from '../renderer/renderer.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
-import { DEFAULT_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
+import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
 import type { LoadedScene } from './scene-request.ts';
 import type { ViewParams } from './view-params.ts';
@@ -34,7 +34,15 @@ export interface ViewerSettings {
   readonly render: RenderSettings;
 }
 
-export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, render: DEFAULT_SETTINGS });
+/**
+ * Progressive accumulation by default; turning on temporal reprojection or the spatial filter
+ * switches to the real-time frame chain (renderer/denoiser.ts), which holds about 320 bytes per
+ * pixel of G-buffer and history, so it is the user's choice.
+ */
+export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
+
+/** Whether these settings ask for the real-time frame chain (temporal and/or spatial denoising). */
+export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise'>) => s.temporal || s.denoise;
 
 export interface PassTime {
   readonly name: string;
@@ -91,8 +99,12 @@ export class Viewer {
   private frames: { at: number; rays: number }[] = [];
   private gpuPasses: PassTime[] = [];
   private lastRayCount = 0;
+  private lastEpoch = -1;
+  private settingsQueue: Promise<void> = Promise.resolve();
   private losses: number[] = [];
   private legendValue?: DebugLegend;
+  /** Real-time frames since the estimate last restarted (scene, settings, size). */
+  private realTimeFrames = 0;
   private legendAt = 0;
   private expectingLoss = false;
   private disposed = false;
@@ -132,7 +144,7 @@ export class Viewer {
     const rays = f.slice(1).reduce((n, x) => n + x.rays, 0);
     const packed = this.loaded?.prepared.packed.counts;
     return {
-      samples: this.renderer?.sampleCount ?? 0,
+      samples: isRealTime(this.settings.render) ? this.realTimeFrames * this.settings.samplesPerFrame : (this.renderer?.sampleCount ?? 0),
       framesPerSecond: span > 0 ? (f.length - 1) / span : 0,
       frameMs: f.length > 1 ? f[f.length - 1]!.at - f[f.length - 2]!.at : 0,
       gpuPasses: this.gpuPasses,
@@ -181,7 +193,9 @@ export class Viewer {
       this.renderer.updateSettings(this.settings.render);
       await this.renderer.setScene(loaded.prepared);
       this.renderer.setCamera(controller.camera());
+      this.renderer.resetHistory();
     }
+    this.realTimeFrames = 0;
     this.loaded = loaded;
     this.controllerValue = controller;
     this.frames = [];
@@ -189,16 +203,29 @@ export class Viewer {
   }
 
   /** Applies settings; whatever changes the estimate restarts accumulation. */
-  async updateSettings(changes: Partial<Omit<ViewerSettings, 'render'>> & { render?: Partial<RenderSettings> }): Promise<void> {
+  updateSettings(changes: Partial<Omit<ViewerSettings, 'render'>> & { render?: Partial<RenderSettings> }): Promise<void> {
+    // One change at a time, in order: a change may wait for pipelines to compile.
+    const next = this.settingsQueue.then(() => this.applySettings(changes));
+    this.settingsQueue = next.catch(() => {});
+    return next;
+  }
+
+  private async applySettings(changes: Partial<Omit<ViewerSettings, 'render'>> & { render?: Partial<RenderSettings> }): Promise<void> {
     const before = this.settings;
     const render = { ...before.render, ...changes.render };
-    this.settings = { ...before, ...changes, render };
+    const next = { ...before, ...changes, render };
+    // Compile what the new settings need before the frame loop sees them.
+    if (this.renderer && render.debugView !== 'none') await this.renderer.enableDebugViews();
+    if (this.renderer && isRealTime(render)) await this.renderer.enableRealTime();
+    this.settings = next;
     this.legendAt = 0;
+    const restart = ESTIMATE_SETTINGS.some((k) => render[k] !== before.render[k]) || isRealTime(render) !== isRealTime(before.render);
+    if (restart) this.realTimeFrames = 0;
     if (!this.renderer) return;
-    if (render.debugView !== 'none') await this.renderer.enableDebugViews();
     this.renderer.updateSettings(render);
-    if (this.settings.scale !== before.scale) await this.resizeRenderer();
-    if (this.settings.accumulate !== before.accumulate || this.settings.samplesPerFrame !== before.samplesPerFrame) this.renderer.resetAccumulation();
+    if (restart) this.renderer.resetHistory();
+    if (next.scale !== before.scale) await this.resizeRenderer();
+    if (next.accumulate !== before.accumulate || next.samplesPerFrame !== before.samplesPerFrame) this.renderer.resetAccumulation();
     this.hooks.onChange(this);
   }
 
@@ -228,9 +255,10 @@ export class Viewer {
     return encodePng(renderer.width, renderer.height, await renderer.readImage());
   }
 
-  /** The linear radiance estimate as EXR bytes (float32 RGB, before exposure and tone mapping). */
+  /** The linear radiance (the estimate, or the denoised frame) as EXR bytes: float32 RGB, before exposure and tone mapping. */
   async radianceExr(): Promise<Uint8Array> {
-    const { width, height, radiance } = await this.requireRenderer().readAccumulation();
+    const renderer = this.requireRenderer();
+    const { width, height, radiance } = isRealTime(this.settings.render) && this.realTimeFrames > 0 ? await renderer.readFrame() : await renderer.readAccumulation();
     return encodeExr(width, height, radiance);
   }
 
@@ -251,6 +279,11 @@ export class Viewer {
       debugLayout: s.render.debugLayout,
       wireframeDepth: s.render.wireframeDepth,
       heatMax: s.render.heatMax,
+      temporal: s.render.temporal,
+      denoise: s.render.denoise,
+      clampK: s.render.clampK,
+      historyCap: s.render.historyCap,
+      denoiseView: s.render.denoiseView,
       torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
     };
   }
@@ -285,6 +318,8 @@ export class Viewer {
     const renderer = await Renderer.create(gpu);
     await renderer.enablePresentation();
     if (this.settings.render.debugView !== 'none') await renderer.enableDebugViews();
+    if (isRealTime(this.settings.render)) await renderer.enableRealTime();
+    this.realTimeFrames = 0;
     renderer.updateSettings(this.settings.render);
     this.gpu = gpu;
     this.context = context;
@@ -332,6 +367,7 @@ export class Viewer {
     const w = Math.max(1, Math.round(this.canvas.width * this.settings.scale));
     const h = Math.max(1, Math.round(this.canvas.height * this.settings.scale));
     await this.renderer.resize(w, h);
+    this.realTimeFrames = 0;
     if (this.controllerValue) this.renderer.setCamera(this.controllerValue.camera());
   }
 
@@ -381,18 +417,26 @@ export class Viewer {
       if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(c.camera());
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
-    const fresh = renderer.sampleCount === 0;
+    // The counters restart with the estimate (every camera move too): then the whole count is this frame's.
+    const fresh = renderer.accumulationEpoch !== this.lastEpoch;
     const timer = this.timer;
     const render = this.settings.render;
     // A debug view that replaces the image needs no path tracing.
     const debugOnly = render.debugView !== 'none' && render.debugLayout === 'replace';
-    if (!debugOnly) renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
+    if (debugOnly) {
+      // Nothing to trace: the debug view is drawn by present().
+    } else if (isRealTime(render)) {
+      // The real-time chain keeps its own history across camera moves (reprojection).
+      renderer.renderFrame(this.settings.samplesPerFrame, timer);
+      this.realTimeFrames++;
+    } else renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
     renderer.present(context.getCurrentTexture(), timer);
     // Reading the counters waits for the frame (one frame in flight) and counts its rays exactly.
     const counts = await renderer.readRayCounts();
     const total = counts.extension + counts.shadow;
     const rays = fresh ? total : total - this.lastRayCount;
     this.lastRayCount = total;
+    this.lastEpoch = renderer.accumulationEpoch;
     if (timer) this.gpuPasses = await timer.read();
     if (render.debugView !== 'none' && performance.now() - this.legendAt > LEGEND_INTERVAL_MS) {
       this.legendValue = await renderer.debugLegend();

@@ -72,6 +72,7 @@ export class Renderer {
   private cameraValue?: Camera;
   private settingsValue: RenderSettings = DEFAULT_SETTINGS;
   private samples = 0;
+  private epoch = 0;
   private denoiser?: Denoiser;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
@@ -167,9 +168,15 @@ export class Renderer {
     this.updateView();
   }
 
-  /** Discards every accumulated sample (the next frame starts a new estimate). */
+  /** Counts resetAccumulation() calls (the ray counters restart with each): callers tell fresh counts from running ones. */
+  get accumulationEpoch(): number {
+    return this.epoch;
+  }
+
+  /** Discards every accumulated sample and the ray counts (the next frame starts a new estimate). */
   resetAccumulation(): void {
     this.samples = 0;
+    this.epoch++;
     if (!this.targets) return;
     const encoder = this.device.createCommandEncoder({ label: 'reset accumulation' });
     encoder.clearBuffer(this.targets.accumulation);

@@ -230,6 +230,32 @@ describe('the page', () => {
     await page.close();
   });
 
+  it('runs the real-time denoised chain from the panel and keeps it while the camera moves', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.1');
+    await playUntil(page, 2);
+    const before = await page.evaluate(() => window.lantern.gpuResources.bytes);
+    await page.locator('.tp-lblv', { hasText: 'temporal' }).locator('.tp-ckbv_w').click();
+    await page.locator('.tp-lblv', { hasText: 'spatial' }).locator('.tp-ckbv_w').click();
+    await expect.poll(() => page.evaluate(() => window.lantern.samples), { timeout: 10_000 }).toBeLessThan(3);
+    await playUntil(page, 4);
+    // The G-buffer and history now exist on the GPU.
+    expect(await page.evaluate(() => window.lantern.gpuResources.bytes)).toBeGreaterThan(before);
+    await page.keyboard.down('KeyA');
+    await page.waitForTimeout(300);
+    await page.keyboard.up('KeyA');
+    const frames = await page.evaluate(() => window.lantern.samples);
+    await playUntil(page, frames + 3);
+    await page.click('#play');
+    const img = await canvasImage(page);
+    const left = meanRgb(img, 0.03, 0.12, 0.3, 0.7);
+    const right = meanRgb(img, 0.88, 0.97, 0.3, 0.7);
+    expect(left[0]).toBeGreaterThan(1.5 * left[1]);
+    expect(right[1]).toBeGreaterThan(1.2 * right[0]);
+    expect(await page.evaluate(() => window.lantern.link)).toMatch(/temporal=1&denoise=1/);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
   it('shows a BVH debug view with its legend, chosen from the panel', async () => {
     const { page, errors } = await open('scene=bvh-teaching&scale=0.1&debug=heat-nodes');
     await playUntil(page, 0);
