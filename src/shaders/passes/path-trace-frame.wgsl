@@ -43,11 +43,7 @@ fn centre_texel(pixel: vec2u) -> GBufferTexel {
 
 @compute @workgroup_size(8, 8)
 fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
-  if (local == 0u) {
-    atomicStore(&workgroup_extension_rays, 0u);
-    atomicStore(&workgroup_shadow_rays, 0u);
-  }
-  workgroupBarrier();
+  begin_ray_count(local);
 
   let pixel = params.tile_origin + id.xy;
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
@@ -77,14 +73,8 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     frame_radiance[pixel_index] = vec4f(illumination * inv, 1.0);
     gbuffer[pixel_index] = texel;
     guide[pixel_index] = vec4f(texel.normal, texel.linear_depth);
-    atomicAdd(&workgroup_extension_rays, extension_rays);
-    atomicAdd(&workgroup_shadow_rays, shadow_rays);
+    count_rays(extension_rays, shadow_rays);
   }
-
   // The same ray counters as the progressive kernel, so the viewer's rays per second stay honest.
-  workgroupBarrier();
-  if (local == 0u) {
-    add_to_counter(COUNTER_EXTENSION_RAYS, atomicLoad(&workgroup_extension_rays));
-    add_to_counter(COUNTER_SHADOW_RAYS, atomicLoad(&workgroup_shadow_rays));
-  }
+  end_ray_count(local);
 }

@@ -179,13 +179,32 @@ fn add_to_counter(low: u32, n: u32) {
   }
 }
 
-@compute @workgroup_size(8, 8)
-fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+// Ray counting per workgroup (one global atomic per workgroup and counter): every invocation calls
+// begin first and end last, in uniform control flow; count in between.
+fn begin_ray_count(local: u32) {
   if (local == 0u) {
     atomicStore(&workgroup_extension_rays, 0u);
     atomicStore(&workgroup_shadow_rays, 0u);
   }
   workgroupBarrier();
+}
+
+fn count_rays(extension_rays: u32, shadow_rays: u32) {
+  atomicAdd(&workgroup_extension_rays, extension_rays);
+  atomicAdd(&workgroup_shadow_rays, shadow_rays);
+}
+
+fn end_ray_count(local: u32) {
+  workgroupBarrier();
+  if (local == 0u) {
+    add_to_counter(COUNTER_EXTENSION_RAYS, atomicLoad(&workgroup_extension_rays));
+    add_to_counter(COUNTER_SHADOW_RAYS, atomicLoad(&workgroup_shadow_rays));
+  }
+}
+
+@compute @workgroup_size(8, 8)
+fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+  begin_ray_count(local);
 
   let pixel = params.tile_origin + id.xy;
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
@@ -205,13 +224,7 @@ fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocatio
       shadow_rays += path.shadow_rays;
     }
     accumulation[pixel_index] += sum;
-    atomicAdd(&workgroup_extension_rays, extension_rays);
-    atomicAdd(&workgroup_shadow_rays, shadow_rays);
+    count_rays(extension_rays, shadow_rays);
   }
-
-  workgroupBarrier();
-  if (local == 0u) {
-    add_to_counter(COUNTER_EXTENSION_RAYS, atomicLoad(&workgroup_extension_rays));
-    add_to_counter(COUNTER_SHADOW_RAYS, atomicLoad(&workgroup_shadow_rays));
-  }
+  end_ray_count(local);
 }
