@@ -14,7 +14,7 @@ import { Input } from './input.ts';
 import { SettingsPanel } from './panel.ts';
 import { SceneLoader } from './scene-loader.ts';
 import type { SceneRequest } from './scene-request.ts';
-import { formatViewParams, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
+import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
 import { describeError, Viewer } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
@@ -52,6 +52,8 @@ let panel: SettingsPanel | undefined;
 /** Where the current scene came from (for links); undefined for files opened from this computer. */
 let current: SceneLocation | undefined;
 let loading: string | undefined;
+/** Where the open WAD stack was served from (links can name it), or undefined for local files. */
+let wadSource: { urls: readonly string[] } | undefined;
 let loadToken = 0;
 
 for (const name of builtinSceneNames()) {
@@ -115,9 +117,7 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
     panel?.readFromViewer();
-    if (loaded.warnings.length > 0) {
-      showMessage(`${loaded.prepared.scene.name}: ${loaded.warnings.length} warning(s), first: ${loaded.warnings[0]}`, 'warning');
-    } else if (message.dataset.kind !== 'error' || where) clearMessage();
+    if (loaded.warnings.length > 0) showMessage(`${loaded.prepared.scene.name}: ${loaded.warnings.length} warning(s), first: ${loaded.warnings[0]}`, 'warning');
   } catch (e) {
     if (token === loadToken) showMessage(describeError(e), 'error');
   } finally {
@@ -193,9 +193,6 @@ async function openFiles(files: readonly File[], where?: { urls: readonly string
   }
 }
 
-/** Where the open WAD stack was served from (links can name it), or undefined for local files. */
-let wadSource: { urls: readonly string[] } | undefined;
-
 function showMap(map: string, view: ViewParams = {}): Promise<void> {
   return show({ kind: 'doom-map', map }, wadSource ? { kind: 'wad', urls: wadSource.urls, map } : undefined, view);
 }
@@ -269,13 +266,19 @@ playButton.addEventListener('click', () => {
   if (viewer.state === 'playing') viewer.pause();
   else viewer.play().catch((e) => viewer.fail(e));
 });
+// Each user action starts with a clean message line; what it reports stays until the next.
 sceneSelect.addEventListener('change', () => {
+  clearMessage();
   if (sceneSelect.value !== FILE_OPTION) void showBuiltin(sceneSelect.value);
 });
-mapSelect.addEventListener('change', () => void showMap(mapSelect.value));
+mapSelect.addEventListener('change', () => {
+  clearMessage();
+  void showMap(mapSelect.value);
+});
 fileInput.addEventListener('change', () => {
   const files = [...(fileInput.files ?? [])];
   fileInput.value = '';
+  clearMessage();
   if (files.length > 0) void openFiles(files);
 });
 let dragDepth = 0;
@@ -293,6 +296,7 @@ window.addEventListener('drop', (e) => {
   dragDepth = 0;
   dropZone.hidden = true;
   const files = [...(e.dataTransfer?.files ?? [])];
+  clearMessage();
   if (files.length > 0) void openFiles(files);
 });
 
@@ -301,21 +305,8 @@ await viewer.updateSettings({
   ...(linked.samplesPerFrame !== undefined ? { samplesPerFrame: linked.samplesPerFrame } : {}),
   ...(linked.scale !== undefined ? { scale: linked.scale } : {}),
   ...(linked.accumulate !== undefined ? { accumulate: linked.accumulate } : {}),
-  render: {
-    ...(linked.maxBounces !== undefined ? { maxBounces: linked.maxBounces } : {}),
-    ...(linked.toneMapper ? { toneMapper: linked.toneMapper } : {}),
-    ...(linked.exposureStops !== undefined ? { exposureStops: linked.exposureStops } : {}),
-    ...(linked.debugView ? { debugView: linked.debugView } : {}),
-    ...(linked.debugLayout ? { debugLayout: linked.debugLayout } : {}),
-    ...(linked.wireframeDepth !== undefined ? { wireframeDepth: linked.wireframeDepth } : {}),
-    ...(linked.heatMax !== undefined ? { heatMax: linked.heatMax } : {}),
-    ...(linked.temporal !== undefined ? { temporal: linked.temporal } : {}),
-    ...(linked.denoise !== undefined ? { denoise: linked.denoise } : {}),
-    ...(linked.clampK !== undefined ? { clampK: linked.clampK } : {}),
-    ...(linked.historyCap !== undefined ? { historyCap: linked.historyCap } : {}),
-    ...(linked.denoiseView ? { denoiseView: linked.denoiseView } : {}),
-    ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}),
-  },
+  // The torch's other settings are the scene's business: they are applied once it is loaded.
+  render: { ...linkedRenderSettings(linked), ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}) },
 });
 panel = new SettingsPanel($('panel'), viewer, actions);
 showViewer(viewer);

@@ -4,6 +4,7 @@
  * image. The numbers are the viewer's own measurements: frame rate and time on the wall clock, pass
  * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters.
  */
+import { boundsDiagonal } from '../bvh/stats.ts';
 import { Pane } from 'tweakpane';
 import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, effectiveTorch, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView } from '../renderer/settings.ts';
 import type { BindingApi } from '@tweakpane/core';
@@ -152,8 +153,7 @@ export class SettingsPanel {
     }
     const scene = this.viewer.scene?.prepared;
     const torch = effectiveTorch(scene?.scene, s.render.torch);
-    const b = scene?.bvh.bounds;
-    const diagonal = b ? Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) : 1;
+    const diagonal = scene ? boundsDiagonal(scene.bvh) : 1;
     p.torch = s.render.torch.enabled;
     const color = torch?.color ?? s.render.torch.color ?? [1, 1, 1];
     p.torchColor = { r: color[0], g: color[1], b: color[2] };

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { formatViewParams, parseViewParams, type ViewParams } from './view-params.ts';
+import { formatViewParams, linkedRenderSettings, parseViewParams, type ViewParams } from './view-params.ts';
 
 describe('view parameters', () => {
   it('round-trip a full view', () => {
@@ -28,6 +28,9 @@ describe('view parameters', () => {
     const { view: back, problems } = parseViewParams(new URLSearchParams(formatViewParams(view).toString()));
     expect(problems).toEqual([]);
     expect(back).toEqual(view);
+    // What reaches the renderer: the render settings it names, under their own names, and nothing else.
+    expect(linkedRenderSettings(back)).toEqual({ maxBounces: 3, toneMapper: 'reinhard', exposureStops: -1.5, debugView: 'wireframe', debugLayout: 'overlay', wireframeDepth: 3, heatMax: 'auto', temporal: true, denoise: false, clampK: 1.5, historyCap: 'unlimited', denoiseView: 'variance' });
+    expect(linkedRenderSettings({ exposureStops: 2 })).toEqual({ exposureStops: 2 });
   });
 
   it('reads the scene forms and ignores what is absent', () => {

@@ -10,7 +10,7 @@
  *   torch-intensity, torch-range, debug=<view>, layout=replace|side-by-side|overlay, depth=<d>,
  *   heat-max=<n>|auto, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited, denoise-view
  */
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, MAX_HISTORY_CAP, MAX_WIREFRAME_DEPTH, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView, type HistoryCap, type ToneMapper } from '../renderer/settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, MAX_HISTORY_CAP, MAX_WIREFRAME_DEPTH, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView, type HistoryCap, type RenderSettings, type ToneMapper } from '../renderer/settings.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 
 export type SceneLocation =
@@ -45,6 +45,16 @@ export interface ViewParams {
     readonly intensity?: number;
     readonly range?: number;
   };
+}
+
+/** The render settings a link carries under their RenderSettings names (the torch apart). */
+export const LINKED_RENDER_SETTINGS = ['maxBounces', 'toneMapper', 'exposureStops', 'debugView', 'debugLayout', 'wireframeDepth', 'heatMax', 'temporal', 'denoise', 'clampK', 'historyCap', 'denoiseView'] as const;
+
+/** The render settings a link asks for (only those it names). */
+export function linkedRenderSettings(view: ViewParams): Partial<RenderSettings> {
+  const out: Partial<Record<keyof RenderSettings, unknown>> = {};
+  for (const key of LINKED_RENDER_SETTINGS) if (view[key] !== undefined) out[key] = view[key];
+  return out as Partial<RenderSettings>;
 }
 
 /** Values outside these ranges are refused (the parameter is ignored with a note). */

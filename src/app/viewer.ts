@@ -9,6 +9,7 @@
  * while hidden), a lost GPU device (a new device, the scene uploaded again, the view restored), and
  * scene switches (the Renderer destroys what the old scene held; the GPU resource count shows it).
  */
+import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import { acquireGpu, type GpuContext } from '../gpu/device.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
@@ -20,7 +21,7 @@ import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
 import type { LoadedScene } from './scene-request.ts';
-import type { ViewParams } from './view-params.ts';
+import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
 
 export type ViewerState = 'idle' | 'starting' | 'playing' | 'paused' | 'failed';
 
@@ -180,9 +181,7 @@ export class Viewer {
    */
   async setScene(loaded: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number } = {}): Promise<void> {
     const { scene, bvh } = loaded.prepared;
-    const b = bvh.bounds;
-    const diagonal = Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!);
-    const controller = new CameraController(scene.camera, sceneSpeed(diagonal, scene.metersPerUnit, scene.walkMap), scene.walkMap);
+    const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, scene.walkMap), scene.walkMap);
     if (view.pose) controller.setPose(view.pose);
     if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
     controller.setMode(view.mode ?? (controller.canWalk ? 'walk' : 'fly'));
@@ -270,20 +269,9 @@ export class Viewer {
     return {
       ...(c ? { pose: c.pose, fovDegrees: c.vfovDegrees, mode: c.mode } : {}),
       samplesPerFrame: s.samplesPerFrame,
-      maxBounces: s.render.maxBounces,
       scale: s.scale,
       accumulate: s.accumulate,
-      toneMapper: s.render.toneMapper,
-      exposureStops: s.render.exposureStops,
-      debugView: s.render.debugView,
-      debugLayout: s.render.debugLayout,
-      wireframeDepth: s.render.wireframeDepth,
-      heatMax: s.render.heatMax,
-      temporal: s.render.temporal,
-      denoise: s.render.denoise,
-      clampK: s.render.clampK,
-      historyCap: s.render.historyCap,
-      denoiseView: s.render.denoiseView,
+      ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
       torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
     };
   }

@@ -114,3 +114,9 @@ export function formatBvhStats(bvh: Bvh, options: BvhStatsOptions = {}): string 
     `  ${memoryLabel}: ${mib(s.nodeBytes + s.triangleBytes)} (${s.bytesPerTriangle.toFixed(1)} bytes/triangle); built in ${int(Math.round(s.buildMs))} ms`,
   ].join('\n');
 }
+
+/** Length of the diagonal of the root box: the scene's size, for scales and speeds (0 for an empty box). */
+export function boundsDiagonal(bvh: Pick<Bvh, 'bounds'>): number {
+  const b = bvh.bounds;
+  return Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) || 0;
+}

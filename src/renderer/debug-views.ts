@@ -12,7 +12,7 @@
  * composed image) and per scene (node depths, the node list of each wireframe depth).
  */
 import { maxNodeDepth, nodeDepths, nodesAtDepth } from '../bvh/depths.ts';
-import { bvhStats } from '../bvh/stats.ts';
+import { boundsDiagonal, bvhStats } from '../bvh/stats.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { createBufferWithData, readBuffer } from '../gpu/readback.ts';
 import { BvhWireframePass, WIREFRAME_FORMAT } from '../passes/bvh-wireframe-pass.ts';
@@ -139,15 +139,13 @@ export class DebugViews {
     this.destroyScene();
     const { bvh } = prepared;
     const depths = nodeDepths(bvh);
-    const b = bvh.bounds;
-    const diagonal = Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!);
     this.sceneData = {
       resources,
       nodeDepths: depths,
       depthBuffer: createBufferWithData(this.device, 'bvh node depths', depths, GPUBufferUsage.STORAGE),
       maxDepth: maxNodeDepth(depths),
       maxLeafSize: bvhStats(bvh).leafSizeHistogram.length - 1,
-      near: Math.max(diagonal * NEAR_FRACTION, 1e-6),
+      near: Math.max(boundsDiagonal(bvh) * NEAR_FRACTION, 1e-6),
       wireframeNodes: new Map(),
     };
     return this.sceneData;

@@ -12,6 +12,7 @@
  * Real time (after enableRealTime): renderFrame(spp) runs the denoiser's frame recipe (renderer/
  * denoiser.ts) instead; present and readImage then show its output until the next accumulate().
  */
+import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
 import { withErrorScope } from '../gpu/device.ts';
@@ -416,9 +417,7 @@ export class Renderer {
 
   /** Half the diagonal of the scene's bounds (the depth view's scale). */
   private sceneSize(): number {
-    const b = this.prepared?.bvh.bounds;
-    if (!b || b.length < 6) return 1;
-    return 0.5 * Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) || 1;
+    return this.prepared ? 0.5 * boundsDiagonal(this.prepared.bvh) || 1 : 1;
   }
 
   private ready(): { resources: SceneResources; targets: ImageTargets } {
