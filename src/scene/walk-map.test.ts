@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { LINEDEF_FLAGS, NO_SIDEDEF, type DoomMap, type Linedef, type Sector, type Sidedef } from '../loaders/doom/map-types.ts';
+import { LINEDEF_FLAGS, type DoomMap, type Sector } from '../loaders/doom/map-types.ts';
+import { MapBuilder } from '../loaders/doom/test-wad.ts';
 import { doomWalkMap, PLAYER_RADIUS } from '../loaders/doom/walk-map.ts';
 import { eyeLevel, moveWalker, NO_SECTOR, sectorAt, type WalkPosition } from './walk-map.ts';
 
@@ -9,20 +10,17 @@ import { eyeLevel, moveWalker, NO_SECTOR, sectorAt, type WalkPosition } from './
  * World coordinates are (x, height, −y), so both rooms lie at z in [−256, 0].
  */
 function twoRooms(b: Partial<Sector>, sharedFlags = 0): DoomMap {
-  const vertices = [
-    { x: 0, y: 0 }, { x: 0, y: 256 }, { x: 256, y: 256 }, { x: 256, y: 0 }, { x: 512, y: 256 }, { x: 512, y: 0 },
-  ];
-  const sector = (s: Partial<Sector>): Sector => ({ floorHeight: 0, ceilingHeight: 128, floorFlat: 'F', ceilingFlat: 'C', lightLevel: 160, special: 0, tag: 0, ...s });
-  const side = (s: number): Sidedef => ({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle: '-', sector: s });
-  const line = (v1: number, v2: number, front: number, back: number = NO_SIDEDEF, flags: number = LINEDEF_FLAGS.BLOCKING): Linedef => ({ v1, v2, flags, special: 0, tag: 0, front, back });
-  // Clockwise loops, so front (right) sides face into each room.
-  const linedefs = [
-    line(0, 1, 0), line(1, 2, 1), line(3, 0, 2),
-    line(2, 3, 3, 4, LINEDEF_FLAGS.TWO_SIDED | sharedFlags),
-    line(2, 4, 5), line(4, 5, 6), line(5, 3, 7),
-  ];
-  const sidedefs = [side(0), side(0), side(0), side(0), side(1), side(1), side(1), side(1)];
-  return { name: 'TEST', vertices, linedefs, sidedefs, sectors: [sector({}), sector(b)], things: [] };
+  const m = new MapBuilder();
+  const a = m.sector(), bb = m.sector(b);
+  // Clockwise, so front (right) sides face into each room; the shared line's front faces room A.
+  m.line([0, 0], [0, 256], a);
+  m.line([0, 256], [256, 256], a);
+  m.line([256, 0], [0, 0], a);
+  m.line([256, 256], [256, 0], a, bb, {}, sharedFlags);
+  m.line([256, 256], [512, 256], bb);
+  m.line([512, 256], [512, 0], bb);
+  m.line([512, 0], [256, 0], bb);
+  return m.build();
 }
 
 const start = (map: ReturnType<typeof doomWalkMap>, x: number, z: number): WalkPosition => ({ x, z, sector: sectorAt(map, x, z) });

@@ -1,40 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { NO_SIDEDEF, type DoomMap, type Linedef, type MapVertex, type Sector, type Sidedef } from './map-types.ts';
+import { ccw, cw, MapBuilder, type MapPoint } from './test-wad.ts';
 import { buildSectorShapes, GAP_TOLERANCE, ringArea, sectorAt, type SectorShape } from './sectors.ts';
 
-type Point = readonly [number, number];
-
-/** Maps as plain objects: sectors, and lines whose front (right) and back sidedefs name them. */
-class TestMap {
-  readonly vertices: MapVertex[] = [];
-  readonly linedefs: Linedef[] = [];
-  readonly sidedefs: Sidedef[] = [];
-  readonly sectors: Sector[] = [];
-
-  sector(floorHeight = 0, ceilingHeight = 128): number {
-    return this.sectors.push({ floorHeight, ceilingHeight, floorFlat: 'FLOOR4_8', ceilingFlat: 'CEIL3_5', lightLevel: 160, special: 0, tag: 0 }) - 1;
-  }
-  line(a: Point, b: Point, front?: number, back?: number): void {
-    const side = (sector?: number) =>
-      sector === undefined ? NO_SIDEDEF : this.sidedefs.push({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle: 'STARTAN3', sector }) - 1;
-    const vertex = (p: Point) => this.vertices.push({ x: p[0], y: p[1] }) - 1;
-    this.linedefs.push({ v1: vertex(a), v2: vertex(b), flags: back === undefined ? 1 : 4, special: 0, tag: 0, front: side(front), back: side(back) });
-  }
-  /** Lines along the points and back to the first. */
-  loop(points: readonly Point[], front?: number, back?: number): void {
-    points.forEach((p, i) => this.line(p, points[(i + 1) % points.length]!, front, back));
-  }
-  build(): DoomMap {
-    return { name: 'TEST', vertices: this.vertices, linedefs: this.linedefs, sidedefs: this.sidedefs, sectors: this.sectors, things: [] };
-  }
-}
-
-/** A rectangle clockwise (north first): its inside is on the right, where front sidedefs face. */
-const cw = (x: number, y: number, w: number, h = w): Point[] => [[x, y], [x, y + h], [x + w, y + h], [x + w, y]];
-/** The same rectangle counter-clockwise: front sidedefs face out (a pillar's faces). */
-const ccw = (x: number, y: number, w: number, h = w): Point[] => cw(x, y, w, h).reverse();
-
-function build(m: TestMap) {
+function build(m: MapBuilder) {
   const warnings: string[] = [];
   const shapes = buildSectorShapes(m.build(), (w) => warnings.push(w));
   return { shapes, warnings, shape: (i: number) => shapes.shapes[i]! };
@@ -55,7 +23,7 @@ function checkTriangles(shape: SectorShape): void {
 
 describe('buildSectorShapes', () => {
   it('cuts a pillar out of a room', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     m.loop(cw(0, 0, 256), room);
     m.loop(ccw(96, 96, 64), room); // one-sided pillar faces, facing the room
@@ -73,9 +41,9 @@ describe('buildSectorShapes', () => {
   });
 
   it('builds a platform inside a room as its own sector and removes it from the room', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
-    const platform = m.sector(32);
+    const platform = m.sector({ floorHeight: 32 });
     m.loop(cw(0, 0, 256), room);
     m.loop(cw(64, 64, 128), platform, room); // front (inside) the platform, back the room
     const { shapes, warnings, shape } = build(m);
@@ -90,7 +58,7 @@ describe('buildSectorShapes', () => {
   });
 
   it('assigns each hole to the smallest boundary around it, with the same sector again inside a pillar', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     m.loop(cw(0, 0, 512), room);
     m.loop(ccw(128, 128, 256), room); // a hollow pillar ...
@@ -109,7 +77,7 @@ describe('buildSectorShapes', () => {
   });
 
   it('builds a sector of two disjoint pieces, also where they touch at a corner', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const a = m.sector();
     const b = m.sector();
     m.loop(cw(0, 0, 128), a);
@@ -129,7 +97,7 @@ describe('buildSectorShapes', () => {
   });
 
   it('ignores self-referencing lines, which separate nothing', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     m.loop(cw(0, 0, 256), room);
     m.line([64, 64], [192, 192], room, room);
@@ -141,7 +109,7 @@ describe('buildSectorShapes', () => {
   });
 
   it('leaves a sector no sidedef names empty, without failure', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     const unused = m.sector();
     m.loop(cw(0, 0, 256), room);
@@ -153,7 +121,7 @@ describe('buildSectorShapes', () => {
 
   describe('mapping errors', () => {
     it('closes a small gap between vertices that should have been one, with a warning', () => {
-      const m = new TestMap();
+      const m = new MapBuilder();
       const room = m.sector();
       // Clockwise, but the last line ends 2 units short of the first vertex.
       m.line([0, 0], [0, 256], room);
@@ -168,7 +136,7 @@ describe('buildSectorShapes', () => {
     });
 
     it('closes a boundary missing a whole line (a sidedef naming the wrong sector)', () => {
-      const m = new TestMap();
+      const m = new MapBuilder();
       const room = m.sector();
       const other = m.sector();
       const [p0, p1, p2, p3] = cw(0, 0, 128);
@@ -184,7 +152,7 @@ describe('buildSectorShapes', () => {
     });
 
     it('drops a dangling chain too far from anything to close, with a warning', () => {
-      const m = new TestMap();
+      const m = new MapBuilder();
       const room = m.sector();
       m.loop(cw(0, 0, 256), room);
       m.line([1000, 0], [1000, 400], room);
@@ -197,7 +165,7 @@ describe('buildSectorShapes', () => {
     });
 
     it('uses a repeated line once and skips zero-length lines', () => {
-      const m = new TestMap();
+      const m = new MapBuilder();
       const room = m.sector();
       m.loop(cw(0, 0, 256), room);
       m.line([0, 0], [0, 256], room); // the first line again
@@ -210,7 +178,7 @@ describe('buildSectorShapes', () => {
 
     it('merges vertices at the same spot', () => {
       // TestMap gives every line its own two vertices: merging by position is what closes the loops.
-      const m = new TestMap();
+      const m = new MapBuilder();
       const room = m.sector();
       m.loop(cw(0, 0, 64), room);
       expect(m.vertices).toHaveLength(8);
@@ -218,7 +186,7 @@ describe('buildSectorShapes', () => {
     });
 
     it('flips a boundary drawn with its sidedefs on the wrong side', () => {
-      const m = new TestMap();
+      const m = new MapBuilder();
       const room = m.sector();
       m.loop(ccw(0, 0, 128), room); // front sidedefs face out of the room
       const { shapes, warnings, shape } = build(m);

@@ -6,7 +6,7 @@
  * Used only by tests; it throws plain Errors because a bad argument here is a bug in a test.
  */
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from './map-types.ts';
-import { NO_SIDEDEF } from './map-types.ts';
+import { LINEDEF_FLAGS, NO_SIDEDEF } from './map-types.ts';
 
 /** Little-endian byte writer that grows as needed. */
 class ByteWriter {
@@ -161,6 +161,53 @@ export function encodeMap(map: DoomMap): Array<[string, Uint8Array]> {
     ['BLOCKMAP', empty],
   ];
 }
+
+export type MapPoint = readonly [number, number];
+
+/**
+ * Builds maps as plain objects for the geometry tests: sectors, and lines whose front (right) and
+ * back sidedefs name them. One-sided lines are impassable (flag 1) with a middle texture 'WALL';
+ * two-sided lines carry TWO_SIDED and upper/lower 'WALL'. Sectors default to floor 0, ceiling 128,
+ * FLOOR4_8 / CEIL3_5, light 255.
+ */
+export class MapBuilder {
+  readonly vertices: MapVertex[] = [];
+  readonly linedefs: Linedef[] = [];
+  readonly sidedefs: Sidedef[] = [];
+  readonly sectors: Sector[] = [];
+  readonly things: Thing[] = [];
+
+  sector(props: Partial<Sector> = {}): number {
+    return this.sectors.push({ floorHeight: 0, ceilingHeight: 128, floorFlat: 'FLOOR4_8', ceilingFlat: 'CEIL3_5', lightLevel: 255, special: 0, tag: 0, ...props }) - 1;
+  }
+
+  /** A line from a to b; `front` and `back` are sector indices (absent: no sidedef on that side). */
+  line(a: MapPoint, b: MapPoint, front?: number, back?: number, sides: Partial<Sidedef> = {}, flags = 0): void {
+    const side = (sector?: number) =>
+      sector === undefined ? NO_SIDEDEF : this.sidedefs.push({ xOffset: 0, yOffset: 0, upper: 'WALL', lower: 'WALL', middle: back === undefined ? 'WALL' : '-', sector, ...sides }) - 1;
+    const vertex = (p: MapPoint) => this.vertices.push({ x: p[0], y: p[1] }) - 1;
+    const kind = back === undefined ? LINEDEF_FLAGS.BLOCKING : LINEDEF_FLAGS.TWO_SIDED;
+    this.linedefs.push({ v1: vertex(a), v2: vertex(b), flags: flags | kind, special: 0, tag: 0, front: side(front), back: side(back) });
+  }
+
+  /** Lines along the points and back to the first. */
+  loop(points: readonly MapPoint[], front?: number, back?: number, sides: Partial<Sidedef> = {}, flags = 0): void {
+    points.forEach((p, i) => this.line(p, points[(i + 1) % points.length]!, front, back, sides, flags));
+  }
+
+  player(x: number, y: number, angle: number): void {
+    this.things.push({ x, y, angle, type: 1, flags: 7 });
+  }
+
+  build(name = 'TEST'): DoomMap {
+    return { name, vertices: this.vertices, linedefs: this.linedefs, sidedefs: this.sidedefs, sectors: this.sectors, things: this.things };
+  }
+}
+
+/** A rectangle clockwise (north first): its inside is on the right, where front sidedefs face. */
+export const cw = (x: number, y: number, w: number, h = w): MapPoint[] => [[x, y], [x, y + h], [x + w, y + h], [x + w, y]];
+/** The same rectangle counter-clockwise: front sidedefs face out (a pillar's faces). */
+export const ccw = (x: number, y: number, w: number, h = w): MapPoint[] => cw(x, y, w, h).reverse();
 
 /**
  * A one-sector square room, `size` units on a side, with the player 1 start in the middle: the

@@ -5,42 +5,11 @@ import type { Scene, Texture } from '../../scene/types.ts';
 import { validateScene } from '../../scene/validate.ts';
 import { DOOM_TORCH, LAMP_STRENGTH, SKY_STRENGTH, sectorLightFactor } from './light-table.ts';
 import { readMap } from './map-lumps.ts';
-import { LINEDEF_FLAGS, NO_SIDEDEF, SKY_FLAT, type DoomImageSource, type DoomMap, type Linedef, type MapVertex, type Sector, type Sidedef, type Thing } from './map-types.ts';
-import { squareRoomWad } from './test-wad.ts';
+import { SKY_FLAT, type DoomImageSource, type DoomMap } from './map-types.ts';
+import { cw, MapBuilder, squareRoomWad } from './test-wad.ts';
 import { DoomGraphics } from './textures.ts';
 import { doomMapToScene, DOOM_VFOV_DEGREES, type DoomSceneOptions } from './to-scene.ts';
 import { readWad, WadStack } from './wad.ts';
-
-type Point = readonly [number, number];
-
-class TestMap {
-  readonly vertices: MapVertex[] = [];
-  readonly linedefs: Linedef[] = [];
-  readonly sidedefs: Sidedef[] = [];
-  readonly sectors: Sector[] = [];
-  readonly things: Thing[] = [];
-
-  sector(props: Partial<Sector> = {}): number {
-    return this.sectors.push({ floorHeight: 0, ceilingHeight: 128, floorFlat: 'FLOOR4_8', ceilingFlat: 'CEIL3_5', lightLevel: 255, special: 0, tag: 0, ...props }) - 1;
-  }
-  /** Lines around a polygon; the front sidedefs (right of each line) name `front`. */
-  loop(points: readonly Point[], front: number, back?: number, sides: Partial<Sidedef> = {}, flags = 0): void {
-    const side = (sector: number) => this.sidedefs.push({ xOffset: 0, yOffset: 0, upper: 'WALL', lower: 'WALL', middle: back === undefined ? 'WALL' : '-', sector, ...sides }) - 1;
-    const vertex = (p: Point) => this.vertices.push({ x: p[0], y: p[1] }) - 1;
-    points.forEach((p, i) => {
-      const q = points[(i + 1) % points.length]!;
-      this.linedefs.push({ v1: vertex(p), v2: vertex(q), flags: flags | (back === undefined ? 1 : LINEDEF_FLAGS.TWO_SIDED), special: 0, tag: 0, front: side(front), back: back === undefined ? NO_SIDEDEF : side(back) });
-    });
-  }
-  player(x: number, y: number, angle: number): void {
-    this.things.push({ x, y, angle, type: 1, flags: 7 });
-  }
-  build(): DoomMap {
-    return { name: 'TEST', vertices: this.vertices, linedefs: this.linedefs, sidedefs: this.sidedefs, sectors: this.sectors, things: this.things };
-  }
-}
-
-const cw = (x: number, y: number, w: number, h = w): Point[] => [[x, y], [x, y + h], [x + w, y + h], [x + w, y]];
 
 function solid(name: string, width: number, height: number, alpha = 255): Texture {
   const rgba = new Uint8Array(width * height * 4);
@@ -88,7 +57,7 @@ const mod = (a: number, n: number) => ((a % n) + n) % n;
 
 /** A 512×512 room with a raised 128×128 platform (floor 32) and a 64×64 pillar. */
 function roomMap(): { map: DoomMap; room: number; platform: number } {
-  const m = new TestMap();
+  const m = new MapBuilder();
   const room = m.sector();
   const platform = m.sector({ floorHeight: 32 });
   m.loop(cw(0, 0, 512), room);
@@ -140,7 +109,7 @@ describe('doomMapToScene', () => {
   });
 
   it('makes every wall face into its sector', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     m.loop(cw(0, 0, 256), room);
     m.player(128, 128, 0);
@@ -180,7 +149,7 @@ describe('doomMapToScene', () => {
   });
 
   it('makes light textures glow from their bright texels, scaled by the sector light level squared', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector({ lightLevel: 160, ceilingFlat: 'TLITE6_1' });
     m.loop(cw(0, 0, 256), room, undefined, { middle: 'LITE3' });
     m.player(128, 128, 0);
@@ -207,7 +176,7 @@ describe('doomMapToScene', () => {
   });
 
   it('takes light table overrides', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     m.loop(cw(0, 0, 256), room, undefined, { middle: 'LITE3' });
     const { scene } = convert(m.build(), { lightTable: { textures: { LITE3: { strength: 0 } }, flats: { floor4_8: { strength: 2, color: [1, 0.5, 0] } } } });
@@ -216,7 +185,7 @@ describe('doomMapToScene', () => {
   });
 
   it('draws sky ceilings and the walls between skies with the sky panorama', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const yard = m.sector({ ceilingFlat: SKY_FLAT, ceilingHeight: 256 });
     const low = m.sector({ ceilingFlat: SKY_FLAT, ceilingHeight: 192 });
     m.loop(cw(0, 0, 512), yard);
@@ -241,7 +210,7 @@ describe('doomMapToScene', () => {
   });
 
   it('marks masked middle textures for alpha testing, and uses a plain material where a texture is missing', () => {
-    const m = new TestMap();
+    const m = new MapBuilder();
     const room = m.sector();
     const cage = m.sector();
     m.loop(cw(0, 0, 512), room, undefined, { middle: '-' });
