@@ -1,22 +1,62 @@
 /**
  * The neutral scene model every loader produces and the renderer consumes. Renderer-agnostic: no GPU
  * types, no DOM, no file access. Units are whatever the source uses (millimetres for the Cornell box,
- * map units for Doom); the renderer never assumes a scale.
+ * map units for Doom, metres for glTF); the renderer never assumes a scale.
+ *
+ * Geometry is meshes in object space placed by instances (a world-from-object transform each), so a
+ * mesh used twice is stored once and an object can move without touching its vertices. The flat
+ * world-space triangle list the BVH is built over is a build product (scene/triangles.ts), not the
+ * model. Materials are a closed union keyed by `kind`; the WGSL twin of each kind is one case of
+ * shaders/scene/bsdf.wgsl.
  */
+import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
+import type { Environment } from './environment.ts';
 import type { WalkMap } from './walk-map.ts';
 
+export type { Environment, EnvironmentImage } from './environment.ts';
+
 /**
- * An image for materials: 8-bit RGBA, row-major, top row first. Colour channels are sRGB-encoded
- * (as in PNG and glTF base colour textures); alpha is linear coverage (0 = a hole). Sampled with
- * wrapping (repeat) and nearest filtering; (u, v) = (0, 0) is the top-left corner of the image and
- * one unit covers the whole image.
+ * How a texture's colour channels are stored: 'srgb' for colour (base colour, emission: decoded to
+ * linear when sampled), 'linear' for data (normals, metallic-roughness, transmission).
+ */
+export type TextureEncoding = 'srgb' | 'linear';
+
+/**
+ * An image for materials: 8-bit RGBA, row-major, top row first. Alpha is linear coverage (0 = a
+ * hole). (u, v) = (0, 0) is the top-left corner of the image and one unit covers the whole image;
+ * lookups wrap (repeat).
  */
 export interface Texture {
   readonly name: string;
   readonly width: number;
   readonly height: number;
   readonly rgba: Uint8Array;
+  /** Default 'srgb'. */
+  readonly encoding?: TextureEncoding;
+}
+
+/** KHR_texture_transform: uv' = T(offset) · R(rotation) · S(scale) · uv. */
+export interface UvTransform {
+  readonly offset: readonly [number, number];
+  /** Radians, counter-clockwise in uv space. */
+  readonly rotation: number;
+  readonly scale: readonly [number, number];
+}
+
+/** A material's use of a texture: which one, which uv set, and an optional transform. */
+export interface TextureRef {
+  /** Index into Scene.textures. */
+  readonly texture: number;
+  /** Which uv set of the mesh (0 = Mesh.uvs, 1 = Mesh.uvs1). Default 0. */
+  readonly texCoord?: 0 | 1;
+  readonly transform?: UvTransform;
+}
+
+/** A tangent-space normal map (glTF normalTexture): n = normalize((2·rgb − 1) · (scale, scale, 1)). */
+export interface NormalTextureRef extends TextureRef {
+  /** Default 1. */
+  readonly scale?: number;
 }
 
 /**
@@ -37,29 +77,144 @@ export type EmissionMapping =
     };
 
 /**
- * A diffuse (Lambertian) surface that may also emit.
- * - Reflection happens on both sides of a triangle.
+ * What every material kind has: emission and coverage.
  * - Emission is one-sided: a triangle emits only on the side its geometric normal
  *   (v1 - v0) x (v2 - v0) faces, i.e. the side from which the vertices appear counter-clockwise.
- * - Textures multiply the constant colours (after decoding sRGB to linear).
+ * - Textures multiply the constant factors (after decoding sRGB to linear).
  */
-export interface Material {
+interface MaterialBase {
   readonly name: string;
-  /** Diffuse reflectance per linear RGB channel, each in [0, 1]. */
-  readonly albedo: Vec3;
   /** Emitted radiance per linear RGB channel (W·sr⁻¹·m⁻² in scene units), each ≥ 0. */
   readonly emission: Vec3;
-  /** Index into Scene.textures multiplying albedo (and giving alpha for 'mask'). */
-  readonly albedoTexture?: number;
-  /** Index into Scene.textures multiplying emission. */
-  readonly emissionTexture?: number;
+  /** Multiplies emission (sRGB). */
+  readonly emissionTexture?: TextureRef;
   /** Default uv. */
   readonly emissionMapping?: EmissionMapping;
   /**
-   * 'mask': where the albedo texture's alpha is below 0.5 the surface is not there: every ray,
-   * shadow rays included, passes through (Doom's masked middle textures). Default 'opaque'.
+   * Coverage, from the alpha of the colour texture (albedo / base colour) times any constant opacity:
+   * - 'opaque' (default): alpha is ignored;
+   * - 'mask': where alpha is below `alphaCutoff` the surface is not there for any ray, shadow rays
+   *   included (Doom's masked middle textures, glTF MASK);
+   * - 'blend': the surface is there with probability alpha (stochastic transparency, glTF BLEND).
    */
-  readonly alphaMode?: 'opaque' | 'mask';
+  readonly alphaMode?: 'opaque' | 'mask' | 'blend';
+  /** Default 0.5. */
+  readonly alphaCutoff?: number;
+  /**
+   * Whether the back of the surface is a surface too (default true). glTF's single-sided materials
+   * (false) are seen from the front only: rays pass through their back faces, unless the material
+   * transmits (its back faces are the inside of a volume).
+   */
+  readonly doubleSided?: boolean;
+  /** Tangent-space normal map (needs Mesh.tangents or derives them from uvs). */
+  readonly normalTexture?: NormalTextureRef;
+}
+
+/** A Lambertian reflector, both sides. */
+export interface DiffuseMaterial extends MaterialBase {
+  readonly kind: 'diffuse';
+  /** Diffuse reflectance per linear RGB channel, each in [0, 1]. */
+  readonly albedo: Vec3;
+  /** Multiplies albedo (sRGB; its alpha is the coverage for 'mask' and 'blend'). */
+  readonly albedoTexture?: TextureRef;
+}
+
+/**
+ * The glTF 2.0 metallic-roughness model (glTF 2.0 Appendix B) with KHR_materials_ior, _specular,
+ * _transmission and _volume: a dielectric base (diffuse, or transmission) under a specular layer
+ * with F0 from ior and specular, mixed with a metal of F0 = base colour by `metallic`.
+ */
+export interface MetallicRoughnessMaterial extends MaterialBase {
+  readonly kind: 'metallic-roughness';
+  /** Linear RGB in [0, 1]. */
+  readonly baseColor: Vec3;
+  /** baseColorFactor's alpha, in [0, 1]. */
+  readonly opacity: number;
+  /** Multiplies baseColor (sRGB) and opacity (alpha). */
+  readonly baseColorTexture?: TextureRef;
+  readonly metallic: number;
+  /** Perceptual roughness in [0, 1]; GGX α = roughness². */
+  readonly roughness: number;
+  /** Linear; G multiplies roughness, B multiplies metallic. */
+  readonly metallicRoughnessTexture?: TextureRef;
+  /** Default 1.5. */
+  readonly ior: number;
+  /** KHR_materials_specular: strength of the dielectric specular layer (default 1). */
+  readonly specular: number;
+  /** Linear; A multiplies specular. */
+  readonly specularTexture?: TextureRef;
+  /** KHR_materials_specular: tint of the dielectric F0 (default 1, 1, 1). */
+  readonly specularColor: Vec3;
+  /** sRGB; RGB multiplies specularColor. */
+  readonly specularColorTexture?: TextureRef;
+  /** KHR_materials_transmission (default 0). */
+  readonly transmission: number;
+  /** Linear; R multiplies transmission. */
+  readonly transmissionTexture?: TextureRef;
+  /**
+   * KHR_materials_volume: 0 (default) is thin-walled (transmission does not bend rays); > 0 the mesh
+   * bounds a volume whose interface refracts.
+   */
+  readonly thickness: number;
+  /** Beer–Lambert: after this distance (scene units) light inside keeps `attenuationColor`. Infinity: clear. */
+  readonly attenuationDistance: number;
+  readonly attenuationColor: Vec3;
+}
+
+/** Glass: Fresnel reflection and refraction at a smooth (roughness 0) or rough interface. */
+export interface DielectricMaterial extends MaterialBase {
+  readonly kind: 'dielectric';
+  readonly ior: number;
+  /** Perceptual roughness in [0, 1] (0: a perfect, delta interface). */
+  readonly roughness: number;
+  /** Transmission tint at the interface, linear RGB (1, 1, 1: clear). */
+  readonly tint: Vec3;
+  /** Beer–Lambert absorption inside, as in MetallicRoughnessMaterial. Infinity: none. */
+  readonly attenuationDistance: number;
+  readonly attenuationColor: Vec3;
+}
+
+/** A surface that only emits: black to every incoming ray (lamps, light panels, the sky behind Doom's F_SKY1). */
+export interface EmissiveMaterial extends MaterialBase {
+  readonly kind: 'emissive';
+}
+
+export type Material = DiffuseMaterial | MetallicRoughnessMaterial | DielectricMaterial | EmissiveMaterial;
+export type MaterialKind = Material['kind'];
+
+/**
+ * The colour texture whose alpha gives coverage (albedo or base colour), and the constant opacity.
+ * One place for the rule, used by packing, validation and the exporters.
+ */
+export function coverageOf(material: Material): { readonly texture?: TextureRef; readonly opacity: number } {
+  switch (material.kind) {
+    case 'diffuse':
+      return { ...(material.albedoTexture ? { texture: material.albedoTexture } : {}), opacity: 1 };
+    case 'metallic-roughness':
+      return { ...(material.baseColorTexture ? { texture: material.baseColorTexture } : {}), opacity: material.opacity };
+    case 'dielectric':
+    case 'emissive':
+      return { opacity: 1 };
+  }
+}
+
+/** A material's diffuse-equivalent colour: what a debug 'albedo' view, the exporters and the denoiser show. */
+export function baseColorOf(material: Material): Vec3 {
+  switch (material.kind) {
+    case 'diffuse':
+      return material.albedo;
+    case 'metallic-roughness':
+      return material.baseColor;
+    case 'dielectric':
+      return material.tint;
+    case 'emissive':
+      return [0, 0, 0];
+  }
+}
+
+/** A Lambertian material: the one kind the Doom loader, the studio and the built-in boxes use. */
+export function diffuse(name: string, albedo: Vec3, emission: Vec3 = [0, 0, 0], extra: Partial<Omit<DiffuseMaterial, 'kind' | 'name' | 'albedo' | 'emission'>> = {}): DiffuseMaterial {
+  return { kind: 'diffuse', name, albedo, emission, ...extra };
 }
 
 /**
@@ -77,19 +232,75 @@ export interface Torch {
   readonly radius: number;
 }
 
-/** An indexed triangle mesh in world space. */
+/**
+ * Punctual lights (KHR_lights_punctual), in world space. Not geometry: sampled by next-event
+ * estimation only. Intensities are radiometric in scene units (glTF's candela and lux are taken as
+ * W/sr and W/m² one to one).
+ */
+export type PunctualLight =
+  | {
+      readonly kind: 'point';
+      readonly name: string;
+      readonly position: Vec3;
+      readonly color: Vec3;
+      /** Radiant intensity, W/sr. */
+      readonly intensity: number;
+      /** Distance beyond which it is cut off (glTF range), or Infinity. */
+      readonly range: number;
+    }
+  | {
+      readonly kind: 'spot';
+      readonly name: string;
+      readonly position: Vec3;
+      /** Unit direction the light shines in. */
+      readonly direction: Vec3;
+      readonly color: Vec3;
+      readonly intensity: number;
+      readonly range: number;
+      /** Radians: full intensity inside the inner cone, smoothly zero at the outer one. */
+      readonly innerConeAngle: number;
+      readonly outerConeAngle: number;
+    }
+  | {
+      readonly kind: 'directional';
+      readonly name: string;
+      /** Unit direction the light travels in (from the light toward the scene). */
+      readonly direction: Vec3;
+      readonly color: Vec3;
+      /** Irradiance on a surface facing the light, W/m². */
+      readonly irradiance: number;
+    };
+
+/** An indexed triangle mesh in object space. */
 export interface Mesh {
   readonly name: string;
-  /** xyz per vertex, world space. */
+  /** xyz per vertex, object space. */
   readonly positions: Float32Array;
   /** Three vertex indices per triangle. */
   readonly indices: Uint32Array;
   /** Optional unit shading normal per vertex (xyz). Absent: the geometric normal is used. */
   readonly normals?: Float32Array;
-  /** Optional texture coordinate per vertex (uv). */
+  /** Optional texture coordinate per vertex (uv), set 0. */
   readonly uvs?: Float32Array;
+  /** Optional second texture coordinate set. */
+  readonly uvs1?: Float32Array;
+  /** Optional tangent per vertex (xyz + w = bitangent sign), for normal maps (glTF TANGENT). */
+  readonly tangents?: Float32Array;
   /** One index into `Scene.materials` per triangle. */
   readonly materialIds: Uint32Array;
+}
+
+/** One placement of a mesh in the world. */
+export interface Instance {
+  /** Stable across scene updates (a moving object keeps its id), unique in the scene. */
+  readonly id: number;
+  readonly name?: string;
+  /** Index into Scene.meshes. */
+  readonly mesh: number;
+  /** Column-major 4×4 affine transform, world from object (as glTF stores matrices). */
+  readonly worldFromObject: Mat4;
+  /** The instance may move between frames (doors, lifts, the phantom). Default false. */
+  readonly moves?: boolean;
 }
 
 /** A pinhole camera. `forward` and `up` need not be unit length nor exactly orthogonal. */
@@ -109,13 +320,20 @@ export interface Camera {
 export interface Scene {
   readonly name: string;
   readonly meshes: readonly Mesh[];
+  /** What is drawn: each mesh appears once per instance that names it (a mesh no instance names is not drawn). */
+  readonly instances: readonly Instance[];
   readonly materials: readonly Material[];
   readonly textures?: readonly Texture[];
   readonly camera: Camera;
+  /** What rays leaving the scene see. Absent: { kind: 'none' } (black). */
+  readonly environment?: Environment;
+  readonly lights?: readonly PunctualLight[];
   /** A light the viewer carries, on by default where the scene has one (Doom maps). */
   readonly torch?: Torch;
-  /** Size of one scene unit in metres, when known (Cornell box: 0.001; Doom: 1/32). */
+  /** Size of one scene unit in metres, when known (Cornell box: 0.001; Doom: 1/32; glTF: 1). */
   readonly metersPerUnit?: number;
   /** The floor plan a viewer can walk on (Doom maps), with the walker's dimensions. */
   readonly walkMap?: WalkMap;
+  /** What the loader had to work around (a missing texture, no light so a default sky): shown once to the user. */
+  readonly warnings?: readonly string[];
 }
