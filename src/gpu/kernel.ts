@@ -4,6 +4,7 @@
  * and create bind groups from resources given by their WGSL variable names.
  */
 import { LanternError } from '../errors.ts';
+import type { SceneFeatures } from './pack/scene-pack.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
 import { entryPointBindings, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
 
@@ -153,10 +154,66 @@ export class KernelVariants<K extends string> {
   }
 }
 
-/** The traversal variant a scene needs: alpha masks compiled in only where it has masked triangles. */
-export type TraversalVariant = 'masked' | 'opaque';
-export const TRAVERSAL_VARIANTS: Record<TraversalVariant, Record<string, number>> = {
-  masked: { SCENE_HAS_ALPHA_MASKS: 1 },
-  opaque: { SCENE_HAS_ALPHA_MASKS: 0 },
+/**
+ * The scene features (gpu/pack/scene-pack.ts SceneFeatures) that pipelines compile out where a
+ * scene lacks them, by the WGSL override constant each sets. A scene without alpha tests, without
+ * non-diffuse materials, punctual lights or an environment runs the same code as before they existed.
+ */
+export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
+  alphaMasks: 'SCENE_HAS_ALPHA_MASKS',
+  generalMaterials: 'SCENE_HAS_GENERAL_MATERIALS',
+  punctualLights: 'SCENE_HAS_PUNCTUAL_LIGHTS',
+  environment: 'SCENE_HAS_ENVIRONMENT',
 };
-export const traversalVariant = (maskedTriangles: number): TraversalVariant => (maskedTriangles > 0 ? 'masked' : 'opaque');
+
+/**
+ * The variants of one entry point for the scenes it meets, compiled when a scene first needs one
+ * (prepare, awaited by Renderer.setScene) so that choosing one while encoding stays synchronous.
+ * `features` names the scene features the entry point's modules declare overrides for.
+ */
+export class SceneKernels {
+  private readonly ready = new Map<string, ComputeKernel>();
+  private readonly pending = new Map<string, Promise<ComputeKernel>>();
+
+  constructor(
+    private readonly device: GPUDevice,
+    private readonly base: Omit<KernelOptions, 'constants'>,
+    private readonly features: readonly (keyof SceneFeatures)[],
+    private readonly extraConstants: Record<string, number> = {},
+  ) {}
+
+  /** Creates the set and compiles the variant of a plain scene (diffuse, opaque, no lights but emitters), so errors surface at once. */
+  static async create(device: GPUDevice, base: Omit<KernelOptions, 'constants'>, features: readonly (keyof SceneFeatures)[], extraConstants: Record<string, number> = {}): Promise<SceneKernels> {
+    const kernels = new SceneKernels(device, base, features, extraConstants);
+    await kernels.prepare(PLAIN_SCENE);
+    return kernels;
+  }
+
+  private key(f: SceneFeatures): string {
+    return this.features.map((name) => (f[name] ? 1 : 0)).join('');
+  }
+
+  /** Compiles the variant `f` needs, once. */
+  async prepare(f: SceneFeatures): Promise<void> {
+    const key = this.key(f);
+    if (this.ready.has(key)) return;
+    let pending = this.pending.get(key);
+    if (!pending) {
+      const constants: Record<string, number> = { ...this.extraConstants };
+      for (const name of this.features) constants[FEATURE_CONSTANTS[name]] = f[name] ? 1 : 0;
+      pending = ComputeKernel.create(this.device, { ...this.base, constants });
+      this.pending.set(key, pending);
+    }
+    this.ready.set(key, await pending);
+  }
+
+  get(f: SceneFeatures): ComputeKernel {
+    const kernel = this.ready.get(this.key(f));
+    if (!kernel) throw new Error(`${this.base.entryPoint}: no pipeline compiled for scene features ${JSON.stringify(f)} (prepare() first)`);
+    return kernel;
+  }
+}
+
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false });
+/** The features every path-tracing entry point compiles by. */
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment'];

@@ -2,7 +2,8 @@
  * The tracing half of the debug views (shaders/passes/debug-view.wgsl): one pixel-centre primary ray
  * per pixel through the counting variant of the BVH traversal, raw values out.
  */
-import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type TraversalVariant } from '../gpu/kernel.ts';
+import { SceneKernels } from '../gpu/kernel.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { DEBUG_VIEWS, type DebugView } from '../renderer/settings.ts';
@@ -13,11 +14,6 @@ const MODULE = 'passes/debug-view';
 /** Must match @workgroup_size of debug_view. */
 const WORKGROUP = 8;
 
-/** The traversal variants with scene/bvh.wgsl's work counters compiled in. */
-const COUNTING_VARIANTS: Record<TraversalVariant, Record<string, number>> = {
-  masked: { ...TRAVERSAL_VARIANTS.masked, BVH_COUNT_WORK: 1 },
-  opaque: { ...TRAVERSAL_VARIANTS.opaque, BVH_COUNT_WORK: 1 },
-};
 
 export interface DebugViewTarget {
   readonly width: number;
@@ -32,19 +28,24 @@ export interface DebugViewTarget {
 
 export class DebugViewPass {
   private constructor(
-    private readonly kernels: KernelVariants<TraversalVariant>,
+    private readonly kernels: SceneKernels,
     private readonly params: UniformParams<{ view_kind: number }>,
   ) {}
 
   static async create(device: GPUDevice): Promise<DebugViewPass> {
-    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'debug_view' }, COUNTING_VARIANTS);
+    // The traversal with scene/bvh.wgsl's work counters compiled in; variants by alpha tests only.
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, ['alphaMasks'], { BVH_COUNT_WORK: 1 });
     return new DebugViewPass(kernels, new UniformParams(device, MODULE));
+  }
+
+  prepare(features: SceneFeatures): Promise<void> {
+    return this.kernels.prepare(features);
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
   encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: DebugViewTarget, debugView: DebugView, timer?: GpuTimer): void {
     this.params.write({ view_kind: DEBUG_VIEWS.indexOf(debugView) });
-    const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
+    const kernel = this.kernels.get(scene.features);
     encoder.clearBuffer(target.range);
     const pass = encoder.beginComputePass({ label: 'debug view', ...(timer ? { timestampWrites: timer.timestampWrites('debug view') } : {}) });
     kernel.dispatch(

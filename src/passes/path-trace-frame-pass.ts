@@ -8,6 +8,7 @@ import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { cameraBasis, type ViewUniform } from '../renderer/view.ts';
 import type { Camera } from '../scene/types.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
@@ -35,6 +36,10 @@ export class PathTraceFramePass {
   static async create(device: GPUDevice): Promise<PathTraceFramePass> {
     const kernels = await TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1 });
     return new PathTraceFramePass(kernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
+  }
+
+  prepare(features: SceneFeatures): Promise<void> {
+    return this.kernels.prepare(features);
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */

@@ -1,5 +1,6 @@
 /** The path tracer dispatch (shaders/passes/path-trace.wgsl): adds samples to the accumulation buffer. */
-import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type ComputeKernel, type TraversalVariant } from '../gpu/kernel.ts';
+import { SceneKernels, TRACING_FEATURES, type ComputeKernel } from '../gpu/kernel.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../renderer/view.ts';
@@ -61,7 +62,7 @@ export interface PathTraceTarget {
 }
 
 /**
- * The traversal variants of a tracing entry point (shaders/passes/path-trace or an entry point that
+ * The scene variants of a tracing entry point (shaders/passes/path-trace or an entry point that
  * imports it) with their bind groups cached per kernel and resource: each pipeline has its own
  * layouts. Group 0 is the scene, 1 the view, 2 the pass's own, keyed by one of its buffers.
  */
@@ -70,16 +71,20 @@ export class TracingKernels {
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
   private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
 
-  private constructor(private readonly kernels: KernelVariants<TraversalVariant>) {}
+  private constructor(private readonly kernels: SceneKernels) {}
 
   static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}): Promise<TracingKernels> {
-    const variants = Object.fromEntries(Object.entries(TRAVERSAL_VARIANTS).map(([k, c]) => [k, { ...c, ...extraConstants }])) as Record<TraversalVariant, Record<string, number>>;
-    return new TracingKernels(await KernelVariants.create(device, { module, entryPoint }, variants));
+    return new TracingKernels(await SceneKernels.create(device, { module, entryPoint }, TRACING_FEATURES, extraConstants));
+  }
+
+  /** Compiles the variant a scene with these features needs (Renderer.setScene awaits it). */
+  prepare(features: SceneFeatures): Promise<void> {
+    return this.kernels.prepare(features);
   }
 
   /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
   dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, timer?: GpuTimer): void {
-    const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
+    const kernel = this.kernels.get(scene.features);
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     kernel.dispatch(
       pass,
@@ -103,6 +108,10 @@ export class PathTracePass {
 
   static async create(device: GPUDevice): Promise<PathTracePass> {
     return new PathTracePass(await TracingKernels.create(device, MODULE, 'path_trace'), new UniformParams(device, MODULE));
+  }
+
+  prepare(features: SceneFeatures): Promise<void> {
+    return this.kernels.prepare(features);
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */

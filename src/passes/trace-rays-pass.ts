@@ -2,7 +2,8 @@
  * Closest-hit tracing of a ray buffer (shaders/passes/trace-rays.wgsl): the traversal benchmark and
  * the GPU side of the traversal-versus-oracle test.
  */
-import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type ComputeKernel, type TraversalVariant } from '../gpu/kernel.ts';
+import { SceneKernels, type ComputeKernel } from '../gpu/kernel.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule, structLayout } from '../gpu/wgsl/reflect.ts';
@@ -35,19 +36,20 @@ export interface TraceRaysBinding {
 export class TraceRaysPass {
   private constructor(
     private readonly device: GPUDevice,
-    private readonly kernels: KernelVariants<TraversalVariant>,
+    private readonly kernels: SceneKernels,
     private readonly params: UniformParams<{ ray_count: number }>,
   ) {}
 
   static async create(device: GPUDevice): Promise<TraceRaysPass> {
-    const kernels = await KernelVariants.create(device, { module: MODULE, entryPoint: 'trace_rays' }, TRAVERSAL_VARIANTS);
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'trace_rays' }, ['alphaMasks']);
     return new TraceRaysPass(device, kernels, new UniformParams(device, MODULE));
   }
 
   /** Bind groups for tracing `rays` into `hits`; reuse them to trace the same buffers many times. */
-  bind(scene: SceneResources, rays: GPUBuffer, hits: GPUBuffer, count: number): TraceRaysBinding {
+  async bind(scene: SceneResources, rays: GPUBuffer, hits: GPUBuffer, count: number): Promise<TraceRaysBinding> {
+    await this.kernels.prepare(scene.features);
     this.params.write({ ray_count: count });
-    const kernel = this.kernels.get(traversalVariant(scene.counts.maskedTriangles));
+    const kernel = this.kernels.get(scene.features);
     return { kernel, 0: kernel.bindGroup(0, scene.bindings), 2: kernel.bindGroup(2, { params: this.params.buffer, rays, hits }), count };
   }
 

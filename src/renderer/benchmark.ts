@@ -81,13 +81,13 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
     let encoder = device.createCommandEncoder({ label: 'benchmark rays' });
     generate.encodePrimary(encoder, view, width, height, primaryRays);
     device.queue.submit([encoder.finish()]);
-    const primaryGroups = trace.bind(resources, primaryRays, primaryHits, count);
+    const primaryGroups = await trace.bind(resources, primaryRays, primaryHits, count);
     const primaryMs = await timePasses(device, timer, repeats, (e, t) => trace.encode(e, primaryGroups, t, 'primary rays'));
 
     encoder = device.createCommandEncoder({ label: 'benchmark rays' });
     generate.encodeDiffuse(encoder, count, primaryRays, primaryHits, diffuseRays, 1234);
     device.queue.submit([encoder.finish()]);
-    const diffuseGroups = trace.bind(resources, diffuseRays, diffuseHits, count);
+    const diffuseGroups = await trace.bind(resources, diffuseRays, diffuseHits, count);
     const diffuseMs = await timePasses(device, timer, repeats, (e, t) => trace.encode(e, diffuseGroups, t, 'diffuse rays'));
 
     // Path tracing: one sample per pixel per submit, as the interactive viewer runs it.

@@ -20,6 +20,7 @@ import { DebugComposePass } from '../passes/debug-compose-pass.ts';
 import { DebugViewPass } from '../passes/debug-view-pass.ts';
 import { debugLegend, scaleMax, type DebugLegend, type LegendFacts } from './debug-legend.ts';
 import type { PreparedScene } from './prepare.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { RenderSettings } from './settings.ts';
 import type { ViewUniform } from './view.ts';
 
@@ -89,6 +90,11 @@ export class DebugViews {
   }
 
   /** The legend of the last encoded view; reads the image's maximum back when the scale is automatic. */
+  /** Compiles the tracing variant a scene with these features needs. */
+  prepare(features: SceneFeatures): Promise<void> {
+    return this.trace.prepare(features);
+  }
+
   async legend(settings: RenderSettings, prepared: PreparedScene, resources: SceneResources): Promise<DebugLegend> {
     const scene = this.scene(prepared, resources);
     const imageMax = this.size ? new Uint32Array(await readBuffer(this.device, this.size.range))[0]! : 0;

@@ -15,6 +15,7 @@ import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
 import { ATROUS_STEPS, atrousParams, createDenoisePasses, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass } from '../passes/path-trace-frame-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { RenderSettings } from './settings.ts';
@@ -86,6 +87,11 @@ export class Denoiser {
   static async create(device: GPUDevice): Promise<Denoiser> {
     const [frame, passes] = await Promise.all([PathTraceFramePass.create(device), createDenoisePasses(device)]);
     return new Denoiser(device, frame, passes);
+  }
+
+  /** Compiles the frame path tracer's variant for a scene with these features. */
+  prepare(features: SceneFeatures): Promise<void> {
+    return this.frame.prepare(features);
   }
 
   /** The chain's linear output of the last frame (vec4f per pixel), if a frame was rendered. */

@@ -122,6 +122,9 @@ export class Renderer {
   /** Uploads a scene (prepared here unless given prepared) and frees the previous one. Uses its camera. */
   async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
     const prepared = 'packed' in scene ? scene : prepareScene(scene);
+    const features = prepared.packed.features;
+    // The pipelines this scene needs compile before anything is freed, so a failure leaves the old scene.
+    await Promise.all([this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features)]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
     this.resources?.destroy();
     this.resources = resources;
@@ -214,6 +217,7 @@ export class Renderer {
   /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output). */
   async enableRealTime(): Promise<void> {
     this.denoiser ??= await Denoiser.create(this.device);
+    if (this.prepared) await this.denoiser.prepare(this.prepared.packed.features);
   }
 
   /**
@@ -281,6 +285,7 @@ export class Renderer {
   /** Compiles the debug views' pipelines (readImage does it by itself; present needs it done first). */
   async enableDebugViews(): Promise<void> {
     this.debugViews ??= await DebugViews.create(this.device);
+    if (this.prepared) await this.debugViews.prepare(this.prepared.packed.features);
   }
 
   /** The tone-mapped sRGB image, RGBA8 row-major, top row first; with a debug view, composed with it. */

@@ -4,9 +4,10 @@ import { boundsOfPositions, type Aabb } from '../math/aabb.ts';
 import { add, cross, dot, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
 import { studioScene } from './studio.ts';
 import type { Material, Mesh, Scene } from './types.ts';
+import { baseColorOf } from './types.ts';
 import { validateScene } from './validate.ts';
 
-const white: Material = { name: 'white', albedo: [0.8, 0.8, 0.8], emission: [0, 0, 0] };
+const white: Material = { kind: 'diffuse', name: 'white', albedo: [0.8, 0.8, 0.8], emission: [0, 0, 0] };
 
 /** A box mesh (12 triangles) spanning min..max. */
 function box(min: Vec3, max: Vec3): Mesh {
@@ -66,7 +67,7 @@ describe('studioScene', () => {
     expect(scene.materials[0]).toBe(white);
     const material = (m: Mesh) => scene.materials[m.materialIds[0]!]!;
     expect(material(floor).emission).toEqual([0, 0, 0]);
-    expect(material(floor).albedo[0]).toBeCloseTo(0.7);
+    expect(baseColorOf(material(floor))[0]).toBeCloseTo(0.7);
     expect(material(key).emission[0]).toBeGreaterThan(material(fill).emission[0]);
     expect(material(fill).emission[0]).toBeGreaterThan(0);
 
@@ -116,7 +117,7 @@ describe('studioScene', () => {
   it('keeps several meshes and their material ids, framing their union', () => {
     const a = box([0, 0, 0], [1, 1, 1]);
     const b = { ...box([5, 0, 0], [6, 3, 1]), materialIds: new Uint32Array(12).fill(1) };
-    const red: Material = { name: 'red', albedo: [0.8, 0.1, 0.1], emission: [0, 0, 0] };
+    const red: Material = { kind: 'diffuse', name: 'red', albedo: [0.8, 0.1, 0.1], emission: [0, 0, 0] };
     const scene = studioScene('two', [a, b], [white, red]);
     validateScene(scene);
     expect(scene.materials.slice(0, 2)).toEqual([white, red]);

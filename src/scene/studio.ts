@@ -6,7 +6,8 @@
 import { LanternError } from '../errors.ts';
 import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../math/aabb.ts';
 import { add, cross, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
-import type { Camera, Material, Mesh, Scene } from './types.ts';
+import { placeEachOnce } from './instances.ts';
+import { diffuse, type Camera, type Material, type Mesh, type Scene } from './types.ts';
 
 export const STUDIO_VFOV_DEGREES = 40;
 
@@ -50,9 +51,9 @@ export function studioScene(name: string, meshes: readonly Mesh[], materials: re
 
   const base = materials.length;
   const studioMaterials: Material[] = [
-    { name: 'studio floor', albedo: [0.7, 0.7, 0.7], emission: [0, 0, 0] },
-    { name: 'studio key light', albedo: [0, 0, 0], emission: [KEY.radiance, KEY.radiance, KEY.radiance] },
-    { name: 'studio fill light', albedo: [0, 0, 0], emission: [FILL.radiance, FILL.radiance, FILL.radiance] },
+    diffuse('studio floor', [0.7, 0.7, 0.7]),
+    { kind: 'emissive', name: 'studio key light', emission: [KEY.radiance, KEY.radiance, KEY.radiance] },
+    { kind: 'emissive', name: 'studio fill light', emission: [FILL.radiance, FILL.radiance, FILL.radiance] },
   ];
   // A hair below the lowest point: no visible gap, and no coplanar fight with a flat-bottomed model.
   const floorY = bounds.min[1] - 1e-4 * radius;
@@ -67,9 +68,11 @@ export function studioScene(name: string, meshes: readonly Mesh[], materials: re
   const key = facingLight('studio key light', centre, KEY_DIRECTION, KEY, radius, base + 1);
   const fill = facingLight('studio fill light', centre, FILL_DIRECTION, FILL, radius, base + 2);
 
+  const all = [...meshes, floor, key, fill];
   return {
     name,
-    meshes: [...meshes, floor, key, fill],
+    meshes: all,
+    instances: placeEachOnce(all),
     materials: [...materials, ...studioMaterials],
     camera: frameCamera(bounds, centre, radius),
   };

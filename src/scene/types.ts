@@ -34,6 +34,8 @@ export interface Texture {
   readonly rgba: Uint8Array;
   /** Default 'srgb'. */
   readonly encoding?: TextureEncoding;
+  /** Magnification filter: 'bilinear' (default) or 'nearest' (Doom's texels, seen as pixels). */
+  readonly filter?: 'nearest' | 'bilinear';
 }
 
 /** KHR_texture_transform: uv' = T(offset) · R(rotation) · S(scale) · uv. */

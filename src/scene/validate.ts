@@ -4,21 +4,58 @@
  */
 import { LanternError } from '../errors.ts';
 import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
-import type { Scene } from './types.ts';
+import type { Material, Scene, TextureRef } from './types.ts';
 
 export function validateScene(scene: Scene): void {
   const fail = (what: string): never => {
     throw new LanternError(`scene '${scene.name}' is invalid: ${what}`);
   };
   if (scene.materials.length === 0) fail('it has no materials');
+  const textureCount = scene.textures?.length ?? 0;
+  const unit = (x: number) => Number.isFinite(x) && x >= 0 && x <= 1;
+  const unitVec = (v: Vec3) => isFiniteVec3(v) && v.every(unit);
   scene.materials.forEach((m, i) => {
-    if (!isFiniteVec3(m.albedo) || m.albedo.some((c) => c < 0 || c > 1)) {
-      fail(`material ${i} ('${m.name}') has albedo ${m.albedo.join(', ')} outside [0, 1]`);
+    const where = `material ${i} ('${m.name}')`;
+    if (!isFiniteVec3(m.emission) || m.emission.some((c) => c < 0)) fail(`${where} has a negative or non-finite emission`);
+    for (const ref of [m.emissionTexture, m.normalTexture, ...materialTextures(m)]) {
+      if (ref && !(Number.isInteger(ref.texture) && ref.texture >= 0 && ref.texture < textureCount)) fail(`${where} refers to texture ${ref.texture} of ${textureCount}`);
     }
-    if (!isFiniteVec3(m.emission) || m.emission.some((c) => c < 0)) {
-      fail(`material ${i} ('${m.name}') has a negative or non-finite emission`);
+    switch (m.kind) {
+      case 'diffuse':
+        if (!unitVec(m.albedo)) fail(`${where} has albedo ${m.albedo.join(', ')} outside [0, 1]`);
+        break;
+      case 'metallic-roughness':
+        if (!unitVec(m.baseColor)) fail(`${where} has base colour ${m.baseColor.join(', ')} outside [0, 1]`);
+        for (const [name, v] of [['metallic', m.metallic], ['roughness', m.roughness], ['opacity', m.opacity], ['transmission', m.transmission], ['specular', m.specular]] as const) {
+          if (!unit(v)) fail(`${where} has ${name} ${v} outside [0, 1]`);
+        }
+        if (!(m.ior >= 1 && m.ior < 10)) fail(`${where} has an index of refraction ${m.ior} outside [1, 10)`);
+        if (!isFiniteVec3(m.specularColor) || m.specularColor.some((c) => c < 0)) fail(`${where} has a negative or non-finite specular colour`);
+        if (!unitVec(m.attenuationColor) || !(m.attenuationDistance > 0)) fail(`${where} has an invalid volume attenuation`);
+        break;
+      case 'dielectric':
+        if (!(m.ior >= 1 && m.ior < 10)) fail(`${where} has an index of refraction ${m.ior} outside [1, 10)`);
+        if (!unit(m.roughness)) fail(`${where} has roughness ${m.roughness} outside [0, 1]`);
+        if (!unitVec(m.tint)) fail(`${where} has tint ${m.tint.join(', ')} outside [0, 1]`);
+        if (!unitVec(m.attenuationColor) || !(m.attenuationDistance > 0)) fail(`${where} has an invalid volume attenuation`);
+        break;
+      case 'emissive':
+        break;
+      default:
+        fail(`${where} has an unknown kind '${(m as { kind: string }).kind}'`);
     }
   });
+  const ids = new Set<number>();
+  scene.instances.forEach((inst, i) => {
+    if (!(Number.isInteger(inst.mesh) && inst.mesh >= 0 && inst.mesh < scene.meshes.length)) fail(`instance ${i} refers to mesh ${inst.mesh} of ${scene.meshes.length}`);
+    if (inst.worldFromObject.length !== 16 || !inst.worldFromObject.every(Number.isFinite)) fail(`instance ${i} has a transform that is not 16 finite numbers`);
+    if (ids.has(inst.id)) fail(`two instances have the id ${inst.id}`);
+    ids.add(inst.id);
+  });
+  for (const light of scene.lights ?? []) {
+    const power = light.kind === 'directional' ? light.irradiance : light.intensity;
+    if (!(Number.isFinite(power) && power >= 0) || !isFiniteVec3(light.color) || light.color.some((c) => c < 0)) fail(`light '${light.name}' has a negative or non-finite intensity or colour`);
+  }
   let triangles = 0;
   scene.meshes.forEach((mesh, mi) => {
     const where = `mesh ${mi} ('${mesh.name}')`;
@@ -43,6 +80,7 @@ export function validateScene(scene: Scene): void {
     triangles += triCount;
   });
   if (triangles === 0) fail('it has no triangles');
+  if (scene.instances.length === 0) fail('it places no mesh (no instances)');
   const c = scene.camera;
   if (!isFiniteVec3(c.position)) fail('the camera position is not finite');
   if (!(length(c.forward) > 0) || !isFiniteVec3(c.forward)) fail('the camera forward vector is zero or not finite');
@@ -50,4 +88,16 @@ export function validateScene(scene: Scene): void {
   if (!(length(side) > 1e-9 * length(c.forward) * length(c.up))) fail('the camera up vector is zero or parallel to forward');
   if (!(c.vfovDegrees > 0 && c.vfovDegrees < 180)) fail(`the camera field of view ${c.vfovDegrees}° is outside (0, 180)`);
   if (c.exposureStops !== undefined && !(Math.abs(c.exposureStops) <= 64)) fail(`the camera exposure ${c.exposureStops} stops is outside ±64`);
+}
+
+function materialTextures(m: Material): (TextureRef | undefined)[] {
+  switch (m.kind) {
+    case 'diffuse':
+      return [m.albedoTexture];
+    case 'metallic-roughness':
+      return [m.baseColorTexture, m.metallicRoughnessTexture, m.specularTexture, m.specularColorTexture, m.transmissionTexture];
+    case 'dielectric':
+    case 'emissive':
+      return [];
+  }
 }

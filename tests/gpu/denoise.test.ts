@@ -3,6 +3,7 @@
  * camera move, disocclusion rejected, the denoised 1-spp image much closer to a converged reference
  * than the raw one without losing or gaining energy, and a moving object leaving no trail.
  */
+import { placeEachOnce } from '../../src/scene/instances.ts';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { dot, sub, type Vec3 } from '../../src/math/vec3.ts';
@@ -23,12 +24,13 @@ const camera = (x: number): Camera => ({ position: [x, 0, 0], forward: [0, 0, 1]
 /** A wall facing the camera and a 2×2 square in front of it centred at x = occluderX. */
 function wallScene(occluderX: number, occluder: { albedo: number; emission: number; sameMaterial: boolean }): Scene {
   const b = new MeshBuilder('wall');
-  const wall = b.material({ name: 'wall', albedo: [0, 0, 0], emission: [1, 1, 1] });
-  const square = occluder.sameMaterial ? wall : b.material({ name: 'occluder', albedo: [occluder.albedo, occluder.albedo, occluder.albedo], emission: [occluder.emission, occluder.emission, occluder.emission] });
+  const wall = b.material({ kind: 'diffuse', name: 'wall', albedo: [0, 0, 0], emission: [1, 1, 1] });
+  const square = occluder.sameMaterial ? wall : b.material({ kind: 'diffuse', name: 'occluder', albedo: [occluder.albedo, occluder.albedo, occluder.albedo], emission: [occluder.emission, occluder.emission, occluder.emission] });
   const quad = (m: number, x0: number, x1: number, y0: number, y1: number, z: number) => b.quad(m, [x0, y0, z], [x0, y1, z], [x1, y1, z], [x1, y0, z]);
   quad(wall, -40, 40, -40, 40, WALL_Z);
   quad(square, occluderX - 1, occluderX + 1, -1, 1, OCCLUDER_Z);
-  return { name: 'wall', meshes: [b.build()], materials: b.materials, camera: camera(0) };
+  const meshes = [b.build()];
+  return { name: 'wall', meshes, instances: placeEachOnce(meshes), materials: b.materials, camera: camera(0) };
 }
 
 /** Image point (pixels) of a world point: the pinhole projection written out from the camera basis. */

@@ -3,6 +3,8 @@
  * holes (closest hit and shadow rays alike); textured albedo and emission decode sRGB and give the
  * furnace's 1/(1 − a); a sky panorama is looked up by viewing direction; the torch delivers I/d².
  */
+import { placeEachOnce } from '../../src/scene/instances.ts';
+import { IDENTITY } from '../../src/math/mat4.ts';
 import { describe, expect, it } from 'vitest';
 import { readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
@@ -25,7 +27,7 @@ const srgbToLinear = (c: number) => {
 function solid(name: string, width: number, height: number, texel: (x: number, y: number) => [number, number, number, number]): Texture {
   const rgba = new Uint8Array(width * height * 4);
   for (let y = 0; y < height; y++) for (let x = 0; x < width; x++) rgba.set(texel(x, y), (y * width + x) * 4);
-  return { name, width, height, rgba };
+  return { name, width, height, rgba, filter: 'nearest' };
 }
 
 /** A quad with uvs (0,0) top left .. (1,1) bottom right over corners a (top left), b (top right), c, d. */
@@ -45,6 +47,7 @@ function meshScene(name: string, quads: { corners: [Vec3, Vec3, Vec3, Vec3]; mat
   return {
     name,
     meshes: [{ name, positions: new Float32Array(positions), indices: new Uint32Array(indices), uvs: new Float32Array(uvs), materialIds: new Uint32Array(materialIds) }],
+    instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }],
     materials,
     textures,
     camera,
@@ -62,8 +65,8 @@ const maskScene = meshScene(
     { corners: [[-2, 2, 1], [2, 2, 1], [2, -2, 1], [-2, -2, 1]], material: 1 },
   ],
   [
-    { name: 'mask', albedo: [1, 1, 1], emission: [0, 0, 0], albedoTexture: 0, alphaMode: 'mask' },
-    { name: 'wall', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] },
+    { kind: 'diffuse', name: 'mask', albedo: [1, 1, 1], emission: [0, 0, 0], albedoTexture: { texture: 0 }, alphaMode: 'mask' },
+    { kind: 'diffuse', name: 'wall', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] },
   ],
   [checker],
   camera,
@@ -98,7 +101,7 @@ describe('alpha masks', () => {
     const hits = outputBuffer(device, 'hits', hitLayout.stride * rays.length);
     const pass = await TraceRaysPass.create(device);
     const encoder = device.createCommandEncoder();
-    pass.encode(encoder, pass.bind(scene, rayBuffer, hits, rays.length));
+    pass.encode(encoder, await pass.bind(scene, rayBuffer, hits, rays.length));
     device.queue.submit([encoder.finish()]);
     const out = new Float32Array(await readBuffer(device, hits));
     rays.forEach((r, i) => {
@@ -157,7 +160,7 @@ function insideCube(material: Material, textures: Texture[], cam: Camera): Scene
   b.quad(m, p(-1, -1, 1), p(-1, 1, 1), p(1, 1, 1), p(1, -1, 1));
   const mesh = b.build();
   // uvs anywhere: the textures are constant.
-  return { name: 'cube', meshes: [{ ...mesh, uvs: new Float32Array((mesh.positions.length / 3) * 2).fill(0.3) }], materials: b.materials, textures, camera: cam };
+  return { name: 'cube', meshes: [{ ...mesh, uvs: new Float32Array((mesh.positions.length / 3) * 2).fill(0.3) }], instances: placeEachOnce([mesh]), materials: b.materials, textures, camera: cam };
 }
 
 describe('textured materials', () => {
@@ -165,7 +168,7 @@ describe('textured materials', () => {
     const albedo = solid('grey', 2, 2, () => [188, 188, 188, 255]);
     const glow = solid('glow', 2, 2, () => [128, 128, 128, 255]);
     const a = srgbToLinear(188), e = 2 * srgbToLinear(128);
-    const scene = insideCube({ name: 'textured', albedo: [1, 1, 1], emission: [2, 2, 2], albedoTexture: 0, emissionTexture: 1 }, [albedo, glow], { position: [0.1, 0.2, -0.3], forward: [0.2, 0.1, 1], up: [0, 1, 0], vfovDegrees: 60 });
+    const scene = insideCube({ kind: 'diffuse', name: 'textured', albedo: [1, 1, 1], emission: [2, 2, 2], albedoTexture: { texture: 0 }, emissionTexture: { texture: 1 } }, [albedo, glow], { position: [0.1, 0.2, -0.3], forward: [0.2, 0.1, 1], up: [0, 1, 0], vfovDegrees: 60 });
     const { all } = await renderCentre(scene, 512, { maxBounces: 256 });
     const mean = all.radiance.reduce((s, v) => s + v, 0) / all.radiance.length;
     expect(Math.abs(mean - e / (1 - a)) / (e / (1 - a))).toBeLessThan(0.01);
@@ -181,7 +184,7 @@ describe('textured materials', () => {
       const azimuth = ((45 + 90 * k) * Math.PI) / 180;
       const forward: Vec3 = [Math.cos(azimuth), 0, -Math.sin(azimuth)];
       const scene = insideCube(
-        { name: 'sky', albedo: [0, 0, 0], emission: [1, 1, 1], emissionTexture: 0, emissionMapping: { kind: 'panorama', repeats: 1, horizonV: 0.5, vPerRadian: 0.3 } },
+        { kind: 'diffuse', name: 'sky', albedo: [0, 0, 0], emission: [1, 1, 1], emissionTexture: { texture: 0 }, emissionMapping: { kind: 'panorama', repeats: 1, horizonV: 0.5, vPerRadian: 0.3 } },
         [sky],
         { position: [0, 0, 0], forward, up: [0, 1, 0], vfovDegrees: 10 },
       );
@@ -197,7 +200,7 @@ describe('textured materials', () => {
     const scene = meshScene(
       'torch',
       [{ corners: [[-50, 50, d], [50, 50, d], [50, -50, d], [-50, -50, d]], material: 0 }],
-      [{ name: 'wall', albedo: [rho, rho, rho], emission: [0, 0, 0] }],
+      [{ kind: 'diffuse', name: 'wall', albedo: [rho, rho, rho], emission: [0, 0, 0] }],
       [],
       { position: [0, 0, 0], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 1 },
     );

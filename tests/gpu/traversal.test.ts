@@ -5,6 +5,7 @@
  * triangle is accepted only where it is a genuine tie: the oracle itself hits the GPU's triangle at
  * the same distance (a shared edge), or the ray grazes an edge (both answers are right).
  */
+import { IDENTITY } from '../../src/math/mat4.ts';
 import { describe, expect, it } from 'vitest';
 import { traverseClosest } from '../../src/bvh/traverse.ts';
 import { prepareRay, intersectTriangle } from '../../src/bvh/ray.ts';
@@ -28,7 +29,8 @@ function soupScene(name: string, positions: Float32Array, camera: Scene['camera'
   return {
     name,
     meshes: [{ name, positions, indices: Uint32Array.from({ length: n * 3 }, (_, i) => i), materialIds: new Uint32Array(n) }],
-    materials: [{ name: 'grey', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] }],
+    instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }],
+    materials: [{ kind: 'diffuse', name: 'grey', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] }],
     camera,
   };
 }
@@ -89,7 +91,7 @@ async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: Test
   const hitBuffer = device.createBuffer({ size: hitLayout.stride * rays.length, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
   const pass = await TraceRaysPass.create(device);
   const encoder = device.createCommandEncoder();
-  pass.encode(encoder, pass.bind(scene, rayBuffer, hitBuffer, rays.length));
+  pass.encode(encoder, await pass.bind(scene, rayBuffer, hitBuffer, rays.length));
   device.queue.submit([encoder.finish()]);
   const raw = await readBuffer(device, hitBuffer);
   const f32 = new Float32Array(raw), u32 = new Uint32Array(raw);

@@ -1,17 +1,34 @@
 /**
  * Scene + BVH → the byte arrays of bind group 0 (shaders/scene/bindings.wgsl), pure CPU. Triangles
  * are reordered into BVH leaf order and split into a hot array (what traversal reads: a vertex and
- * two edges) and a cold one (normals, uvs, material, read once per closest hit). Emissive triangles
- * become an alias table proportional to their emitted power. Every layout comes from reflection.
+ * two edges) and a cold one (world-space normals, uvs, material, read once per closest hit).
+ * Materials and textures are packed by material-pack.ts, lights by light-pack.ts. Every layout comes
+ * from reflection. What the scene uses (alpha tests, non-diffuse materials, lights of each kind)
+ * becomes `features`, from which the pipelines' override constants are chosen.
  */
 import type { Bvh } from '../../bvh/types.ts';
-import { buildAliasTable } from '../../math/alias-table.ts';
+import { normalMatrix } from '../../math/mat4.ts';
 import { luminance } from '../../math/vec3.ts';
 import type { TriangleList } from '../../scene/triangles.ts';
 import type { Scene } from '../../scene/types.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
+import { packLights } from './light-pack.ts';
+import { packMaterials } from './material-pack.ts';
 import { StructArray } from './struct-array.ts';
-import { meanLinearColor, packTextureAtlas, type TextureAtlas } from './texture-atlas.ts';
+import type { TextureAtlas } from './texture-atlas.ts';
+
+export { MATERIAL_ALPHA_MASK, MATERIAL_EMISSION_PANORAMA, NO_TEXTURE } from './material-pack.ts';
+
+/** What a scene uses, each compiled out of the tracing pipelines where absent (gpu/kernel.ts). */
+export interface SceneFeatures {
+  /** Triangles whose hits are filtered by coverage (alpha mask or blend). */
+  readonly alphaMasks: boolean;
+  /** Materials other than diffuse/emissive, or normal maps. */
+  readonly generalMaterials: boolean;
+  readonly punctualLights: boolean;
+  /** An environment map or a sun. */
+  readonly environment: boolean;
+}
 
 /** The group-0 resources, keyed by their WGSL variable names. */
 export interface PackedScene {
@@ -21,32 +38,43 @@ export interface PackedScene {
   readonly triangles_shading: ArrayBuffer;
   readonly materials: ArrayBuffer;
   readonly light_slots: ArrayBuffer;
-  readonly texture_rects: ArrayBuffer;
-  /** The pages of texture_atlas (bound as a 2D array texture). */
+  readonly texture_refs: ArrayBuffer;
+  readonly punctual_lights: ArrayBuffer;
+  /** The pages of texture_atlas (sRGB colour) and texture_atlas_linear (data), bound as 2D array textures. */
   readonly atlas: TextureAtlas;
-  readonly counts: { readonly triangles: number; readonly nodes: number; readonly lights: number; readonly textures: number; readonly maskedTriangles: number };
-  /** Σ luminance(emission) × area over emissive triangles. */
+  readonly linearAtlas: TextureAtlas;
+  readonly counts: {
+    readonly triangles: number;
+    readonly nodes: number;
+    /** Slots of the light table (every light of every kind). */
+    readonly lights: number;
+    readonly emissiveTriangles: number;
+    readonly punctualLights: number;
+    readonly textures: number;
+    readonly maskedTriangles: number;
+  };
+  readonly features: SceneFeatures;
+  /** Σ of the light powers (the light table's normaliser). */
   readonly totalLightPower: number;
+  /** What packing had to work around. */
+  readonly warnings: readonly string[];
 }
 
 export function sceneLayouts() {
   const { defs } = reflectModule('scene/bindings');
   return {
+    defs,
     sceneInfo: structLayout(defs, 'SceneInfo'),
     node: structLayout(defs, 'BvhNode'),
     hot: structLayout(defs, 'TriangleHot'),
     shading: structLayout(defs, 'TriangleShading'),
     material: structLayout(defs, 'Material'),
     lightSlot: structLayout(defs, 'LightSlot'),
-    textureRect: structLayout(defs, 'TextureRect'),
+    textureRef: structLayout(defs, 'TextureRef'),
   };
 }
 
-/** Sentinels and flag bits shared with shaders/scene/types.wgsl and lib/constants.wgsl. */
-export const NO_TEXTURE = 0xffffffff;
 export const TRIANGLE_ALPHA_MASKED = 1;
-export const MATERIAL_ALPHA_MASK = 1;
-export const MATERIAL_EMISSION_PANORAMA = 2;
 
 /** Options of packing that depend on the device. */
 export interface PackOptions {
@@ -57,10 +85,7 @@ export interface PackOptions {
 export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }): PackedScene {
   const layouts = sceneLayouts();
   const n = triangles.count;
-  const textures = scene.textures ?? [];
-  // Luminance of each texture's mean linear colour: the emitted power of a textured emitter.
-  const textureMean = textures.map((t) => luminance(meanLinearColor(t)));
-  const emissionMean = scene.materials.map((m) => (m.emissionTexture === undefined ? 1 : textureMean[m.emissionTexture] ?? 0));
+  const packedMaterials = packMaterials(scene, layouts, options.maxTextureSide);
 
   const nodes = new StructArray(layouts.node, bvh.nodeCount);
   {
@@ -75,6 +100,8 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
     }
   }
 
+  // Normals go to world space with each instance's normal matrix (inverse transpose).
+  const normalMatrices = scene.instances.map((inst) => normalMatrix(inst.worldFromObject));
   const hot = new StructArray(layouts.hot, n);
   const shading = new StructArray(layouts.shading, n);
   const lightTriangles: number[] = [];
@@ -96,15 +123,21 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
       e1(leaf, e1x, e1y, e1z);
       e2(leaf, e2x, e2y, e2z);
 
-      const mesh = scene.meshes[triangles.meshIds[t]!]!;
+      const instanceIndex = triangles.instanceIds[t]!;
+      const mesh = scene.meshes[scene.instances[instanceIndex]!.mesh]!;
+      const nm = normalMatrices[instanceIndex]!;
       const k = triangles.meshTriangleIds[t]!;
+      const swapped = triangles.swapped[t] === 1;
       // Geometric normal e1 × e2, for meshes without normals and for the light's area.
       const cx = e1y * e2z - e1z * e2y, cy = e1z * e2x - e1x * e2z, cz = e1x * e2y - e1y * e2x;
       const twiceArea = Math.hypot(cx, cy, cz);
       for (let c = 0; c < 3; c++) {
-        const vi = mesh.indices[k * 3 + c]!;
+        const vi = mesh.indices[k * 3 + (swapped && c > 0 ? 3 - c : c)]!;
         if (mesh.normals) {
-          normals[c]!(leaf, mesh.normals[vi * 3]!, mesh.normals[vi * 3 + 1]!, mesh.normals[vi * 3 + 2]!);
+          const x = mesh.normals[vi * 3]!, y = mesh.normals[vi * 3 + 1]!, z = mesh.normals[vi * 3 + 2]!;
+          const wx = nm[0]! * x + nm[3]! * y + nm[6]! * z, wy = nm[1]! * x + nm[4]! * y + nm[7]! * z, wz = nm[2]! * x + nm[5]! * y + nm[8]! * z;
+          const len = Math.hypot(wx, wy, wz);
+          if (len > 0) normals[c]!(leaf, wx / len, wy / len, wz / len);
         } else if (twiceArea > 0) {
           normals[c]!(leaf, cx / twiceArea, cy / twiceArea, cz / twiceArea);
         }
@@ -113,14 +146,14 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
       const m = triangles.materialIds[t]!;
       material(leaf, m);
       sourceIndex(leaf, t);
-      const mat = scene.materials[m]!;
-      if (mat.alphaMode === 'mask' && mat.albedoTexture !== undefined) {
+      if (packedMaterials.hasHitFilter[m]) {
         flags(leaf, TRIANGLE_ALPHA_MASKED);
         maskedTriangles++;
       }
 
       // Power in the luminance sense, as lights.wgsl light_selection_pmf computes it.
-      const power = luminance(mat.emission) * emissionMean[m]! * 0.5 * twiceArea;
+      const mat = scene.materials[m]!;
+      const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * 0.5 * twiceArea;
       if (power > 0) {
         lightTriangles.push(leaf);
         lightPowers.push(power);
@@ -128,71 +161,49 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
     }
   }
 
-  const materials = new StructArray(layouts.material, scene.materials.length);
-  {
-    const albedo = materials.vec3('albedo'), emission = materials.vec3('emission');
-    const albedoTexture = materials.u32Field('albedo_texture'), emissionTexture = materials.u32Field('emission_texture');
-    const mean = materials.f32Field('emission_texture_mean'), flags = materials.u32Field('flags');
-    const repeats = materials.f32Field('panorama_repeats'), horizon = materials.f32Field('panorama_horizon_v'), vPerRadian = materials.f32Field('panorama_v_per_radian');
-    scene.materials.forEach((m, i) => {
-      albedo(i, ...m.albedo);
-      emission(i, ...m.emission);
-      albedoTexture(i, m.albedoTexture ?? NO_TEXTURE);
-      emissionTexture(i, m.emissionTexture ?? NO_TEXTURE);
-      mean(i, emissionMean[i]!);
-      let f = 0;
-      if (m.alphaMode === 'mask') f |= MATERIAL_ALPHA_MASK;
-      const mapping = m.emissionMapping;
-      if (mapping?.kind === 'panorama') {
-        f |= MATERIAL_EMISSION_PANORAMA;
-        repeats(i, mapping.repeats);
-        horizon(i, mapping.horizonV);
-        vPerRadian(i, mapping.vPerRadian);
-      }
-      flags(i, f);
-    });
-  }
-
-  const atlas = packTextureAtlas(textures, options.maxTextureSide);
-  const textureRects = new StructArray(layouts.textureRect, textures.length);
-  {
-    const origin = textureRects.vec2u('origin'), size = textureRects.vec2u('size'), page = textureRects.u32Field('page');
-    atlas.rects.forEach((r, i) => {
-      origin(i, r.x, r.y);
-      size(i, r.width, r.height);
-      page(i, r.page);
-    });
-  }
-
-  const lightSlots = new StructArray(layouts.lightSlot, lightTriangles.length);
-  let totalLightPower = 0;
-  if (lightTriangles.length > 0) {
-    const table = buildAliasTable(lightPowers);
-    totalLightPower = table.total;
-    const triangle = lightSlots.u32Field('triangle'), alias = lightSlots.u32Field('alias_triangle'), keep = lightSlots.f32Field('keep');
-    for (let i = 0; i < lightTriangles.length; i++) {
-      triangle(i, lightTriangles[i]!);
-      alias(i, lightTriangles[table.alias[i]!]!);
-      keep(i, table.keep[i]!);
-    }
-  }
+  const b = bvh.bounds;
+  const sceneRadius = bvh.nodeCount > 0 ? 0.5 * Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) : 1;
+  const lights = packLights(
+    { triangles: lightTriangles, trianglePowers: lightPowers, punctual: scene.lights ?? [], environmentPower: 0, sunPower: 0, sceneRadius },
+    layouts,
+    layouts.defs,
+  );
 
   const info = new StructArray(layouts.sceneInfo, 1);
   info.u32Field('triangle_count')(0, n);
   info.u32Field('node_count')(0, bvh.nodeCount);
-  info.u32Field('light_count')(0, lightTriangles.length);
-  info.f32Field('total_light_power')(0, totalLightPower);
+  info.u32Field('light_count')(0, lights.slotCount);
+  info.f32Field('total_light_power')(0, lights.totalPower);
+  info.f32Field('environment_select_pmf')(0, lights.environmentSelectPmf);
+  info.f32Field('sun_select_pmf')(0, lights.sunSelectPmf);
 
   return {
     scene_info: info.bytes,
     bvh_nodes: nodes.bytes,
     triangles_hot: hot.bytes,
     triangles_shading: shading.bytes,
-    materials: materials.bytes,
-    light_slots: lightSlots.bytes,
-    texture_rects: textureRects.bytes,
-    atlas,
-    counts: { triangles: n, nodes: bvh.nodeCount, lights: lightTriangles.length, textures: textures.length, maskedTriangles },
-    totalLightPower,
+    materials: packedMaterials.materials,
+    light_slots: lights.lightSlots,
+    texture_refs: packedMaterials.textureRefs,
+    punctual_lights: lights.punctualLights,
+    atlas: packedMaterials.atlas,
+    linearAtlas: packedMaterials.linearAtlas,
+    counts: {
+      triangles: n,
+      nodes: bvh.nodeCount,
+      lights: lights.slotCount,
+      emissiveTriangles: lightTriangles.length,
+      punctualLights: lights.punctualCount,
+      textures: (scene.textures ?? []).length,
+      maskedTriangles,
+    },
+    features: {
+      alphaMasks: maskedTriangles > 0,
+      generalMaterials: packedMaterials.general,
+      punctualLights: lights.punctualCount > 0,
+      environment: lights.environmentSelectPmf > 0 || lights.sunSelectPmf > 0,
+    },
+    totalLightPower: lights.totalPower,
+    warnings: [...packedMaterials.warnings, ...lights.warnings],
   };
 }

@@ -8,7 +8,8 @@
  */
 import { add, cross, normalize, scale, sub, type Vec3 } from '../../math/vec3.ts';
 import { MeshBuilder } from '../../scene/builder.ts';
-import type { Scene } from '../../scene/types.ts';
+import { placeEachOnce } from '../../scene/instances.ts';
+import { diffuse, type Scene } from '../../scene/types.ts';
 
 /** Material names of the three groups of objects, so tests and teaching material can find them. */
 export const BVH_TEACHING_GROUPS = ['separated', 'cluster', 'slab'] as const;
@@ -43,11 +44,11 @@ function box(b: MeshBuilder, m: number, lo: Vec3, hi: Vec3): void {
 
 export function bvhTeaching(): Scene {
   const b = new MeshBuilder('bvh-teaching');
-  const wall = b.material({ name: 'wall', albedo: [0.75, 0.75, 0.72], emission: [0, 0, 0] });
-  const separated = b.material({ name: 'separated', albedo: [0.15, 0.35, 0.8], emission: [0, 0, 0] });
-  const cluster = b.material({ name: 'cluster', albedo: [0.85, 0.45, 0.1], emission: [0, 0, 0] });
-  const slab = b.material({ name: 'slab', albedo: [0.2, 0.7, 0.3], emission: [0, 0, 0] });
-  const light = b.material({ name: 'light', albedo: [0.8, 0.8, 0.8], emission: [12, 11, 9.5] });
+  const wall = b.material(diffuse('wall', [0.75, 0.75, 0.72], [0, 0, 0]));
+  const separated = b.material(diffuse('separated', [0.15, 0.35, 0.8], [0, 0, 0]));
+  const cluster = b.material(diffuse('cluster', [0.85, 0.45, 0.1], [0, 0, 0]));
+  const slab = b.material(diffuse('slab', [0.2, 0.7, 0.3], [0, 0, 0]));
+  const light = b.material(diffuse('light', [0.8, 0.8, 0.8], [12, 11, 9.5]));
 
   // The room, open towards the camera (-z): floor, ceiling, back, left and right walls.
   const [x0, y0, z0] = ROOM_MIN, [x1, y1, z1] = ROOM_MAX;
@@ -99,6 +100,7 @@ export function bvhTeaching(): Scene {
   return {
     name: 'bvh-teaching',
     meshes: [b.build()],
+    instances: placeEachOnce([b.build()]),
     materials: b.materials,
     // From the open side, above the floor, so both halves and the whole slab are in view.
     camera: { position: [0, 7, -19], forward: normalize([0, -0.33, 1]), up: [0, 1, 0], vfovDegrees: 55 },

@@ -7,7 +7,8 @@
  */
 import type { Vec3 } from '../../math/vec3.ts';
 import { MeshBuilder } from '../../scene/builder.ts';
-import type { Scene } from '../../scene/types.ts';
+import { placeEachOnce } from '../../scene/instances.ts';
+import { diffuse, type Scene } from '../../scene/types.ts';
 
 export const CORNELL_WHITE: Vec3 = [0.885809, 0.698859, 0.666422];
 export const CORNELL_RED: Vec3 = [0.570068, 0.0430135, 0.0443706];
@@ -17,10 +18,10 @@ const BLACK: Vec3 = [0, 0, 0];
 
 export function cornellBox(): Scene {
   const b = new MeshBuilder('cornell');
-  const white = b.material({ name: 'white', albedo: CORNELL_WHITE, emission: BLACK });
-  const red = b.material({ name: 'red', albedo: CORNELL_RED, emission: BLACK });
-  const green = b.material({ name: 'green', albedo: CORNELL_GREEN, emission: BLACK });
-  const light = b.material({ name: 'light', albedo: [0.78, 0.78, 0.78], emission: CORNELL_LIGHT_EMISSION });
+  const white = b.material(diffuse('white', CORNELL_WHITE, BLACK));
+  const red = b.material(diffuse('red', CORNELL_RED, BLACK));
+  const green = b.material(diffuse('green', CORNELL_GREEN, BLACK));
+  const light = b.material(diffuse('light', [0.78, 0.78, 0.78], CORNELL_LIGHT_EMISSION));
 
   // Floor, ceiling, back wall.
   b.quad(white, [552.8, 0, 0], [0, 0, 0], [0, 0, 559.2], [549.6, 0, 559.2]);
@@ -49,6 +50,7 @@ export function cornellBox(): Scene {
   return {
     name: 'cornell',
     meshes: [b.build()],
+    instances: placeEachOnce([b.build()]),
     materials: b.materials,
     // Published camera: focal length 35 mm, 25 mm film: 2·atan(12.5 / 35) = 39.3077°.
     camera: { position: [278, 273, -800], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 39.3077 },

@@ -6,7 +6,8 @@
  */
 import type { Vec3 } from '../../math/vec3.ts';
 import { MeshBuilder } from '../../scene/builder.ts';
-import type { Scene } from '../../scene/types.ts';
+import { placeEachOnce } from '../../scene/instances.ts';
+import { diffuse, type Scene } from '../../scene/types.ts';
 
 export const FURNACE_ALBEDO = 0.8;
 export const FURNACE_EMISSION = 1.0;
@@ -19,11 +20,7 @@ export function furnaceRadiance(maxBounces: number): number {
 
 export function whiteFurnace(): Scene {
   const b = new MeshBuilder('furnace');
-  const m = b.material({
-    name: 'furnace',
-    albedo: [FURNACE_ALBEDO, FURNACE_ALBEDO, FURNACE_ALBEDO],
-    emission: [FURNACE_EMISSION, FURNACE_EMISSION, FURNACE_EMISSION],
-  });
+  const m = b.material(diffuse('furnace', [FURNACE_ALBEDO, FURNACE_ALBEDO, FURNACE_ALBEDO], [FURNACE_EMISSION, FURNACE_EMISSION, FURNACE_EMISSION]));
   // Unit cube [-1, 1]^3; each face wound so that its geometric normal points into the cube.
   const p = (x: number, y: number, z: number): Vec3 => [x, y, z];
   b.quad(m, p(-1, -1, -1), p(-1, -1, 1), p(1, -1, 1), p(1, -1, -1)); // floor y = -1, normal +y
@@ -35,6 +32,7 @@ export function whiteFurnace(): Scene {
   return {
     name: 'furnace',
     meshes: [b.build()],
+    instances: placeEachOnce([b.build()]),
     materials: b.materials,
     camera: { position: [0.2, -0.1, -0.3], forward: [0.3, 0.2, 1], up: [0, 1, 0], vfovDegrees: 90 },
   };

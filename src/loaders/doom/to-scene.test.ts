@@ -1,7 +1,7 @@
 import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { cross, dot, luminance, sub, type Vec3 } from '../../math/vec3.ts';
-import type { Scene, Texture } from '../../scene/types.ts';
+import { baseColorOf, type DiffuseMaterial, type Material, type Scene, type Texture } from '../../scene/types.ts';
 import { validateScene } from '../../scene/validate.ts';
 import { DOOM_TORCH, LAMP_STRENGTH, SKY_STRENGTH, sectorLightFactor } from './light-table.ts';
 import { readMap } from './map-lumps.ts';
@@ -52,7 +52,9 @@ function trianglesOf(scene: Scene, name: string): Triangle[] {
   return out;
 }
 
-const material = (scene: Scene, name: string) => scene.materials.find((m) => m.name === name || m.name.startsWith(`${name} `));
+// Doom maps use two kinds: diffuse (walls, flats, lamps) and emissive (the sky); the fields of both, for reading.
+type DoomMaterial = Partial<DiffuseMaterial> & Material;
+const material = (scene: Scene, name: string) => scene.materials.find((m) => m.name === name || m.name.startsWith(`${name} `)) as DoomMaterial | undefined;
 const mod = (a: number, n: number) => ((a % n) + n) % n;
 
 /** A 512×512 room with a raised 128×128 platform (floor 32) and a 64×64 pillar. */
@@ -75,10 +77,10 @@ describe('doomMapToScene', () => {
     expect(scene.name).toBe('TEST');
     expect(scene.textures!.map((t) => t.name).sort()).toEqual(['CEIL3_5', 'FLOOR4_8', 'WALL']);
     expect(scene.materials.map((m) => m.name).sort()).toEqual(['CEIL3_5', 'FLOOR4_8', 'WALL']);
-    for (const m of scene.materials) {
+    for (const m of scene.materials as DoomMaterial[]) {
       expect(m.albedo).toEqual([1, 1, 1]);
       expect(m.emission).toEqual([0, 0, 0]);
-      expect(scene.textures![m.albedoTexture!]!.name).toBe(m.name);
+      expect(scene.textures![m.albedoTexture!.texture]!.name).toBe(m.name);
     }
     expect(stats).toMatchObject({ sectors: 2, triangulatedSectors: 2, wallQuads: 4 + 4 + 4, materials: 3, emissiveMaterials: 0, textures: 3 });
   });
@@ -158,10 +160,10 @@ describe('doomMapToScene', () => {
     for (const name of ['LITE3', 'TLITE6_1']) {
       const mat = material(scene, name)!;
       expect(mat.emission).toEqual([s, s, s]);
-      expect(scene.textures![mat.albedoTexture!]!.name).toBe(name);
+      expect(scene.textures![mat.albedoTexture!.texture]!.name).toBe(name);
       // The glow image: the same texels where bright enough, black elsewhere.
-      const image = scene.textures![mat.albedoTexture!]!;
-      const glow = scene.textures![mat.emissionTexture!]!;
+      const image = scene.textures![mat.albedoTexture!.texture]!;
+      const glow = scene.textures![mat.emissionTexture!.texture]!;
       expect(glow.name).toBe(`${name}@glow`);
       expect([glow.width, glow.height]).toEqual([image.width, image.height]);
       for (let i = 0; i < glow.rgba.length; i += 4) {
@@ -193,10 +195,11 @@ describe('doomMapToScene', () => {
     m.player(64, 64, 0);
     const { scene } = convert(m.build());
     const sky = material(scene, 'sky SKY1')!;
-    expect(sky.albedo).toEqual([0, 0, 0]);
+    expect(sky.kind).toBe('emissive');
     expect(sky.emission).toEqual([SKY_STRENGTH, SKY_STRENGTH, SKY_STRENGTH]);
     expect(sky.emissionMapping).toEqual({ kind: 'panorama', repeats: 4, horizonV: 100 / 128, vPerRadian: 160 / 128 });
-    expect(scene.textures![sky.emissionTexture!]).toBe(SKY);
+    // Doom's texels stay pixels: its textures are sampled nearest.
+    expect(scene.textures![sky.emissionTexture!.texture]).toEqual({ ...SKY, filter: 'nearest' });
     const tris = trianglesOf(scene, sky.name);
     const area = (ts: Triangle[]) => ts.reduce((s, t) => s + Math.hypot(...t.n) / 2, 0);
     // Both ceilings (facing down) and the 64-unit step between them, facing the yard.
@@ -219,7 +222,7 @@ describe('doomMapToScene', () => {
     const { scene, warnings } = convert(m.build());
     expect(material(scene, 'GRATE')!.alphaMode).toBe('mask');
     expect(material(scene, 'WALL')).toBeUndefined();
-    expect(material(scene, 'missing texture')!.albedo).toEqual([0.5, 0.5, 0.5]);
+    expect(baseColorOf(material(scene, 'missing texture')!)).toEqual([0.5, 0.5, 0.5]);
     expect(trianglesOf(scene, 'missing texture')).toHaveLength(8);
     expect(warnings).toEqual(['4 wall sections, the first linedef 0 (front) middle, need a texture but name none; drawn with a plain material']);
   });

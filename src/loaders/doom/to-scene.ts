@@ -5,7 +5,8 @@
  */
 import { doomWalkMap } from './walk-map.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
-import type { Camera, Material, Mesh, Scene, Texture } from '../../scene/types.ts';
+import { placeEachOnce } from '../../scene/instances.ts';
+import { diffuse, type Camera, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
 import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
 import { EYE_HEIGHT, PLAYER1_START, type DoomImageSource, type DoomMap } from './map-types.ts';
@@ -115,6 +116,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   const scene: Scene = {
     name: options.name ?? map.name,
     meshes,
+    instances: placeEachOnce(meshes),
     materials,
     textures,
     camera: playerCamera(map, shapes, warn),
@@ -249,14 +251,11 @@ class SceneParts {
     return this.add(key, () => {
       const texture = this.texture(image);
       const glow = source?.glow ? this.glow(image, source.glow) : texture;
-      return {
-        name: emission ? `${name} (glowing ${+emission[0].toFixed(3)})` : name,
-        albedo: [1, 1, 1],
-        emission: emission ?? [0, 0, 0],
-        albedoTexture: texture,
-        ...(emission && { emissionTexture: glow }),
+      return diffuse(emission ? `${name} (glowing ${+emission[0].toFixed(3)})` : name, [1, 1, 1], emission ?? [0, 0, 0], {
+        albedoTexture: { texture },
+        ...(emission && { emissionTexture: { texture: glow } }),
         ...(masked && { alphaMode: 'mask' as const }),
-      };
+      });
     });
   }
 
@@ -264,12 +263,12 @@ class SceneParts {
   sky(): number {
     return this.add('sky', () => {
       const sky = this.skyTexture;
-      if (!sky) return { name: 'sky', albedo: [0, 0, 0], emission: scale(PLAIN_SKY, SKY_STRENGTH) };
+      if (!sky) return { kind: 'emissive', name: 'sky', emission: scale(PLAIN_SKY, SKY_STRENGTH) };
       return {
+        kind: 'emissive',
         name: `sky ${sky.name}`,
-        albedo: [0, 0, 0],
         emission: [SKY_STRENGTH, SKY_STRENGTH, SKY_STRENGTH],
-        emissionTexture: this.texture(sky),
+        emissionTexture: { texture: this.texture(sky) },
         emissionMapping: {
           kind: 'panorama',
           repeats: SKY_COLUMNS_PER_TURN / sky.width,
@@ -282,7 +281,7 @@ class SceneParts {
 
   /** For surfaces whose texture is missing: plain mid grey. */
   missing(): number {
-    return this.add('missing', () => ({ name: 'missing texture', albedo: MISSING_ALBEDO, emission: [0, 0, 0] }));
+    return this.add('missing', () => diffuse('missing texture', MISSING_ALBEDO));
   }
 
   meshFor(material: number): MeshParts {
@@ -321,7 +320,8 @@ class SceneParts {
   private texture(image: Texture): number {
     let index = this.textureIndex.get(image);
     if (index === undefined) {
-      index = this.textures.push(image) - 1;
+      // Doom's texels are seen as pixels, never blurred.
+      index = this.textures.push({ ...image, filter: 'nearest' }) - 1;
       this.textureIndex.set(image, index);
     }
     return index;

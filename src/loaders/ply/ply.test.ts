@@ -202,7 +202,7 @@ describe('loadPly', () => {
     const scene = loadPly(cube('ascii'), 'cube.ply', { onWarning: (w) => warnings.push(w) });
     validateScene(scene);
     expect(scene.meshes[0]!.indices.length).toBe(36);
-    expect(scene.materials[0]).toEqual({ name: 'ply diffuse', albedo: [0.8, 0.8, 0.8], emission: [0, 0, 0] });
+    expect(scene.materials[0]).toEqual({ kind: 'diffuse', name: 'ply diffuse', albedo: [0.8, 0.8, 0.8], emission: [0, 0, 0] });
     expect(warnings).toEqual([]);
   });
 });

@@ -6,7 +6,7 @@
 import { gunzipSync } from 'fflate';
 import { LanternError } from '../../errors.ts';
 import { studioScene } from '../../scene/studio.ts';
-import type { Material, Mesh, Scene } from '../../scene/types.ts';
+import { diffuse, type Material, type Mesh, type Scene } from '../../scene/types.ts';
 import { parsePlyHeader, SCALAR_SIZE, type PlyElement, type PlyHeader, type PlyProperty } from './header.ts';
 import { AsciiReader, BinaryReader, PlyBadValue, PlyEndOfData, readListCount, type ValueReader } from './readers.ts';
 import { readFaces, readVertices, type FaceData, type VertexData } from './elements.ts';
@@ -26,7 +26,7 @@ export interface LoadPlyOptions {
 export function loadPly(bytes: Uint8Array, name: string, options: LoadPlyOptions = {}): Scene {
   const { mesh, warnings } = parsePly(bytes, name);
   for (const w of warnings) options.onWarning?.(w);
-  const white: Material = { name: 'ply diffuse', albedo: [0.8, 0.8, 0.8], emission: [0, 0, 0] };
+  const white: Material = diffuse('ply diffuse', [0.8, 0.8, 0.8]);
   return studioScene(name, [mesh], [white]);
 }
 

@@ -57,7 +57,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     var shadow_rays = 0u;
     for (var s = 0u; s < params.samples; s++) {
       primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
-      let path = trace_path(camera_ray(vec2f(pixel) + rng_next_2d(&rng)), &rng);
+      let path = trace_path(camera_ray(vec2f(pixel) + rng_next_2d(&rng)), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
       illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);

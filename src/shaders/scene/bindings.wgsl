@@ -1,5 +1,6 @@
 // Bind group 0, the scene, shared by every pass that traces rays (gpu/scene-resources.ts fills it).
-// Expects nothing; provides the scene arrays under these names.
+// Expects nothing; provides the scene arrays under these names. Storage buffers are few on purpose:
+// with group 2's they must fit WebGPU's default limit of 8 per shader stage.
 
 #import scene/types
 
@@ -9,6 +10,9 @@
 @group(0) @binding(3) var<storage, read> triangles_shading: array<TriangleShading>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var<storage, read> light_slots: array<LightSlot>;
-@group(0) @binding(6) var<storage, read> texture_rects: array<TextureRect>;
+@group(0) @binding(6) var<storage, read> texture_refs: array<TextureRef>;
 // rgba8unorm-srgb pages: textureLoad returns linear colour.
 @group(0) @binding(7) var texture_atlas: texture_2d_array<f32>;
+// rgba8unorm pages for data textures (TEXTURE_LINEAR).
+@group(0) @binding(13) var texture_atlas_linear: texture_2d_array<f32>;
+@group(0) @binding(14) var<uniform> punctual_lights: PunctualLights;

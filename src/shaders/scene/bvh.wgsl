@@ -4,16 +4,26 @@
 // algorithm (without alpha masks), so hits and visited-node counts agree; with BVH_COUNT_WORK,
 // trace_closest reports those counts in bvh_work (the debug views' heat map).
 
-// Whether the scene has alpha-masked triangles. A pipeline constant: without masks the alpha test
-// folds away and traversal keeps its registers (5–8% faster on an H200 than testing the flag).
+// Whether the scene has alpha-masked or alpha-blended triangles. A pipeline constant: without them
+// the alpha test folds away and traversal keeps its registers (5–8% faster on an H200 than testing the flag).
 override SCENE_HAS_ALPHA_MASKS: bool = true;
 
-// A candidate hit that survives the alpha mask, if the triangle has one.
+// Identifies the ray being traced, so stochastic transparency draws a new number for every ray.
+var<private> alpha_salt: u32;
+
+// A candidate hit that survives the alpha test, if the triangle has one.
 fn accept_hit(tri: TriangleHot, triangle: u32, bary: vec2f) -> bool {
   if (!SCENE_HAS_ALPHA_MASKS) {
     return true;
   }
-  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(triangle, bary);
+  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(triangle, bary, alpha_salt);
+}
+
+fn set_alpha_salt(ray: Ray) {
+  if (SCENE_HAS_ALPHA_MASKS) {
+    let d = bitcast<vec3u>(ray.direction);
+    alpha_salt = d.x ^ (d.y * 0x9e3779b9u) ^ (d.z * 0x85ebca6bu);
+  }
 }
 
 #import scene/bindings
@@ -47,6 +57,7 @@ fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
 
 fn trace_closest(ray: Ray) -> Hit {
   var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0);
+  set_alpha_salt(ray);
   if (BVH_COUNT_WORK) {
     bvh_work = TraversalWork(1u, 0u, NO_NODE);
   }
@@ -118,6 +129,7 @@ fn trace_closest(ray: Ray) -> Hit {
 // True when anything lies strictly between t_min and t_max along the ray. Children are visited in
 // storage order: any hit ends the search, so ordering buys little.
 fn trace_any(ray: Ray) -> bool {
+  set_alpha_salt(ray);
   let inv_dir = safe_inverse(ray.direction);
   if (node_entry(0u, ray.origin, inv_dir, ray.t_max) == T_MISS) {
     return false;

@@ -29,3 +29,37 @@ fn surface_at(hit: Hit) -> Surface {
   ns = select(-ns, ns, dot(ns, ng) >= 0.0);
   return Surface(position, ng, ns, 0.5 * twice_area, shading.material, triangle_uv(hit.triangle, vec2f(hit.u, hit.v)));
 }
+
+// The shading normal perturbed by the material's tangent-space normal map (glTF normalTexture:
+// n = normalize((2·rgb − 1) · (scale, scale, 1)) in the frame (t, b, n)). The tangent is the
+// triangle's dp/du, made orthogonal to the shading normal; the bitangent is n × t, pointing toward
+// decreasing v as glTF's "+Y up in the image" requires (its sign flips where the uvs are mirrored).
+// A per-triangle frame, not the per-vertex MikkTSpace one: smooth enough for path tracing, though
+// seams of a mirrored uv layout can show.
+fn normal_mapped(surface: Surface, triangle: u32, material: Material) -> vec3f {
+  if (material.normal_texture == NO_TEXTURE) {
+    return surface.shading_normal;
+  }
+  let tri = triangles_hot[triangle];
+  let s = triangles_shading[triangle];
+  let duv1 = s.uv1 - s.uv0;
+  let duv2 = s.uv2 - s.uv0;
+  let det = duv1.x * duv2.y - duv1.y * duv2.x;
+  if (abs(det) < 1e-20) {
+    return surface.shading_normal;
+  }
+  let dpdu = (tri.e1 * duv2.y - tri.e2 * duv1.y) / det;
+  let dpdv = (tri.e2 * duv1.x - tri.e1 * duv2.x) / det;
+  let n = surface.shading_normal;
+  let t_raw = dpdu - n * dot(n, dpdu);
+  if (dot(t_raw, t_raw) < 1e-30) {
+    return surface.shading_normal;
+  }
+  let t = normalize(t_raw);
+  let b = cross(n, t) * select(1.0, -1.0, dot(cross(n, t), dpdv) > 0.0);
+  let texel = texture_texel(material.normal_texture, surface.uv).rgb * 2.0 - 1.0;
+  let local = vec3f(texel.xy * material.normal_scale, texel.z);
+  let mapped = t * local.x + b * local.y + n * local.z;
+  let len = length(mapped);
+  return select(n, mapped / len, len > 1e-12);
+}

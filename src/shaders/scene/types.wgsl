@@ -40,20 +40,47 @@ struct TriangleShading {
   source_index: u32,
 }
 
-// A diffuse surface that may emit (scene/types.ts Material). Textures multiply the constants.
+// A material of any kind (scene/types.ts Material), as stored; scene/materials.wgsl resolves it at a
+// hit (textures applied) into the BsdfParams of scene/bsdf.wgsl. Fields a kind does not use are zero.
 struct Material {
-  // Diffuse reflectance, linear RGB in [0, 1].
-  albedo: vec3f,
-  // Index into texture_rects, or NO_TEXTURE.
-  albedo_texture: u32,
+  // MATERIAL_KIND_*.
+  kind: u32,
+  // MATERIAL_* bits.
+  flags: u32,
+  // Coverage below this is a hole (MATERIAL_ALPHA_MASK).
+  alpha_cutoff: f32,
+  // Constant coverage multiplying the colour texture's alpha.
+  opacity: f32,
+  // Diffuse albedo, glTF base colour or glass tint: linear RGB in [0, 1].
+  base_color: vec3f,
+  // Index into texture_refs, or NO_TEXTURE. Its alpha is the coverage.
+  base_color_texture: u32,
   // Emitted radiance, linear RGB, on the side the geometric normal (e1 × e2) faces.
   emission: vec3f,
   emission_texture: u32,
   // Luminance of the emission texture's mean linear colour (1 without one): emitted power is
   // luminance(emission) × this × area, the weight of light selection.
   emission_texture_mean: f32,
-  // MATERIAL_* bits.
-  flags: u32,
+  metallic: f32,
+  // Perceptual roughness (GGX α = roughness²).
+  roughness: f32,
+  // G multiplies roughness, B metallic.
+  metallic_roughness_texture: u32,
+  // KHR_materials_specular colour; its texture's RGB multiplies it.
+  specular_color: vec3f,
+  // A multiplies specular.
+  specular_texture: u32,
+  ior: f32,
+  transmission: f32,
+  specular: f32,
+  // R multiplies transmission.
+  transmission_texture: u32,
+  // Beer–Lambert absorption coefficient inside the volume, per scene unit: −ln(attenuation colour) / distance.
+  absorption: vec3f,
+  specular_color_texture: u32,
+  // Tangent-space normal map (rgb = (n + 1) / 2), or NO_TEXTURE.
+  normal_texture: u32,
+  normal_scale: f32,
   // For MATERIAL_EMISSION_PANORAMA: texture repeats around the horizon, v at the horizon, and v per
   // radian of elevation.
   panorama_repeats: f32,
@@ -61,34 +88,99 @@ struct Material {
   panorama_v_per_radian: f32,
 }
 
+// Material kinds, in the order of scene/types.ts MaterialKind (renderer/ mirrors them by name).
+const MATERIAL_KIND_DIFFUSE: u32 = 0u;
+const MATERIAL_KIND_METALLIC_ROUGHNESS: u32 = 1u;
+const MATERIAL_KIND_DIELECTRIC: u32 = 2u;
+const MATERIAL_KIND_EMISSIVE: u32 = 3u;
+
 const MATERIAL_ALPHA_MASK: u32 = 1u;
 // The emission texture is looked up by the viewing direction (a sky panorama), not by uv.
 const MATERIAL_EMISSION_PANORAMA: u32 = 2u;
+// Coverage is a probability (stochastic transparency).
+const MATERIAL_ALPHA_BLEND: u32 = 4u;
+// Seen from the front only: rays pass through back faces (glTF doubleSided false, opaque kinds).
+const MATERIAL_SINGLE_SIDED: u32 = 8u;
+// Transmission does not bend rays (glTF transmission without a volume).
+const MATERIAL_THIN_WALLED: u32 = 16u;
 
-// Where one texture lies in the atlas: texels [origin, origin + size) of page `page`.
-struct TextureRect {
+// A material's use of one texture: where the texture lies in its atlas, how it is stored, and the
+// uv transform (KHR_texture_transform) applied first.
+struct TextureRef {
+  // Texels [origin, origin + size) of page `page` of the atlas that TEXTURE_LINEAR picks.
   origin: vec2u,
   size: vec2u,
   page: u32,
+  // TEXTURE_* bits.
+  flags: u32,
+  // uv' = (dot(transform_u, (u, v, 1)), dot(transform_v, (u, v, 1))).
+  transform_u: vec3f,
+  transform_v: vec3f,
 }
 
-// One slot of the alias table over emissive triangles (Walker 1977; Vose 1991): pick a slot
-// uniformly, keep its triangle with probability `keep`, otherwise take the slot's alias.
+// Stored linearly (data: normals, metallic-roughness), in texture_atlas_linear; else sRGB colour in texture_atlas.
+const TEXTURE_LINEAR: u32 = 1u;
+// Filtered bilinearly (glTF); else the nearest texel (Doom's pixels).
+const TEXTURE_BILINEAR: u32 = 2u;
+
+// One slot of the alias table over every light (Walker 1977; Vose 1991): pick a slot uniformly,
+// keep its light with probability `keep`, otherwise take the slot's alias. Lights are LIGHT_* codes.
 struct LightSlot {
-  // Leaf-order triangle index of this slot's light.
-  triangle: u32,
-  // Leaf-order triangle index taken when this slot's own is not kept.
-  alias_triangle: u32,
+  light: u32,
+  alias_light: u32,
   keep: f32,
+}
+
+// A light code: the kind in the top two bits, an index below. Emissive triangles are coded by their
+// leaf-order index (kind 0), so a code of an emitter is the triangle itself.
+const LIGHT_KIND_SHIFT: u32 = 30u;
+const LIGHT_INDEX_MASK: u32 = 0x3fffffffu;
+const LIGHT_KIND_TRIANGLE: u32 = 0u;
+const LIGHT_KIND_PUNCTUAL: u32 = 1u;
+const LIGHT_KIND_ENVIRONMENT: u32 = 2u;
+const LIGHT_KIND_SUN: u32 = 3u;
+
+// KHR_lights_punctual, world space (scene/types.ts PunctualLight).
+struct PunctualLight {
+  // Point and spot: position. Directional: the unit direction toward the light.
+  position: vec3f,
+  // PUNCTUAL_*.
+  kind: u32,
+  // Colour × intensity (W/sr) for point and spot; colour × irradiance (W/m²) for directional.
+  intensity: vec3f,
+  // Point and spot: cut-off distance (T_MISS for none).
+  range: f32,
+  // Spot: unit direction the light shines in.
+  direction: vec3f,
+  // Spot: cos of the outer cone angle, and 1 / (cos inner − cos outer) for the smooth falloff.
+  cos_outer: f32,
+  cone_scale: f32,
+  // Probability that light selection picks this light (its power over the total).
+  select_pmf: f32,
+}
+
+const PUNCTUAL_POINT: u32 = 0u;
+const PUNCTUAL_SPOT: u32 = 1u;
+const PUNCTUAL_DIRECTIONAL: u32 = 2u;
+// Punctual lights live in a uniform array of this size (the loader keeps the brightest).
+const MAX_PUNCTUAL_LIGHTS: u32 = 64u;
+
+struct PunctualLights {
+  count: u32,
+  lights: array<PunctualLight, MAX_PUNCTUAL_LIGHTS>,
 }
 
 struct SceneInfo {
   triangle_count: u32,
   node_count: u32,
+  // Slots of the light alias table.
   light_count: u32,
-  // Σ over emissive triangles of their power (see Material.emission_texture_mean): the normaliser
-  // of light selection.
+  // Σ over all lights of their (estimated) power: the normaliser of light selection. An emissive
+  // triangle's power is luminance(emission) × Material.emission_texture_mean × area.
   total_light_power: f32,
+  // Selection probabilities of the environment map and of the sun (0 without them), for MIS.
+  environment_select_pmf: f32,
+  sun_select_pmf: f32,
 }
 
 // A ray with its valid interval (t_min, t_max). Directions need not be unit length unless a caller says so.

@@ -1,0 +1,216 @@
+/**
+ * Materials → the `materials` and `texture_refs` arrays and the two texture atlases of bind group 0
+ * (shaders/scene/types.wgsl Material, TextureRef). Pure CPU. Each kind of the scene/types.ts union
+ * fills the fields its BSDF case reads; a material's texture uses become TextureRef records (one per
+ * distinct texture + transform + filter), colour textures go to the sRGB atlas and data textures to
+ * the linear one.
+ */
+import { LanternError } from '../../errors.ts';
+import { luminance, type Vec3 } from '../../math/vec3.ts';
+import { coverageOf, type Material, type MaterialKind, type Scene, type Texture, type TextureRef } from '../../scene/types.ts';
+import type { StructLayout } from '../wgsl/reflect.ts';
+import { StructArray } from './struct-array.ts';
+import { meanLinearColor, packTextureAtlas, type TextureAtlas } from './texture-atlas.ts';
+
+/** Sentinels and flag bits shared with shaders/scene/types.wgsl and lib/constants.wgsl. */
+export const NO_TEXTURE = 0xffffffff;
+export const MATERIAL_KINDS: readonly MaterialKind[] = ['diffuse', 'metallic-roughness', 'dielectric', 'emissive'];
+export const MATERIAL_ALPHA_MASK = 1;
+export const MATERIAL_EMISSION_PANORAMA = 2;
+export const MATERIAL_ALPHA_BLEND = 4;
+export const MATERIAL_SINGLE_SIDED = 8;
+export const MATERIAL_THIN_WALLED = 16;
+export const TEXTURE_LINEAR = 1;
+export const TEXTURE_BILINEAR = 2;
+
+export interface PackedMaterials {
+  readonly materials: ArrayBuffer;
+  readonly textureRefs: ArrayBuffer;
+  /** sRGB colour textures (rgba8unorm-srgb pages) and linear data textures (rgba8unorm pages). */
+  readonly atlas: TextureAtlas;
+  readonly linearAtlas: TextureAtlas;
+  /** Per material: luminance of its emission texture's mean linear colour (1 without one). */
+  readonly emissionMean: readonly number[];
+  /** Per material: whether its coverage can make holes (alpha mask or blend with something to test). */
+  readonly hasHitFilter: readonly boolean[];
+  /** Whether any material needs more than the Lambertian path (see SCENE_HAS_GENERAL_MATERIALS). */
+  readonly general: boolean;
+  readonly textureRefCount: number;
+  readonly warnings: readonly string[];
+}
+
+/** The texture uses of a material, by the WGSL field that holds each, and whether it is colour. */
+function textureUses(m: Material): { field: string; ref: TextureRef; srgb: boolean }[] {
+  const uses: { field: string; ref: TextureRef | undefined; srgb: boolean }[] = [
+    { field: 'emission_texture', ref: m.emissionTexture, srgb: true },
+    { field: 'normal_texture', ref: m.normalTexture, srgb: false },
+  ];
+  switch (m.kind) {
+    case 'diffuse':
+      uses.push({ field: 'base_color_texture', ref: m.albedoTexture, srgb: true });
+      break;
+    case 'metallic-roughness':
+      uses.push(
+        { field: 'base_color_texture', ref: m.baseColorTexture, srgb: true },
+        { field: 'metallic_roughness_texture', ref: m.metallicRoughnessTexture, srgb: false },
+        { field: 'specular_texture', ref: m.specularTexture, srgb: false },
+        { field: 'specular_color_texture', ref: m.specularColorTexture, srgb: true },
+        { field: 'transmission_texture', ref: m.transmissionTexture, srgb: false },
+      );
+      break;
+    case 'dielectric':
+    case 'emissive':
+      break;
+  }
+  return uses.filter((u): u is { field: string; ref: TextureRef; srgb: boolean } => u.ref !== undefined);
+}
+
+/** Beer–Lambert coefficient −ln(colour)/distance per channel (0 for a clear volume). */
+function absorptionOf(color: Vec3, distance: number): Vec3 {
+  if (!(distance > 0 && Number.isFinite(distance))) return [0, 0, 0];
+  return color.map((c) => -Math.log(Math.max(c, 1e-6)) / distance) as unknown as Vec3;
+}
+
+export function packMaterials(scene: Scene, layouts: { material: StructLayout; textureRef: StructLayout }, maxTextureSide: number): PackedMaterials {
+  const textures = scene.textures ?? [];
+  const warnings: string[] = [];
+  // Every texture is placed in the atlas of each encoding it is used with (usually one).
+  const srgbUsed = new Map<number, number>();
+  const linearUsed = new Map<number, number>();
+  const srgbTextures: Texture[] = [];
+  const linearTextures: Texture[] = [];
+  const place = (index: number, srgb: boolean): number => {
+    const used = srgb ? srgbUsed : linearUsed;
+    let slot = used.get(index);
+    if (slot === undefined) {
+      const t = textures[index];
+      if (!t) throw new LanternError(`scene '${scene.name}' refers to texture ${index} of ${textures.length}`);
+      slot = (srgb ? srgbTextures : linearTextures).push(t) - 1;
+      used.set(index, slot);
+    }
+    return slot;
+  };
+
+  const refs: { ref: TextureRef; srgb: boolean; slot: number; bilinear: boolean }[] = [];
+  const refIndex = new Map<string, number>();
+  const materialRefs = scene.materials.map((m) => {
+    return textureUses(m).map((u) => {
+      const bilinear = (textures[u.ref.texture]?.filter ?? 'bilinear') === 'bilinear';
+      if (u.ref.texCoord === 1) warnings.push(`material '${m.name}' uses a second uv set, which Lantern does not carry to the GPU yet: its ${u.field.replace(/_/g, ' ')} uses the first`);
+      const slot = place(u.ref.texture, u.srgb);
+      const key = `${u.srgb}:${slot}:${bilinear}:${JSON.stringify(u.ref.transform ?? null)}`;
+      let index = refIndex.get(key);
+      if (index === undefined) {
+        index = refs.push({ ref: u.ref, srgb: u.srgb, slot, bilinear }) - 1;
+        refIndex.set(key, index);
+      }
+      return { field: u.field, index };
+    });
+  });
+
+  const atlas = packTextureAtlas(srgbTextures, maxTextureSide);
+  const linearAtlas = packTextureAtlas(linearTextures, maxTextureSide);
+  const textureRefs = new StructArray(layouts.textureRef, refs.length);
+  {
+    const origin = textureRefs.vec2u('origin'), size = textureRefs.vec2u('size'), page = textureRefs.u32Field('page'), flags = textureRefs.u32Field('flags');
+    const tu = textureRefs.vec3('transform_u'), tv = textureRefs.vec3('transform_v');
+    refs.forEach((r, i) => {
+      const rect = (r.srgb ? atlas : linearAtlas).rects[r.slot]!;
+      origin(i, rect.x, rect.y);
+      size(i, rect.width, rect.height);
+      page(i, rect.page);
+      flags(i, (r.srgb ? 0 : TEXTURE_LINEAR) | (r.bilinear ? TEXTURE_BILINEAR : 0));
+      // KHR_texture_transform: uv' = T · R · S · uv, with R rotating counter-clockwise in uv space.
+      const t = r.ref.transform;
+      const [ox, oy] = t?.offset ?? [0, 0];
+      const [sx, sy] = t?.scale ?? [1, 1];
+      const c = Math.cos(t?.rotation ?? 0), s = Math.sin(t?.rotation ?? 0);
+      tu(i, c * sx, s * sy, ox);
+      tv(i, -s * sx, c * sy, oy);
+    });
+  }
+
+  const textureMean = new Map<number, number>();
+  const meanOf = (index: number) => {
+    let v = textureMean.get(index);
+    if (v === undefined) textureMean.set(index, (v = luminance(meanLinearColor(textures[index]!))));
+    return v;
+  };
+  const emissionMean = scene.materials.map((m) => (m.emissionTexture === undefined ? 1 : meanOf(m.emissionTexture.texture)));
+
+  const out = new StructArray(layouts.material, scene.materials.length);
+  const u32 = (f: string) => out.u32Field(f), f32 = (f: string) => out.f32Field(f), v3 = (f: string) => out.vec3(f);
+  const kind = u32('kind'), flags = u32('flags'), cutoff = f32('alpha_cutoff'), opacity = f32('opacity');
+  const base = v3('base_color'), emission = v3('emission'), mean = f32('emission_texture_mean');
+  const metallic = f32('metallic'), roughness = f32('roughness'), ior = f32('ior'), transmission = f32('transmission'), specular = f32('specular');
+  const specularColor = v3('specular_color'), absorption = v3('absorption'), normalScale = f32('normal_scale');
+  const repeats = f32('panorama_repeats'), horizon = f32('panorama_horizon_v'), vPerRadian = f32('panorama_v_per_radian');
+  const textureFields = ['base_color_texture', 'emission_texture', 'metallic_roughness_texture', 'specular_texture', 'specular_color_texture', 'transmission_texture', 'normal_texture'];
+  const textureWriters = new Map(textureFields.map((f) => [f, u32(f)]));
+  const hasHitFilter: boolean[] = [];
+  let general = false;
+
+  scene.materials.forEach((m, i) => {
+    kind(i, MATERIAL_KINDS.indexOf(m.kind));
+    for (const w of textureWriters.values()) w(i, NO_TEXTURE);
+    for (const { field, index } of materialRefs[i]!) textureWriters.get(field)!(i, index);
+    emission(i, ...m.emission);
+    mean(i, emissionMean[i]!);
+    const coverage = coverageOf(m);
+    opacity(i, coverage.opacity);
+    cutoff(i, m.alphaCutoff ?? 0.5);
+    normalScale(i, m.normalTexture?.scale ?? 1);
+    let f = 0;
+    const alpha = m.alphaMode ?? 'opaque';
+    const filter = alpha !== 'opaque' && (coverage.texture !== undefined || coverage.opacity < 1);
+    if (filter) f |= alpha === 'mask' ? MATERIAL_ALPHA_MASK : MATERIAL_ALPHA_BLEND;
+    hasHitFilter.push(filter);
+    if (m.doubleSided === false) f |= MATERIAL_SINGLE_SIDED;
+    const mapping = m.emissionMapping;
+    if (mapping?.kind === 'panorama') {
+      f |= MATERIAL_EMISSION_PANORAMA;
+      repeats(i, mapping.repeats);
+      horizon(i, mapping.horizonV);
+      vPerRadian(i, mapping.vPerRadian);
+    }
+    switch (m.kind) {
+      case 'diffuse':
+        base(i, ...m.albedo);
+        break;
+      case 'metallic-roughness':
+        base(i, ...m.baseColor);
+        metallic(i, m.metallic);
+        roughness(i, m.roughness);
+        ior(i, m.ior);
+        transmission(i, m.transmission);
+        specular(i, m.specular);
+        specularColor(i, ...m.specularColor);
+        absorption(i, ...absorptionOf(m.attenuationColor, m.attenuationDistance));
+        if (!(m.thickness > 0)) f |= MATERIAL_THIN_WALLED;
+        break;
+      case 'dielectric':
+        base(i, ...m.tint);
+        roughness(i, m.roughness);
+        ior(i, m.ior);
+        transmission(i, 1);
+        absorption(i, ...absorptionOf(m.attenuationColor, m.attenuationDistance));
+        break;
+      case 'emissive':
+        break;
+    }
+    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture) general = true;
+    flags(i, f);
+  });
+
+  return {
+    materials: out.bytes,
+    textureRefs: textureRefs.bytes,
+    atlas,
+    linearAtlas,
+    emissionMean,
+    hasHitFilter,
+    general,
+    textureRefCount: refs.length,
+    warnings: [...new Set(warnings)],
+  };
+}
