@@ -48,7 +48,7 @@ export class SceneResources {
         b[name] = createBufferWithData(device, `${label} ${name}`, packed[name], GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST);
       }
       for (const name of STORAGE_NAMES) {
-        b[name] = createBufferWithData(device, `${label} ${name}`, packed[name], GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC);
+        b[name] = createBufferWithData(device, `${label} ${name}`, packed[name], GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST);
       }
       return b as SceneResources['buffers'];
     });

@@ -4,9 +4,12 @@
  * result.
  */
 import { buildBvh } from '../bvh/build.ts';
+import { refitBvh } from '../bvh/refit.ts';
+import type { Mat4 } from '../math/mat4.ts';
 import type { Bvh } from '../bvh/types.ts';
-import { packScene, type PackedScene } from '../gpu/pack/scene-pack.ts';
-import { flattenTriangles, type TriangleList } from '../scene/triangles.ts';
+import { packGeometry, packScene, type PackedScene } from '../gpu/pack/scene-pack.ts';
+import { flattenTriangles, writeInstanceTriangles, type TriangleList } from '../scene/triangles.ts';
+import { LanternError } from '../errors.ts';
 import type { Scene } from '../scene/types.ts';
 import { validateScene } from '../scene/validate.ts';
 
@@ -36,4 +39,35 @@ export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STA
   const packed = packScene(scene, triangles, bvh);
   const t3 = performance.now();
   return { scene, triangles, bvh, packed, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+}
+
+/** The group-0 buffers moveInstances rewrites (the same sizes as before: the tree keeps its shape). */
+export const MOVED_BUFFERS = ['scene_info', 'bvh_nodes', 'triangles_hot', 'triangles_shading', 'light_slots', 'punctual_lights'] as const;
+
+/**
+ * Instances moved (new world-from-object transforms by instance id): their triangles are written
+ * again, the BVH is refitted rather than rebuilt, and the geometry and lights are packed again
+ * around the materials and textures already packed. Cheap enough per frame for a door or a lift;
+ * the tree's quality decays with large motions (then prepare again).
+ */
+export function moveInstances(prepared: PreparedScene, moves: ReadonlyMap<number, Mat4>): PreparedScene {
+  const { scene } = prepared;
+  const instances = scene.instances.map((inst) => {
+    const m = moves.get(inst.id);
+    return m ? { ...inst, worldFromObject: m } : inst;
+  });
+  for (const id of moves.keys()) {
+    if (!scene.instances.some((inst) => inst.id === id)) throw new LanternError(`scene '${scene.name}' has no instance with id ${id}`);
+  }
+  const moved: typeof scene = { ...scene, instances };
+  const triangles: TriangleList = { ...prepared.triangles, positions: new Float32Array(prepared.triangles.positions), swapped: new Uint8Array(prepared.triangles.swapped) };
+  instances.forEach((inst, i) => {
+    if (moves.has(inst.id)) writeInstanceTriangles(moved, inst, i, triangles, triangles.instanceFirstTriangle[i]!);
+  });
+  const t0 = performance.now();
+  const bvh = refitBvh(prepared.bvh, triangles.positions);
+  const t1 = performance.now();
+  const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials);
+  const t2 = performance.now();
+  return { scene: moved, triangles, bvh, packed, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
 }

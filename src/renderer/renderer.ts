@@ -26,7 +26,8 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
-import { prepareScene, type PreparedScene } from './prepare.ts';
+import { moveInstances, MOVED_BUFFERS, prepareScene, type PreparedScene } from './prepare.ts';
+import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
 import { ViewUniform } from './view.ts';
 
@@ -130,6 +131,21 @@ export class Renderer {
     this.resources = resources;
     this.prepared = prepared;
     this.setCamera(prepared.scene.camera);
+    return prepared;
+  }
+
+  /**
+   * Moves instances (new world-from-object transforms by instance id) without rebuilding the scene:
+   * the BVH is refitted and the geometry buffers are rewritten in place (renderer/prepare.ts
+   * moveInstances). Restarts accumulation.
+   */
+  updateInstances(moves: ReadonlyMap<number, Mat4>): PreparedScene {
+    const resources = this.resources;
+    if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateInstances()');
+    const prepared = moveInstances(this.prepared, moves);
+    for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
+    this.prepared = prepared;
+    this.resetAccumulation();
     return prepared;
   }
 

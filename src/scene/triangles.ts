@@ -71,7 +71,7 @@ export function writeInstanceTriangles(scene: Scene, instance: Instance, instanc
       out[t * 9 + c * 3 + 1] = m1 * x + m5 * y + m9 * z + m13;
       out[t * 9 + c * 3 + 2] = m2 * x + m6 * y + m10 * z + m14;
     }
-    list.materialIds[t] = mesh.materialIds[k]!;
+    list.materialIds[t] = instance.material ?? mesh.materialIds[k]!;
     list.instanceIds[t] = instanceIndex;
     list.meshTriangleIds[t] = k;
     list.swapped[t] = mirror ? 1 : 0;

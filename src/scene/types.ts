@@ -303,6 +303,8 @@ export interface Instance {
   readonly worldFromObject: Mat4;
   /** The instance may move between frames (doors, lifts, the phantom). Default false. */
   readonly moves?: boolean;
+  /** Index into Scene.materials replacing every material of the mesh (one sphere mesh, many materials). */
+  readonly material?: number;
 }
 
 /** A pinhole camera. `forward` and `up` need not be unit length nor exactly orthogonal. */

@@ -50,6 +50,7 @@ export function validateScene(scene: Scene): void {
     if (!(Number.isInteger(inst.mesh) && inst.mesh >= 0 && inst.mesh < scene.meshes.length)) fail(`instance ${i} refers to mesh ${inst.mesh} of ${scene.meshes.length}`);
     if (inst.worldFromObject.length !== 16 || !inst.worldFromObject.every(Number.isFinite)) fail(`instance ${i} has a transform that is not 16 finite numbers`);
     if (ids.has(inst.id)) fail(`two instances have the id ${inst.id}`);
+    if (inst.material !== undefined && !(Number.isInteger(inst.material) && inst.material >= 0 && inst.material < scene.materials.length)) fail(`instance ${i} uses material ${inst.material} of ${scene.materials.length}`);
     ids.add(inst.id);
   });
   for (const light of scene.lights ?? []) {

@@ -13,7 +13,7 @@ import type { TriangleList } from '../../scene/triangles.ts';
 import type { Scene } from '../../scene/types.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
 import { packLights } from './light-pack.ts';
-import { packMaterials } from './material-pack.ts';
+import { packMaterials, type PackedMaterials } from './material-pack.ts';
 import { StructArray } from './struct-array.ts';
 import type { TextureAtlas } from './texture-atlas.ts';
 
@@ -58,6 +58,8 @@ export interface PackedScene {
   readonly totalLightPower: number;
   /** What packing had to work around. */
   readonly warnings: readonly string[];
+  /** The packed materials and textures, kept so geometry can be packed again alone. */
+  readonly packedMaterials: PackedMaterials;
 }
 
 export function sceneLayouts() {
@@ -83,9 +85,18 @@ export interface PackOptions {
 }
 
 export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }): PackedScene {
+  const packedMaterials = packMaterials(scene, sceneLayouts(), options.maxTextureSide);
+  return packGeometry(scene, triangles, bvh, packedMaterials);
+}
+
+/**
+ * Everything that depends on where triangles are: nodes, triangle records, the light table and the
+ * scene info, around materials already packed. After instances move (renderer/prepare.ts
+ * moveInstances) only this runs again; the textures stay as they are.
+ */
+export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials): PackedScene {
   const layouts = sceneLayouts();
   const n = triangles.count;
-  const packedMaterials = packMaterials(scene, layouts, options.maxTextureSide);
 
   const nodes = new StructArray(layouts.node, bvh.nodeCount);
   {
@@ -205,5 +216,6 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
     },
     totalLightPower: lights.totalPower,
     warnings: [...packedMaterials.warnings, ...lights.warnings],
+    packedMaterials,
   };
 }

@@ -4,11 +4,13 @@ import type { Scene } from '../../scene/types.ts';
 import { bvhTeaching } from './bvh-teaching.ts';
 import { cornellBox } from './cornell.ts';
 import { whiteFurnace } from './furnace.ts';
+import { materialsScene } from './materials.ts';
 
 export const BUILTIN_SCENES = {
   cornell: { description: 'the Cornell box, from the published measurements (mm)', make: cornellBox },
   furnace: { description: 'white furnace: every pixel converges to 5.0', make: whiteFurnace },
   'bvh-teaching': { description: 'BVH teaching room: separated cubes, a dense cluster and a diagonal slab', make: bvhTeaching },
+  materials: { description: 'a row of spheres under a sky: mirror to rough metal, gold, clear and frosted glass, plastic, diffuse', make: materialsScene },
 } as const satisfies Record<string, { description: string; make: () => Scene }>;
 
 export type BuiltinSceneName = keyof typeof BUILTIN_SCENES;

@@ -1,0 +1,45 @@
+/**
+ * Refitting: after triangles moved, every box is recomputed bottom-up from the same tree, so the
+ * BVH stays exact (each box the union of its triangles' boxes) without a rebuild. Children always
+ * sit after their parent in the node array (the builder allocates them later), so one backward pass
+ * sees every child before its parent. The tree's quality degrades as things move far; a rebuild is
+ * the remedy (a two-level BVH makes moving instances cheap to rebuild at the top).
+ */
+import type { Bvh } from './types.ts';
+
+/** A new BVH with the same tree as `bvh` and boxes fitted to `positions` (9 floats per triangle). */
+export function refitBvh(bvh: Bvh, positions: Float32Array): Bvh {
+  const bounds = new Float32Array(bvh.bounds);
+  const { leftFirst, triCount, triIndices } = bvh;
+  for (let node = bvh.nodeCount - 1; node >= 0; node--) {
+    if (node === 1) continue; // the unused slot keeps its inverted box
+    let minX = Infinity, minY = Infinity, minZ = Infinity, maxX = -Infinity, maxY = -Infinity, maxZ = -Infinity;
+    if (triCount[node]! > 0) {
+      const first = leftFirst[node]!, end = first + triCount[node]!;
+      for (let i = first; i < end; i++) {
+        const o = triIndices[i]! * 9;
+        for (let c = 0; c < 9; c += 3) {
+          const x = positions[o + c]!, y = positions[o + c + 1]!, z = positions[o + c + 2]!;
+          if (x < minX) minX = x;
+          if (y < minY) minY = y;
+          if (z < minZ) minZ = z;
+          if (x > maxX) maxX = x;
+          if (y > maxY) maxY = y;
+          if (z > maxZ) maxZ = z;
+        }
+      }
+    } else {
+      for (const child of [leftFirst[node]!, leftFirst[node]! + 1]) {
+        const b = child * 6;
+        minX = Math.min(minX, bounds[b]!);
+        minY = Math.min(minY, bounds[b + 1]!);
+        minZ = Math.min(minZ, bounds[b + 2]!);
+        maxX = Math.max(maxX, bounds[b + 3]!);
+        maxY = Math.max(maxY, bounds[b + 4]!);
+        maxZ = Math.max(maxZ, bounds[b + 5]!);
+      }
+    }
+    bounds.set([minX, minY, minZ, maxX, maxY, maxZ], node * 6);
+  }
+  return { ...bvh, bounds };
+}
