@@ -8,9 +8,11 @@
  * recorded; meshes.ts drops every primitive whose data lives in it.
  */
 import { Logger, WebIO, type Document } from '@gltf-transform/core';
-import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
+import { ALL_EXTENSIONS, KHRDracoMeshCompression } from '@gltf-transform/extensions';
 import { MeshoptDecoder } from 'meshoptimizer/decoder';
 import { LanternError } from '../../errors.ts';
+import { decodeDataUri } from './data-uri.ts';
+import { dracoDecoder } from './draco.ts';
 import type { Warnings } from './warnings.ts';
 
 /** Loose view of the raw glTF JSON: only what is read before glTF-Transform takes over. */
@@ -20,7 +22,7 @@ interface GltfJson {
   bufferViews?: { buffer?: number; extensions?: { EXT_meshopt_compression?: { buffer?: number } } }[];
   images?: { uri?: string; bufferView?: number; mimeType?: string; name?: string }[];
   accessors?: { bufferView?: number; sparse?: { indices?: { bufferView?: number }; values?: { bufferView?: number } } }[];
-  meshes?: { primitives?: { attributes?: Record<string, number>; indices?: number }[] }[];
+  meshes?: { primitives?: { attributes?: Record<string, number>; indices?: number; extensions?: { KHR_draco_mesh_compression?: { bufferView?: number } } }[] }[];
   extensionsUsed?: string[];
   extensionsRequired?: string[];
 }
@@ -41,8 +43,8 @@ const CHUNK_BIN = 0x004e4942;
 /** The resource key glTF-Transform uses for a GLB's binary chunk. */
 const GLB_BUFFER = '@glb.bin';
 
-/** Decoders the extensions need, and the extensions glTF-Transform knows; Draco is left out (see below). */
-const EXTENSIONS = ALL_EXTENSIONS.filter((e) => e.EXTENSION_NAME !== 'KHR_draco_mesh_compression');
+/** The extensions glTF-Transform knows; Draco is added per file, as its decoder is large (draco.ts). */
+const EXTENSIONS = ALL_EXTENSIONS.filter((e) => e.EXTENSION_NAME !== KHRDracoMeshCompression.EXTENSION_NAME);
 
 export async function readGltfSource(
   main: { name: string; bytes: Uint8Array },
@@ -103,7 +105,10 @@ export async function readGltfSource(
         const uri = missingBufferOfAccessor(json, a, missingBuffers);
         if (uri) return uri;
       }
-      return undefined;
+      // Draco primitives keep their compressed data in a view named by the extension.
+      const draco = p.extensions?.KHR_draco_mesh_compression?.bufferView;
+      const buffer = draco === undefined ? undefined : json.bufferViews?.[draco]?.buffer;
+      return buffer === undefined ? undefined : missingBuffers.get(buffer);
     }),
   );
   for (const uri of new Set(missingData.flat().filter((u) => u !== undefined))) {
@@ -115,6 +120,15 @@ export async function readGltfSource(
     .setLogger(new Logger(Logger.Verbosity.SILENT))
     .registerExtensions(EXTENSIONS)
     .registerDependencies({ 'meshopt.decoder': MeshoptDecoder });
+  if (json.extensionsUsed?.includes(KHRDracoMeshCompression.EXTENSION_NAME)) {
+    let decoder: unknown;
+    try {
+      decoder = await dracoDecoder();
+    } catch (e) {
+      throw new LanternError(`${main.name}: the Draco decoder (KHR_draco_mesh_compression) could not be started (${(e as Error).message})`, 're-export the model without Draco compression', { cause: e });
+    }
+    io.registerExtensions([KHRDracoMeshCompression]).registerDependencies({ 'draco3d.decoder': decoder });
+  }
   let doc: Document;
   try {
     doc = await io.readJSON({ json: json as never, resources: resources as Record<string, Uint8Array<ArrayBuffer>> });
@@ -160,16 +174,10 @@ function parseJson(name: string, bytes: Uint8Array): GltfJson {
   return json as GltfJson;
 }
 
-/**
- * A required extension Lantern cannot decode must stop the load (glTF 2.0 §3.12); Draco is the one
- * glTF-Transform knows but Lantern does not ship a decoder for (see the final report / README).
- */
+/** A required extension Lantern cannot read must stop the load (glTF 2.0 §3.12). */
 function checkRequiredExtensions(name: string, json: GltfJson): void {
-  const known = new Set<string>(EXTENSIONS.map((e) => e.EXTENSION_NAME));
+  const known = new Set<string>([...EXTENSIONS.map((e) => e.EXTENSION_NAME), KHRDracoMeshCompression.EXTENSION_NAME]);
   for (const ext of json.extensionsRequired ?? []) {
-    if (ext === 'KHR_draco_mesh_compression') {
-      throw new LanternError(`${name}: Draco-compressed meshes (KHR_draco_mesh_compression) are not supported yet`, 're-export without Draco, or decompress with `npx @gltf-transform/cli copy`');
-    }
     if (!known.has(ext)) throw new LanternError(`${name} requires the glTF extension ${ext}, which Lantern does not support`);
   }
 }
@@ -180,25 +188,6 @@ async function fetchResource(uri: string, resolve: (uri: string) => Promise<Uint
     return await resolve(uri);
   } catch {
     // A resolver that throws (a file system error, a network error upstream) counts as missing.
-    return undefined;
-  }
-}
-
-/** RFC 2397: data:[<mediatype>][;base64],<data>. Undecodable data counts as missing. */
-export function decodeDataUri(uri: string): Uint8Array | undefined {
-  const comma = uri.indexOf(',');
-  if (comma < 0) return undefined;
-  const header = uri.slice(5, comma);
-  const data = uri.slice(comma + 1);
-  try {
-    if (header.endsWith(';base64')) {
-      const text = atob(data);
-      const out = new Uint8Array(text.length);
-      for (let i = 0; i < text.length; i++) out[i] = text.charCodeAt(i);
-      return out;
-    }
-    return new TextEncoder().encode(decodeURIComponent(data));
-  } catch {
     return undefined;
   }
 }
