@@ -3,7 +3,7 @@
  * with a known answer.
  */
 import { Document, WebIO, type Extension } from '@gltf-transform/core';
-import { EXTMeshoptCompression, KHRDracoMeshCompression, KHRLightsPunctual, KHRMaterialsEmissiveStrength, KHRMaterialsIOR, KHRMaterialsSpecular, KHRMaterialsTransmission, KHRMaterialsVolume, KHRMeshQuantization, KHRTextureTransform } from '@gltf-transform/extensions';
+import { EXTMeshGPUInstancing, EXTMeshoptCompression, KHRDracoMeshCompression, KHRLightsPunctual, KHRMaterialsEmissiveStrength, KHRMaterialsIOR, KHRMaterialsSpecular, KHRMaterialsTransmission, KHRMaterialsVolume, KHRMeshQuantization, KHRTextureTransform } from '@gltf-transform/extensions';
 import { createEncoderModule } from 'draco3dgltf';
 import { MeshoptEncoder } from 'meshoptimizer/encoder';
 import { describe, expect, it } from 'vitest';
@@ -233,6 +233,18 @@ describe('glTF loader on built documents', () => {
       const b = cross([0, 0, 1], t).map((x) => x * m.tangents![v * 4 + 3]!);
       expect(b[1]).toBeCloseTo(1, 5);
     }
+  });
+
+  it('places one instance per row of EXT_mesh_gpu_instancing, inside the node’s transform', async () => {
+    const { doc, node, buffer } = oneMesh(QUAD, { indices: QUAD_INDICES });
+    node.setTranslation([0, 0, 10]);
+    const batch = doc.createExtension(EXTMeshGPUInstancing).createInstancedMesh()
+      .setAttribute('TRANSLATION', doc.createAccessor().setType('VEC3').setArray(new Float32Array([1, 0, 0, 2, 0, 0, 3, 0, 0])).setBuffer(buffer));
+    node.setExtension('EXT_mesh_gpu_instancing', batch);
+    const s = await load(doc, [EXTMeshGPUInstancing]);
+    expect(s.meshes).toHaveLength(1);
+    expect(s.instances.map((i) => transformPoint(i.worldFromObject, [0, 0, 0]))).toEqual([[1, 0, 10], [2, 0, 10], [3, 0, 10]]);
+    expect(new Set(s.instances.map((i) => i.id)).size).toBe(3);
   });
 
   it('reads EXT_meshopt_compression', async () => {

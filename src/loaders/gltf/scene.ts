@@ -9,10 +9,10 @@
  * the instance carries the whole transform.
  */
 import type { Document, Node } from '@gltf-transform/core';
-import type { Light } from '@gltf-transform/extensions';
+import type { InstancedMesh, Light } from '@gltf-transform/extensions';
 import { LanternError } from '../../errors.ts';
 import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../../math/aabb.ts';
-import { multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
+import { fromTrs, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
 import { frameBounds } from '../../scene/framing.ts';
 import type { Camera, Instance, Material, Mesh, PunctualLight, Scene } from '../../scene/types.ts';
 import { convertCamera } from './cameras.ts';
@@ -56,6 +56,7 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
   const instances: Instance[] = [];
   const lights: PunctualLight[] = [];
   let camera: Camera | undefined;
+  let extraIds = 0;
 
   const visit = async (node: Node, parent: Mat4): Promise<void> => {
     const worldFromObject = multiply(parent, node.getMatrix());
@@ -69,8 +70,15 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
         meshSlot.set(m, converted ? meshes.length - 1 : undefined);
       }
       const slot = meshSlot.get(m);
-      if (slot !== undefined) {
-        const nodeName = node.getName();
+      const nodeName = node.getName();
+      const gpuInstances = node.getExtension<InstancedMesh>('EXT_mesh_gpu_instancing');
+      if (slot !== undefined && gpuInstances) {
+        // EXT_mesh_gpu_instancing: one placement per TRS row, each applied before the node's own
+        // transform. Ids continue after the node indices, in file order, so they too are stable.
+        for (const local of instanceTransforms(gpuInstances)) {
+          instances.push({ id: nodes.length + extraIds++, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject: multiply(worldFromObject, local) });
+        }
+      } else if (slot !== undefined) {
         instances.push({ id: index, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject });
       }
     }
@@ -108,6 +116,20 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
     metersPerUnit: 1,
     warnings: warnings.list,
   };
+}
+
+/** The per-instance transforms of EXT_mesh_gpu_instancing (absent attributes: identity parts). */
+function instanceTransforms(batch: InstancedMesh): Mat4[] {
+  const t = batch.getAttribute('TRANSLATION'), r = batch.getAttribute('ROTATION'), s = batch.getAttribute('SCALE');
+  const count = t?.getCount() ?? r?.getCount() ?? s?.getCount() ?? 0;
+  const out: Mat4[] = [];
+  for (let i = 0; i < count; i++) {
+    const tr = t ? (t.getElement(i, [0, 0, 0]) as [number, number, number]) : ([0, 0, 0] as const);
+    const q = r ? (r.getElement(i, [0, 0, 0, 1]) as [number, number, number, number]) : ([0, 0, 0, 1] as const);
+    const sc = s ? (s.getElement(i, [1, 1, 1]) as [number, number, number]) : ([1, 1, 1] as const);
+    out.push(fromTrs(tr, q, sc));
+  }
+  return out;
 }
 
 /** The world-space box of all instances: each mesh's object box, its eight corners transformed. */

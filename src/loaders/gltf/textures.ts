@@ -56,7 +56,7 @@ export class TextureTable {
     const known = this.byKey.get(key);
     if (known !== undefined) return known;
 
-    let decoded = undefined;
+    let decoded: DecodedImage | undefined;
     if (this.imageMissing[i]) {
       this.warnings.missingFile(imageName, 'textures that use it are replaced by neutral ones');
     } else {
