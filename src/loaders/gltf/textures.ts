@@ -10,7 +10,7 @@
 import type { Texture as GltfTexture, TextureInfo } from '@gltf-transform/core';
 import type { Transform } from '@gltf-transform/extensions';
 import type { Texture, TextureEncoding, TextureRef, UvTransform } from '../../scene/types.ts';
-import { decodeImage } from './images.ts';
+import { decodeImage, type DecodedImage } from './images.ts';
 import type { Warnings } from './warnings.ts';
 
 /** What a texture slot holds, which decides its encoding and its fallback. */
