@@ -54,49 +54,49 @@ export async function readGltfSource(
   const { json, bin } = splitContainer(main);
   checkRequiredExtensions(main.name, json);
 
-  const resources: Record<string, Uint8Array> = {};
-  // Stand-ins are keyed "__lantern…": glTF-Transform treats "__"-prefixed URIs as internal names.
-  const missingBuffers = new Map<number, string>();
+  // Every external file is asked for at once: a resolver in a browser may answer over messages.
   const buffers = json.buffers ?? [];
-  for (let i = 0; i < buffers.length; i++) {
-    const def = buffers[i]!;
+  const images = json.images ?? [];
+  const [bufferBytes, imageBytes] = await Promise.all([
+    Promise.all(buffers.map((b) => (b.uri === undefined ? undefined : fetchResource(b.uri, resolve)))),
+    Promise.all(images.map((im) => (im.uri === undefined ? undefined : fetchResource(im.uri, resolve)))),
+  ]);
+
+  const resources: Record<string, Uint8Array> = {};
+  // Resources are keyed "__lantern…": glTF-Transform treats "__"-prefixed URIs as internal names.
+  const missingBuffers = new Map<number, string>();
+  buffers.forEach((def, i) => {
     if (def.uri === undefined) {
       // EXT_meshopt_compression's fallback buffer holds no bytes; the decoder fills its views.
-      if (def.extensions?.EXT_meshopt_compression?.fallback) continue;
+      if (def.extensions?.EXT_meshopt_compression?.fallback) return;
       if (i !== 0 || !bin) throw new LanternError(`${main.name}: buffer ${i} has no uri and there is no GLB binary chunk`, 'the file is damaged; re-export it');
       resources[GLB_BUFFER] = bin;
-      continue;
+      return;
     }
-    const uri = def.uri;
     const key = `__lantern_buffer_${i}`;
+    const bytes = bufferBytes[i];
+    if (!bytes) missingBuffers.set(i, def.uri);
+    // glTF-Transform cannot parse around a missing buffer: a zero-filled stand-in takes its place,
+    // and the primitives that read it are dropped (missingData below).
+    resources[key] = bytes ?? new Uint8Array(def.byteLength ?? 0);
     def.uri = key;
-    const bytes = await fetchResource(uri, resolve);
-    if (bytes) {
-      resources[key] = bytes;
-    } else {
-      missingBuffers.set(i, uri);
-      resources[key] = new Uint8Array(def.byteLength ?? 0);
-    }
-  }
+  });
 
   const imageNames: string[] = [];
   const imageMissing: boolean[] = [];
-  const images = json.images ?? [];
-  for (let i = 0; i < images.length; i++) {
-    const def = images[i]!;
+  images.forEach((def, i) => {
     if (def.uri === undefined) {
       imageNames.push(def.name ?? `image ${i}`);
       imageMissing.push(false);
-      continue;
+      return;
     }
-    const uri = def.uri;
-    imageNames.push(uri.startsWith('data:') ? (def.name ?? `image ${i}`) : uri);
+    imageNames.push(def.uri.startsWith('data:') ? (def.name ?? `image ${i}`) : def.uri);
     const key = `__lantern_image_${i}`;
-    def.uri = key;
-    const bytes = await fetchResource(uri, resolve);
+    const bytes = imageBytes[i];
     imageMissing.push(!bytes);
     resources[key] = bytes ?? new Uint8Array(0);
-  }
+    def.uri = key;
+  });
 
   const missingData = (json.meshes ?? []).map((mesh) =>
     (mesh.primitives ?? []).map((p) => {
@@ -114,6 +114,8 @@ export async function readGltfSource(
   for (const uri of new Set(missingData.flat().filter((u) => u !== undefined))) {
     warnings.missingFile(uri, 'the parts of the model stored in it are left out');
   }
+  // A missing buffer no primitive reads (it held images, animations...) is still named once.
+  for (const uri of missingBuffers.values()) warnings.missingFile(uri, 'what is stored in it is left out');
 
   await MeshoptDecoder.ready;
   const io = new WebIO()
