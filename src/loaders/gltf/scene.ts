@@ -62,6 +62,8 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
     const worldFromObject = multiply(parent, node.getMatrix());
     const index = nodeIndex.get(node) ?? -1;
     const mesh = node.getMesh();
+    if (mesh && node.getSkin()) warnings.add('skins are not applied: skinned meshes are shown in their bind pose, placed by their node');
+    if (mesh?.listPrimitives().some((p) => p.listTargets().length > 0)) warnings.add('morph targets are not applied: meshes are shown in their base shape');
     if (mesh) {
       const m = gltfMeshes.indexOf(mesh);
       if (!meshSlot.has(m)) {
