@@ -1,23 +1,48 @@
 /**
  * Scene → binary glTF 2.0 (GLB), so a scene (a Doom map above all) opens in Blender or any glTF
- * viewer. Written with glTF-Transform (the document model and its GLB writer); textures embedded as
- * PNG with nearest filtering and repeat wrapping; emission as emissiveFactor × emissiveTexture with
- * KHR_materials_emissive_strength for radiance above 1; alpha masks as alphaMode MASK (cutoff 0.5);
+ * viewer. Written with glTF-Transform (the document model and its GLB writer). The scene model maps
+ * onto glTF almost one to one: meshes and instances become glTF meshes (one primitive per material)
+ * and nodes with their matrices; materials by kind:
+ * - diffuse: base colour = albedo, metallic 0, roughness 1;
+ * - metallic-roughness: as it is, with KHR_materials_ior, _specular, _transmission, _volume where they
+ *   differ from glTF's defaults;
+ * - dielectric: transmission 1 with its ior, roughness, tint as base colour, and KHR_materials_volume
+ *   (thickness > 0: the mesh bounds a refracting volume; attenuation);
+ * - emissive: black base, metallic 0, roughness 1;
+ * and for every kind emission as emissiveFactor × KHR_materials_emissive_strength (factors must stay
+ * within [0, 1]), normal maps, alpha modes, sidedness. Textures are embedded as PNG with nearest
+ * filtering (Doom's pixel art; the scene model has no filter setting) and repeat wrapping, each
+ * reference with its KHR_texture_transform and uv set. Punctual lights through KHR_lights_punctual;
  * the camera as a perspective camera node. Pure: returns bytes.
  *
- * Two things glTF cannot say: a sky panorama (emission looked up by view direction) is exported as
- * an ordinary emissive texture on the surface's uvs, and the torch is left out (no camera-attached
- * lights in glTF). Positions are scaled to metres when the scene knows its unit.
+ * What glTF cannot say: a sky panorama (emission looked up by view direction) is exported as an
+ * ordinary emissive texture on the surface's uvs; the environment and the torch are left out.
+ * All nodes hang under one root node that scales scene units to metres when the scene knows its unit.
  */
-import { Document, WebIO, type Material as GltfMaterial, type Texture as GltfTexture } from '@gltf-transform/core';
-import { KHRMaterialsEmissiveStrength } from '@gltf-transform/extensions';
+import { Document, WebIO, type Material as GltfMaterial, type Texture as GltfTexture, type TextureInfo } from '@gltf-transform/core';
+import {
+  KHRLightsPunctual,
+  KHRMaterialsEmissiveStrength,
+  KHRMaterialsIOR,
+  KHRMaterialsSpecular,
+  KHRMaterialsTransmission,
+  KHRMaterialsVolume,
+  KHRTextureTransform,
+} from '@gltf-transform/extensions';
 import { encodePng } from '../image/png.ts';
 import { cross, normalize, type Vec3 } from '../math/vec3.ts';
-import type { Scene } from '../scene/types.ts';
+import type { Material, PunctualLight, Scene, TextureRef } from '../scene/types.ts';
 
 /** glTF sampler constants (WebGL enums). */
 const NEAREST = 9728;
 const REPEAT = 10497;
+/**
+ * KHR_materials_volume's thickness only says "not thin-walled" to Lantern; glTF wants a distance (in
+ * the mesh's own units) for rasterisers that fake refraction. One unit is an honest "some volume".
+ */
+const DIELECTRIC_THICKNESS = 1;
+
+const EXTENSIONS = [KHRMaterialsEmissiveStrength, KHRMaterialsIOR, KHRMaterialsSpecular, KHRMaterialsTransmission, KHRMaterialsVolume, KHRTextureTransform, KHRLightsPunctual];
 
 export interface GlbOptions {
   /** Metres per scene unit; defaults to the scene's own, else 1. */
@@ -27,42 +52,92 @@ export interface GlbOptions {
 }
 
 export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promise<Uint8Array> {
-  const scale = options.metersPerUnit ?? scene.metersPerUnit ?? 1;
+  const unit = options.metersPerUnit ?? scene.metersPerUnit ?? 1;
   const doc = new Document();
   doc.getRoot().getAsset().generator = options.generator ?? 'Lantern';
-  const emissiveStrength = doc.createExtension(KHRMaterialsEmissiveStrength);
+  const ext = {
+    emissiveStrength: doc.createExtension(KHRMaterialsEmissiveStrength),
+    ior: doc.createExtension(KHRMaterialsIOR),
+    specular: doc.createExtension(KHRMaterialsSpecular),
+    transmission: doc.createExtension(KHRMaterialsTransmission),
+    volume: doc.createExtension(KHRMaterialsVolume),
+    textureTransform: doc.createExtension(KHRTextureTransform),
+    lights: doc.createExtension(KHRLightsPunctual),
+  };
   const buffer = doc.createBuffer();
 
-  const textures: GltfTexture[] = (scene.textures ?? []).map((t) =>
-    doc.createTexture(t.name).setMimeType('image/png').setImage(encodePng(t.width, t.height, t.rgba)).setURI(`${t.name}.png`),
+  const textures: GltfTexture[] = (scene.textures ?? []).map((t, i) =>
+    doc.createTexture(t.name).setMimeType('image/png').setImage(encodePng(t.width, t.height, t.rgba)).setURI(`texture-${i}.png`),
   );
+  /** Points a material slot at a texture: sampler, uv set and transform from the reference. */
+  const bind = (ref: TextureRef | undefined, set: (t: GltfTexture) => void, info: () => TextureInfo | null): void => {
+    if (!ref) return;
+    set(textures[ref.texture]!);
+    const i = info()!;
+    i.setMagFilter(NEAREST).setMinFilter(NEAREST).setWrapS(REPEAT).setWrapT(REPEAT).setTexCoord(ref.texCoord ?? 0);
+    if (ref.transform) {
+      const { offset, rotation, scale } = ref.transform;
+      i.setExtension('KHR_texture_transform', ext.textureTransform.createTransform().setOffset([offset[0], offset[1]]).setRotation(rotation).setScale([scale[0], scale[1]]));
+    }
+  };
 
   const materials: GltfMaterial[] = scene.materials.map((m) => {
-    const mat = doc.createMaterial(m.name).setBaseColorFactor([...m.albedo, 1]).setMetallicFactor(0).setRoughnessFactor(1).setDoubleSided(true);
-    if (m.albedoTexture !== undefined) {
-      mat.setBaseColorTexture(textures[m.albedoTexture]!);
-      nearestRepeat(mat.getBaseColorTextureInfo());
+    const mat = doc.createMaterial(m.name).setDoubleSided(m.doubleSided ?? true);
+    switch (m.kind) {
+      case 'diffuse':
+        mat.setBaseColorFactor([...m.albedo, 1]).setMetallicFactor(0).setRoughnessFactor(1);
+        bind(m.albedoTexture, (t) => mat.setBaseColorTexture(t), () => mat.getBaseColorTextureInfo());
+        break;
+      case 'metallic-roughness':
+        mat.setBaseColorFactor([...m.baseColor, m.opacity]).setMetallicFactor(m.metallic).setRoughnessFactor(m.roughness);
+        bind(m.baseColorTexture, (t) => mat.setBaseColorTexture(t), () => mat.getBaseColorTextureInfo());
+        bind(m.metallicRoughnessTexture, (t) => mat.setMetallicRoughnessTexture(t), () => mat.getMetallicRoughnessTextureInfo());
+        if (m.ior !== 1.5) mat.setExtension('KHR_materials_ior', ext.ior.createIOR().setIOR(m.ior));
+        if (m.specular !== 1 || m.specularColor.some((c) => c !== 1) || m.specularTexture || m.specularColorTexture) {
+          const s = ext.specular.createSpecular().setSpecularFactor(m.specular).setSpecularColorFactor([...m.specularColor]);
+          bind(m.specularTexture, (t) => s.setSpecularTexture(t), () => s.getSpecularTextureInfo());
+          bind(m.specularColorTexture, (t) => s.setSpecularColorTexture(t), () => s.getSpecularColorTextureInfo());
+          mat.setExtension('KHR_materials_specular', s);
+        }
+        if (m.transmission > 0 || m.transmissionTexture) {
+          const t = ext.transmission.createTransmission().setTransmissionFactor(m.transmission);
+          bind(m.transmissionTexture, (tex) => t.setTransmissionTexture(tex), () => t.getTransmissionTextureInfo());
+          mat.setExtension('KHR_materials_transmission', t);
+        }
+        // glTF ignores attenuation on a thin wall (thickness 0), so the volume goes out only with thickness.
+        if (m.thickness > 0) mat.setExtension('KHR_materials_volume', volume(ext.volume, m.thickness, m.attenuationDistance, m.attenuationColor));
+        break;
+      case 'dielectric':
+        mat.setBaseColorFactor([...m.tint, 1]).setMetallicFactor(0).setRoughnessFactor(m.roughness);
+        mat.setExtension('KHR_materials_transmission', ext.transmission.createTransmission().setTransmissionFactor(1));
+        mat.setExtension('KHR_materials_ior', ext.ior.createIOR().setIOR(m.ior));
+        mat.setExtension('KHR_materials_volume', volume(ext.volume, DIELECTRIC_THICKNESS, m.attenuationDistance, m.attenuationColor));
+        break;
+      case 'emissive':
+        mat.setBaseColorFactor([0, 0, 0, 1]).setMetallicFactor(0).setRoughnessFactor(1);
+        break;
     }
-    if (m.alphaMode === 'mask') mat.setAlphaMode('MASK').setAlphaCutoff(0.5);
-    const peak = Math.max(...m.emission);
-    if (peak > 0) {
-      mat.setEmissiveFactor(m.emission.map((e) => e / Math.max(peak, 1)) as unknown as Vec3 as [number, number, number]);
-      if (peak > 1) mat.setExtension('KHR_materials_emissive_strength', emissiveStrength.createEmissiveStrength().setEmissiveStrength(peak));
-      if (m.emissionTexture !== undefined) {
-        mat.setEmissiveTexture(textures[m.emissionTexture]!);
-        nearestRepeat(mat.getEmissiveTextureInfo());
-      }
+    emission(mat, m, ext.emissiveStrength);
+    bind(m.emissionTexture, (t) => mat.setEmissiveTexture(t), () => mat.getEmissiveTextureInfo());
+    if (m.normalTexture) {
+      bind(m.normalTexture, (t) => mat.setNormalTexture(t), () => mat.getNormalTextureInfo());
+      mat.setNormalScale(m.normalTexture.scale ?? 1);
     }
+    // A volume's back faces are its inside; glTF says such materials are single-sided, and Lantern
+    // treats a transmitting material's back faces as surfaces either way, so nothing changes for it.
+    if (mat.getExtension('KHR_materials_volume')) mat.setDoubleSided(false);
+    if (m.alphaMode === 'mask') mat.setAlphaMode('MASK').setAlphaCutoff(m.alphaCutoff ?? 0.5);
+    else if (m.alphaMode === 'blend') mat.setAlphaMode('BLEND');
     return mat;
   });
 
-  const root = doc.createNode(scene.name);
+  const root = doc.createNode(scene.name).setScale([unit, unit, unit]);
   const gltfScene = doc.createScene(scene.name).addChild(root);
   doc.getRoot().setDefaultScene(gltfScene);
 
-  scene.meshes.forEach((mesh) => {
+  const gltfMeshes = scene.meshes.map((mesh) => {
     const triangleCount = mesh.indices.length / 3;
-    // One primitive per material used by this mesh.
+    // One primitive per material used by this mesh, all sharing the mesh's vertex accessors.
     const byMaterial = new Map<number, number[]>();
     for (let t = 0; t < triangleCount; t++) {
       const m = mesh.materialIds[t]!;
@@ -70,25 +145,33 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
       if (!list) byMaterial.set(m, (list = []));
       list.push(t);
     }
-    const positions = mesh.positions.map((v) => v * scale);
-    const position = doc.createAccessor(`${mesh.name} positions`).setType('VEC3').setArray(positions).setBuffer(buffer);
-    const normal = mesh.normals ? doc.createAccessor(`${mesh.name} normals`).setType('VEC3').setArray(new Float32Array(mesh.normals)).setBuffer(buffer) : undefined;
-    const uv = mesh.uvs ? doc.createAccessor(`${mesh.name} uvs`).setType('VEC2').setArray(new Float32Array(mesh.uvs)).setBuffer(buffer) : undefined;
+    const accessor = (name: string, type: 'VEC2' | 'VEC3' | 'VEC4', data: Float32Array | undefined) =>
+      data && doc.createAccessor(`${mesh.name} ${name}`).setType(type).setArray(new Float32Array(data)).setBuffer(buffer);
+    const attributes = {
+      POSITION: accessor('positions', 'VEC3', mesh.positions),
+      NORMAL: accessor('normals', 'VEC3', mesh.normals),
+      TEXCOORD_0: accessor('uvs', 'VEC2', mesh.uvs),
+      TEXCOORD_1: accessor('uvs1', 'VEC2', mesh.uvs1),
+      TANGENT: accessor('tangents', 'VEC4', mesh.tangents),
+    };
     const gltfMesh = doc.createMesh(mesh.name);
     for (const [m, tris] of byMaterial) {
       const indices = new Uint32Array(tris.length * 3);
       tris.forEach((t, i) => indices.set(mesh.indices.subarray(t * 3, t * 3 + 3), i * 3));
-      const primitive = doc
-        .createPrimitive()
-        .setAttribute('POSITION', position)
-        .setIndices(doc.createAccessor().setType('SCALAR').setArray(indices).setBuffer(buffer))
-        .setMaterial(materials[m]!);
-      if (normal) primitive.setAttribute('NORMAL', normal);
-      if (uv) primitive.setAttribute('TEXCOORD_0', uv);
+      const primitive = doc.createPrimitive().setIndices(doc.createAccessor().setType('SCALAR').setArray(indices).setBuffer(buffer)).setMaterial(materials[m]!);
+      for (const [semantic, a] of Object.entries(attributes)) if (a) primitive.setAttribute(semantic, a);
       gltfMesh.addPrimitive(primitive);
     }
-    root.addChild(doc.createNode(mesh.name).setMesh(gltfMesh));
+    return gltfMesh;
   });
+
+  for (const instance of scene.instances) {
+    const node = doc.createNode(instance.name ?? `${scene.meshes[instance.mesh]?.name ?? 'mesh'} ${instance.id}`);
+    node.setMesh(gltfMeshes[instance.mesh]!).setMatrix([...instance.worldFromObject] as Parameters<typeof node.setMatrix>[0]);
+    root.addChild(node);
+  }
+
+  for (const light of scene.lights ?? []) root.addChild(lightNode(doc, ext.lights, light));
 
   // glTF cameras look down their local −z with +y up: build that rotation from forward and up.
   const c = scene.camera;
@@ -96,19 +179,45 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
   const right = normalize(cross(c.up, back));
   const up = cross(back, right);
   const camera = doc.createCamera('camera').setType('perspective').setYFov((c.vfovDegrees * Math.PI) / 180).setZNear(0.01).setZFar(10_000);
-  gltfScene.addChild(
-    doc
-      .createNode('camera')
-      .setCamera(camera)
-      .setTranslation([c.position[0] * scale, c.position[1] * scale, c.position[2] * scale])
-      .setRotation(quaternionFromBasis(right, up, back)),
-  );
+  root.addChild(doc.createNode('camera').setCamera(camera).setTranslation([...c.position]).setRotation(quaternionFromBasis(right, up, back)));
 
-  return new WebIO().registerExtensions([KHRMaterialsEmissiveStrength]).writeBinary(doc);
+  return new WebIO().registerExtensions(EXTENSIONS).writeBinary(doc);
 }
 
-function nearestRepeat(info: ReturnType<GltfMaterial['getBaseColorTextureInfo']>): void {
-  info?.setMagFilter(NEAREST).setMinFilter(NEAREST).setWrapS(REPEAT).setWrapT(REPEAT);
+/** Emission as a factor in [0, 1] times a strength (KHR_materials_emissive_strength) when above 1. */
+function emission(mat: GltfMaterial, m: Material, strength: KHRMaterialsEmissiveStrength): void {
+  const peak = Math.max(...m.emission);
+  if (!(peak > 0)) return;
+  const scale = Math.max(peak, 1);
+  mat.setEmissiveFactor([m.emission[0] / scale, m.emission[1] / scale, m.emission[2] / scale]);
+  if (peak > 1) mat.setExtension('KHR_materials_emissive_strength', strength.createEmissiveStrength().setEmissiveStrength(peak));
+}
+
+function volume(ext: KHRMaterialsVolume, thickness: number, attenuationDistance: number, attenuationColor: Vec3) {
+  const v = ext.createVolume().setThicknessFactor(thickness).setAttenuationColor([...attenuationColor]);
+  // glTF's default attenuation distance is +Infinity and it must be written as absent, not a number.
+  if (Number.isFinite(attenuationDistance)) v.setAttenuationDistance(attenuationDistance);
+  return v;
+}
+
+/** A node holding the light, at its position, turned so its local −z is the light's direction. */
+function lightNode(doc: Document, ext: KHRLightsPunctual, light: PunctualLight) {
+  const l = ext.createLight(light.name).setType(light.kind).setColor([...light.color]);
+  const node = doc.createNode(light.name);
+  if (light.kind === 'directional') l.setIntensity(light.irradiance);
+  else {
+    l.setIntensity(light.intensity).setRange(Number.isFinite(light.range) ? light.range : null);
+    node.setTranslation([...light.position]);
+  }
+  if (light.kind === 'spot') l.setInnerConeAngle(light.innerConeAngle).setOuterConeAngle(light.outerConeAngle);
+  if (light.kind !== 'point') {
+    const back = normalize([-light.direction[0], -light.direction[1], -light.direction[2]]);
+    // Any right angle to the direction will do; avoid the one parallel to it.
+    const helper: Vec3 = Math.abs(back[1]) < 0.9 ? [0, 1, 0] : [1, 0, 0];
+    const right = normalize(cross(helper, back));
+    node.setRotation(quaternionFromBasis(right, cross(back, right), back));
+  }
+  return node.setExtension('KHR_lights_punctual', l);
 }
 
 /** Unit quaternion [x, y, z, w] of the rotation whose matrix has columns x, y, z. */

@@ -1,0 +1,211 @@
+/**
+ * glTF container and resources: sniffs .glb vs .gltf, splits a GLB into its JSON and binary chunk,
+ * and supplies every buffer and image the JSON names (data: URIs decoded here, other URIs through the
+ * caller's resolver) before glTF-Transform parses anything, so nothing is ever fetched.
+ *
+ * A missing buffer does not stop the load: glTF-Transform cannot parse a document whose buffer is
+ * absent, so it gets a zero-filled stand-in of the declared length, and the buffer's index is
+ * recorded; meshes.ts drops every primitive whose data lives in it.
+ */
+import { Logger, WebIO, type Document } from '@gltf-transform/core';
+import { ALL_EXTENSIONS, KHRDracoMeshCompression } from '@gltf-transform/extensions';
+import { MeshoptDecoder } from 'meshoptimizer/decoder';
+import { LanternError } from '../../errors.ts';
+import { decodeDataUri } from './data-uri.ts';
+import { dracoDecoder } from './draco.ts';
+import type { Warnings } from './warnings.ts';
+
+/** Loose view of the raw glTF JSON: only what is read before glTF-Transform takes over. */
+interface GltfJson {
+  asset?: unknown;
+  buffers?: { uri?: string; byteLength?: number; extensions?: { EXT_meshopt_compression?: { fallback?: boolean } } }[];
+  bufferViews?: { buffer?: number; extensions?: { EXT_meshopt_compression?: { buffer?: number } } }[];
+  images?: { uri?: string; bufferView?: number; mimeType?: string; name?: string }[];
+  accessors?: { bufferView?: number; sparse?: { indices?: { bufferView?: number }; values?: { bufferView?: number } } }[];
+  meshes?: { primitives?: { attributes?: Record<string, number>; indices?: number; extensions?: { KHR_draco_mesh_compression?: { bufferView?: number } } }[] }[];
+  extensionsUsed?: string[];
+  extensionsRequired?: string[];
+}
+
+export interface GltfSource {
+  readonly doc: Document;
+  /** Per glTF mesh, per primitive: the URI of a missing buffer the primitive reads, if any. */
+  readonly missingData: readonly (readonly (string | undefined)[])[];
+  /** Per glTF image (same order as Document textures): the URI as written, or a label for embedded ones. */
+  readonly imageNames: readonly string[];
+  /** Per glTF image: true when its file could not be had (the texture's image is then empty). */
+  readonly imageMissing: readonly boolean[];
+}
+
+const GLB_MAGIC = 0x46546c67; // 'glTF'
+const CHUNK_JSON = 0x4e4f534a;
+const CHUNK_BIN = 0x004e4942;
+/** The resource key glTF-Transform uses for a GLB's binary chunk. */
+const GLB_BUFFER = '@glb.bin';
+
+/** The extensions glTF-Transform knows; Draco is added per file, as its decoder is large (draco.ts). */
+const EXTENSIONS = ALL_EXTENSIONS.filter((e) => e.EXTENSION_NAME !== KHRDracoMeshCompression.EXTENSION_NAME);
+
+export async function readGltfSource(
+  main: { name: string; bytes: Uint8Array },
+  resolve: (uri: string) => Promise<Uint8Array | undefined>,
+  warnings: Warnings,
+): Promise<GltfSource> {
+  const { json, bin } = splitContainer(main);
+  checkRequiredExtensions(main.name, json);
+
+  // Every external file is asked for at once: a resolver in a browser may answer over messages.
+  const buffers = json.buffers ?? [];
+  const images = json.images ?? [];
+  const [bufferBytes, imageBytes] = await Promise.all([
+    Promise.all(buffers.map((b) => (b.uri === undefined ? undefined : fetchResource(b.uri, resolve)))),
+    Promise.all(images.map((im) => (im.uri === undefined ? undefined : fetchResource(im.uri, resolve)))),
+  ]);
+
+  const resources: Record<string, Uint8Array> = {};
+  // Resources are keyed "__lantern…": glTF-Transform treats "__"-prefixed URIs as internal names.
+  const missingBuffers = new Map<number, string>();
+  buffers.forEach((def, i) => {
+    if (def.uri === undefined) {
+      // EXT_meshopt_compression's fallback buffer holds no bytes; the decoder fills its views.
+      if (def.extensions?.EXT_meshopt_compression?.fallback) return;
+      if (i !== 0 || !bin) throw new LanternError(`${main.name}: buffer ${i} has no uri and there is no GLB binary chunk`, 'the file is damaged; re-export it');
+      resources[GLB_BUFFER] = bin;
+      return;
+    }
+    const key = `__lantern_buffer_${i}`;
+    const bytes = bufferBytes[i];
+    if (!bytes) missingBuffers.set(i, def.uri);
+    // glTF-Transform cannot parse around a missing buffer: a zero-filled stand-in takes its place,
+    // and the primitives that read it are dropped (missingData below).
+    resources[key] = bytes ?? new Uint8Array(def.byteLength ?? 0);
+    def.uri = key;
+  });
+
+  const imageNames: string[] = [];
+  const imageMissing: boolean[] = [];
+  images.forEach((def, i) => {
+    if (def.uri === undefined) {
+      imageNames.push(def.name ?? `image ${i}`);
+      imageMissing.push(false);
+      return;
+    }
+    imageNames.push(def.uri.startsWith('data:') ? (def.name ?? `image ${i}`) : def.uri);
+    const key = `__lantern_image_${i}`;
+    const bytes = imageBytes[i];
+    imageMissing.push(!bytes);
+    resources[key] = bytes ?? new Uint8Array(0);
+    def.uri = key;
+  });
+
+  const missingData = (json.meshes ?? []).map((mesh) =>
+    (mesh.primitives ?? []).map((p) => {
+      const accessors = [...Object.values(p.attributes ?? {}), ...(p.indices === undefined ? [] : [p.indices])];
+      for (const a of accessors) {
+        const uri = missingBufferOfAccessor(json, a, missingBuffers);
+        if (uri) return uri;
+      }
+      // Draco primitives keep their compressed data in a view named by the extension.
+      const draco = p.extensions?.KHR_draco_mesh_compression?.bufferView;
+      const buffer = draco === undefined ? undefined : json.bufferViews?.[draco]?.buffer;
+      return buffer === undefined ? undefined : missingBuffers.get(buffer);
+    }),
+  );
+  for (const uri of new Set(missingData.flat().filter((u) => u !== undefined))) {
+    warnings.missingFile(uri, 'the parts of the model stored in it are left out');
+  }
+  // A missing buffer no primitive reads (it held images, animations...) is still named once.
+  for (const uri of missingBuffers.values()) warnings.missingFile(uri, 'what is stored in it is left out');
+
+  await MeshoptDecoder.ready;
+  const io = new WebIO()
+    .setLogger(new Logger(Logger.Verbosity.SILENT))
+    .registerExtensions(EXTENSIONS)
+    .registerDependencies({ 'meshopt.decoder': MeshoptDecoder });
+  if (json.extensionsUsed?.includes(KHRDracoMeshCompression.EXTENSION_NAME)) {
+    let decoder: unknown;
+    try {
+      decoder = await dracoDecoder();
+    } catch (e) {
+      throw new LanternError(`${main.name}: the Draco decoder (KHR_draco_mesh_compression) could not be started (${(e as Error).message})`, 're-export the model without Draco compression', { cause: e });
+    }
+    io.registerExtensions([KHRDracoMeshCompression]).registerDependencies({ 'draco3d.decoder': decoder });
+  }
+  let doc: Document;
+  try {
+    doc = await io.readJSON({ json: json as never, resources: resources as Record<string, Uint8Array<ArrayBuffer>> });
+  } catch (e) {
+    throw new LanternError(`${main.name}: not a readable glTF file (${(e as Error).message})`, undefined, { cause: e });
+  }
+  return { doc, missingData, imageNames, imageMissing };
+}
+
+/** .glb: header, JSON chunk, optional BIN chunk. .gltf: UTF-8 JSON with an "asset" object. */
+function splitContainer(main: { name: string; bytes: Uint8Array }): { json: GltfJson; bin?: Uint8Array } {
+  const { bytes, name } = main;
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  if (bytes.length >= 12 && view.getUint32(0, true) === GLB_MAGIC) {
+    const length = Math.min(view.getUint32(8, true), bytes.length);
+    let json: GltfJson | undefined;
+    let bin: Uint8Array | undefined;
+    for (let at = 12; at + 8 <= length; ) {
+      const chunkLength = view.getUint32(at, true);
+      const type = view.getUint32(at + 4, true);
+      const data = bytes.subarray(at + 8, at + 8 + chunkLength);
+      if (type === CHUNK_JSON && !json) json = parseJson(name, data);
+      else if (type === CHUNK_BIN && !bin) bin = data;
+      at += 8 + chunkLength;
+    }
+    if (!json) throw new LanternError(`${name}: a GLB file without a JSON chunk`, 'the file is damaged or truncated; re-export it');
+    return bin ? { json, bin } : { json };
+  }
+  const json = parseJson(name, bytes);
+  return { json };
+}
+
+function parseJson(name: string, bytes: Uint8Array): GltfJson {
+  let json: unknown;
+  try {
+    json = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    json = undefined;
+  }
+  if (typeof json !== 'object' || json === null || typeof (json as GltfJson).asset !== 'object') {
+    throw new LanternError(`${name} is not a glTF file (neither GLB nor JSON with an "asset" object)`);
+  }
+  return json as GltfJson;
+}
+
+/** A required extension Lantern cannot read must stop the load (glTF 2.0 §3.12). */
+function checkRequiredExtensions(name: string, json: GltfJson): void {
+  const known = new Set<string>([...EXTENSIONS.map((e) => e.EXTENSION_NAME), KHRDracoMeshCompression.EXTENSION_NAME]);
+  for (const ext of json.extensionsRequired ?? []) {
+    if (!known.has(ext)) throw new LanternError(`${name} requires the glTF extension ${ext}, which Lantern does not support`);
+  }
+}
+
+async function fetchResource(uri: string, resolve: (uri: string) => Promise<Uint8Array | undefined>): Promise<Uint8Array | undefined> {
+  if (uri.startsWith('data:')) return decodeDataUri(uri);
+  try {
+    return await resolve(uri);
+  } catch {
+    // A resolver that throws (a file system error, a network error upstream) counts as missing.
+    return undefined;
+  }
+}
+
+function missingBufferOfAccessor(json: GltfJson, accessor: number, missing: ReadonlyMap<number, string>): string | undefined {
+  if (missing.size === 0) return undefined;
+  const def = json.accessors?.[accessor];
+  const views = [def?.bufferView, def?.sparse?.indices?.bufferView, def?.sparse?.values?.bufferView];
+  for (const v of views) {
+    if (v === undefined) continue;
+    const view = json.bufferViews?.[v];
+    // A meshopt-compressed view reads its bytes from the extension's buffer, not its own fallback.
+    for (const b of [view?.buffer, view?.extensions?.EXT_meshopt_compression?.buffer]) {
+      const uri = b === undefined ? undefined : missing.get(b);
+      if (uri) return uri;
+    }
+  }
+  return undefined;
+}
