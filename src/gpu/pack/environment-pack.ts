@@ -14,7 +14,7 @@
  * pdf(ω) = w_ij / Σ w Ω — exactly 1/4π for a constant environment.
  */
 import { LanternError } from '../../errors.ts';
-import { luminance, normalize, type Vec3 } from '../../math/vec3.ts';
+import { normalize, type Vec3 } from '../../math/vec3.ts';
 import type { Environment, EnvironmentKind } from '../../scene/environment.ts';
 import { SUN_ANGULAR_RADIUS_DEG, SkyModel } from '../../scene/sky.ts';
 import { directionFromLatLong } from '../../scene/environment.ts';
@@ -131,7 +131,8 @@ export function buildSamplingTables(texture: EnvironmentTexture): { marginal: Fl
   const { width: w, height: h, rgba } = texture;
   // Luminance, then its 3×3 maximum, separably: along rows (wrapping), then along columns (clamped).
   const lum = new Float32Array(w * h);
-  for (let p = 0; p < w * h; p++) lum[p] = luminance([rgba[p * 4]!, rgba[p * 4 + 1]!, rgba[p * 4 + 2]!]);
+  // Rec. 709 luminance, as math/vec3.ts luminance(), inlined: this loop runs over every texel.
+  for (let p = 0; p < w * h; p++) lum[p] = 0.2126 * rgba[p * 4]! + 0.7152 * rgba[p * 4 + 1]! + 0.0722 * rgba[p * 4 + 2]!;
   const rowMax = new Float32Array(w * h);
   for (let j = 0; j < h; j++) {
     const o = j * w;
