@@ -1,7 +1,8 @@
 /**
  * Environment → the resources of group 0, bindings 8–11 (shaders/scene/bindings.wgsl), pure CPU.
  *
- * Every kind but 'none' becomes a lat-long radiance image (environment_map, rgba32float, top row = +y):
+ * Every kind but 'none' becomes a lat-long radiance image (environment_map, top row = +y; f32 RGBA
+ * uploaded bit for bit into an rgba32uint texture, ENVIRONMENT_MAP_FORMAT, see bindings.wgsl):
  * constant → 1×1, gradient → 1×GRADIENT_ROWS, sky → SKY_WIDTH×SKY_HEIGHT (the sun's disk left out:
  * it is a light of its own), map → the image itself (rotation and intensity are applied at lookup).
  *
@@ -32,14 +33,20 @@ export const GRADIENT_ROWS = 256;
 /** The baked sky: 0.7° texels, fine enough for the sun's aureole. */
 export const SKY_WIDTH = 512;
 export const SKY_HEIGHT = 256;
-/** Texels per channel of environment_map (rgba32float). */
+/**
+ * The texture format of environment_map: f32 texels uploaded as their bits (bytesPerRow = width × 16);
+ * the shader bitcasts. rgba32float would be unfilterable, which a reflected texture_2d<f32> layout
+ * cannot express.
+ */
+export const ENVIRONMENT_MAP_FORMAT: GPUTextureFormat = 'rgba32uint';
+/** Floats per texel of environment_map. */
 const RGBA = 4;
 
 /** The lat-long image to upload as environment_map. */
 export interface EnvironmentTexture {
   readonly width: number;
   readonly height: number;
-  /** width × height × 4 floats (alpha 1), top row first: for an rgba32float texture. */
+  /** width × height × 4 floats (alpha 1), top row first; upload the bytes to an ENVIRONMENT_MAP_FORMAT texture. */
   readonly rgba: Float32Array;
 }
 

@@ -38,12 +38,12 @@ fn environment_uv(d: vec3f) -> vec2f {
   return vec2f(u - floor(u), v);
 }
 
-// One texel: columns wrap around (φ is periodic), rows clamp at the poles.
+// One texel (f32 radiance stored as u32 bits, see bindings.wgsl): columns wrap around (φ is periodic), rows clamp at the poles.
 fn environment_texel(x: i32, y: i32) -> vec3f {
   let size = vec2i(environment_info.map_size);
   let xw = ((x % size.x) + size.x) % size.x;
   let yc = clamp(y, 0, size.y - 1);
-  return textureLoad(environment_map, vec2i(xw, yc), 0).rgb;
+  return bitcast<vec4f>(textureLoad(environment_map, vec2i(xw, yc), 0)).rgb;
 }
 
 // Bilinear between the four texel centres around uv (texel centres at (i + ½, j + ½) / size).
@@ -155,9 +155,13 @@ fn environment_pdf(direction: vec3f) -> f32 {
 
 // Whether a unit direction lies inside the sun's disk: |d − s|² = 2 (1 − cos) ≤ 2 (1 − cos_max),
 // computed from the difference vector, which keeps its precision where 1 − dot(d, s) would not.
+// SUN_RIM_SLACK absorbs the rounding of sample_sun's directions at the rim (|d − s|² is off by
+// ~1e-9 against 2 (1 − cos_max) ≈ 2.2e-5), so every sampled direction counts as inside; it widens
+// the disk's radius by 0.01 %.
+const SUN_RIM_SLACK: f32 = 1.000244; // 1 + 2^-12
 fn environment_in_sun(direction: vec3f) -> bool {
   let delta = direction - environment_info.sun_direction;
-  return dot(delta, delta) <= 2.0 * environment_info.sun_one_minus_cos_max;
+  return dot(delta, delta) <= 2.0 * environment_info.sun_one_minus_cos_max * SUN_RIM_SLACK;
 }
 
 // Radiance of the sun's disk along `direction` (unit); zero outside it or without a sun.
