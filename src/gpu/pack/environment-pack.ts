@@ -117,11 +117,13 @@ export function bakeEnvironment(env: Exclude<Environment, { kind: 'none' }>): En
         throw new LanternError(`environment map ${name}: ${rgb.length} floats for ${width}×${height} RGB pixels`);
       }
       const rgba = new Float32Array(width * height * RGBA);
-      for (let p = 0; p < width * height; p++) {
-        rgba[p * 4] = clean(rgb[p * 3]!);
-        rgba[p * 4 + 1] = clean(rgb[p * 3 + 1]!);
-        rgba[p * 4 + 2] = clean(rgb[p * 3 + 2]!);
-        rgba[p * 4 + 3] = 1;
+      for (let p = 0, q = 0; p < width * height * 3; p += 3, q += 4) {
+        // clean(), inlined: NaN fails every comparison and becomes 0.
+        const r = rgb[p]!, g = rgb[p + 1]!, b = rgb[p + 2]!;
+        rgba[q] = r > 0 && r < Infinity ? r : 0;
+        rgba[q + 1] = g > 0 && g < Infinity ? g : 0;
+        rgba[q + 2] = b > 0 && b < Infinity ? b : 0;
+        rgba[q + 3] = 1;
       }
       return { width, height, rgba };
     }
@@ -144,8 +146,9 @@ export function buildSamplingTables(texture: EnvironmentTexture): { marginal: Fl
   for (let j = 0; j < h; j++) {
     const o = j * w;
     for (let i = 0; i < w; i++) {
-      const left = lum[o + ((i + w - 1) % w)]!, right = lum[o + ((i + 1) % w)]!;
-      rowMax[o + i] = Math.max(left, lum[o + i]!, right);
+      const left = lum[i === 0 ? o + w - 1 : o + i - 1]!, here = lum[o + i]!, right = lum[i === w - 1 ? o : o + i + 1]!;
+      const m = left > here ? left : here;
+      rowMax[o + i] = m > right ? m : right;
     }
   }
   const conditional = new Float32Array(h * (w + 1));
@@ -157,13 +160,16 @@ export function buildSamplingTables(texture: EnvironmentTexture): { marginal: Fl
     let sum = 0;
     for (let i = 0; i < w; i++) {
       conditional[o + i] = sum; // provisional: the running sum before texel i
-      sum += Math.max(rowMax[up + i]!, rowMax[here + i]!, rowMax[down + i]!);
+      const a = rowMax[up + i]!, b = rowMax[here + i]!, c = rowMax[down + i]!;
+      const m = a > b ? a : b;
+      sum += m > c ? m : c;
     }
     // Ω of one texel of row j = (2π / w) · 2 sin θ_mid sin(Δθ / 2), as environment.wgsl computes it.
     const texelSolidAngle = ((2 * Math.PI) / w) * 2 * Math.sin((j + 0.5) * dtheta) * Math.sin(0.5 * dtheta);
     rowWeights[j] = sum * texelSolidAngle;
     if (sum > 0) {
-      for (let i = 0; i < w; i++) conditional[o + i] = conditional[o + i]! / sum;
+      const inverse = 1 / sum;
+      for (let i = 0; i < w; i++) conditional[o + i] = conditional[o + i]! * inverse;
     } else {
       // A black row is never chosen; a uniform CDF keeps the table well formed.
       for (let i = 0; i < w; i++) conditional[o + i] = i / w;
