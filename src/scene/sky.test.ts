@@ -54,6 +54,19 @@ describe('Hosek–Wilkie sky', () => {
     }
   });
 
+  it('brightens toward the horizon away from the sun (clear skies), and fits continuously to the zenith', () => {
+    // Horizon brightening of clear skies (the model's (1 + A e^{B / cos θ}) term, A < 0): at 90° of
+    // azimuth from the sun, 5° above the horizon is brighter than the zenith.
+    for (const t of [2, 3, 5]) {
+      for (const elevation of [10, 30, 60]) {
+        const m = sky(elevation, t);
+        expect(lum(at(m, 5, 90))).toBeGreaterThan(lum(at(m, 90, 90)));
+        // The zenith is one direction: every azimuth agrees there.
+        expect(lum(at(m, 90, 0))).toBeCloseTo(lum(at(m, 90, 180)), 9);
+      }
+    }
+  });
+
   it('is bluer at the zenith than at the horizon (Rayleigh), and whitens with turbidity', () => {
     const blueness = (c: Vec3) => c[2] / c[0];
     for (const t of [2, 5, 9]) {

@@ -148,7 +148,7 @@ function structuredMap(): Float32Array {
  * Texel probabilities recomputed here, independently of the packer: weight = the largest luminance in
  * the 3×3 neighbourhood (columns wrap, rows clamp), times the texel's solid angle.
  */
-function expectedTexelProbabilities(rgb: Float32Array, w: number, h: number): Float64Array {
+function expectedTexelProbabilities(rgb: Float32Array, w: number, h: number, neighbourhood = true): Float64Array {
   const lum = (i: number, j: number) => {
     const o = (Math.min(h - 1, Math.max(0, j)) * w + ((i + w) % w)) * 3;
     return 0.2126 * rgb[o]! + 0.7152 * rgb[o + 1]! + 0.0722 * rgb[o + 2]!;
@@ -159,7 +159,8 @@ function expectedTexelProbabilities(rgb: Float32Array, w: number, h: number): Fl
     const omega = ((2 * Math.PI) / w) * (Math.cos((j * Math.PI) / h) - Math.cos(((j + 1) * Math.PI) / h));
     for (let i = 0; i < w; i++) {
       let m = 0;
-      for (let dj = -1; dj <= 1; dj++) for (let di = -1; di <= 1; di++) m = Math.max(m, lum(i + di, j + dj));
+      const reach = neighbourhood ? 1 : 0;
+      for (let dj = -reach; dj <= reach; dj++) for (let di = -reach; di <= reach; di++) m = Math.max(m, lum(i + di, j + dj));
       p[j * w + i] = m * omega;
       total += m * omega;
     }
@@ -245,6 +246,17 @@ describe('environment on the GPU', () => {
     }
     expect(bins).toBeGreaterThan(100);
     expect(chi2).toBeLessThan(chiSquareCritical(bins - 1));
+
+    // The test has the power to fail: the same counts against texel probabilities without the 3×3
+    // maximum (plain luminance × Ω) are rejected.
+    const plainP = expectedTexelProbabilities(rgb, W, H, false);
+    let wrong = 0;
+    for (let t = 0; t < W * H; t++) {
+      const expected = N * plainP[t]!;
+      const observed = counts[t * 4]! + counts[t * 4 + 1]! + counts[t * 4 + 2]! + counts[t * 4 + 3]!;
+      if (expected >= 5) wrong += (observed - expected) ** 2 / expected;
+    }
+    expect(wrong).toBeGreaterThan(chiSquareCritical(W * H - 1));
   });
 
   it('environment_pdf integrates to 1 over the sphere, and the MC irradiance equals the numerical integral', async () => {
