@@ -111,8 +111,9 @@ export class SkyModel {
   readonly sunVisible: boolean;
   /** Cosine of the sun's angular radius. */
   readonly sunCosMax: number;
-  private readonly config: number[][] = [];
-  private readonly radianceScale: number[] = [];
+  /** A–I of each channel, channel-major (9 per channel). */
+  private readonly config = new Float64Array(3 * PARAMETERS);
+  private readonly radianceScale = new Float64Array(3);
   private groundRadiance: Vec3 = [0, 0, 0];
 
   constructor(readonly parameters: SkyParameters) {
@@ -123,10 +124,8 @@ export class SkyModel {
     const elevation = (Math.max(0, elevationDeg) * Math.PI) / 180;
     const x = Math.cbrt(elevation / (Math.PI / 2));
     for (let c = 0; c < 3; c++) {
-      const params: number[] = [];
-      for (let p = 0; p < PARAMETERS; p++) params.push(cook(HOSEK_RGB_CONFIG[c]!, PARAMETERS, p, turbidity, albedo, x));
-      this.config.push(params);
-      this.radianceScale.push(cook(HOSEK_RGB_RADIANCE[c]!, 1, 0, turbidity, albedo, x));
+      for (let p = 0; p < PARAMETERS; p++) this.config[c * PARAMETERS + p] = cook(HOSEK_RGB_CONFIG[c]!, PARAMETERS, p, turbidity, albedo, x);
+      this.radianceScale[c] = cook(HOSEK_RGB_RADIANCE[c]!, 1, 0, turbidity, albedo, x);
     }
     this.sunDirection = normalize(directionFromElevationAzimuth(elevationDeg, parameters.sunAzimuthDeg));
     this.sunVisible = elevationDeg > 0;
@@ -149,17 +148,29 @@ export class SkyModel {
 
   /** Sky radiance of the upper hemisphere at zenith cosine cosTheta ≥ 0 and sun angle gamma. */
   skyRadiance(cosTheta: number, cosGamma: number): Vec3 {
-    const ct = Math.max(0, cosTheta);
+    const out: [number, number, number] = [0, 0, 0];
+    this.skyRadianceInto(cosTheta, cosGamma, out, 0);
+    return out;
+  }
+
+  /** skyRadiance written to out[offset..offset + 2], without allocating: baking calls it per texel. */
+  skyRadianceInto(cosTheta: number, cosGamma: number, out: { [i: number]: number }, offset: number): void {
+    const ct = cosTheta > 0 ? cosTheta : 0;
     const cg = Math.min(1, Math.max(-1, cosGamma));
     const gamma = Math.acos(cg);
-    const out: number[] = [];
+    const cg2 = cg * cg;
+    const sqrtCt = Math.sqrt(ct);
+    const k = this.config;
     for (let c = 0; c < 3; c++) {
-      const [a, b, cc, d, e, f, g, i, h] = this.config[c]! as [number, number, number, number, number, number, number, number, number];
-      const mie = (1 + cg * cg) / (1 + h * h - 2 * h * cg) ** 1.5;
-      const value = (1 + a * Math.exp(b / (ct + 0.01))) * (cc + d * Math.exp(e * gamma) + f * cg * cg + g * mie + i * Math.sqrt(ct));
-      out.push(Math.max(0, value * this.radianceScale[c]!));
+      const o = c * PARAMETERS;
+      // Dataset order: A, B, C, D, E, F, G, I, H.
+      const a = k[o]!, b = k[o + 1]!, cc = k[o + 2]!, d = k[o + 3]!, e = k[o + 4]!, f = k[o + 5]!, g = k[o + 6]!, i = k[o + 7]!, h = k[o + 8]!;
+      const q = 1 + h * h - 2 * h * cg;
+      const mie = (1 + cg2) / (q * Math.sqrt(q)); // q^{3/2}
+      const value = (1 + a * Math.exp(b / (ct + 0.01))) * (cc + d * Math.exp(e * gamma) + f * cg2 + g * mie + i * sqrtCt);
+      const l = value * this.radianceScale[c]!;
+      out[offset + c] = l > 0 ? l : 0;
     }
-    return out as unknown as Vec3;
   }
 
   /** What a ray in unit direction d sees, excluding the sun's disk: the sky above, the ground below. */

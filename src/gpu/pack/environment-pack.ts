@@ -18,7 +18,6 @@ import { LanternError } from '../../errors.ts';
 import { normalize, type Vec3 } from '../../math/vec3.ts';
 import type { Environment, EnvironmentKind } from '../../scene/environment.ts';
 import { SUN_ANGULAR_RADIUS_DEG, SkyModel } from '../../scene/sky.ts';
-import { directionFromLatLong } from '../../scene/environment.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
 import { StructArray } from './struct-array.ts';
 
@@ -99,13 +98,28 @@ export function bakeEnvironment(env: Exclude<Environment, { kind: 'none' }>): En
     case 'sky': {
       const sky = new SkyModel(env);
       const rgba = new Float32Array(SKY_WIDTH * SKY_HEIGHT * RGBA);
+      const [sx, sy, sz] = sky.sunDirection;
+      const sinPhi = new Float64Array(SKY_WIDTH), cosPhi = new Float64Array(SKY_WIDTH);
+      for (let i = 0; i < SKY_WIDTH; i++) {
+        const phi = 2 * Math.PI * ((i + 0.5) / SKY_WIDTH - 0.5);
+        sinPhi[i] = Math.sin(phi);
+        cosPhi[i] = Math.cos(phi);
+      }
       for (let j = 0; j < SKY_HEIGHT; j++) {
+        // Texel centres, as directionFromLatLong: d = (sin θ sin φ, cos θ, −sin θ cos φ).
+        const theta = ((j + 0.5) / SKY_HEIGHT) * Math.PI;
+        const y = Math.cos(theta), r = Math.sin(theta);
         for (let i = 0; i < SKY_WIDTH; i++) {
-          const l = sky.radiance(directionFromLatLong((i + 0.5) / SKY_WIDTH, (j + 0.5) / SKY_HEIGHT));
           const o = (j * SKY_WIDTH + i) * RGBA;
-          rgba[o] = clean(l[0]);
-          rgba[o + 1] = clean(l[1]);
-          rgba[o + 2] = clean(l[2]);
+          if (y < 0) {
+            const ground = sky.radiance([0, y, 0]);
+            rgba[o] = ground[0];
+            rgba[o + 1] = ground[1];
+            rgba[o + 2] = ground[2];
+          } else {
+            const x = r * sinPhi[i]!, z = -r * cosPhi[i]!;
+            sky.skyRadianceInto(y, x * sx + y * sy + z * sz, rgba, o);
+          }
           rgba[o + 3] = 1;
         }
       }

@@ -1,8 +1,6 @@
-// The environment: radiance seen by rays that leave the scene (a baked lat-long map, sun excluded),
-// its importance sampling by a piecewise-constant density over texels ∝ luminance (marginal row CDF,
-// conditional column CDFs; pbrt-v4's PiecewiseConstant2D), and the sun as a cone light sampled
-// uniformly by solid angle. Expects scene/bindings (environment_* at group 0, bindings 8–11).
-// Follows Pharr, Jakob, Humphreys, "Physically Based Rendering" 4th ed., §A.5 and §12.5.
+// Provides the environment: radiance of rays leaving the scene (baked lat-long map, sun excluded), its
+// sampling by texel CDFs uniform in solid angle per texel, and the sun as a uniformly sampled cone.
+// Expects scene/bindings (group 0, bindings 8–11). Follows pbrt-v4 (Pharr et al. 4th ed. §A.5, §12.5).
 
 #import lib/constants
 #import lib/sampling
