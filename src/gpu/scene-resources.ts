@@ -3,23 +3,26 @@
  * them all, so switching scenes never leaks GPU memory.
  */
 import { LanternError } from '../errors.ts';
+import { ENVIRONMENT_CDF_FORMAT, ENVIRONMENT_MAP_FORMAT, type PackedEnvironment } from './pack/environment-pack.ts';
 import type { PackedScene } from './pack/scene-pack.ts';
 import { createBufferWithData } from './readback.ts';
 import { withErrorScope } from './device.ts';
 
 const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs'] as const;
 const UNIFORM_NAMES = ['scene_info', 'punctual_lights'] as const;
+type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf';
 
 type BufferName = (typeof UNIFORM_NAMES)[number] | (typeof STORAGE_NAMES)[number];
 
 export class SceneResources {
   /** Every group-0 resource keyed by its WGSL variable name in shaders/scene/bindings.wgsl. */
-  readonly bindings: Readonly<Record<BufferName | 'texture_atlas' | 'texture_atlas_linear', GPUBuffer | GPUTextureView>>;
+  readonly bindings: Readonly<Record<BufferName | 'environment_info' | TextureName, GPUBuffer | GPUTextureView>>;
 
   private constructor(
     readonly buffers: Readonly<Record<BufferName, GPUBuffer>>,
     readonly atlas: GPUTexture,
     readonly linearAtlas: GPUTexture,
+    private readonly environment: UploadedEnvironment,
     readonly counts: PackedScene['counts'],
     readonly features: PackedScene['features'],
     readonly byteSize: number,
@@ -28,6 +31,7 @@ export class SceneResources {
       ...buffers,
       texture_atlas: atlas.createView({ label: 'texture atlas', dimension: '2d-array' }),
       texture_atlas_linear: linearAtlas.createView({ label: 'linear texture atlas', dimension: '2d-array' }),
+      ...environment.bindings,
     };
   }
 
@@ -54,16 +58,47 @@ export class SceneResources {
     });
     const atlas = await uploadAtlas(device, packed.atlas, 'rgba8unorm-srgb', `${label} texture atlas`);
     const linearAtlas = await uploadAtlas(device, packed.linearAtlas, 'rgba8unorm', `${label} linear texture atlas`);
+    const environment = await uploadEnvironment(device, packed.environment, label);
     const atlasBytes = (a: PackedScene['atlas']) => a.pages.length * a.pageSize * a.pageSize * 4;
-    const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0) + atlasBytes(packed.atlas) + atlasBytes(packed.linearAtlas);
-    return new SceneResources(buffers, atlas, linearAtlas, packed.counts, packed.features, byteSize);
+    const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0) + atlasBytes(packed.atlas) + atlasBytes(packed.linearAtlas) + environment.byteSize;
+    return new SceneResources(buffers, atlas, linearAtlas, environment, packed.counts, packed.features, byteSize);
   }
 
   destroy(): void {
     for (const b of Object.values(this.buffers)) b.destroy();
     this.atlas.destroy();
     this.linearAtlas.destroy();
+    this.environment.destroy();
   }
+}
+
+export interface UploadedEnvironment {
+  /** environment_info, environment_map and environment_cdf, by their WGSL names. */
+  readonly bindings: Readonly<Record<'environment_info' | 'environment_map' | 'environment_cdf', GPUBuffer | GPUTextureView>>;
+  readonly byteSize: number;
+  destroy(): void;
+}
+
+/** The environment's resources of group 0 (bindings 8–10, see shaders/scene/bindings.wgsl). */
+export async function uploadEnvironment(device: GPUDevice, packed: PackedEnvironment, label: string): Promise<UploadedEnvironment> {
+  return withErrorScope(device, `the environment of scene '${label}'`, () => {
+    const info = createBufferWithData(device, `${label} environment_info`, packed.environment_info, GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST);
+    const map = packed.environment_map;
+    const mapTexture = device.createTexture({ label: `${label} environment map`, size: [map.width, map.height], format: ENVIRONMENT_MAP_FORMAT, usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+    device.queue.writeTexture({ texture: mapTexture }, map.rgba, { bytesPerRow: map.width * 16, rowsPerImage: map.height }, [map.width, map.height]);
+    const cdf = packed.environment_cdf;
+    const cdfTexture = device.createTexture({ label: `${label} environment CDFs`, size: [cdf.width, cdf.height], format: ENVIRONMENT_CDF_FORMAT, usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+    device.queue.writeTexture({ texture: cdfTexture }, cdf.data, { bytesPerRow: cdf.width * 4, rowsPerImage: cdf.height }, [cdf.width, cdf.height]);
+    return {
+      bindings: { environment_info: info, environment_map: mapTexture.createView(), environment_cdf: cdfTexture.createView() },
+      byteSize: info.size + map.width * map.height * 16 + cdf.width * cdf.height * 4,
+      destroy: () => {
+        info.destroy();
+        mapTexture.destroy();
+        cdfTexture.destroy();
+      },
+    };
+  });
 }
 
 function uploadAtlas(device: GPUDevice, atlas: PackedScene['atlas'], format: GPUTextureFormat, label: string): Promise<GPUTexture> {

@@ -67,7 +67,7 @@ export function moveInstances(prepared: PreparedScene, moves: ReadonlyMap<number
   const t0 = performance.now();
   const bvh = refitBvh(prepared.bvh, triangles.positions);
   const t1 = performance.now();
-  const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials);
+  const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment);
   const t2 = performance.now();
   return { scene: moved, triangles, bvh, packed, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
 }

@@ -48,6 +48,7 @@ const STRUCTS: [string, string][] = [
   ['scene/bindings', 'Material'],
   ['scene/bindings', 'LightSlot'],
   ['scene/bindings', 'SceneInfo'],
+  ['scene/bindings', 'EnvironmentInfo'],
   ['scene/bindings', 'Ray'],
   ['scene/bindings', 'HitRecord'],
   ['view/bindings', 'View'],

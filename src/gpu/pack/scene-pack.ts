@@ -12,6 +12,7 @@ import { luminance } from '../../math/vec3.ts';
 import type { TriangleList } from '../../scene/triangles.ts';
 import type { Scene } from '../../scene/types.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
+import { packEnvironment, type PackedEnvironment } from './environment-pack.ts';
 import { packLights } from './light-pack.ts';
 import { packMaterials, type PackedMaterials } from './material-pack.ts';
 import { StructArray } from './struct-array.ts';
@@ -58,6 +59,8 @@ export interface PackedScene {
   readonly totalLightPower: number;
   /** What packing had to work around. */
   readonly warnings: readonly string[];
+  /** Group 0 bindings 8–10: the environment's info, map and sampling CDFs. */
+  readonly environment: PackedEnvironment;
   /** The packed materials and textures, kept so geometry can be packed again alone. */
   readonly packedMaterials: PackedMaterials;
 }
@@ -94,7 +97,7 @@ export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, optio
  * scene info, around materials already packed. After instances move (renderer/prepare.ts
  * moveInstances) only this runs again; the textures stay as they are.
  */
-export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials): PackedScene {
+export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials, packedEnvironment?: PackedEnvironment): PackedScene {
   const layouts = sceneLayouts();
   const n = triangles.count;
 
@@ -174,8 +177,19 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
 
   const b = bvh.bounds;
   const sceneRadius = bvh.nodeCount > 0 ? 0.5 * Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) : 1;
+  // Lights at infinity: the flux through a disk of the scene's radius (irradiance × πR²), with the
+  // irradiance of a uniform environment of mean luminance L being πL.
+  const environment = packedEnvironment ?? packEnvironment(scene.environment ?? { kind: 'none' });
+  const disk = Math.PI * sceneRadius * sceneRadius;
   const lights = packLights(
-    { triangles: lightTriangles, trianglePowers: lightPowers, punctual: scene.lights ?? [], environmentPower: 0, sunPower: 0, sceneRadius },
+    {
+      triangles: lightTriangles,
+      trianglePowers: lightPowers,
+      punctual: scene.lights ?? [],
+      environmentPower: Math.PI * environment.meanLuminance * disk,
+      sunPower: environment.sunIrradiance * disk,
+      sceneRadius,
+    },
     layouts,
     layouts.defs,
   );
@@ -217,5 +231,6 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
     totalLightPower: lights.totalPower,
     warnings: [...packedMaterials.warnings, ...lights.warnings],
     packedMaterials,
+    environment,
   };
 }
