@@ -55,7 +55,8 @@ const STRUCTS: [string, string][] = [
   ['passes/path-trace', 'PathTraceParams'],
   ['passes/tonemap', 'TonemapParams'],
   ['passes/diffuse-rays', 'DiffuseRaysParams'],
-  ['scene/bindings', 'TextureRect'],
+  ['scene/bindings', 'TextureRef'],
+  ['scene/bindings', 'PunctualLight'],
 ];
 
 describe('GPU struct layouts match reflection', () => {

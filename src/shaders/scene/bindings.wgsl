@@ -13,25 +13,9 @@
 @group(0) @binding(6) var<storage, read> texture_refs: array<TextureRef>;
 // rgba8unorm-srgb pages: textureLoad returns linear colour.
 @group(0) @binding(7) var texture_atlas: texture_2d_array<f32>;
-<<<<<<< HEAD
 // rgba8unorm pages for data textures (TEXTURE_LINEAR).
 @group(0) @binding(13) var texture_atlas_linear: texture_2d_array<f32>;
 @group(0) @binding(14) var<uniform> punctual_lights: PunctualLights;
-=======
-
-// ---- Environment (bindings 8–11): scene/environment.wgsl reads these; gpu/pack/environment-pack.ts
-// packs them. environment_map is a lat-long image of f32 RGBA radiance (top row = +y) stored as the
-// bits of an rgba32uint texture: rgba32float textures are unfilterable, which a layout reflected from
-// texture_2d<f32> cannot say, and filtering is manual anyway (textureLoad + bitcast, full f32 range);
-// the two tables are the CDFs of its piecewise-constant sampling density (marginal over rows:
-// height + 1 values; conditional over columns per row: height × (width + 1) values).
-#import scene/environment-types
-
-@group(0) @binding(8) var<uniform> environment_info: EnvironmentInfo;
-@group(0) @binding(9) var environment_map: texture_2d<u32>;
-@group(0) @binding(10) var<storage, read> environment_marginal_cdf: array<f32>;
-@group(0) @binding(11) var<storage, read> environment_conditional_cdf: array<f32>;
->>>>>>> environment
 
 // ---- Environment (bindings 8–11): scene/environment.wgsl reads these; gpu/pack/environment-pack.ts
 // packs them. environment_map is a lat-long image of f32 RGBA radiance (top row = +y) stored as the

@@ -167,7 +167,8 @@ const MAX_PUNCTUAL_LIGHTS: u32 = 64u;
 
 struct PunctualLights {
   count: u32,
-  lights: array<PunctualLight, MAX_PUNCTUAL_LIGHTS>,
+  // The size is MAX_PUNCTUAL_LIGHTS, written out: the reflection library reads literal sizes only.
+  lights: array<PunctualLight, 64>,
 }
 
 struct SceneInfo {
