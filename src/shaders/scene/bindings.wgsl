@@ -12,3 +12,9 @@
 @group(0) @binding(6) var<storage, read> texture_rects: array<TextureRect>;
 // rgba8unorm-srgb pages: textureLoad returns linear colour.
 @group(0) @binding(7) var texture_atlas: texture_2d_array<f32>;
+
+// ---- BSDF energy tables (shaders/scene/bsdf-tables.wgsl reads them) ----
+// Directional albedos of the GGX lobes for energy compensation, built by gpu/pack/bsdf-tables.ts
+// (bsdfTableBytes(); layout: BSDF_TABLE_* constants in scene/bsdf-tables.wgsl). The same bytes for
+// every scene: upload once per device.
+@group(0) @binding(12) var<storage, read> bsdf_tables: array<f32>;
