@@ -10,8 +10,10 @@ fn ggx_d(m: vec3f, alpha: f32) -> f32 {
   if (m.z <= 0.0) {
     return 0.0;
   }
+  // cos²θ (α² − 1) + 1 written as cos²θ α² + sin²θ, with sin²θ from m.xy: no cancellation near the
+  // peak, where the first form loses the digits that D (∝ 1/α² there) needs.
   let a2 = alpha * alpha;
-  let t = m.z * m.z * (a2 - 1.0) + 1.0;
+  let t = m.z * m.z * a2 + dot(m.xy, m.xy);
   return a2 / (PI * t * t);
 }
 

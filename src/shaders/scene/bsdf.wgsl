@@ -314,7 +314,10 @@ fn bsdf_sample(p: BsdfParams, wo: vec3f, u: vec3f) -> BsdfSample {
   if (o.z < BSDF_COS_MIN) {
     return bsdf_invalid_sample();
   }
+  // i, in the flipped frame; `reflected` says which side of the surface the lobe must send it to (a
+  // microfacet can send a direction to the wrong side: that sample is lost, as the pdf says).
   var i: vec3f;
+  var reflected = true;
   if (u.z < l.p_spec) {
     if (l.is_delta) {
       // Mirror: reflectance F(μo) of the spec lobe, chosen with probability p_spec.
@@ -341,17 +344,24 @@ fn bsdf_sample(p: BsdfParams, wo: vec3f, u: vec3f) -> BsdfSample {
       return bsdf_delta_sample(l, wo, t, l.tint * (l.glass / (l.p_glass * eta * eta)), l.p_glass * (1.0 - f));
     }
     let m = ggx_sample_visible_normal(o, l.alpha, u.xy);
-    let c = dot(o, m);
-    let f = fresnel_dielectric(c, fresnel_eta);
-    if (u_rt < f) {
-      i = reflect(-o, m);
-    } else if (l.thin) {
-      let r = reflect(-o, m);
-      i = vec3f(r.xy, -r.z);
-    } else {
-      i = refract(-o, m, 1.0 / eta);
+    let f = fresnel_dielectric(dot(o, m), fresnel_eta);
+    i = reflect(-o, m);
+    if (u_rt >= f) {
+      reflected = false;
+      if (l.thin) {
+        // Thin-walled transmission: the reflected direction mirrored through the plane.
+        if (i.z <= 0.0) {
+          return bsdf_invalid_sample();
+        }
+        i = vec3f(i.xy, -i.z);
+      } else {
+        i = refract(-o, m, 1.0 / eta);
+      }
     }
   } else {
+    return bsdf_invalid_sample();
+  }
+  if ((i.z > 0.0) != reflected) {
     return bsdf_invalid_sample();
   }
   // refract returns 0 under total internal reflection (only reachable through rounding of u_rt).
