@@ -113,6 +113,21 @@ fn furnace(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) gr
   results[index + 1u] = vec4f(transmitted, 0.0);
 }`;
 
+// Per sample one vec4f: (wi, valid) — what the chi-square test bins.
+const DIRECTION_KERNEL = (samplesPerThread: number) => `${COMMON}
+@compute @workgroup_size(${THREADS_PER_GROUP})
+fn sample_directions(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups) groups: vec3u) {
+  let k = id.y;
+  let p = case_params(k);
+  let wo = case_wo(k);
+  var rng = rng_seed(id.x, k, 2024u);
+  for (var s = 0u; s < ${samplesPerThread}u; s++) {
+    let u = vec3f(rng_next_f32(&rng), rng_next_f32(&rng), rng_next_f32(&rng));
+    let b = bsdf_sample(p, wo, u);
+    results[(k * groups.x * ${THREADS_PER_GROUP}u + id.x) * ${samplesPerThread}u + s] = vec4f(b.wi, select(0.0, 1.0, b.valid));
+  }
+}`;
+
 // ∫ bsdf_pdf over each (cos θ, φ) bin of the sphere by a midpoint rule; equal steps in cos θ and φ
 // are equal solid angles.
 const PDF_BIN_KERNEL = `${COMMON}
@@ -268,6 +283,15 @@ describe('the BSDF module on the GPU', () => {
     return data;
   }
 
+  /** Sampled directions (wi, valid) per case, for binning. */
+  async function directions(cases: readonly Case[], samplesPerCase: number): Promise<Samples> {
+    const samplesPerThread = 64;
+    const groupsX = Math.ceil(samplesPerCase / (samplesPerThread * THREADS_PER_GROUP));
+    const perCase = groupsX * THREADS_PER_GROUP * samplesPerThread;
+    const k = await kernel('bsdf-directions', DIRECTION_KERNEL(samplesPerThread), 'sample_directions');
+    return { data: await run(k, cases, groupsX, perCase * 4), perCase };
+  }
+
   async function sample(cases: readonly Case[], samplesPerCase: number): Promise<Samples> {
     const samplesPerThread = 64;
     const groupsX = Math.ceil(samplesPerCase / (samplesPerThread * THREADS_PER_GROUP));
@@ -375,22 +399,26 @@ describe('the BSDF module on the GPU', () => {
       { kind: METALLIC_ROUGHNESS, transmission: 0.6, roughness: 0.5, ior: 1.4, base: [0.6, 0.9, 0.7], cosO: -0.4 },
     ];
     const s = await sample(cases, 4096);
-    let checked = 0;
+    // Assert once on the worst cases: one expect per sample would cost seconds.
+    let checked = 0, deltas = 0, worstPdf = 0, worstWeight = 0;
     for (let c = 0; c < cases.length; c++) {
       for (let i = 0; i < s.perCase; i++) {
         const o = (c * s.perCase + i) * 12;
         const flags = s.data[o + 7]!;
         if (!(flags & FLAG_VALID)) continue;
-        expect(flags & FLAG_DELTA).toBe(0);
+        if (flags & FLAG_DELTA) deltas++;
         const pdf = s.data[o + 3]!, pdfAgain = s.data[o + 11]!;
-        expect(Math.abs(pdf - pdfAgain)).toBeLessThanOrEqual(1e-3 * pdf);
+        worstPdf = Math.max(worstPdf, Math.abs(pdf - pdfAgain) / pdf);
         for (let ch = 0; ch < 3; ch++) {
           const w = s.data[o + 4 + ch]!, fromEval = s.data[o + 8 + ch]!;
-          expect(Math.abs(w - fromEval)).toBeLessThanOrEqual(1e-3 * Math.max(w, 1e-6));
+          worstWeight = Math.max(worstWeight, Math.abs(w - fromEval) / Math.max(w, 1e-6));
         }
         checked++;
       }
     }
+    expect(deltas).toBe(0);
+    expect(worstPdf).toBeLessThan(1e-3);
+    expect(worstWeight).toBeLessThan(1e-3);
     expect(checked).toBeGreaterThan(cases.length * s.perCase * 0.5);
   });
 
@@ -405,23 +433,15 @@ describe('the BSDF module on the GPU', () => {
     const groupsX = 16;
     const k = await kernel('bsdf-reciprocity', RECIPROCITY_KERNEL, 'reciprocity');
     const data = await run(k, cases, groupsX, groupsX * THREADS_PER_GROUP * 8);
-    let nonZero = 0;
-    let worst = 0, worstAt = 0;
+    let nonZero = 0, worst = 0;
     for (let i = 0; i < data.length / 8; i++) {
       for (let ch = 0; ch < 3; ch++) {
         const a = data[i * 8 + ch]!, b = data[i * 8 + 4 + ch]!;
-        const e = Math.abs(a - b) / Math.max(a, b, 1e-9);
-        if (e > worst) { worst = e; worstAt = i; }
-      }
-    }
-    console.log('reciprocity worst', worst, 'case', Math.floor(worstAt / (groupsX * THREADS_PER_GROUP)), Array.from(data.slice(worstAt * 8, worstAt * 8 + 8)));
-    for (let i = 0; i < data.length / 8; i++) {
-      for (let ch = 0; ch < 3; ch++) {
-        const a = data[i * 8 + ch]!, b = data[i * 8 + 4 + ch]!;
-        expect(Math.abs(a - b)).toBeLessThanOrEqual(2e-3 * Math.max(a, b) + 1e-6);
+        worst = Math.max(worst, Math.abs(a - b) / Math.max(a, b, 1e-6));
         if (a > 0) nonZero++;
       }
     }
+    expect(worst).toBeLessThan(1e-3);
     expect(nonZero).toBeGreaterThan(data.length / 4);
   });
 
@@ -434,14 +454,15 @@ describe('the BSDF module on the GPU', () => {
     const k = await kernel('bsdf-slab', SLAB_KERNEL, 'slab');
     const data = await run(k, cases, groupsX, walks * 4);
     cosines.forEach((cosI, c) => {
-      let transmitted = 0, reflected = 0;
+      let transmitted = 0, reflected = 0, worstWeight = 0;
       for (let i = 0; i < walks; i++) {
         const o = (c * walks + i) * 4;
         // Every delta weight is 1 or the 1/η², η² pair of entering and leaving: a whole walk weighs 1.
-        expect(s3(data, o)).toBeCloseTo(1, 4);
+        worstWeight = Math.max(worstWeight, Math.abs(s3(data, o) - 1));
         if (data[o + 3] === 1) transmitted++;
         if (data[o + 3] === 2) reflected++;
       }
+      expect(worstWeight).toBeLessThan(1e-4);
       const r = fresnelAirTo(ior, cosI);
       const expected = (1 - r) / (1 + r);
       const sigma = Math.sqrt((expected * (1 - expected)) / walks);
@@ -463,7 +484,7 @@ describe('the BSDF module on the GPU', () => {
   ];
 
   it('each sampler passes a chi-square test against its own bsdf_pdf over the sphere', async () => {
-    const s = await sample(chiCases, CHI_SQUARE_SAMPLES);
+    const s = await directions(chiCases, CHI_SQUARE_SAMPLES);
     const k = await kernel('bsdf-pdf-bins', PDF_BIN_KERNEL, 'integrate_pdf');
     const integrals = await run(k, chiCases, BINS / THREADS_PER_GROUP, BINS * 4);
     const results = chiCases.map((c, ci) => {
@@ -479,7 +500,7 @@ describe('the BSDF module on the GPU', () => {
   });
 
   it('the chi-square test has power: the metal samples fail against the pdf of another roughness', async () => {
-    const s = await sample([chiCases[1]!], CHI_SQUARE_SAMPLES);
+    const s = await directions([chiCases[1]!], CHI_SQUARE_SAMPLES);
     const wrong: Case = { ...chiCases[1]!, roughness: 0.36 };
     const k = await kernel('bsdf-pdf-bins', PDF_BIN_KERNEL, 'integrate_pdf');
     const integrals = await run(k, [wrong], BINS / THREADS_PER_GROUP, BINS * 4);
@@ -492,9 +513,8 @@ describe('the BSDF module on the GPU', () => {
   function binSamples(s: Samples, c: number, integrals: Float32Array): { observed: number[]; expected: number[] } {
     const observed = new Array<number>(BINS + 1).fill(0);
     for (let i = 0; i < s.perCase; i++) {
-      const o = (c * s.perCase + i) * 12;
-      const flags = s.data[o + 7]!;
-      if (!(flags & FLAG_VALID)) {
+      const o = (c * s.perCase + i) * 4;
+      if (s.data[o + 3] !== 1) {
         observed[BINS]!++;
         continue;
       }

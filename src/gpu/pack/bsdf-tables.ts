@@ -35,6 +35,12 @@ const ALPHA_MIN = 1e-4;
  * needs the half [1/4, 3/4) (φ from π/2 to 3π/2; φ → π − φ is the mirror), which halves the work.
  */
 const HALF_START = 0.25;
+/**
+ * GGX has heavy tails: the few normals tilted far enough to send wi below the horizon sit in a thin
+ * sliver u1 → 1 of the sampler's square, which an even grid misses for small alpha (0.7 % at
+ * alpha 0.06). The grid is even in v with u1 = 1 − (1 − v)^k instead, weighted by du1/dv.
+ */
+const TAIL_POWER = 3;
 /** Midpoint grid per axis of the VNDF unit square, per table. */
 const CONDUCTOR_GRID = 24;
 const GLASS_GRID = 24;
@@ -106,29 +112,22 @@ export function sampleGgxVndf(wo: V3, alpha: number, u1: number, u2: number): V3
 
 /** E1 and E5 of a GGX conductor at cosine mu: the mean VNDF weight G2/G1 (times (1 − c)⁵ for E5). */
 export function conductorAlbedo(mu: number, alpha: number, grid = CONDUCTOR_GRID): { e1: number; e5: number } {
-  const wo: V3 = [Math.sqrt(1 - mu * mu), 0, mu];
-  const lambdaO = ggxLambda(mu, alpha);
+  const v = visibleNormals(mu, alpha, grid);
   let e1 = 0, e5 = 0;
-  for (let i = 0; i < grid; i++) {
-    for (let j = 0; j < grid; j++) {
-      const m = sampleGgxVndf(wo, alpha, (i + 0.5) / grid, HALF_START + (j + 0.5) / (2 * grid));
-      const c = wo[0] * m[0] + wo[2] * m[2];
-      const wiz = 2 * c * m[2] - wo[2];
-      if (wiz <= 0 || c <= 0) continue;
-      const w = (1 + lambdaO) / (1 + lambdaO + ggxLambda(wiz, alpha));
-      e1 += w;
-      e5 += w * (1 - c) ** 5;
-    }
+  for (let k = 0; k < v.cells; k++) {
+    e1 += v.reflected[k]!;
+    e5 += v.reflected[k]! * (1 - v.c[k]!) ** 5;
   }
-  const n = grid * grid;
-  return { e1: e1 / n, e5: e5 / n };
+  return { e1, e5 };
 }
 
 /** Visible normals of a midpoint grid for wo = (√(1−μ²), 0, μ): wo·m, m.z and the reflected VNDF weight. */
 interface VisibleNormals {
   readonly c: Float64Array;
   readonly mz: Float64Array;
-  /** G2/G1 of the mirror direction, 0 where it falls below the horizon. */
+  /** The cell's share of the square (du1/dv · cell area): the quadrature weights, summing to 1. */
+  readonly weight: Float64Array;
+  /** G2/G1 of the mirror direction times the weight, 0 where it falls below the horizon. */
   readonly reflected: Float64Array;
   readonly lambdaO: number;
   /** The number of grid cells (including those whose normal faces away, which count as 0). */
@@ -139,18 +138,22 @@ function visibleNormals(mu: number, alpha: number, grid: number): VisibleNormals
   const wo: V3 = [Math.sqrt(1 - mu * mu), 0, mu];
   const lambdaO = ggxLambda(mu, alpha);
   const n = grid * grid;
-  const c = new Float64Array(n), mz = new Float64Array(n), reflected = new Float64Array(n);
+  const c = new Float64Array(n), mz = new Float64Array(n), weight = new Float64Array(n), reflected = new Float64Array(n);
   for (let i = 0; i < grid; i++) {
+    const v = (i + 0.5) / grid;
+    const u1 = 1 - (1 - v) ** TAIL_POWER;
+    const w = (TAIL_POWER * (1 - v) ** (TAIL_POWER - 1)) / n;
     for (let j = 0; j < grid; j++) {
-      const m = sampleGgxVndf(wo, alpha, (i + 0.5) / grid, HALF_START + (j + 0.5) / (2 * grid));
+      const m = sampleGgxVndf(wo, alpha, u1, HALF_START + (j + 0.5) / (2 * grid));
       const k = i * grid + j;
       c[k] = wo[0] * m[0] + wo[2] * m[2];
       mz[k] = m[2];
+      weight[k] = w;
       const wrz = 2 * c[k]! * m[2] - mu;
-      reflected[k] = wrz > 0 && c[k]! > 0 ? (1 + lambdaO) / (1 + lambdaO + ggxLambda(wrz, alpha)) : 0;
+      reflected[k] = wrz > 0 && c[k]! > 0 ? (w * (1 + lambdaO)) / (1 + lambdaO + ggxLambda(wrz, alpha)) : 0;
     }
   }
-  return { c, mz, reflected, lambdaO, cells: n };
+  return { c, mz, weight, reflected, lambdaO, cells: n };
 }
 
 function glassAlbedoOf(v: VisibleNormals, mu: number, alpha: number, eta: number): number {
@@ -164,10 +167,10 @@ function glassAlbedoOf(v: VisibleNormals, mu: number, alpha: number, eta: number
       // Refraction through m: wt = −wo/η + (c/η − cos θt) m.
       const cosT = Math.sqrt(1 - (1 - c * c) / (eta * eta));
       const wtz = -mu / eta + (c / eta - cosT) * v.mz[k]!;
-      if (wtz < 0) e += ((1 - f) * (1 + v.lambdaO)) / (1 + v.lambdaO + ggxLambda(-wtz, alpha));
+      if (wtz < 0) e += (v.weight[k]! * (1 - f) * (1 + v.lambdaO)) / (1 + v.lambdaO + ggxLambda(-wtz, alpha));
     }
   }
-  return e / v.cells;
+  return e;
 }
 
 /** Reflectance + transmittance (no 1/η² factor) of a rough interface of relative index eta, wo.z = mu. */
