@@ -14,8 +14,8 @@
  *
  * μ nodes are j/(N−1) (μ = 0 evaluated at MU_MIN), roughness nodes i/(N−1) (alpha floored at
  * ALPHA_MIN), ior nodes evenly over [IOR_MIN, IOR_MAX]. Each entry averages the VNDF weight G2/G1
- * over a midpoint grid in the sampler's unit square (Heitz 2018), so peaked lobes cost no more than
- * flat ones. The WGSL constants in shaders/scene/bsdf-tables.wgsl mirror BSDF_TABLE_LAYOUT; a unit
+ * over a lattice in the sampler's unit square (Heitz 2018), so peaked lobes cost no more than flat
+ * ones; accuracy about 1e-3 (the unit test compares with brute force). The WGSL constants in shaders/scene/bsdf-tables.wgsl mirror BSDF_TABLE_LAYOUT; a unit
  * test keeps the two equal.
  */
 
@@ -37,13 +37,15 @@ const ALPHA_MIN = 1e-4;
 const HALF_START = 0.25;
 /**
  * GGX has heavy tails: the few normals tilted far enough to send wi below the horizon sit in a thin
- * sliver u1 → 1 of the sampler's square, which an even grid misses for small alpha (0.7 % at
- * alpha 0.06). The grid is even in v with u1 = 1 − (1 − v)^k instead, weighted by du1/dv.
+ * sliver u1 → 1 of the sampler's square, which even spacing misses for small alpha (0.7 % at
+ * alpha 0.06). Points are even in v with u1 = 1 − (1 − v)^k instead, weighted by du1/dv.
  */
 const TAIL_POWER = 3;
-/** Midpoint grid per axis of the VNDF unit square, per table. */
-const CONDUCTOR_GRID = 24;
-const GLASS_GRID = 24;
+/** Points of the quadrature lattice over the VNDF unit square, per table. */
+const CONDUCTOR_POINTS = 377;
+const GLASS_POINTS = 377;
+/** (√5 − 1)/2: the Fibonacci lattice's second coordinate steps by it. */
+const GOLDEN_FRACTION = (Math.sqrt(5) - 1) / 2;
 
 const conductorCount = BSDF_TABLE_MU_SIZE * BSDF_TABLE_ROUGHNESS_SIZE;
 
@@ -111,8 +113,8 @@ export function sampleGgxVndf(wo: V3, alpha: number, u1: number, u2: number): V3
 }
 
 /** E1 and E5 of a GGX conductor at cosine mu: the mean VNDF weight G2/G1 (times (1 − c)⁵ for E5). */
-export function conductorAlbedo(mu: number, alpha: number, grid = CONDUCTOR_GRID): { e1: number; e5: number } {
-  const v = visibleNormals(mu, alpha, grid);
+export function conductorAlbedo(mu: number, alpha: number, points = CONDUCTOR_POINTS): { e1: number; e5: number } {
+  const v = visibleNormals(mu, alpha, points);
   let e1 = 0, e5 = 0;
   for (let k = 0; k < v.cells; k++) {
     e1 += v.reflected[k]!;
@@ -121,7 +123,7 @@ export function conductorAlbedo(mu: number, alpha: number, grid = CONDUCTOR_GRID
   return { e1, e5 };
 }
 
-/** Visible normals of a midpoint grid for wo = (√(1−μ²), 0, μ): wo·m, m.z and the reflected VNDF weight. */
+/** Visible normals of the quadrature lattice for wo = (√(1−μ²), 0, μ): wo·m, m.z and the reflected VNDF weight. */
 interface VisibleNormals {
   readonly c: Float64Array;
   readonly mz: Float64Array;
@@ -130,28 +132,29 @@ interface VisibleNormals {
   /** G2/G1 of the mirror direction times the weight, 0 where it falls below the horizon. */
   readonly reflected: Float64Array;
   readonly lambdaO: number;
-  /** The number of grid cells (including those whose normal faces away, which count as 0). */
+  /** The number of lattice points (including those whose normal faces away, which count as 0). */
   readonly cells: number;
 }
 
-function visibleNormals(mu: number, alpha: number, grid: number): VisibleNormals {
+function visibleNormals(mu: number, alpha: number, points: number): VisibleNormals {
   const wo: V3 = [Math.sqrt(1 - mu * mu), 0, mu];
   const lambdaO = ggxLambda(mu, alpha);
-  const n = grid * grid;
+  const n = points;
   const c = new Float64Array(n), mz = new Float64Array(n), weight = new Float64Array(n), reflected = new Float64Array(n);
-  for (let i = 0; i < grid; i++) {
-    const v = (i + 0.5) / grid;
+  for (let k = 0; k < n; k++) {
+    // A Fibonacci lattice rather than a tensor grid: where the integrand jumps along a curve (the
+    // horizon, the critical angle) that lines up with a grid row (at μ = 1 those curves are circles,
+    // i.e. rows of constant u1), a grid's errors add up row by row; a lattice's cancel.
+    const v = (k + 0.5) / n;
+    const u2 = HALF_START + 0.5 * ((k * GOLDEN_FRACTION + 0.5 / n) % 1);
     const u1 = 1 - (1 - v) ** TAIL_POWER;
     const w = (TAIL_POWER * (1 - v) ** (TAIL_POWER - 1)) / n;
-    for (let j = 0; j < grid; j++) {
-      const m = sampleGgxVndf(wo, alpha, u1, HALF_START + (j + 0.5) / (2 * grid));
-      const k = i * grid + j;
-      c[k] = wo[0] * m[0] + wo[2] * m[2];
-      mz[k] = m[2];
-      weight[k] = w;
-      const wrz = 2 * c[k]! * m[2] - mu;
-      reflected[k] = wrz > 0 && c[k]! > 0 ? (w * (1 + lambdaO)) / (1 + lambdaO + ggxLambda(wrz, alpha)) : 0;
-    }
+    const m = sampleGgxVndf(wo, alpha, u1, u2);
+    c[k] = wo[0] * m[0] + wo[2] * m[2];
+    mz[k] = m[2];
+    weight[k] = w;
+    const wrz = 2 * c[k]! * m[2] - mu;
+    reflected[k] = wrz > 0 && c[k]! > 0 ? (w * (1 + lambdaO)) / (1 + lambdaO + ggxLambda(wrz, alpha)) : 0;
   }
   return { c, mz, weight, reflected, lambdaO, cells: n };
 }
@@ -174,8 +177,8 @@ function glassAlbedoOf(v: VisibleNormals, mu: number, alpha: number, eta: number
 }
 
 /** Reflectance + transmittance (no 1/η² factor) of a rough interface of relative index eta, wo.z = mu. */
-export function glassAlbedo(mu: number, alpha: number, eta: number, grid = GLASS_GRID): number {
-  return glassAlbedoOf(visibleNormals(mu, alpha, grid), mu, alpha, eta);
+export function glassAlbedo(mu: number, alpha: number, eta: number, points = GLASS_POINTS): number {
+  return glassAlbedoOf(visibleNormals(mu, alpha, points), mu, alpha, eta);
 }
 
 export function tableMu(j: number, size: number): number {
@@ -227,7 +230,7 @@ export function bsdfTableData(): Float32Array {
     const alpha = tableAlpha(i, gR);
     for (let j = 0; j < gMu; j++) {
       const mu = tableMu(j, gMu);
-      const normals = visibleNormals(mu, alpha, GLASS_GRID);
+      const normals = visibleNormals(mu, alpha, GLASS_POINTS);
       for (let side = 0; side < 2; side++) {
         for (let k = 0; k < gI; k++) {
           const ior = tableIor(k);
