@@ -55,8 +55,10 @@ function conductorAlbedoBruteForce(mu: number, alpha: number, n = 400): number {
 describe('BSDF energy tables', () => {
   it('has the layout the WGSL module reads (sizes, offsets, ior range)', () => {
     const start = performance.now();
+    const cpu = process.cpuUsage();
     bsdfTableData();
-    console.log(`bsdf tables built in ${(performance.now() - start).toFixed(0)} ms`);
+    const used = process.cpuUsage(cpu);
+    console.log(`bsdf tables built in ${(performance.now() - start).toFixed(0)} ms (${((used.user + used.system) / 1000).toFixed(0)} ms of CPU)`);
     const c = wgslConstants('scene/bsdf-tables');
     expect(c.get('BSDF_TABLE_MU_SIZE')).toBe(BSDF_TABLE_MU_SIZE);
     expect(c.get('BSDF_TABLE_ROUGHNESS_SIZE')).toBe(BSDF_TABLE_ROUGHNESS_SIZE);

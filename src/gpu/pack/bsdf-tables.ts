@@ -42,7 +42,7 @@ const HALF_START = 0.25;
  */
 const TAIL_POWER = 3;
 /** Points of the quadrature lattice over the VNDF unit square, per table. */
-const CONDUCTOR_POINTS = 377;
+const CONDUCTOR_POINTS = 233;
 const GLASS_POINTS = 377;
 /** (√5 − 1)/2: the Fibonacci lattice's second coordinate steps by it. */
 const GOLDEN_FRACTION = (Math.sqrt(5) - 1) / 2;
@@ -160,18 +160,28 @@ function visibleNormals(mu: number, alpha: number, points: number): VisibleNorma
 }
 
 function glassAlbedoOf(v: VisibleNormals, mu: number, alpha: number, eta: number): number {
+  // The hot loop of the table (ior × side × points per entry): Fresnel inlined so that cos θt,
+  // needed by both F and the refracted direction, is computed once.
+  const onePlusLambdaO = 1 + v.lambdaO;
+  const invEta = 1 / eta;
+  const invEta2 = invEta * invEta;
   let e = 0;
   for (let k = 0; k < v.cells; k++) {
     const c = v.c[k]!;
     if (c <= 0) continue;
-    const f = fresnelDielectric(c, eta);
-    e += f * v.reflected[k]!;
-    if (f < 1) {
-      // Refraction through m: wt = −wo/η + (c/η − cos θt) m.
-      const cosT = Math.sqrt(1 - (1 - c * c) / (eta * eta));
-      const wtz = -mu / eta + (c / eta - cosT) * v.mz[k]!;
-      if (wtz < 0) e += (v.weight[k]! * (1 - f) * (1 + v.lambdaO)) / (1 + v.lambdaO + ggxLambda(-wtz, alpha));
+    const sin2T = (1 - c * c) * invEta2;
+    if (sin2T >= 1) {
+      e += v.reflected[k]!; // total internal reflection: F = 1
+      continue;
     }
+    const cosT = Math.sqrt(1 - sin2T);
+    const rs = (c - eta * cosT) / (c + eta * cosT);
+    const rp = (eta * c - cosT) / (eta * c + cosT);
+    const f = 0.5 * (rs * rs + rp * rp);
+    e += f * v.reflected[k]!;
+    // Refraction through m: wt = −wo/η + (c/η − cos θt) m.
+    const wtz = -mu * invEta + (c * invEta - cosT) * v.mz[k]!;
+    if (wtz < 0) e += (v.weight[k]! * (1 - f) * onePlusLambdaO) / (onePlusLambdaO + ggxLambda(-wtz, alpha));
   }
   return e;
 }
