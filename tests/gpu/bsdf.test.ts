@@ -174,6 +174,15 @@ fn reciprocity(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups
   results[index + 1u] = vec4f(bsdf_eval(p, wi, wo), 0.0);
 }`;
 
+// bsdf_has_non_delta and bsdf_albedo at wo = case_wo.
+const QUERY_KERNEL = `${COMMON}
+@compute @workgroup_size(1)
+fn query(@builtin(global_invocation_id) id: vec3u) {
+  let k = id.y;
+  let p = case_params(k);
+  results[k] = vec4f(bsdf_albedo(p, case_wo(k)), select(0.0, 1.0, bsdf_has_non_delta(p)));
+}`;
+
 // Random walks in a slab between two smooth glass interfaces (top: normal +z, bottom: normal −z,
 // outside is air on both). The walk starts above, travelling down along −wo. Each interface is
 // sampled in its own local frame (front = outside); the bottom one is the top one mirrored in z.
@@ -322,7 +331,8 @@ describe('the BSDF module on the GPU', () => {
   }
 
   const COS_ANGLES = [1, 0.7, 0.3, 0.1];
-  const ROUGHNESSES = [0.05, 0.25, 0.5, 0.75, 1];
+  // 0 is the delta limit (mirror spec lobe), 0.05 just above it.
+  const ROUGHNESSES = [0, 0.05, 0.25, 0.5, 0.75, 1];
   function grid(make: (cosO: number, roughness: number) => Case): Case[] {
     return ROUGHNESSES.flatMap((r) => COS_ANGLES.map((c) => make(c, r)));
   }
@@ -387,6 +397,27 @@ describe('the BSDF module on the GPU', () => {
     const means = await furnace(cases, 8192, etaSquared);
     console.log(means.map((m, i) => `${JSON.stringify(cases[i])}: ${m.map((x) => x.toFixed(4)).join(' ')}`).join('\n'));
     for (const m of means) for (const x of m) expect(x).toBeLessThan(1.01);
+  });
+
+  it('bsdf_has_non_delta is false exactly for delta-only materials; bsdf_albedo matches the furnace', async () => {
+    const cases: [Case, boolean, [number, number, number]][] = [
+      [{ kind: DIFFUSE, base: [0.2, 0.4, 0.6], roughness: 0, cosO: 0.5 }, true, [0.2, 0.4, 0.6]],
+      [{ kind: METALLIC_ROUGHNESS, metallic: 1, roughness: 0, cosO: 0.5 }, false, [1, 1, 1]],
+      [{ kind: METALLIC_ROUGHNESS, metallic: 1, roughness: 0.02, cosO: 0.5 }, false, [1, 1, 1]],
+      [{ kind: METALLIC_ROUGHNESS, metallic: 1, roughness: 0.7, cosO: 0.5 }, true, [1, 1, 1]],
+      [{ kind: METALLIC_ROUGHNESS, metallic: 0, roughness: 0, cosO: 0.5 }, true, [1, 1, 1]],
+      [{ kind: METALLIC_ROUGHNESS, metallic: 0, roughness: 0, transmission: 1, cosO: 0.5 }, false, [1, 1, 1]],
+      [{ kind: DIELECTRIC, roughness: 0, cosO: 0.5 }, false, [1, 1, 1]],
+      [{ kind: DIELECTRIC, roughness: 0.5, cosO: -0.5 }, true, [1, 1, 1]],
+      // Black glTF dielectric: only the 4 % (Schlick at μ = 1) specular layer is left.
+      [{ kind: METALLIC_ROUGHNESS, metallic: 0, base: [0, 0, 0], roughness: 0, cosO: 1 }, true, [0.04, 0.04, 0.04]],
+    ];
+    const k = await kernel('bsdf-query', QUERY_KERNEL, 'query');
+    const data = await run(k, cases.map(([c]) => c), 1, 4);
+    cases.forEach(([, nonDelta, albedo], i) => {
+      expect(data[i * 4 + 3] === 1, `case ${i}`).toBe(nonDelta);
+      for (let ch = 0; ch < 3; ch++) expect(Math.abs(data[i * 4 + ch]! - albedo[ch]!), `case ${i}`).toBeLessThan(0.01);
+    });
   });
 
   it('weight equals bsdf_eval·|cos|/bsdf_pdf for every non-delta sample, and delta samples report no density', async () => {
