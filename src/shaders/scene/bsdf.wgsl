@@ -92,6 +92,9 @@ fn bsdf_eta(l: BsdfLobes) -> f32 {
 
 // Directional albedo of the dielectric layer at cosine mu: specular·(F0·E1 + (1 − F0)·E5).
 fn bsdf_layer_albedo(l: BsdfLobes, mu: f32) -> vec3f {
+  if (l.layer_specular <= 0.0) {
+    return vec3f(0.0); // no layer (DIFFUSE, or specular 0): skip the table reads
+  }
   let e1 = bsdf_table_e1(l.roughness, mu);
   let e5 = bsdf_table_e5(l.roughness, mu);
   return l.layer_specular * (l.layer_f0 * e1 + (vec3f(1.0) - l.layer_f0) * e5);
@@ -127,7 +130,9 @@ fn bsdf_lobes(p: BsdfParams, wo: vec3f) -> BsdfLobes {
   l.e1_o = bsdf_table_e1(l.roughness, mu_o);
   l.e5_o = bsdf_table_e5(l.roughness, mu_o);
   l.e_layer_o = bsdf_layer_albedo(l, mu_o);
-  l.e_layer_avg = l.layer_specular * (l.layer_f0 * bsdf_table_e1_avg(l.roughness) + (vec3f(1.0) - l.layer_f0) * bsdf_table_e5_avg(l.roughness));
+  if (l.layer_specular > 0.0) {
+    l.e_layer_avg = l.layer_specular * (l.layer_f0 * bsdf_table_e1_avg(l.roughness) + (vec3f(1.0) - l.layer_f0) * bsdf_table_e5_avg(l.roughness));
+  }
 
   // Kulla & Conty 2017: the energy a conductor's single scattering misses, 1 − E1(μo), comes back
   // through f_ms = (1 − E1(μo))(1 − E1(μi)) / (π (1 − E1avg)), whose albedo is exactly 1 − E1(μo);
