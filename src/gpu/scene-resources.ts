@@ -3,6 +3,7 @@
  * them all, so switching scenes never leaks GPU memory.
  */
 import { LanternError } from '../errors.ts';
+import { BSDF_TABLE_TEXTURE_FORMAT, bsdfTableTexture } from './pack/bsdf-tables.ts';
 import { ENVIRONMENT_CDF_FORMAT, ENVIRONMENT_MAP_FORMAT, type PackedEnvironment } from './pack/environment-pack.ts';
 import type { PackedScene } from './pack/scene-pack.ts';
 import { createBufferWithData } from './readback.ts';
@@ -10,7 +11,7 @@ import { withErrorScope } from './device.ts';
 
 const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs'] as const;
 const UNIFORM_NAMES = ['scene_info', 'punctual_lights'] as const;
-type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf';
+type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf' | 'bsdf_tables';
 
 type BufferName = (typeof UNIFORM_NAMES)[number] | (typeof STORAGE_NAMES)[number];
 
@@ -23,6 +24,7 @@ export class SceneResources {
     readonly atlas: GPUTexture,
     readonly linearAtlas: GPUTexture,
     private readonly environment: UploadedEnvironment,
+    private readonly bsdfTables: GPUTexture,
     readonly counts: PackedScene['counts'],
     readonly features: PackedScene['features'],
     readonly byteSize: number,
@@ -32,6 +34,7 @@ export class SceneResources {
       texture_atlas: atlas.createView({ label: 'texture atlas', dimension: '2d-array' }),
       texture_atlas_linear: linearAtlas.createView({ label: 'linear texture atlas', dimension: '2d-array' }),
       ...environment.bindings,
+      bsdf_tables: bsdfTables.createView({ label: 'BSDF tables' }),
     };
   }
 
@@ -59,9 +62,10 @@ export class SceneResources {
     const atlas = await uploadAtlas(device, packed.atlas, 'rgba8unorm-srgb', `${label} texture atlas`);
     const linearAtlas = await uploadAtlas(device, packed.linearAtlas, 'rgba8unorm', `${label} linear texture atlas`);
     const environment = await uploadEnvironment(device, packed.environment, label);
+    const bsdfTables = await uploadBsdfTables(device);
     const atlasBytes = (a: PackedScene['atlas']) => a.pages.length * a.pageSize * a.pageSize * 4;
     const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0) + atlasBytes(packed.atlas) + atlasBytes(packed.linearAtlas) + environment.byteSize;
-    return new SceneResources(buffers, atlas, linearAtlas, environment, packed.counts, packed.features, byteSize);
+    return new SceneResources(buffers, atlas, linearAtlas, environment, bsdfTables, packed.counts, packed.features, byteSize + bsdfTables.width * bsdfTables.height * 4);
   }
 
   destroy(): void {
@@ -69,7 +73,18 @@ export class SceneResources {
     this.atlas.destroy();
     this.linearAtlas.destroy();
     this.environment.destroy();
+    this.bsdfTables.destroy();
   }
+}
+
+/** The BSDF energy tables (group 0 binding 12): the same for every scene, 41 KB. */
+export function uploadBsdfTables(device: GPUDevice): Promise<GPUTexture> {
+  const t = bsdfTableTexture();
+  return withErrorScope(device, 'the BSDF tables', () => {
+    const texture = device.createTexture({ label: 'BSDF tables', size: [t.width, t.height], format: BSDF_TABLE_TEXTURE_FORMAT, usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+    device.queue.writeTexture({ texture }, t.data, { bytesPerRow: t.width * 4, rowsPerImage: t.height }, [t.width, t.height]);
+    return texture;
+  });
 }
 
 export interface UploadedEnvironment {

@@ -30,3 +30,8 @@
 @group(0) @binding(8) var<uniform> environment_info: EnvironmentInfo;
 @group(0) @binding(9) var environment_map: texture_2d<u32>;
 @group(0) @binding(10) var environment_cdf: texture_2d<u32>;
+
+// ---- BSDF energy tables (binding 12): scene/bsdf-tables.wgsl reads them; gpu/pack/bsdf-tables.ts
+// computes them. f32 values as the bits of an r32uint texture, BSDF_TABLE_TEXTURE_WIDTH values a
+// row (a texture rather than a storage buffer, for the per-stage storage-buffer limit).
+@group(0) @binding(12) var bsdf_tables: texture_2d<u32>;
