@@ -9,7 +9,8 @@
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { Pane, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
 import { getAt, isValidValue, mergeSettings, setAt, type PanelFolder, type SettingEntry } from '../renderer/settings-schema.ts';
-import { effectiveTorch, SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
+import { effectiveTorch, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
+import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
@@ -21,31 +22,6 @@ export interface PanelActions {
 }
 
 const options = <T extends string>(values: readonly T[]) => Object.fromEntries(values.map((v) => [v, v])) as Record<T, T>;
-
-/** The settings the panel shows. */
-export const PANEL_SETTINGS: readonly SettingEntry[] = SETTING_ENTRIES.filter((e) => e.spec.panel !== undefined);
-
-/** A bound setting's key in the panel's own object: for 'integer-or-unlimited', the key of its checkbox. */
-const unlimitedKey = (id: string) => `${id}#unlimited`;
-
-/**
- * The Tweakpane parameters of a numeric setting: the schema's limits constrain what is accepted (typed
- * values too); `slider` is the span the slider covers, narrower where the valid range is too wide to drag.
- */
-export function numberBindingLimits(entry: SettingEntry): { min?: number; max?: number; step?: number; slider?: readonly [number, number] } {
-  const spec = entry.spec;
-  if (spec.type === 'boolean' || spec.type === 'choice' || spec.type === 'color') return {};
-  const hint = spec.panel;
-  return {
-    // An exclusive lower bound cannot be a Tweakpane limit: such values are refused when applied instead.
-    ...(Number.isFinite(spec.min) && !spec.above ? { min: spec.min } : {}),
-    // 'auto' is shown as the exclusive lower bound (0 for the heat maximum), so that bound must be enterable.
-    ...(spec.type === 'number-or-auto' && spec.above ? { min: spec.min } : {}),
-    ...(Number.isFinite(spec.max) ? { max: spec.max } : {}),
-    ...(hint?.step !== undefined ? { step: hint.step } : {}),
-    ...(hint?.slider ? { slider: hint.slider } : {}),
-  };
-}
 
 export class SettingsPanel {
   private readonly pane: Pane;

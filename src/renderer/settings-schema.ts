@@ -286,8 +286,9 @@ function textToValue(spec: SettingSpec, text: string): unknown {
   }
 }
 
-// Six significant digits: short links, and a value near a bound stays inside it (unlike fixed decimals, which turn 1e-6 into 0).
-const short = (n: number) => String(Number(n.toPrecision(6)));
+// Twelve significant digits: a slider's float noise (1.2500000000000002) goes, any value a person
+// types survives, and a small value stays itself (fixed decimals would turn 1e-6 into 0, out of range).
+const short = (n: number) => String(Number(n.toPrecision(12)));
 
 /** The text form of a value: what a link carries and what the CLI's help shows as the default. */
 export function formatSettingText(spec: SettingSpec, value: unknown): string {

@@ -58,7 +58,7 @@ export const RENDER_SETTINGS = {
     panel: { folder: 'render', label: 'max bounces', step: 1, slider: [0, 32] },
   }),
   lightSampling: choice(LIGHT_SAMPLING, {
-    name: 'light sampling', description: 'bsdf, mis: BSDF sampling only, or next-event estimation with MIS', default: 'mis',
+    name: 'light sampling', description: 'BSDF sampling only (bsdf), or next-event estimation combined by MIS (mis)', default: 'mis',
     cli: { flag: '--light-sampling', argument: '<strategy>' }, restarts: true,
   }),
   toneMapper: choice(TONE_MAPPERS, {
