@@ -13,7 +13,7 @@ describe('the panel', () => {
     '%s: the limits are the schema ones, the slider lies within them',
     (_, entry) => {
       const spec = entry.spec;
-      if (spec.type === 'boolean' || spec.type === 'choice' || spec.type === 'color') throw new Error('numeric settings only');
+      if (spec.type !== 'integer' && spec.type !== 'number' && spec.type !== 'number-or-auto' && spec.type !== 'integer-or-unlimited') throw new Error('numeric settings only');
       const { min, max, slider } = numberBindingLimits(entry);
       // What the panel lets through is what the schema accepts: the same bounds, or none where the schema has none.
       expect(max).toBe(Number.isFinite(spec.max) ? spec.max : undefined);

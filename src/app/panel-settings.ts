@@ -17,7 +17,7 @@ export const unlimitedKey = (id: string) => `${id}#unlimited`;
  */
 export function numberBindingLimits(entry: SettingEntry): { min?: number; max?: number; step?: number; slider?: readonly [number, number] } {
   const spec = entry.spec;
-  if (spec.type === 'boolean' || spec.type === 'choice' || spec.type === 'color') return {};
+  if (spec.type === 'boolean' || spec.type === 'choice' || spec.type === 'color' || spec.type === 'numbers' || spec.type === 'text') return {};
   const hint = spec.panel;
   return {
     // An exclusive lower bound cannot be a Tweakpane limit: such values are refused when applied instead.

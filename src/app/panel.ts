@@ -8,7 +8,7 @@
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { Pane, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
-import { getAt, isValidValue, mergeSettings, setAt, type PanelFolder, type SettingEntry } from '../renderer/settings-schema.ts';
+import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry } from '../renderer/settings-schema.ts';
 import { effectiveTorch, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
 import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
 import type { MoveMode } from './camera-controller.ts';
@@ -22,6 +22,11 @@ export interface PanelActions {
 }
 
 const options = <T extends string>(values: readonly T[]) => Object.fromEntries(values.map((v) => [v, v])) as Record<T, T>;
+
+/** Makes a switch over the setting types exhaustive: a new type fails to compile here until handled. */
+function unreachable(spec: never): never {
+  throw new Error(`unhandled setting type ${(spec as { type: string }).type}`);
+}
 
 export class SettingsPanel {
   private readonly pane: Pane;
@@ -124,7 +129,8 @@ export class SettingsPanel {
         // The number keeps the last cap while 'unlimited' is ticked, ready for unticking.
         if (value !== 'unlimited') this.settingParams[entry.id] = value;
         else this.settingParams[entry.id] ??= spec.default;
-      } else this.settingParams[entry.id] = value;
+      } else if (spec.type === 'numbers') this.settingParams[entry.id] = formatSettingText(spec, value);
+      else this.settingParams[entry.id] = value;
     }
   }
 
@@ -158,11 +164,19 @@ export class SettingsPanel {
         return (v as number) <= spec.min ? 'auto' : v;
       case 'integer-or-unlimited':
         return this.settingParams[unlimitedKey(entry.id)] ? 'unlimited' : v;
+      case 'numbers': {
+        // Typed as text ('30,120,3'); what does not parse is refused when applied.
+        const parsed = parseSettingText(spec, String(v));
+        return parsed.ok ? parsed.value : undefined;
+      }
+      case 'text':
       case 'integer':
       case 'number':
       case 'boolean':
       case 'choice':
         return v;
+      default:
+        return unreachable(spec);
     }
   }
 
@@ -179,6 +193,10 @@ export class SettingsPanel {
         return;
       case 'color':
         folder.addBinding(this.settingParams, entry.id, { label: hint.label, color: { type: 'float' } }).on('change', onChange);
+        return;
+      case 'numbers':
+      case 'text':
+        folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange);
         return;
       case 'integer':
       case 'number':
@@ -197,6 +215,8 @@ export class SettingsPanel {
         if (spec.type === 'integer-or-unlimited') folder.addBinding(this.settingParams, unlimitedKey(entry.id), { label: hint.unlimitedLabel ?? 'unlimited' }).on('change', onChange);
         return;
       }
+      default:
+        unreachable(spec);
     }
   }
 

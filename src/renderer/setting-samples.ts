@@ -34,6 +34,13 @@ export function validValues(spec: SettingSpec): unknown[] {
       return [false, true];
     case 'choice':
       return [...spec.values];
+    case 'numbers': {
+      const lows = spec.components.map((c) => nearMin(c, false));
+      const highs = spec.components.map((c) => finiteMax(c.max, c.min));
+      return [lows, highs, highs.slice(0, spec.required)];
+    }
+    case 'text':
+      return [String(spec.default ?? 'value'), 'a file name with spaces.hdr'].filter((t) => !spec.pattern || spec.pattern.test(t));
   }
 }
 
@@ -48,8 +55,17 @@ export function outOfRangeValues(spec: SettingSpec): unknown[] {
       return [spec.above ? spec.min : spec.min - 0.5, ...(Number.isFinite(spec.max) ? [spec.max * 1.5 + 1] : [])];
     case 'color':
       return [[spec.above ? spec.min : spec.min - 0.5, 0.5, 0.5], ...(Number.isFinite(spec.max) ? [[0.5, spec.max + 1, 0.5]] : [])];
+    case 'numbers': {
+      const mid = spec.components.map((c) => nearMin(c, false));
+      // Each component below its range, then above it where it has a top.
+      return spec.components.flatMap((c, i) => [
+        mid.map((v, j) => (j === i ? (c.above ? c.min : c.min - 1) : v)),
+        ...(Number.isFinite(c.max) ? [mid.map((v, j) => (j === i ? c.max + 1 : v))] : []),
+      ]);
+    }
     case 'boolean':
     case 'choice':
+    case 'text':
       return [];
   }
 }
@@ -69,5 +85,9 @@ export function malformedTexts(spec: SettingSpec): string[] {
       return ['maybe', '2', ''];
     case 'choice':
       return ['no-such-value', '', spec.values[0]!.toUpperCase() + '!'];
+    case 'numbers':
+      return ['', 'a', Array(spec.required).fill('1').join(',').replace(/1$/, ''), Array(spec.components.length + 1).fill('0').join(',')];
+    case 'text':
+      return ['', '  '];
   }
 }

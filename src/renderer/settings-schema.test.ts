@@ -1,7 +1,10 @@
 import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { malformedTexts, outOfRangeValues, validValues } from './setting-samples.ts';
-import { describeValues, formatSettingText, mergeSettings, parseSettingText, setAt, SETTING_TYPES } from './settings-schema.ts';
+import {
+  defaultsOf, describeValues, flattenSchema, formatSettingText, mergeSettings, number, numbers, optional, parseSettingText, setAt, SETTING_TYPES, text, validateAgainst,
+  type SettingGroup, type SettingsOf,
+} from './settings-schema.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, SETTING_ENTRIES, validateSettings, type RenderSettings } from './settings.ts';
 
 /** The defaults with one setting replaced (nested settings inside their group). */
@@ -83,5 +86,54 @@ describe('describeValues', () => {
     expect(phrase('torch.color')).toBe('three comma-separated numbers, each number from 0 to 1');
     expect(phrase('torch.enabled')).toBe('on or off');
     expect(phrase('toneMapper')).toBe('one of linear, reinhard, aces');
+  });
+});
+
+describe('the types the coming environment settings need', () => {
+  // Shaped as `--sky elevation,azimuth[,turbidity]` and `--env file.hdr` with intensity and rotation will be.
+  const EXAMPLE = {
+    sky: optional(numbers({
+      name: 'sky', description: 'an analytic sky', restarts: true, required: 2, default: [45, 0, 3],
+      components: [{ name: 'elevation', min: -90, max: 90 }, { name: 'azimuth', min: -360, max: 360 }, { name: 'turbidity', min: 1, max: 10 }],
+    })),
+    env: {
+      file: optional(text({ name: 'environment map', description: 'an HDR environment', accepts: 'an .hdr file', pattern: /\.hdr$/i, default: '', restarts: true })),
+      intensity: number({ name: 'environment intensity', description: 'scale of the environment', min: 0, max: Infinity, default: 1, restarts: true }),
+    },
+  } as const satisfies SettingGroup;
+  type Example = SettingsOf<typeof EXAMPLE>;
+  const entries = flattenSchema(EXAMPLE);
+  const defaults: Example = defaultsOf(EXAMPLE);
+
+  it('derive a type, defaults and messages', () => {
+    expect(entries.map((e) => e.id)).toEqual(['sky', 'env.file', 'env.intensity']);
+    expect(defaults).toEqual({ env: { intensity: 1 } });
+    const sky = entries[0]!.spec;
+    expect(describeValues(sky)).toBe('elevation,azimuth[,turbidity]: elevation from -90 to 90, azimuth from -360 to 360, turbidity from 1 to 10');
+    expect(parseSettingText(sky, '30,120')).toEqual({ ok: true, value: [30, 120] });
+    expect(parseSettingText(sky, '30,120,2.5')).toEqual({ ok: true, value: [30, 120, 2.5] });
+    expect(parseSettingText(sky, '95,120').ok).toBe(false);
+    expect(parseSettingText(entries[1]!.spec, 'studio.HDR')).toEqual({ ok: true, value: 'studio.HDR' });
+    expect(parseSettingText(entries[1]!.spec, 'studio.exr')).toEqual({ ok: false, problem: 'must be an .hdr file' });
+    expectLanternError(() => validateAgainst(entries, mergeSettings(defaults, { sky: [0, 400] })), /^sky must be elevation,azimuth\[,turbidity\]: .* not 0, 400/);
+  });
+
+  it.each(entries.map((e) => [e.id, e] as const))('%s: samples round-trip and out-of-range ones are refused', (_, entry) => {
+    const at = (value: unknown) => {
+      const patch: Record<string, unknown> = {};
+      setAt(patch, entry.path, value);
+      return mergeSettings(defaults, patch);
+    };
+    const valid = validValues(entry.spec);
+    expect(valid.length).toBeGreaterThan(0);
+    for (const value of valid) {
+      expect(() => validateAgainst(entries, at(value))).not.toThrow();
+      expect(parseSettingText(entry.spec, formatSettingText(entry.spec, value))).toEqual({ ok: true, value });
+    }
+    for (const value of outOfRangeValues(entry.spec)) {
+      expectLanternError(() => validateAgainst(entries, at(value)), /must be/);
+      expect(parseSettingText(entry.spec, formatSettingText(entry.spec, value)).ok).toBe(false);
+    }
+    for (const t of malformedTexts(entry.spec)) expect(parseSettingText(entry.spec, t).ok, `'${t}'`).toBe(false);
   });
 });

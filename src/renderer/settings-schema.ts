@@ -8,7 +8,7 @@
 import { LanternError } from '../errors.ts';
 
 /** The value types a setting can have; each one is handled by an exhaustive switch below. */
-export const SETTING_TYPES = ['integer', 'number', 'boolean', 'choice', 'color', 'number-or-auto', 'integer-or-unlimited'] as const;
+export const SETTING_TYPES = ['integer', 'number', 'boolean', 'choice', 'color', 'number-or-auto', 'integer-or-unlimited', 'numbers', 'text'] as const;
 export type SettingType = (typeof SETTING_TYPES)[number];
 
 /** The folders of the viewer's panel that settings go into, in the panel's order. */
@@ -60,10 +60,19 @@ interface Bounds {
   readonly above?: boolean;
 }
 
+/** One component of a 'numbers' setting: its name in messages and its own bounds. */
+export interface Component extends Bounds {
+  readonly name: string;
+}
+
 export type SettingSpec =
   | (Common & Bounds & { readonly type: 'integer' | 'number' | 'number-or-auto' | 'integer-or-unlimited' | 'color'; readonly default?: unknown })
   | (Common & { readonly type: 'boolean'; readonly words: readonly [off: string, on: string]; readonly default?: unknown })
-  | (Common & { readonly type: 'choice'; readonly values: readonly string[]; readonly default?: unknown });
+  | (Common & { readonly type: 'choice'; readonly values: readonly string[]; readonly default?: unknown })
+  /** Comma-separated numbers, each with its own range; the first `required` must be given, the rest may be left off. */
+  | (Common & { readonly type: 'numbers'; readonly components: readonly Component[]; readonly required: number; readonly default?: unknown })
+  /** A non-empty string (a file name, a URL); `accepts` says what in messages, `pattern` checks it. */
+  | (Common & { readonly type: 'text'; readonly accepts: string; readonly pattern?: RegExp; readonly default?: unknown });
 
 /**
  * One declared setting. T is its value's type and O whether it may be absent (an optional setting
@@ -113,6 +122,16 @@ export const color = (s: NoDefault<Common & Bounds> & { default: readonly [numbe
   spec: { ...s, type: 'color' },
   optional: false,
 });
+/**
+ * Comma-separated numbers with their own ranges, e.g. a sky's elevation,azimuth[,turbidity]:
+ * components after the first `required` may be left off (the consumer gives them their defaults).
+ */
+export const numbers = (s: NoDefault<Common> & { components: readonly Component[]; required: number; default: readonly number[] }): Setting<readonly number[]> => ({
+  spec: { ...s, type: 'numbers' },
+  optional: false,
+});
+/** A non-empty string such as a file name or URL (what it names is the consumer's to check). */
+export const text = (s: NoDefault<Common> & { accepts: string; pattern?: RegExp; default: string }): Setting<string> => ({ spec: { ...s, type: 'text' }, optional: false });
 /** The same setting without a default: absent means "not overridden". */
 export const optional = <T>(setting: Setting<T>): Setting<T, true> => {
   const { default: _, ...spec } = setting.spec;
@@ -203,6 +222,12 @@ export function describeValues(spec: SettingSpec): string {
       return `${spec.words[1]} or ${spec.words[0]}`;
     case 'choice':
       return `one of ${spec.values.join(', ')}`;
+    case 'numbers': {
+      const names = spec.components.map((c, i) => (i < spec.required ? c.name : `[${c.name}]`)).join(',').replace(/,\[/g, '[,');
+      return `${names}: ${spec.components.map((c) => `${c.name} ${bounds(c, false).replace(/^a number /, '')}`).join(', ')}`;
+    }
+    case 'text':
+      return spec.accepts;
   }
 }
 
@@ -225,6 +250,15 @@ export function isValidValue(spec: SettingSpec, value: unknown): boolean {
       return typeof value === 'boolean';
     case 'choice':
       return typeof value === 'string' && spec.values.includes(value);
+    case 'numbers':
+      return (
+        Array.isArray(value) &&
+        value.length >= spec.required &&
+        value.length <= spec.components.length &&
+        value.every((v, i) => typeof v === 'number' && inBounds(spec.components[i]!, v, false))
+      );
+    case 'text':
+      return typeof value === 'string' && value.trim() !== '' && (!spec.pattern || spec.pattern.test(value));
   }
 }
 
@@ -282,7 +316,15 @@ function textToValue(spec: SettingSpec, text: string): unknown {
       return undefined;
     }
     case 'choice':
+    case 'text':
       return text;
+    case 'numbers': {
+      const parts = text.split(',').map(parseNumber);
+      return parts.every((p) => p !== undefined) ? parts : undefined;
+    }
+    default:
+      // Exhaustive: a new setting type fails to compile here until it has a text form.
+      return ((t: never) => t)(spec);
   }
 }
 
@@ -301,7 +343,10 @@ export function formatSettingText(spec: SettingSpec, value: unknown): string {
     case 'number-or-auto':
       return typeof value === 'number' ? short(value) : String(value);
     case 'color':
+    case 'numbers':
       return (value as readonly number[]).map(short).join(',');
+    case 'text':
+      return String(value);
     case 'boolean':
       return value ? spec.words[1] : spec.words[0];
   }
