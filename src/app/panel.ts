@@ -8,8 +8,8 @@
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { Pane, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
-import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry } from '../renderer/settings-schema.ts';
-import { effectiveTorch, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
+import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry, type SettingsPatch } from '../renderer/settings-schema.ts';
+import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
 import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
@@ -265,7 +265,11 @@ export class SettingsPanel {
     }
     const patch: Record<string, unknown> = {};
     for (const e of group) setAt(patch, e.path, this.boundValue(e));
-    const render: RenderSettings = mergeSettings(this.viewer.settings.render, patch as RenderSettingsPatch);
-    this.apply({ render });
+    // Only the changed top-level setting goes: the viewer applies changes in order, after pipelines
+    // compile, so its settings may not hold the previous change yet and must not be sent back whole.
+    const key = entry.path[0] as keyof RenderSettings;
+    const current = this.viewer.settings.render[key];
+    const value = entry.path.length > 1 ? mergeSettings(current, patch[key] as SettingsPatch<typeof current>) : patch[key];
+    this.apply({ render: { [key]: value } });
   }
 }
