@@ -1,5 +1,7 @@
 /**
- * Render settings: what a user can change without changing the scene. The closed lists mirror WGSL
+ * Render settings: what a user can change without changing the scene, declared once in the table
+ * RENDER_SETTINGS below (one entry per setting: type, default, valid range, description, CLI flag,
+ * link parameter, whether it restarts accumulation, panel hint). The closed lists mirror WGSL
  * constants by position (TONEMAP_* in shaders/lib/color.wgsl, LIGHT_SAMPLING_* in
  * shaders/passes/path-trace.wgsl, DEBUG_VIEW_* and DEBUG_LAYOUT_* in shaders/lib/debug-views.wgsl);
  * a unit test keeps the two in step.
