@@ -1,13 +1,16 @@
 /**
  * The settings panel (Tweakpane): render settings, camera, torch, what the GPU is doing, and output.
  * Every change goes through the Viewer, which restarts accumulation when the change invalidates the
- * image. The numbers are the viewer's own measurements: frame rate and time on the wall clock, pass
+ * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
+ * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
+ * The numbers are the viewer's own measurements: frame rate and time on the wall clock, pass
  * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters.
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
-import { Pane } from 'tweakpane';
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, effectiveTorch, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView } from '../renderer/settings.ts';
-import type { BindingApi } from '@tweakpane/core';
+import { Pane, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
+import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry, type SettingsPatch } from '../renderer/settings-schema.ts';
+import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
+import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
@@ -20,34 +23,23 @@ export interface PanelActions {
 
 const options = <T extends string>(values: readonly T[]) => Object.fromEntries(values.map((v) => [v, v])) as Record<T, T>;
 
+/** Makes a switch over the setting types exhaustive: a new type fails to compile here until handled. */
+function unreachable(spec: never): never {
+  throw new Error(`unhandled setting type ${(spec as { type: string }).type}`);
+}
+
 export class SettingsPanel {
   private readonly pane: Pane;
   private readonly params = {
     samplesPerFrame: 1,
-    maxBounces: 8,
     scale: 1,
     accumulate: true,
-    toneMapper: 'aces' as string,
-    exposure: 0,
     fov: 60,
     mode: 'fly' as MoveMode,
-    torch: true,
-    torchColor: { r: 1, g: 1, b: 1 },
-    torchIntensity: 0,
-    torchRange: 1,
-    debugView: 'none' as string,
-    debugLayout: 'replace' as string,
-    wireframeDepth: 0,
-    heatMax: 0,
-    temporal: false,
-    denoise: false,
-    clampK: 1.25,
-    historyCap: 32,
-    unlimitedHistory: false,
-    denoiseView: 'output' as string,
   };
-  private depthBinding?: BindingApi;
-  private debugFolder?: ReturnType<Pane['addFolder']>;
+  /** The render settings' panel values by setting id (a colour as {r, g, b}; 'auto' as 0). */
+  private readonly settingParams: Record<string, unknown> = {};
+  private depthBinding?: SliderInputBindingApi;
   private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, rays: '', image: '', scene: '', gpuMemory: '' };
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
@@ -62,11 +54,8 @@ export class SettingsPanel {
     const p = this.params;
     const render = this.pane.addFolder({ title: 'Render' });
     render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value }));
-    render.addBinding(p, 'maxBounces', { label: 'max bounces', min: 0, max: 32, step: 1 }).on('change', (e) => this.apply({ render: { maxBounces: e.value } }));
     render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(0.25, p.scale), max: 2, step: 0.05 }).on('change', (e) => this.apply({ scale: e.value }));
     render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value }));
-    render.addBinding(p, 'toneMapper', { label: 'tone map', options: options(TONE_MAPPERS) }).on('change', (e) => this.apply({ render: { toneMapper: e.value as (typeof TONE_MAPPERS)[number] } }));
-    render.addBinding(p, 'exposure', { label: 'exposure (stops)', min: -8, max: 8, step: 0.1 }).on('change', (e) => this.apply({ render: { exposureStops: e.value } }));
 
     const camera = this.pane.addFolder({ title: 'Camera and torch' });
     camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => this.syncing || viewer.setFieldOfView(e.value));
@@ -77,25 +66,15 @@ export class SettingsPanel {
         this.pane.refresh();
       }
     });
-    camera.addBinding(p, 'torch', { label: 'torch' }).on('change', () => this.applyTorch());
-    camera.addBinding(p, 'torchColor', { label: 'torch colour', color: { type: 'float' } }).on('change', () => this.applyTorch());
-    camera.addBinding(p, 'torchIntensity', { label: 'intensity (W/sr)', min: 0 }).on('change', () => this.applyTorch());
-    camera.addBinding(p, 'torchRange', { label: 'range', min: 1e-3 }).on('change', () => this.applyTorch());
 
-    const realTime = this.pane.addFolder({ title: 'Denoising (real time)' });
-    realTime.addBinding(p, 'temporal', { label: 'temporal' }).on('change', (e) => this.apply({ render: { temporal: e.value } }));
-    realTime.addBinding(p, 'denoise', { label: 'spatial (à-trous)' }).on('change', (e) => this.apply({ render: { denoise: e.value } }));
-    realTime.addBinding(p, 'clampK', { label: 'clamp k·σ (0: off)', min: 0, max: 4, step: 0.05 }).on('change', (e) => this.apply({ render: { clampK: e.value } }));
-    realTime.addBinding(p, 'historyCap', { label: 'history cap', min: 1, max: 256, step: 1 }).on('change', () => this.applyHistory());
-    realTime.addBinding(p, 'unlimitedHistory', { label: 'converge when still' }).on('change', () => this.applyHistory());
-    realTime.addBinding(p, 'denoiseView', { label: 'show', options: options(DENOISE_VIEWS) }).on('change', (e) => this.apply({ render: { denoiseView: e.value as DenoiseView } }));
-
-    const debug = this.pane.addFolder({ title: 'Debug views', expanded: false });
-    this.debugFolder = debug;
-    debug.addBinding(p, 'debugView', { label: 'view', options: options(DEBUG_VIEWS) }).on('change', (e) => this.apply({ render: { debugView: e.value as DebugView } }));
-    debug.addBinding(p, 'debugLayout', { label: 'layout', options: options(DEBUG_LAYOUTS) }).on('change', (e) => this.apply({ render: { debugLayout: e.value as DebugLayout } }));
-    debug.addBinding(p, 'heatMax', { label: 'scale max (0: auto)', min: 0, step: 1 }).on('change', (e) => this.apply({ render: { heatMax: e.value > 0 ? e.value : 'auto' } }));
-    this.addDepthBinding();
+    const folders: Record<PanelFolder, FolderApi> = {
+      render,
+      torch: camera,
+      denoise: this.pane.addFolder({ title: 'Denoising (real time)' }),
+      debug: this.pane.addFolder({ title: 'Debug views', expanded: false }),
+    };
+    for (const entry of PANEL_SETTINGS) this.addSettingBinding(folders[entry.spec.panel!.folder], entry);
+    this.fitDepthSlider();
 
     const numbers = this.pane.addFolder({ title: 'GPU' });
     const m = this.monitor;
@@ -119,8 +98,8 @@ export class SettingsPanel {
     this.syncing = true;
     try {
       this.read();
-      // The depth slider's range is the scene's BVH depth.
-      this.addDepthBinding();
+      // The depth slider spans the scene's BVH depth.
+      this.fitDepthSlider();
       this.pane?.refresh();
     } finally {
       this.syncing = false;
@@ -131,34 +110,114 @@ export class SettingsPanel {
     const p = this.params;
     const s = this.viewer.settings;
     p.samplesPerFrame = s.samplesPerFrame;
-    p.maxBounces = s.render.maxBounces;
     p.scale = s.scale;
     p.accumulate = s.accumulate;
-    p.toneMapper = s.render.toneMapper;
-    p.exposure = s.render.exposureStops;
-    p.debugView = s.render.debugView;
-    p.debugLayout = s.render.debugLayout;
-    p.wireframeDepth = s.render.wireframeDepth;
-    p.heatMax = s.render.heatMax === 'auto' ? 0 : s.render.heatMax;
-    p.temporal = s.render.temporal;
-    p.denoise = s.render.denoise;
-    p.clampK = s.render.clampK;
-    p.unlimitedHistory = s.render.historyCap === 'unlimited';
-    if (s.render.historyCap !== 'unlimited') p.historyCap = s.render.historyCap;
-    p.denoiseView = s.render.denoiseView;
     const c = this.viewer.controller;
     if (c) {
       p.fov = c.vfovDegrees;
       p.mode = c.mode;
     }
+    for (const entry of PANEL_SETTINGS) {
+      const value = this.shownValue(entry);
+      const spec = entry.spec;
+      if (spec.type === 'color') {
+        const [r, g, b] = value as readonly [number, number, number];
+        this.settingParams[entry.id] = { r, g, b };
+      } else if (spec.type === 'number-or-auto') this.settingParams[entry.id] = value === 'auto' ? spec.min : value;
+      else if (spec.type === 'integer-or-unlimited') {
+        this.settingParams[unlimitedKey(entry.id)] = value === 'unlimited';
+        // The number keeps the last cap while 'unlimited' is ticked, ready for unticking.
+        if (value !== 'unlimited') this.settingParams[entry.id] = value;
+        else this.settingParams[entry.id] ??= spec.default;
+      } else if (spec.type === 'numbers') this.settingParams[entry.id] = formatSettingText(spec, value);
+      else this.settingParams[entry.id] = value;
+    }
+  }
+
+  /**
+   * What the panel shows for a setting: its value, or for a torch parameter left to the scene the
+   * scene's own (so the panel shows the torch that lights the image).
+   */
+  private shownValue(entry: SettingEntry): unknown {
+    const render = this.viewer.settings.render;
+    const value = getAt(render, entry.path);
+    if (value !== undefined || entry.path[0] !== 'torch') return value ?? entry.spec.default;
     const scene = this.viewer.scene?.prepared;
-    const torch = effectiveTorch(scene?.scene, s.render.torch);
-    const diagonal = scene ? boundsDiagonal(scene.bvh) : 1;
-    p.torch = s.render.torch.enabled;
-    const color = torch?.color ?? s.render.torch.color ?? [1, 1, 1];
-    p.torchColor = { r: color[0], g: color[1], b: color[2] };
-    p.torchIntensity = torch?.intensity ?? s.render.torch.intensity ?? 0;
-    p.torchRange = torch?.range ?? s.render.torch.range ?? Math.max(diagonal / 2, 1e-3);
+    const torch = effectiveTorch(scene?.scene, render.torch);
+    const key = entry.path[1];
+    if (key === 'color') return torch?.color ?? [1, 1, 1];
+    if (key === 'intensity') return torch?.intensity ?? 0;
+    if (key === 'range') return torch?.range ?? Math.max((scene ? boundsDiagonal(scene.bvh) : 1) / 2, 1e-3);
+    return entry.spec.default;
+  }
+
+  /** The value a setting's binding now holds, in the setting's own terms. */
+  private boundValue(entry: SettingEntry): unknown {
+    const v = this.settingParams[entry.id];
+    const spec = entry.spec;
+    switch (spec.type) {
+      case 'color': {
+        const { r, g, b } = v as { r: number; g: number; b: number };
+        return [r, g, b];
+      }
+      case 'number-or-auto':
+        return (v as number) <= spec.min ? 'auto' : v;
+      case 'integer-or-unlimited':
+        return this.settingParams[unlimitedKey(entry.id)] ? 'unlimited' : v;
+      case 'numbers': {
+        // Typed as text ('30,120,3'); what does not parse is refused when applied.
+        const parsed = parseSettingText(spec, String(v));
+        return parsed.ok ? parsed.value : undefined;
+      }
+      case 'text':
+      case 'integer':
+      case 'number':
+      case 'boolean':
+      case 'choice':
+        return v;
+      default:
+        return unreachable(spec);
+    }
+  }
+
+  private addSettingBinding(folder: FolderApi, entry: SettingEntry): void {
+    const spec = entry.spec;
+    const hint = spec.panel!;
+    const onChange = () => this.applySetting(entry);
+    switch (spec.type) {
+      case 'boolean':
+        folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange);
+        return;
+      case 'choice':
+        folder.addBinding(this.settingParams, entry.id, { label: hint.label, options: options(spec.values) }).on('change', onChange);
+        return;
+      case 'color':
+        folder.addBinding(this.settingParams, entry.id, { label: hint.label, color: { type: 'float' } }).on('change', onChange);
+        return;
+      case 'numbers':
+      case 'text':
+        folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange);
+        return;
+      case 'integer':
+      case 'number':
+      case 'number-or-auto':
+      case 'integer-or-unlimited': {
+        const { slider, ...limits } = numberBindingLimits(entry);
+        const binding = folder.addBinding(this.settingParams, entry.id, { label: hint.label, ...limits });
+        binding.on('change', onChange);
+        if (limits.min !== undefined && limits.max !== undefined) {
+          const sliderBinding = binding as unknown as SliderInputBindingApi;
+          // The slider's span is apart from the limits: it may be narrower, while typed values reach the limits.
+          if (slider) [sliderBinding.min, sliderBinding.max] = slider;
+          // The depth slider reaches the scene's own BVH depth (see readFromViewer).
+          if (entry.id === 'wireframeDepth') this.depthBinding = sliderBinding;
+        }
+        if (spec.type === 'integer-or-unlimited') folder.addBinding(this.settingParams, unlimitedKey(entry.id), { label: hint.unlimitedLabel ?? 'unlimited' }).on('change', onChange);
+        return;
+      }
+      default:
+        unreachable(spec);
+    }
   }
 
   /** Refreshes the numbers (called on every frame; Tweakpane redraws monitors on its own interval). */
@@ -176,13 +235,11 @@ export class SettingsPanel {
     m.gpuMemory = s.adapter ? `${(s.gpuResources.bytes / 2 ** 20).toFixed(1)} MiB in ${s.gpuResources.buffers} buffers, ${s.gpuResources.textures} textures` : '–';
   }
 
-  private addDepthBinding(): void {
-    if (!this.debugFolder) return;
-    this.depthBinding?.dispose();
+  private fitDepthSlider(): void {
+    if (!this.depthBinding) return;
     const max = Math.max(1, this.viewer.bvhMaxDepth);
-    this.params.wireframeDepth = Math.min(this.params.wireframeDepth, max);
-    this.depthBinding = this.debugFolder.addBinding(this.params, 'wireframeDepth', { label: `box depth (0–${max})`, min: 0, max, step: 1 });
-    this.depthBinding.on('change', (e) => this.apply({ render: { wireframeDepth: e.value as number } }));
+    this.depthBinding.max = max;
+    this.depthBinding.label = `box depth (0–${max})`;
   }
 
   dispose(): void {
@@ -194,15 +251,25 @@ export class SettingsPanel {
     this.viewer.updateSettings(changes).catch((e) => this.viewer.fail(e));
   }
 
-  private applyHistory(): void {
-    const p = this.params;
-    this.apply({ render: { historyCap: p.unlimitedHistory ? 'unlimited' : p.historyCap } });
-  }
-
-  private applyTorch(): void {
-    const p = this.params;
-    this.apply({
-      render: { torch: { enabled: p.torch, color: [p.torchColor.r, p.torchColor.g, p.torchColor.b], intensity: Math.max(0, p.torchIntensity), range: Math.max(1e-3, p.torchRange) } },
-    });
+  /**
+   * Applies a setting the user changed. A value the schema refuses (a torch range of 0) is not applied:
+   * the panel goes back to the viewer's. A torch parameter goes with the torch's other shown values,
+   * so that giving a torch-less scene an intensity also gives it the range the panel shows.
+   */
+  private applySetting(entry: SettingEntry): void {
+    if (this.syncing) return;
+    const group = entry.path.length > 1 ? PANEL_SETTINGS.filter((e) => e.path.length > 1 && e.path[0] === entry.path[0]) : [entry];
+    if (!group.every((e) => isValidValue(e.spec, this.boundValue(e)))) {
+      this.readFromViewer();
+      return;
+    }
+    const patch: Record<string, unknown> = {};
+    for (const e of group) setAt(patch, e.path, this.boundValue(e));
+    // Only the changed top-level setting goes: the viewer applies changes in order, after pipelines
+    // compile, so its settings may not hold the previous change yet and must not be sent back whole.
+    const key = entry.path[0] as keyof RenderSettings;
+    const current = this.viewer.settings.render[key];
+    const value = entry.path.length > 1 ? mergeSettings(current, patch[key] as SettingsPatch<typeof current>) : patch[key];
+    this.apply({ render: { [key]: value } });
   }
 }

@@ -1,5 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { formatViewParams, linkedRenderSettings, parseViewParams, type ViewParams } from './view-params.ts';
+import { malformedTexts, outOfRangeValues, validValues } from '../renderer/setting-samples.ts';
+import { describeValues, formatSettingText, setAt } from '../renderer/settings-schema.ts';
+import { formatViewParams, LINKED_SETTINGS, linkedRenderSettings, parseViewParams, type ViewParams } from './view-params.ts';
 
 describe('view parameters', () => {
   it('round-trip a full view', () => {
@@ -46,5 +48,39 @@ describe('view parameters', () => {
     expect(problems).toHaveLength(9);
     expect(problems.join('\n')).toMatch(/cam=1,2,3 is not 5 numbers/);
     expect(problems.join('\n')).toMatch(/spf=0 is outside 1–64/);
+  });
+});
+
+describe('render settings in links, from the schema', () => {
+  const viewWith = (path: readonly string[], value: unknown): ViewParams => {
+    const view: Record<string, unknown> = {};
+    setAt(view, path, value);
+    return view as ViewParams;
+  };
+
+  it.each(LINKED_SETTINGS.map((e) => [e.spec.link!, e] as const))('%s: every valid value round-trips; out of range and malformed ones are ignored with a note', (name, entry) => {
+    for (const value of validValues(entry.spec)) {
+      const params = formatViewParams(viewWith(entry.path, value));
+      expect(params.get(name)).toBe(formatSettingText(entry.spec, value));
+      expect(parseViewParams(new URLSearchParams(params.toString()))).toEqual({ view: viewWith(entry.path, value), problems: [] });
+    }
+    const refused = [...outOfRangeValues(entry.spec).map((v) => formatSettingText(entry.spec, v)), ...malformedTexts(entry.spec)];
+    for (const text of refused) {
+      // A valid parameter beside the refused one is kept.
+      const [other, kept] = name === 'exposure' ? (['bounces', { maxBounces: 3 }] as const) : (['exposure', { exposureStops: 3 }] as const);
+      const { view, problems } = parseViewParams(new URLSearchParams({ [name]: text, [other]: '3' }));
+      expect(view, `${name}=${text}`).toEqual(kept);
+      expect(problems).toEqual([`${name}=${text} is not ${describeValues(entry.spec)}`]);
+    }
+  });
+
+  it('accepts in links the ranges the CLI accepts (links used to stop at 64 bounces and ±20 stops)', () => {
+    expect(parseViewParams(new URLSearchParams('bounces=1024&exposure=-64')).view).toEqual({ maxBounces: 1024, exposureStops: -64 });
+    expect(parseViewParams(new URLSearchParams('bounces=1025')).problems).toEqual(['bounces=1025 is not a whole number from 0 to 1024']);
+  });
+
+  it('reads the boolean words links have always used', () => {
+    expect(parseViewParams(new URLSearchParams('torch=off&temporal=0&denoise=1')).view).toEqual({ torch: { enabled: false }, temporal: false, denoise: true });
+    expect(parseViewParams(new URLSearchParams('torch=on&temporal=true')).view).toEqual({ torch: { enabled: true }, temporal: true });
   });
 });

@@ -5,12 +5,14 @@
  *   scene=cornell                      a built-in scene
  *   wad=<url>[&wad=<url>…]&map=E1M1    a Doom map from WAD files the server offers (IWAD first)
  *   ply=<url>                          a PLY mesh the server offers
- *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly
- *   spf, bounces, scale, acc=0|1, tonemap, exposure, torch=on|off, torch-color=r,g,b,
- *   torch-intensity, torch-range, debug=<view>, layout=replace|side-by-side|overlay, depth=<d>,
- *   heat-max=<n>|auto, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited, denoise-view
+ *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1
+ *   and every render setting with a `link` name in RENDER_SETTINGS (renderer/settings.ts): bounces,
+ *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
+ *   layout, heat-max=<n>|auto, depth, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited,
+ *   denoise-view; parsed, checked and written from their schema entries.
  */
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, MAX_HISTORY_CAP, MAX_WIREFRAME_DEPTH, TONE_MAPPERS, type DebugLayout, type DebugView, type DenoiseView, type HistoryCap, type RenderSettings, type ToneMapper } from '../renderer/settings.ts';
+import { formatSettingText, getAt, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
+import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 
 export type SceneLocation =
@@ -18,37 +20,22 @@ export type SceneLocation =
   | { readonly kind: 'wad'; readonly urls: readonly string[]; readonly map?: string }
   | { readonly kind: 'ply'; readonly url: string };
 
+/** The settings that links carry. */
+export const LINKED_SETTINGS: readonly SettingEntry[] = SETTING_ENTRIES.filter((e) => e.spec.link !== undefined);
+
 /** Everything a link carries besides the scene; absent fields keep their defaults. */
-export interface ViewParams {
+export type ViewParams = RenderSettingsPatch & {
   readonly scene?: SceneLocation;
   readonly pose?: Pose;
   readonly fovDegrees?: number;
   readonly mode?: MoveMode;
   readonly samplesPerFrame?: number;
-  readonly maxBounces?: number;
   readonly scale?: number;
   readonly accumulate?: boolean;
-  readonly toneMapper?: ToneMapper;
-  readonly exposureStops?: number;
-  readonly debugView?: DebugView;
-  readonly debugLayout?: DebugLayout;
-  readonly wireframeDepth?: number;
-  readonly heatMax?: number | 'auto';
-  readonly temporal?: boolean;
-  readonly denoise?: boolean;
-  readonly clampK?: number;
-  readonly historyCap?: HistoryCap;
-  readonly denoiseView?: DenoiseView;
-  readonly torch?: {
-    readonly enabled?: boolean;
-    readonly color?: readonly [number, number, number];
-    readonly intensity?: number;
-    readonly range?: number;
-  };
-}
+};
 
-/** The render settings a link carries under their RenderSettings names (the torch apart). */
-export const LINKED_RENDER_SETTINGS = ['maxBounces', 'toneMapper', 'exposureStops', 'debugView', 'debugLayout', 'wireframeDepth', 'heatMax', 'temporal', 'denoise', 'clampK', 'historyCap', 'denoiseView'] as const;
+/** The top-level render settings a link carries under their RenderSettings names (the torch, a group, apart: its parts wait for the scene). */
+export const LINKED_RENDER_SETTINGS: readonly (keyof RenderSettings)[] = LINKED_SETTINGS.filter((e) => e.path.length === 1).map((e) => e.path[0] as keyof RenderSettings);
 
 /** The render settings a link asks for (only those it names). */
 export function linkedRenderSettings(view: ViewParams): Partial<RenderSettings> {
@@ -57,12 +44,10 @@ export function linkedRenderSettings(view: ViewParams): Partial<RenderSettings> 
   return out as Partial<RenderSettings>;
 }
 
-/** Values outside these ranges are refused (the parameter is ignored with a note). */
+/** The view's own parameters (not render settings: those have their ranges in the schema); values outside are refused with a note. */
 export const LIMITS = {
   samplesPerFrame: [1, 64],
-  maxBounces: [0, 64],
   scale: [0.01, 2],
-  exposureStops: [-20, 20],
   fovDegrees: [5, 150],
 } as const;
 
@@ -109,63 +94,19 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   }
   const spf = ranged('spf', LIMITS.samplesPerFrame, true);
   if (spf !== undefined) view.samplesPerFrame = spf;
-  const bounces = ranged('bounces', LIMITS.maxBounces, true);
-  if (bounces !== undefined) view.maxBounces = bounces;
   const scale = ranged('scale', LIMITS.scale);
   if (scale !== undefined) view.scale = scale;
   const acc = params.get('acc');
   if (acc !== null) view.accumulate = acc !== '0';
-  const tonemap = params.get('tonemap');
-  if (tonemap !== null) {
-    if ((TONE_MAPPERS as readonly string[]).includes(tonemap)) view.toneMapper = tonemap as ToneMapper;
-    else problems.push(`tonemap=${tonemap} is not one of ${TONE_MAPPERS.join(', ')}`);
-  }
-  const exposure = ranged('exposure', LIMITS.exposureStops);
-  if (exposure !== undefined) view.exposureStops = exposure;
-  const oneOf = <T extends string>(name: string, values: readonly T[]): T | undefined => {
-    const v = params.get(name);
-    if (v === null) return undefined;
-    if ((values as readonly string[]).includes(v)) return v as T;
-    problems.push(`${name}=${v} is not one of ${values.join(', ')}`);
-    return undefined;
-  };
-  const debugView = oneOf('debug', DEBUG_VIEWS);
-  if (debugView) view.debugView = debugView;
-  const debugLayout = oneOf('layout', DEBUG_LAYOUTS);
-  if (debugLayout) view.debugLayout = debugLayout;
-  const depth = ranged('depth', [0, MAX_WIREFRAME_DEPTH], true);
-  if (depth !== undefined) view.wireframeDepth = depth;
-  if (params.get('heat-max') === 'auto') view.heatMax = 'auto';
-  else {
-    const heatMax = ranged('heat-max', [1e-6, 1e9]);
-    if (heatMax !== undefined) view.heatMax = heatMax;
-  }
 
-  const temporal = params.get('temporal');
-  if (temporal !== null) view.temporal = temporal !== '0';
-  const denoise = params.get('denoise');
-  if (denoise !== null) view.denoise = denoise !== '0';
-  const clampK = ranged('clamp-k', [0, 16]);
-  if (clampK !== undefined) view.clampK = clampK;
-  if (params.get('history-cap') === 'unlimited') view.historyCap = 'unlimited';
-  else {
-    const cap = ranged('history-cap', [1, MAX_HISTORY_CAP], true);
-    if (cap !== undefined) view.historyCap = cap;
+  for (const { path, spec } of LINKED_SETTINGS) {
+    const name = spec.link!;
+    const raw = params.get(name);
+    if (raw === null) continue;
+    const parsed = parseSettingText(spec, raw);
+    if (parsed.ok) setAt(view as Record<string, unknown>, path, parsed.value);
+    else problems.push(`${name}=${raw} ${parsed.problem.replace(/^must be/, 'is not')}`);
   }
-  const denoiseView = oneOf('denoise-view', DENOISE_VIEWS);
-  if (denoiseView) view.denoiseView = denoiseView;
-
-  const torch: { enabled?: boolean; color?: [number, number, number]; intensity?: number; range?: number } = {};
-  const on = params.get('torch');
-  if (on !== null) torch.enabled = on !== 'off';
-  const color = numbers('torch-color', 3);
-  if (color && color.every((c) => c >= 0 && c <= 1)) torch.color = [color[0]!, color[1]!, color[2]!];
-  else if (color) problems.push('torch-color components must be in 0–1');
-  const intensity = ranged('torch-intensity', [0, 1e9]);
-  if (intensity !== undefined) torch.intensity = intensity;
-  const range = ranged('torch-range', [1e-3, 1e9]);
-  if (range !== undefined) torch.range = range;
-  if (Object.keys(torch).length > 0) view.torch = torch;
   return { view, problems };
 }
 
@@ -181,24 +122,11 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
   if (view.mode) p.set('mode', view.mode);
   if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
-  if (view.maxBounces !== undefined) p.set('bounces', String(view.maxBounces));
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
-  if (view.toneMapper) p.set('tonemap', view.toneMapper);
-  if (view.exposureStops !== undefined) p.set('exposure', String(round(view.exposureStops)));
-  if (view.debugView) p.set('debug', view.debugView);
-  if (view.debugLayout) p.set('layout', view.debugLayout);
-  if (view.wireframeDepth !== undefined) p.set('depth', String(view.wireframeDepth));
-  if (view.heatMax !== undefined) p.set('heat-max', String(view.heatMax));
-  if (view.temporal !== undefined) p.set('temporal', view.temporal ? '1' : '0');
-  if (view.denoise !== undefined) p.set('denoise', view.denoise ? '1' : '0');
-  if (view.clampK !== undefined) p.set('clamp-k', String(round(view.clampK)));
-  if (view.historyCap !== undefined) p.set('history-cap', String(view.historyCap));
-  if (view.denoiseView) p.set('denoise-view', view.denoiseView);
-  const t = view.torch;
-  if (t?.enabled !== undefined) p.set('torch', t.enabled ? 'on' : 'off');
-  if (t?.color) p.set('torch-color', t.color.map(round).join(','));
-  if (t?.intensity !== undefined) p.set('torch-intensity', String(round(t.intensity)));
-  if (t?.range !== undefined) p.set('torch-range', String(round(t.range)));
+  for (const { path, spec } of LINKED_SETTINGS) {
+    const value = getAt(view, path);
+    if (value !== undefined) p.set(spec.link!, formatSettingText(spec, value));
+  }
   return p;
 }

@@ -1,7 +1,6 @@
 /** Parsing and checking of numeric command-line options, with messages that name the option. */
 import { InvalidArgumentError, type Command } from 'commander';
 import { MAX_IMAGE_SIDE } from '../renderer/renderer.ts';
-import { DEFAULT_SETTINGS, MAX_BOUNCES_LIMIT } from '../renderer/settings.ts';
 
 export function integerOption(name: string, min: number, max: number): (value: string) => number {
   return (value: string) => {
@@ -28,12 +27,11 @@ export function choiceOption<T extends string>(name: string, choices: readonly T
   };
 }
 
-/** --width, --height and --bounces, shared by the commands that render. */
+/** --width and --height, shared by the commands that render (the render settings are in setting-options.ts). */
 export function withImageOptions(command: Command, defaults: { width: number; height: number }): Command {
   return command
     .option('-W, --width <pixels>', 'image width', integerOption('--width', 1, MAX_IMAGE_SIDE), defaults.width)
-    .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, MAX_IMAGE_SIDE), defaults.height)
-    .option('-b, --bounces <n>', 'maximum bounces per path', integerOption('--bounces', 0, MAX_BOUNCES_LIMIT), DEFAULT_SETTINGS.maxBounces);
+    .option('-H, --height <pixels>', 'image height', integerOption('--height', 1, MAX_IMAGE_SIDE), defaults.height);
 }
 
 /** A comma-separated list of exactly `count` finite numbers (e.g. a colour or a point). */

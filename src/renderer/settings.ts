@@ -1,12 +1,16 @@
 /**
- * Render settings: what a user can change without changing the scene. The closed lists mirror WGSL
+ * Render settings: what a user can change without changing the scene, declared once in the table
+ * RENDER_SETTINGS below (one entry per setting: type, default, valid range, description, CLI flag,
+ * link parameter, whether it restarts accumulation, panel hint). The closed lists mirror WGSL
  * constants by position (TONEMAP_* in shaders/lib/color.wgsl, LIGHT_SAMPLING_* in
  * shaders/passes/path-trace.wgsl, DEBUG_VIEW_* and DEBUG_LAYOUT_* in shaders/lib/debug-views.wgsl);
  * a unit test keeps the two in step.
  */
-import { LanternError } from '../errors.ts';
-import type { Vec3 } from '../math/vec3.ts';
 import type { Scene, Torch } from '../scene/types.ts';
+import {
+  boolean, choice, color, defaultsOf, flattenSchema, integer, integerOrUnlimited, number, numberOrAuto, optional, validateAgainst,
+  type SettingEntry, type SettingGroup, type SettingsOf, type SettingsPatch,
+} from './settings-schema.ts';
 
 export const TONE_MAPPERS = ['linear', 'reinhard', 'aces'] as const;
 export type ToneMapper = (typeof TONE_MAPPERS)[number];
@@ -14,18 +18,6 @@ export type ToneMapper = (typeof TONE_MAPPERS)[number];
 /** 'bsdf': BSDF sampling only (emitters found by chance). 'mis': next-event estimation + BSDF sampling, combined by MIS. */
 export const LIGHT_SAMPLING = ['bsdf', 'mis'] as const;
 export type LightSampling = (typeof LIGHT_SAMPLING)[number];
-
-/**
- * The torch at the camera: on or off, and any of its parameters overriding the scene's own torch.
- * A scene without a torch gets one only when intensity and range are both given.
- */
-export interface TorchSettings {
-  readonly enabled: boolean;
-  readonly color?: Vec3;
-  readonly intensity?: number;
-  readonly range?: number;
-  readonly radius?: number;
-}
 
 /**
  * What the debug views show instead of (or beside, or over) the rendered image: BVH work per primary
@@ -53,53 +45,110 @@ export type DenoiseView = (typeof DENOISE_VIEWS)[number];
 export type HistoryCap = number | 'unlimited';
 export const MAX_HISTORY_CAP = 65536;
 
-export interface RenderSettings {
-  /** Scattering events per path: 0 shows emitters only, 1 direct light, ... */
-  readonly maxBounces: number;
-  readonly lightSampling: LightSampling;
-  readonly toneMapper: ToneMapper;
-  /** Exposure in photographic stops: radiance is scaled by 2^stops before the tone curve. */
-  readonly exposureStops: number;
-  /** Seed of every random stream: the same seed, scene and settings give the same image. */
-  readonly seed: number;
-  readonly torch: TorchSettings;
-  readonly debugView: DebugView;
-  readonly debugLayout: DebugLayout;
-  /** Wireframe view: the depth whose boxes are drawn (0 = the root, the scene bounds). */
-  readonly wireframeDepth: number;
-  /** Heat views: the count at the top of the colour scale, or 'auto' for the image's own maximum. */
-  readonly heatMax: number | 'auto';
-  /** Real-time frames: accumulate each pixel's history over frames, reprojected as the camera moves. */
-  readonly temporal: boolean;
-  /** Real-time frames: the edge-aware spatial (à-trous) filter. */
-  readonly denoise: boolean;
-  /** Temporal history clamp: mean ± clampK·σ of the current 3×3 neighbourhood (0: no clamp). */
-  readonly clampK: number;
-  /** Largest history length N (blend weight 1/N); 'unlimited' also lifts the clamp while the camera is still. */
-  readonly historyCap: HistoryCap;
-  readonly denoiseView: DenoiseView;
-}
+/** The deepest bounce limit accepted (the panel's slider covers 0–32; longer paths are typed in). */
+export const MAX_BOUNCES_LIMIT = 1024;
 
-export const DEFAULT_SETTINGS: RenderSettings = Object.freeze({
-  maxBounces: 8,
-  lightSampling: 'mis',
-  toneMapper: 'aces',
-  exposureStops: 0,
-  seed: 1,
-  torch: Object.freeze({ enabled: true }),
-  debugView: 'none',
-  debugLayout: 'replace',
-  wireframeDepth: 0,
-  heatMax: 'auto',
-  temporal: true,
-  denoise: true,
-  clampK: 1.25,
-  historyCap: 32,
-  denoiseView: 'output',
-});
+/**
+ * Every render setting, declared once: the type, defaults, validation, CLI options of `render` and
+ * `bench`, link parameters and panel bindings are all derived from this table (settings-schema.ts
+ * says how). To add a setting, add an entry here; the front ends pick it up.
+ */
+export const RENDER_SETTINGS = {
+  maxBounces: integer({
+    name: 'bounces', description: 'maximum bounces per path (0: emitters only, 1: direct light, ...)', min: 0, max: MAX_BOUNCES_LIMIT, default: 8,
+    cli: { flag: '--bounces', short: '-b', argument: '<n>' }, link: 'bounces', restarts: true,
+    panel: { folder: 'render', label: 'max bounces', step: 1, slider: [0, 32] },
+  }),
+  lightSampling: choice(LIGHT_SAMPLING, {
+    name: 'light sampling', description: 'BSDF sampling only (bsdf), or next-event estimation combined by MIS (mis)', default: 'mis',
+    cli: { flag: '--light-sampling', argument: '<strategy>' }, restarts: true,
+  }),
+  toneMapper: choice(TONE_MAPPERS, {
+    name: 'tone mapper', description: 'tone curve (PNG only)', default: 'aces',
+    cli: { flag: '--tonemap', argument: '<curve>' }, link: 'tonemap', restarts: false, panel: { folder: 'render', label: 'tone map' },
+  }),
+  exposureStops: number({
+    name: 'exposure', description: 'exposure in stops: radiance is scaled by 2^stops before the tone curve (PNG only)', min: -64, max: 64, default: 0,
+    cli: { flag: '--exposure', argument: '<stops>' }, link: 'exposure', restarts: false,
+    panel: { folder: 'render', label: 'exposure (stops)', step: 0.1, slider: [-8, 8] },
+  }),
+  seed: integer({
+    name: 'seed', description: 'seed of every random stream (same seed, scene and settings: same image)', min: 0, max: 0xffffffff, default: 1,
+    cli: { flag: '--seed', argument: '<n>' }, restarts: true,
+  }),
+  /** The torch at the camera: on or off, and any of its parameters overriding the scene's own torch (see effectiveTorch). */
+  torch: {
+    enabled: boolean({
+      name: 'torch', description: 'the light carried at the camera (on where the scene has one, as Doom maps do)', words: ['off', 'on'], default: true,
+      cli: { flag: '--torch', argument: '<on|off>' }, link: 'torch', restarts: true, panel: { folder: 'torch', label: 'torch' },
+    }),
+    color: optional(color({
+      name: 'torch colour', description: 'torch colour, linear RGB (it tints; --torch-intensity sets the strength)', min: 0, max: 1, default: [1, 1, 1],
+      cli: { flag: '--torch-color', argument: '<r,g,b>' }, link: 'torch-color', restarts: true, panel: { folder: 'torch', label: 'torch colour' },
+    })),
+    intensity: optional(number({
+      name: 'torch intensity', description: 'torch intensity in W/sr (with --torch-range, gives any scene a torch)', min: 0, max: Infinity, default: 0,
+      cli: { flag: '--torch-intensity', argument: '<W/sr>' }, link: 'torch-intensity', restarts: true, panel: { folder: 'torch', label: 'intensity (W/sr)' },
+    })),
+    range: optional(number({
+      name: 'torch range', description: 'distance at which the torch fades out', min: 0, above: true, max: Infinity, default: 1,
+      cli: { flag: '--torch-range', argument: '<distance>' }, link: 'torch-range', restarts: true, panel: { folder: 'torch', label: 'range' },
+    })),
+    radius: optional(number({ name: 'torch radius', description: 'radius of the torch (soft shadows)', min: 0, above: true, max: Infinity, default: 1, restarts: true })),
+  },
+  debugView: choice(DEBUG_VIEWS, {
+    name: 'debug view', description: 'show a debug view (from pixel-centre primary rays; the EXR then holds its raw values)', default: 'none',
+    // The CLI names a view to show; without --debug there is none.
+    cli: { flag: '--debug', argument: '<view>', values: DEBUG_VIEWS.filter((v) => v !== 'none') }, link: 'debug', restarts: false,
+    panel: { folder: 'debug', label: 'view' },
+  }),
+  debugLayout: choice(DEBUG_LAYOUTS, {
+    name: 'debug layout', description: 'the debug view instead of the image (no path tracing), beside it, or over it', default: 'replace',
+    cli: { flag: '--debug-layout', argument: '<layout>' }, link: 'layout', restarts: false, panel: { folder: 'debug', label: 'layout' },
+  }),
+  heatMax: numberOrAuto({
+    name: 'heat map maximum', description: "heat views: the count at the top of the colour scale ('auto': the image's maximum)", min: 0, above: true, max: Infinity, default: 'auto',
+    cli: { flag: '--heat-max', argument: '<n|auto>' }, link: 'heat-max', restarts: false, panel: { folder: 'debug', label: 'scale max (0: auto)', step: 1 },
+  }),
+  /** The panel's slider reaches the scene's own BVH depth (panel.ts). */
+  wireframeDepth: integer({
+    name: 'wireframe depth', description: 'wireframe view: the BVH depth whose boxes are drawn (0 = the scene bounds)', min: 0, max: MAX_WIREFRAME_DEPTH, default: 0,
+    cli: { flag: '--wireframe-depth', argument: '<d>' }, link: 'depth', restarts: false, panel: { folder: 'debug', label: 'box depth', step: 1 },
+  }),
+  temporal: boolean({
+    name: 'temporal', description: 'frame mode: accumulate over frames with reprojection (temporal denoising)', words: ['0', '1'], default: true,
+    cli: { flag: '--temporal', switch: true }, link: 'temporal', restarts: false, panel: { folder: 'denoise', label: 'temporal' },
+  }),
+  denoise: boolean({
+    name: 'denoise', description: 'frame mode: the edge-aware spatial (à-trous) filter', words: ['0', '1'], default: true,
+    cli: { flag: '--denoise', switch: true }, link: 'denoise', restarts: false, panel: { folder: 'denoise', label: 'spatial (à-trous)' },
+  }),
+  clampK: number({
+    name: 'clamp k', description: 'frame mode: history clamp to mean ± k·σ of the 3×3 neighbourhood (0: off)', min: 0, max: 16, default: 1.25,
+    cli: { flag: '--clamp-k', argument: '<k>' }, link: 'clamp-k', restarts: false, panel: { folder: 'denoise', label: 'clamp k·σ (0: off)', step: 0.05, slider: [0, 4] },
+  }),
+  historyCap: integerOrUnlimited({
+    name: 'history cap', description: "frame mode: longest temporal history in frames ('unlimited' also lifts the clamp while the camera is still)", min: 1, max: MAX_HISTORY_CAP, default: 32,
+    cli: { flag: '--history-cap', argument: '<n|unlimited>' }, link: 'history-cap', restarts: false,
+    panel: { folder: 'denoise', label: 'history cap', step: 1, slider: [1, 256], unlimitedLabel: 'converge when still' },
+  }),
+  denoiseView: choice(DENOISE_VIEWS, {
+    name: 'denoise view', description: 'frame mode: what the real-time chain shows', default: 'output',
+    cli: { flag: '--denoise-view', argument: '<view>' }, link: 'denoise-view', restarts: false, panel: { folder: 'denoise', label: 'show' },
+  }),
+} as const satisfies SettingGroup;
+
+export type RenderSettings = SettingsOf<typeof RENDER_SETTINGS>;
+export type TorchSettings = RenderSettings['torch'];
+export type RenderSettingsPatch = SettingsPatch<RenderSettings>;
+
+/** Every setting with its path, in declaration order. */
+export const SETTING_ENTRIES: readonly SettingEntry[] = flattenSchema(RENDER_SETTINGS);
+
+export const DEFAULT_SETTINGS: RenderSettings = defaultsOf(RENDER_SETTINGS);
 
 /** Settings that change the estimate itself: changing one restarts accumulation. */
-export const ESTIMATE_SETTINGS: readonly (keyof RenderSettings)[] = ['maxBounces', 'lightSampling', 'seed', 'torch'];
+export const ESTIMATE_SETTINGS: readonly (keyof RenderSettings)[] = [...new Set(SETTING_ENTRIES.filter((e) => e.spec.restarts).map((e) => e.path[0] as keyof RenderSettings))];
 
 /** The torch that lights the scene under these settings, or undefined when there is none. */
 export function effectiveTorch(scene: Pick<Scene, 'torch'> | undefined, t: TorchSettings): Torch | undefined {
@@ -111,50 +160,8 @@ export function effectiveTorch(scene: Pick<Scene, 'torch'> | undefined, t: Torch
   return { color: t.color ?? base?.color ?? [1, 1, 1], intensity, range, radius: t.radius ?? base?.radius ?? range / 256 };
 }
 
-export const MAX_BOUNCES_LIMIT = 1024;
-
+/** Refuses settings outside the schema's ranges with a LanternError that names the setting. */
 export function validateSettings(s: RenderSettings): RenderSettings {
-  if (!Number.isInteger(s.maxBounces) || s.maxBounces < 0 || s.maxBounces > MAX_BOUNCES_LIMIT) {
-    throw new LanternError(`bounces must be a whole number from 0 to ${MAX_BOUNCES_LIMIT}, not ${s.maxBounces}`);
-  }
-  if (!LIGHT_SAMPLING.includes(s.lightSampling)) {
-    throw new LanternError(`unknown light sampling '${s.lightSampling}'`, `Use one of: ${LIGHT_SAMPLING.join(', ')}`);
-  }
-  if (!TONE_MAPPERS.includes(s.toneMapper)) {
-    throw new LanternError(`unknown tone mapper '${s.toneMapper}'`, `Use one of: ${TONE_MAPPERS.join(', ')}`);
-  }
-  if (!Number.isFinite(s.exposureStops) || Math.abs(s.exposureStops) > 64) {
-    throw new LanternError(`exposure must be a number of stops between -64 and 64, not ${s.exposureStops}`);
-  }
-  if (!Number.isInteger(s.seed) || s.seed < 0 || s.seed > 0xffffffff) {
-    throw new LanternError(`seed must be a whole number from 0 to 4294967295, not ${s.seed}`);
-  }
-  const t = s.torch;
-  if (t.color && (t.color.length !== 3 || !t.color.every((c) => Number.isFinite(c) && c >= 0))) {
-    throw new LanternError(`torch colour must be three non-negative numbers, not ${t.color.join(', ')}`);
-  }
-  if (t.intensity !== undefined && !(Number.isFinite(t.intensity) && t.intensity >= 0)) throw new LanternError(`torch intensity must be a non-negative number, not ${t.intensity}`);
-  if (t.range !== undefined && !(Number.isFinite(t.range) && t.range > 0)) throw new LanternError(`torch range must be a positive number, not ${t.range}`);
-  if (t.radius !== undefined && !(Number.isFinite(t.radius) && t.radius > 0)) throw new LanternError(`torch radius must be a positive number, not ${t.radius}`);
-  if (!DEBUG_VIEWS.includes(s.debugView)) throw new LanternError(`unknown debug view '${s.debugView}'`, `Use one of: ${DEBUG_VIEWS.join(', ')}`);
-  if (!DEBUG_LAYOUTS.includes(s.debugLayout)) throw new LanternError(`unknown debug layout '${s.debugLayout}'`, `Use one of: ${DEBUG_LAYOUTS.join(', ')}`);
-  if (!Number.isInteger(s.wireframeDepth) || s.wireframeDepth < 0 || s.wireframeDepth > MAX_WIREFRAME_DEPTH) {
-    throw new LanternError(`wireframe depth must be a whole number from 0 to ${MAX_WIREFRAME_DEPTH}, not ${s.wireframeDepth}`);
-  }
-  if (s.heatMax !== 'auto' && !(Number.isFinite(s.heatMax) && s.heatMax > 0)) throw new LanternError(`heat map maximum must be a positive number or 'auto', not ${s.heatMax}`);
-  validateDenoiseSettings(s);
+  validateAgainst(SETTING_ENTRIES, s);
   return s;
-}
-
-function validateDenoiseSettings(s: RenderSettings): void {
-  if (typeof s.temporal !== 'boolean') throw new LanternError(`temporal must be true or false, not ${String(s.temporal)}`);
-  if (typeof s.denoise !== 'boolean') throw new LanternError(`denoise must be true or false, not ${String(s.denoise)}`);
-  if (!Number.isFinite(s.clampK) || s.clampK < 0 || s.clampK > 16) throw new LanternError(`clamp k must be a number from 0 (no clamp) to 16, not ${s.clampK}`);
-  const cap = s.historyCap;
-  if (cap !== 'unlimited' && !(Number.isInteger(cap) && cap >= 1 && cap <= MAX_HISTORY_CAP)) {
-    throw new LanternError(`history cap must be a whole number of frames from 1 to ${MAX_HISTORY_CAP}, or 'unlimited', not ${String(cap)}`);
-  }
-  if (!DENOISE_VIEWS.includes(s.denoiseView)) {
-    throw new LanternError(`unknown denoise view '${s.denoiseView}'`, `Use one of: ${DENOISE_VIEWS.join(', ')}`);
-  }
 }

@@ -159,8 +159,8 @@ describe('bad input', () => {
     [['render', 'cornell', '-W', '16384', '-H', '16384'], /image 16384×16384 is too large/],
     [['info', 'nope.obj'], /unknown scene 'nope\.obj'/],
     [['render', 'cornell', '--debug', 'heat'], /--debug must be one of heat-nodes, heat-triangles, wireframe/],
-    [['render', 'cornell', '--debug', 'wireframe', '--wireframe-depth', '99'], /--wireframe-depth must be from 0 to 64/],
-    [['render', 'cornell', '--debug', 'heat-nodes', '--heat-max', '0'], /--heat-max must be from/],
+    [['render', 'cornell', '--debug', 'wireframe', '--wireframe-depth', '99'], /--wireframe-depth must be a whole number from 0 to 64/],
+    [['render', 'cornell', '--debug', 'heat-nodes', '--heat-max', '0'], /--heat-max must be a positive number or 'auto'/],
     [['bvh-stats', 'nope'], /unknown scene 'nope'/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);

@@ -2,25 +2,30 @@
 import type { Command } from 'commander';
 import { runBenchmark } from '../../renderer/benchmark.ts';
 import type { CliContext } from '../context.ts';
+import { mergeSettings } from '../../renderer/settings-schema.ts';
+import type { SettingEntry } from '../../renderer/settings-schema.ts';
 import { integerOption, withImageOptions, withSceneOptions } from '../options.ts';
+import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 
-interface BenchOptions {
+interface BenchOptions extends Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   repeats: number;
-  bounces: number;
   lightTable?: string;
   json?: boolean;
 }
+
+/** The settings that change what path tracing costs: those that change the estimate. */
+const benchSetting = (entry: SettingEntry) => entry.spec.restarts;
 
 export function registerBench(program: Command, context: CliContext): void {
   const command = program
     .command('bench')
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
     .argument('<scene>', sceneHelp());
-  withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))
+  withSettingOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 })), benchSetting)
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
@@ -29,7 +34,7 @@ export function registerBench(program: Command, context: CliContext): void {
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
   await renderer.resize(o.width, o.height);
-  renderer.updateSettings({ maxBounces: o.bounces });
+  renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const s = prepared.bvh.stats;
   const report = {

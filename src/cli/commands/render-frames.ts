@@ -9,7 +9,6 @@ import { encodeExr } from '../../image/exr.ts';
 import { encodePng } from '../../image/png.ts';
 import { GpuTimer } from '../../gpu/timestamps.ts';
 import type { Renderer } from '../../renderer/renderer.ts';
-import type { DenoiseView, HistoryCap } from '../../renderer/settings.ts';
 import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { writeFile } from '../output-files.ts';
@@ -20,17 +19,9 @@ export interface FrameModeOptions {
   readonly temporal?: boolean;
   readonly path?: string;
   readonly frames?: number;
-  readonly historyCap?: HistoryCap;
-  readonly clampK?: number;
-  readonly denoiseView?: DenoiseView;
 }
 
 export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined);
-
-/** --history-cap: a whole number of frames or 'unlimited'. */
-export function historyCapOption(value: string): HistoryCap {
-  return value === 'unlimited' ? 'unlimited' : Number(value);
-}
 
 export interface FrameModeResult {
   readonly frames: number;
@@ -50,14 +41,8 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
+  // The denoiser's settings (--temporal, --denoise, --history-cap, ...) are the caller's, applied with the others.
   await renderer.enableRealTime();
-  renderer.updateSettings({
-    temporal: Boolean(o.temporal),
-    denoise: Boolean(o.denoise),
-    ...(o.historyCap !== undefined ? { historyCap: o.historyCap } : {}),
-    ...(o.clampK !== undefined ? { clampK: o.clampK } : {}),
-    ...(o.denoiseView !== undefined ? { denoiseView: o.denoiseView } : {}),
-  });
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
   const samples = new Map<string, number[]>();
   const changes: number[] = [];
