@@ -28,9 +28,10 @@ export const WAD_FORMAT: SceneFormat = {
   // IWADs first (the base game), then PWADs in the order given: PWADs override what comes before.
   arrange: <T extends FileHead>(files: readonly T[]) =>
     files.map((f, i) => ({ f, i, iwad: magic(f.head) === 'IWAD' })).sort((a, b) => Number(b.iwad) - Number(a.iwad) || a.i - b.i).map((x) => x.f),
-  open(set) {
+  // async so that a bad file rejects the promise instead of throwing before there is one.
+  async open(set) {
     if (set.files.length === 0) throw new LanternError('no WAD file was given');
-    return Promise.resolve(openStack(new WadStack(set.files.map((f) => readWad(f.bytes, f.name)))));
+    return openStack(new WadStack(set.files.map((f) => readWad(f.bytes, f.name))));
   },
 };
 
@@ -42,14 +43,14 @@ function openStack(stack: WadStack): OpenedScene {
   return {
     description: stack.describe(),
     parts: maps.map((m) => ({ name: m.name, loadable: m.format === 'doom', ...(m.format === 'doom' ? {} : { note: `${m.format} format: not supported` }) })),
-    scene(part, options = {}) {
+    async scene(part, options = {}) {
       const onWarning = options.onWarning;
       graphics ??= new DoomGraphics(stack, onWarning ? { onWarning } : {});
       // Without a part: the first map Lantern can build, not a Hexen map that happens to come first.
       const map = part ?? maps.find((m) => m.format === 'doom')?.name;
       const loaded = loadDoomMap(stack, map, { graphics, ...(onWarning ? { onWarning } : {}), ...(options.lightTable ? { lightTable: options.lightTable } : {}) });
       if (loaded.failures.length > 0) onWarning?.(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated: ${loaded.failures.map((f) => `#${f.sector}`).join(', ')}`);
-      return Promise.resolve(loaded.scene);
+      return loaded.scene;
     },
     inventory() {
       const summaries = summarizeMaps(stack);

@@ -34,13 +34,14 @@ export const PLY_FORMAT: SceneFormat = {
   sniff: (head) => startsPly(head) || gzippedPly(head),
   linkParam: 'ply',
   stacks: false,
-  open(set) {
+  async open(set) {
     // One file by construction (stacks: false); its name is the scene's, so messages say which file.
     const file = set.files[0]!;
-    return Promise.resolve({
+    return {
       description: file.name,
       parts: [],
-      scene: (_part, options = {}) => Promise.resolve(loadPly(file.bytes, file.name, options.onWarning ? { onWarning: options.onWarning } : {})),
-    });
+      // async so that a corrupt file rejects the promise instead of throwing before there is one.
+      scene: async (_part, options = {}) => loadPly(file.bytes, file.name, options.onWarning ? { onWarning: options.onWarning } : {}),
+    };
   },
 };
