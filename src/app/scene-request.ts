@@ -6,7 +6,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { builtinScene, isBuiltinScene } from '../loaders/builtin/index.ts';
-import { formatById, type NamedBytes, type OpenedScene, type ScenePart } from '../loaders/registry.ts';
+import { formatById, type NamedBytes, type OpenedScene, type ResolveSibling, type ScenePart } from '../loaders/registry.ts';
 import { prepareScene, PREPARE_STAGES, type PreparedScene } from '../renderer/prepare.ts';
 import type { Scene } from '../scene/types.ts';
 
@@ -64,13 +64,7 @@ export class SceneRequests {
     const format = formatById(request.format);
     if (!format) throw new Error(`no format '${request.format}' in the registry`);
     if (request.files.length === 0) throw new LanternError('no file was given');
-    const resolve = (relativePath: string) => {
-      // A dropped folder gives names, or paths relative to the folder dropped: match either.
-      const given = request.siblings.find((f) => f.name === relativePath || f.name.endsWith(`/${relativePath}`) || relativePath.endsWith(`/${f.name}`));
-      if (given) return Promise.resolve(given.bytes);
-      return request.baseUrl ? this.fetchFile(new URL(relativePath, request.baseUrl).href) : Promise.resolve(undefined);
-    };
-    const opened = await format.open({ files: request.files, resolve });
+    const opened = await format.open({ files: request.files, resolve: siblingResolver(request, this.fetchFile) });
     if (format.part && opened.parts.length > 0 && !opened.parts.some((p) => p.loadable)) {
       throw new LanternError(`${opened.description} has no ${format.part.noun} Lantern can build`, opened.parts.map((p) => `${p.name}: ${p.note ?? 'not supported'}`).slice(0, 3).join('; '));
     }
@@ -99,6 +93,18 @@ export class SceneRequests {
         return this.opened.scene(request.part, { onWarning });
     }
   }
+}
+
+/**
+ * A file set's siblings: those given with it (dropped or picked together) by name or by their path
+ * inside a picked folder, else fetched beside the served main file, else absent.
+ */
+export function siblingResolver(request: Pick<OpenFilesRequest, 'siblings' | 'baseUrl'>, fetchFile: FetchFile): ResolveSibling {
+  return (relativePath) => {
+    const given = request.siblings.find((f) => f.name === relativePath || f.name.endsWith(`/${relativePath}`) || relativePath.endsWith(`/${f.name}`));
+    if (given) return Promise.resolve(given.bytes);
+    return request.baseUrl ? fetchFile(new URL(relativePath, request.baseUrl).href) : Promise.resolve(undefined);
+  };
 }
 
 /** Every ArrayBuffer reachable from `value`, once each: the transfer list of a worker message. */
