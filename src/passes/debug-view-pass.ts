@@ -5,8 +5,8 @@
 import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type TraversalVariant } from '../gpu/kernel.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { DEBUG_VIEWS, type DebugView } from '../renderer/settings.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import { DEBUG_VIEWS, type DebugView } from './variants.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-view';

@@ -2,8 +2,8 @@
 import { KernelVariants, TRAVERSAL_VARIANTS, traversalVariant, type ComputeKernel, type TraversalVariant } from '../gpu/kernel.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import type { ViewUniform } from '../renderer/view.ts';
-import { LIGHT_SAMPLING, type LightSampling } from '../renderer/settings.ts';
+import type { ViewUniform } from '../gpu/view.ts';
+import { LIGHT_SAMPLING, type LightSampling } from './variants.ts';
 import type { Torch } from '../scene/types.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 

@@ -21,7 +21,7 @@ import { DebugViewPass } from '../passes/debug-view-pass.ts';
 import { debugLegend, scaleMax, type DebugLegend, type LegendFacts } from './debug-legend.ts';
 import type { PreparedScene } from './prepare.ts';
 import type { RenderSettings } from './settings.ts';
-import type { ViewUniform } from './view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes per pixel of the raw values (one vec4f). */
 const VALUE_BYTES_PER_PIXEL = 16;

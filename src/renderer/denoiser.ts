@@ -18,7 +18,7 @@ import { ATROUS_STEPS, atrousParams, createDenoisePasses, denoiseOutputParams, t
 import { PathTraceFramePass } from '../passes/path-trace-frame-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { RenderSettings } from './settings.ts';
-import type { ViewUniform } from './view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes of one vec4f per pixel. */
 const VEC4_BYTES = 16;

@@ -28,7 +28,7 @@ import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
 import { prepareScene, type PreparedScene } from './prepare.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
-import { ViewUniform } from './view.ts';
+import { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;
