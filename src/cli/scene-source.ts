@@ -12,7 +12,7 @@ import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/buil
 import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
 import { describeSceneArguments, formatByName, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
 import type { Scene } from '../scene/types.ts';
-import { readFileOrExplain, readJsonFile } from './wad-files.ts';
+import { readFileOrExplain, readJsonFile } from './read-files.ts';
 
 export const DRAGON_ALIAS = 'dragon';
 

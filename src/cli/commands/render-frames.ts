@@ -13,7 +13,7 @@ import type { DenoiseView, HistoryCap } from '../../renderer/settings.ts';
 import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { writeFile } from '../output-files.ts';
-import { readJsonFile } from '../wad-files.ts';
+import { readJsonFile } from '../read-files.ts';
 
 export interface FrameModeOptions {
   readonly denoise?: boolean;
