@@ -55,7 +55,7 @@ export async function startViewServer(options: ViewServerOptions): Promise<ViewS
     const { path, siblings = [] } = typeof file === 'string' ? { path: file } : file;
     const main = { path, url: `files/${i}/${encodeURIComponent(basename(path))}` };
     const beside = siblings.map((relative) => {
-      const parts = relative.split('/');
+      const parts = relative.split('/').filter((p) => p !== '.');
       if (relative.startsWith('/') || parts.some((p) => p === '..' || p === '' || p.includes('\\'))) {
         throw new LanternError(`${basename(path)} refers to '${relative}', outside its folder`, 'lantern view serves only files in or below the scene file\'s folder');
       }
