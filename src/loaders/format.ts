@@ -61,6 +61,8 @@ export interface FileFormat {
   readonly linkParam: string;
   /** Several named files make one set (joined by '+' in a scene argument, repeated link parameters). */
   readonly stacks: boolean;
+  /** A scene argument of this format's own shape, for help texts: 'iwad.wad+pwad.wad#MAP01'. */
+  readonly example?: string;
   /** What one file holds several of, selected by `#name` in a scene argument (Doom: 'map'), and its link parameter. */
   readonly part?: {
     readonly noun: string;

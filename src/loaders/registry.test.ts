@@ -134,3 +134,13 @@ describe('scene arguments and links', () => {
     expect(parseSceneLocation(new URLSearchParams('spf=2'))).toBeUndefined();
   });
 });
+
+describe('help', () => {
+  it('names the built-ins, the aliases and every format with its extensions', async () => {
+    const { describeSceneArguments } = await import('./registry.ts');
+    const help = describeSceneArguments(['dragon']);
+    expect(help).toMatch(/^a built-in scene \(cornell, furnace, bvh-teaching\), 'dragon', or a file: /);
+    for (const f of FORMATS) for (const e of f.extensions) expect(help).toContain(e);
+    expect(help).toContain("Doom WADs (.wad, '+' joins files, '#map' picks one: iwad.wad+pwad.wad#MAP01)");
+  });
+});

@@ -56,7 +56,10 @@ export function acceptedExtensions(formats: readonly FileFormat[] = FORMATS): st
 
 /** The scene-argument help: built-ins, then each format with its argument shape. */
 export function describeSceneArguments(aliases: readonly string[] = []): string {
-  const shapes = FORMATS.map((f) => (f.part ? `${f.description} (${f.extensions.join(', ')}${f.stacks ? `, '+' joins files` : ''}, '#${f.part.noun}' picks one: iwad.wad+pwad.wad#MAP01)` : `${f.description} (${f.extensions.join(', ')})`));
+  const shapes = FORMATS.map((f) => {
+    const how = [...f.extensions, ...(f.stacks ? ["'+' joins files"] : []), ...(f.part ? [`'#${f.part.noun}' picks one`] : [])].join(', ');
+    return `${f.description} (${how}${f.example ? `: ${f.example}` : ''})`;
+  });
   return `a built-in scene (${builtinSceneNames().join(', ')})${aliases.map((a) => `, '${a}'`).join('')}, or a file: ${shapes.join(', ')}`;
 }
 

@@ -19,6 +19,7 @@ export const WAD_FORMAT: SceneFormat = {
   sniff: (head) => magic(head) === 'IWAD' || magic(head) === 'PWAD',
   linkParam: 'wad',
   stacks: true,
+  example: 'iwad.wad+pwad.wad#MAP01',
   part: { noun: 'map', linkParam: 'map', normalize: (name) => name.toUpperCase() },
   parseReference(argument) {
     if (!isDoomUri(argument)) return undefined;
