@@ -1,7 +1,8 @@
 import { defineConfig } from 'vitest/config';
 
 // Three projects, one `npm test`:
-// - unit: pure TypeScript beside the code it tests (src/**/*.test.ts), no GPU.
+// - unit: pure TypeScript beside the code it tests (src/**/*.test.ts), no GPU, and the layering check
+//         over src/ (tests/architecture).
 // - gpu:  WebGPU through Dawn on SwiftShader (tests/gpu), one file at a time: SwiftShader already
 //         uses every core, so running GPU files in parallel only makes each one slower.
 // - e2e:  the built page in headless Chromium (tests/e2e) and the built CLI as a user runs it (tests/cli).
@@ -10,7 +11,7 @@ export default defineConfig({
     projects: [
       {
         extends: true,
-        test: { name: 'unit', include: ['src/**/*.test.ts'], testTimeout: 60_000 },
+        test: { name: 'unit', include: ['src/**/*.test.ts', 'tests/architecture/**/*.test.ts'], testTimeout: 60_000 },
       },
       {
         extends: true,

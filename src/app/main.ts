@@ -1,5 +1,6 @@
 /**
- * The page: scene picker, WAD/PLY opening (file picker and drag-and-drop) with a map picker, Play,
+ * The page: scene picker, opening files of the registry's formats (file picker and drag-and-drop)
+ * with a map picker for files of several scenes (WADs), Play,
  * the settings panel, and the canvas. Scenes load in a Web Worker with a progress bar; nothing
  * touches the GPU before Play. URL parameters (view-params.ts) choose the scene, camera and
  * settings, so a copied link restores a view.
@@ -9,6 +10,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { BUILTIN_SCENES, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
+import { acceptedExtensions, describeFormats, SNIFF_BYTES, sortFiles } from '../loaders/registry.ts';
 import type { Pose } from './camera-controller.ts';
 import { Input } from './input.ts';
 import { SettingsPanel } from './panel.ts';
@@ -52,9 +54,14 @@ let panel: SettingsPanel | undefined;
 /** Where the current scene came from (for links); undefined for files opened from this computer. */
 let current: SceneLocation | undefined;
 let loading: string | undefined;
-/** Where the open WAD stack was served from (links can name it), or undefined for local files. */
-let wadSource: { urls: readonly string[] } | undefined;
+/** Where the open file set was served from (links can name it), or undefined for local files. */
+let fileSource: { format: string; urls: readonly string[] } | undefined;
 let loadToken = 0;
+
+// What the picker offers and the drop zone says come from the registry, like everything else about formats.
+fileInput.accept = acceptedExtensions();
+$('open-label').title = `Open ${describeFormats()}; pick the files a scene needs together (an IWAD with its PWADs); you can also drop files on the page`;
+dropZone.textContent = `Drop ${describeFormats()} (a WAD stack: IWAD and PWADs together)`;
 
 for (const name of builtinSceneNames()) {
   const option = document.createElement('option');
@@ -147,45 +154,39 @@ function markFileScene(label: string): void {
   sceneSelect.value = FILE_OPTION;
 }
 
-/** IWADs first (the base game), then PWADs in the order given: PWADs override what comes before. */
-async function wadOrder(files: readonly File[]): Promise<File[]> {
-  const kinds = await Promise.all(files.map(async (f) => new TextDecoder().decode(await f.slice(0, 4).arrayBuffer())));
-  return files.map((f, i) => ({ f, iwad: kinds[i] === 'IWAD' })).sort((a, b) => Number(b.iwad) - Number(a.iwad)).map((x) => x.f);
-}
-
-/** Opens files picked or dropped (or served): WADs get a map picker, a PLY file is shown at once. */
-async function openFiles(files: readonly File[], where?: { urls: readonly string[]; map?: string }, view: ViewParams = {}): Promise<void> {
-  const wads = files.filter((f) => /\.wad$/i.test(f.name));
-  const ply = files.find((f) => /\.ply(\.gz)?$/i.test(f.name));
+/**
+ * Opens files picked or dropped (or served): the registry sorts them into one scene's files (a
+ * WAD stack, IWAD first) and siblings (a glTF's buffers and textures); a set of several scenes
+ * (a WAD's maps) gets a map picker, a set of one is shown at once.
+ */
+async function openFiles(files: readonly File[], where?: { urls: readonly string[]; part?: string }, view: ViewParams = {}): Promise<void> {
   try {
-    if (ply && wads.length === 0) {
-      markFileScene(ply.name);
+    const heads = await Promise.all(files.map(async (file) => ({ file, name: file.name, head: new Uint8Array(await file.slice(0, SNIFF_BYTES).arrayBuffer()) })));
+    const { format, main, siblings } = sortFiles(heads);
+    const baseUrl = where?.urls[0] ? new URL(where.urls[0], location.href).href : undefined;
+    const summary = await loader.openFiles(format.id, main.map((f) => f.file), siblings.map((f) => f.file), baseUrl);
+    fileSource = where ? { format: format.id, urls: where.urls } : undefined;
+    markFileScene(summary.description);
+    if (summary.parts.length === 0) {
       mapPicker.hidden = true;
-      await show({ kind: 'ply', file: { name: ply.name, bytes: new Uint8Array(await ply.arrayBuffer()) } }, where ? { kind: 'ply', url: where.urls[0]! } : undefined, view);
+      await showPart(undefined, view);
       return;
     }
-    if (wads.length === 0) {
-      throw new LanternError(`cannot open ${files.map((f) => `'${f.name}'`).join(', ')}`, 'Lantern opens Doom WAD files (.wad) and PLY meshes (.ply, .ply.gz)');
-    }
-    const summary = await loader.openWads(await wadOrder(wads));
     mapSelect.replaceChildren(
-      ...summary.maps.map((m) => {
+      ...summary.parts.map((m) => {
         const option = document.createElement('option');
         option.value = m.name;
-        option.textContent = m.format === 'doom' ? m.name : `${m.name} (${m.format} format: not supported)`;
-        option.disabled = m.format !== 'doom';
+        option.textContent = m.loadable ? m.name : `${m.name} (${m.note ?? 'not supported'})`;
+        option.disabled = !m.loadable;
         return option;
       }),
     );
-    const playable = summary.maps.filter((m) => m.format === 'doom');
-    if (playable.length === 0) throw new LanternError(`${summary.description} has only Hexen or UDMF maps`, 'Lantern reads Doom-format maps');
-    const wanted = where?.map && playable.some((m) => m.name === where.map) ? where.map : playable[0]!.name;
-    if (where?.map && wanted !== where.map) showMessage(`${summary.description} has no map ${where.map}; showing ${wanted}`, 'warning');
+    const playable = summary.parts.filter((m) => m.loadable);
+    const wanted = where?.part && playable.some((m) => m.name === where.part) ? where.part : playable[0]!.name;
+    if (where?.part && wanted !== where.part) showMessage(`${summary.description} has no ${format.part?.noun ?? 'part'} ${where.part}; showing ${wanted}`, 'warning');
     mapSelect.value = wanted;
     mapPicker.hidden = false;
-    markFileScene(summary.description);
-    wadSource = where ? { urls: where.urls } : undefined;
-    await showMap(wanted, view);
+    await showPart(wanted, view);
   } catch (e) {
     showMessage(describeError(e), 'error');
     // The picker goes back to what is still shown.
@@ -193,8 +194,10 @@ async function openFiles(files: readonly File[], where?: { urls: readonly string
   }
 }
 
-function showMap(map: string, view: ViewParams = {}): Promise<void> {
-  return show({ kind: 'doom-map', map }, wadSource ? { kind: 'wad', urls: wadSource.urls, map } : undefined, view);
+/** A scene of the open file set: a map of a WAD, or (part undefined) the set's only scene. */
+function showPart(part: string | undefined, view: ViewParams = {}): Promise<void> {
+  const where: SceneLocation | undefined = fileSource ? { kind: 'files', ...fileSource, ...(part ? { part } : {}) } : undefined;
+  return show({ kind: 'part', ...(part ? { part } : {}) }, where, view);
 }
 
 /** Files the server offers (`lantern view` serves the files named on its command line). */
@@ -273,7 +276,7 @@ sceneSelect.addEventListener('change', () => {
 });
 mapSelect.addEventListener('change', () => {
   clearMessage();
-  void showMap(mapSelect.value);
+  void showPart(mapSelect.value);
 });
 fileInput.addEventListener('change', () => {
   const files = [...(fileInput.files ?? [])];
@@ -316,10 +319,10 @@ if (!navigator.gpu) {
   showMessage(describeError(new LanternError('this browser has no WebGPU', 'Use Chrome or Edge 113+, Safari 26+ or Firefox 141+ on Windows; on Linux start Chrome with --enable-unsafe-webgpu --enable-features=Vulkan')), 'error');
 }
 const scene = linked.scene;
-if (scene?.kind === 'wad' || scene?.kind === 'ply') {
-  const urls = scene.kind === 'wad' ? scene.urls : [scene.url];
+if (scene?.kind === 'files') {
+  const urls = scene.urls;
   fetchFiles(urls)
-    .then((files) => openFiles(files, { urls, ...(scene.kind === 'wad' && scene.map ? { map: scene.map } : {}) }, linked))
+    .then((files) => openFiles(files, { urls, ...(scene.part ? { part: scene.part } : {}) }, linked))
     .catch(async (e) => {
       showMessage(describeError(e), 'error');
       await showBuiltin('cornell');

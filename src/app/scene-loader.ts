@@ -1,10 +1,10 @@
 /**
- * The page's side of the scene worker: promises for opening WADs and loading scenes, with progress
- * callbacks. One worker for the page's lifetime (it keeps the open WAD's textures between maps).
+ * The page's side of the scene worker: promises for opening file sets and loading scenes, with
+ * progress callbacks. One worker for the page's lifetime (it keeps an open WAD's textures between maps).
  */
 import { LanternError } from '../errors.ts';
 import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
-import type { LoadedScene, NamedBytes, ProgressListener, SceneRequest, WadSummary } from './scene-request.ts';
+import type { FileSetSummary, LoadedScene, NamedBytes, ProgressListener, SceneRequest } from './scene-request.ts';
 
 interface Pending {
   resolve(reply: WorkerReply): void;
@@ -26,16 +26,19 @@ export class SceneLoader {
     };
   }
 
-  async openWads(files: readonly File[]): Promise<WadSummary> {
-    const named: NamedBytes[] = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) })));
-    const reply = await this.send({ id: this.nextId++, type: 'open-wads', files: named }, named.map((f) => f.bytes.buffer as ArrayBuffer));
-    if (reply.type !== 'wads') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
+  /** Opens one scene's files, sorted by the registry: the main files in load order, and their siblings. */
+  async openFiles(format: string, files: readonly File[], siblings: readonly File[], baseUrl?: string): Promise<FileSetSummary> {
+    // Siblings keep their path inside a picked folder, since a glTF names its textures by relative path.
+    const read = (f: File, name: string): Promise<NamedBytes> => f.arrayBuffer().then((b) => ({ name, bytes: new Uint8Array(b) }));
+    const [main, beside] = await Promise.all([Promise.all(files.map((f) => read(f, f.name))), Promise.all(siblings.map((f) => read(f, f.webkitRelativePath || f.name)))]);
+    const request = { format, files: main, siblings: beside, ...(baseUrl ? { baseUrl } : {}) };
+    const reply = await this.send({ id: this.nextId++, type: 'open-files', request }, [...main, ...beside].map((f) => f.bytes.buffer as ArrayBuffer));
+    if (reply.type !== 'opened') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
     return reply.summary;
   }
 
   async load(request: SceneRequest, onProgress?: ProgressListener): Promise<LoadedScene> {
-    const transfer = request.kind === 'ply' ? [request.file.bytes.buffer as ArrayBuffer] : [];
-    const reply = await this.send({ id: this.nextId++, type: 'load', request }, transfer, onProgress);
+    const reply = await this.send({ id: this.nextId++, type: 'load', request }, [], onProgress);
     if (reply.type !== 'loaded') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
     return reply.loaded;
   }

@@ -1,32 +1,40 @@
 /**
- * What the page asks the scene worker for, and the pure code that answers: built-in scenes, Doom
- * maps from a stack of WAD files (IWAD first, PWADs after), PLY meshes. Everything here runs in a
- * Web Worker (scene-worker.ts) so that a large level never freezes the page, and in unit tests.
+ * What the page asks the scene worker for, and the pure code that answers: built-in scenes, and
+ * scenes from a file set of any format in the loader registry (a Doom WAD stack and its maps, a
+ * PLY mesh). Everything here runs in a Web Worker (scene-worker.ts) so that a large level never
+ * freezes the page, and in unit tests.
  */
 import { LanternError } from '../errors.ts';
 import { builtinScene, isBuiltinScene } from '../loaders/builtin/index.ts';
-import { loadDoomMap } from '../loaders/doom/load.ts';
-import { DoomGraphics } from '../loaders/doom/textures.ts';
-import { readWad, WadStack, type MapFormat } from '../loaders/doom/wad.ts';
-import { loadPly } from '../loaders/ply/ply.ts';
+import { formatById, type NamedBytes, type OpenedScene, type ResolveSibling, type ScenePart } from '../loaders/registry.ts';
 import { prepareScene, PREPARE_STAGES, type PreparedScene } from '../renderer/prepare.ts';
 import type { Scene } from '../scene/types.ts';
 
-export interface NamedBytes {
-  readonly name: string;
-  readonly bytes: Uint8Array;
+export type { NamedBytes };
+
+/** Files the page sorted with the registry (loaders/registry.ts sortFiles): one scene's set. */
+export interface OpenFilesRequest {
+  /** A registry id. */
+  readonly format: string;
+  /** The set's files in load order (a WAD stack: IWAD first). */
+  readonly files: readonly NamedBytes[];
+  /** Files given alongside (a glTF's .bin and textures, dropped with it), by name or relative path. */
+  readonly siblings: readonly NamedBytes[];
+  /** Where the main file was served from, so that siblings not given can be fetched beside it. */
+  readonly baseUrl?: string;
 }
 
 export type SceneRequest =
   | { readonly kind: 'builtin'; readonly name: string }
-  /** A map of the WAD stack last opened with `openWads`. */
-  | { readonly kind: 'doom-map'; readonly map: string }
-  | { readonly kind: 'ply'; readonly file: NamedBytes };
+  /** A scene of the file set last opened with `openFiles`: a map of a WAD, or the set's only scene. */
+  | { readonly kind: 'part'; readonly part?: string };
 
-export interface WadSummary {
+export interface FileSetSummary {
+  readonly format: string;
   /** "freedoom1.wad + mymod.wad". */
   readonly description: string;
-  readonly maps: readonly { readonly name: string; readonly format: MapFormat }[];
+  /** What the set holds several of (maps), empty for a one-scene set. */
+  readonly parts: readonly ScenePart[];
 }
 
 export interface LoadedScene {
@@ -38,53 +46,65 @@ export interface LoadedScene {
 
 export type ProgressListener = (stage: string, fraction: number) => void;
 
+/** Fetches a file by absolute URL, undefined when the server has none (injected: the worker fetches, tests do not). */
+export type FetchFile = (url: string) => Promise<Uint8Array | undefined>;
+
 /** Loading stages and the fraction of the work done when each begins (rough, for a progress bar). */
 const LOAD_STAGE = 'building the scene';
 const STAGE_FRACTIONS: Record<string, number> = { [LOAD_STAGE]: 0.05, [PREPARE_STAGES[0]]: 0.45, [PREPARE_STAGES[1]]: 0.5, [PREPARE_STAGES[2]]: 0.9 };
 
-/** Holds the open WAD stack between requests, so that picking another map reuses its textures. */
+/** Holds the open file set between requests, so that picking another map reuses its textures. */
 export class SceneRequests {
-  private stack?: WadStack;
-  private graphics?: DoomGraphics;
+  private opened?: OpenedScene;
 
-  /** Reads a stack of WAD files (IWAD first); throws a LanternError naming a file that is not a WAD. */
-  openWads(files: readonly NamedBytes[]): WadSummary {
-    if (files.length === 0) throw new LanternError('no WAD file was given');
-    const stack = new WadStack(files.map((f) => readWad(f.bytes, f.name)));
-    const maps = stack.maps().map((m) => ({ name: m.name, format: m.format }));
-    if (maps.length === 0) throw new LanternError(`${stack.describe()} has no maps`, 'Open an IWAD (such as freedoom1.wad) or a PWAD that contains maps');
-    this.stack = stack;
-    this.graphics = undefined;
-    return { description: stack.describe(), maps };
+  constructor(private readonly fetchFile: FetchFile = () => Promise.resolve(undefined)) {}
+
+  /** Opens a file set; throws a LanternError naming a file that is not what its format expects. */
+  async openFiles(request: OpenFilesRequest): Promise<FileSetSummary> {
+    const format = formatById(request.format);
+    if (!format) throw new Error(`no format '${request.format}' in the registry`);
+    if (request.files.length === 0) throw new LanternError('no file was given');
+    const opened = await format.open({ files: request.files, resolve: siblingResolver(request, this.fetchFile) });
+    if (format.part && opened.parts.length > 0 && !opened.parts.some((p) => p.loadable)) {
+      throw new LanternError(`${opened.description} has no ${format.part.noun} Lantern can build`, opened.parts.map((p) => `${p.name}: ${p.note ?? 'not supported'}`).slice(0, 3).join('; '));
+    }
+    this.opened = opened;
+    return { format: format.id, description: opened.description, parts: opened.parts };
   }
 
-  load(request: SceneRequest, onProgress: ProgressListener = () => {}): LoadedScene {
+  async load(request: SceneRequest, onProgress: ProgressListener = () => {}): Promise<LoadedScene> {
     const t0 = performance.now();
     const warnings: string[] = [];
     const onWarning = (w: string) => warnings.push(w);
     onProgress(LOAD_STAGE, STAGE_FRACTIONS[LOAD_STAGE]!);
-    const scene = this.scene(request, onWarning);
+    const scene = await this.scene(request, onWarning);
     const prepared = prepareScene(scene, (stage) => onProgress(stage, STAGE_FRACTIONS[stage] ?? 0));
     onProgress('done', 1);
     return { prepared, warnings, loadMs: performance.now() - t0 };
   }
 
-  private scene(request: SceneRequest, onWarning: (w: string) => void): Scene {
+  private scene(request: SceneRequest, onWarning: (w: string) => void): Promise<Scene> {
     switch (request.kind) {
       case 'builtin':
         if (!isBuiltinScene(request.name)) throw new LanternError(`unknown scene '${request.name}'`);
-        return builtinScene(request.name);
-      case 'ply':
-        return loadPly(request.file.bytes, request.file.name, { onWarning });
-      case 'doom-map': {
-        if (!this.stack) throw new LanternError('no WAD is open', 'Open a WAD file first');
-        this.graphics ??= new DoomGraphics(this.stack, { onWarning });
-        const loaded = loadDoomMap(this.stack, request.map, { onWarning, graphics: this.graphics });
-        if (loaded.failures.length > 0) onWarning(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated`);
-        return loaded.scene;
-      }
+        return Promise.resolve(builtinScene(request.name));
+      case 'part':
+        if (!this.opened) throw new LanternError('no file is open', 'Open a file first');
+        return this.opened.scene(request.part, { onWarning });
     }
   }
+}
+
+/**
+ * A file set's siblings: those given with it (dropped or picked together) by name or by their path
+ * inside a picked folder, else fetched beside the served main file, else absent.
+ */
+export function siblingResolver(request: Pick<OpenFilesRequest, 'siblings' | 'baseUrl'>, fetchFile: FetchFile): ResolveSibling {
+  return (relativePath) => {
+    const given = request.siblings.find((f) => f.name === relativePath || f.name.endsWith(`/${relativePath}`) || relativePath.endsWith(`/${f.name}`));
+    if (given) return Promise.resolve(given.bytes);
+    return request.baseUrl ? fetchFile(new URL(relativePath, request.baseUrl).href) : Promise.resolve(undefined);
+  };
 }
 
 /** Every ArrayBuffer reachable from `value`, once each: the transfer list of a worker message. */

@@ -1,5 +1,5 @@
 /**
- * The scene worker: parses WADs and meshes, builds the BVH and packs the scene off the main thread,
+ * The scene worker: opens files of any registered format (WADs, meshes), builds the BVH and packs the scene off the main thread,
  * so that the page keeps drawing (and the progress bar keeps moving) while a level loads. Protocol:
  * scene-protocol.ts. Errors travel back as message + hint and become LanternErrors again.
  */
@@ -7,17 +7,25 @@ import { LanternError } from '../errors.ts';
 import { SceneRequests, transferables } from './scene-request.ts';
 import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
 
-const requests = new SceneRequests();
+/** Siblings of a served file (a glTF's textures), fetched beside it; a 404 is a missing file, not an error. */
+async function fetchFile(url: string): Promise<Uint8Array | undefined> {
+  const response = await fetch(url);
+  if (response.status === 404) return undefined;
+  if (!response.ok) throw new LanternError(`cannot fetch '${url}': HTTP ${response.status}`);
+  return new Uint8Array(await response.arrayBuffer());
+}
+
+const requests = new SceneRequests(fetchFile);
 const post = (reply: WorkerReply, transfer: Transferable[] = []) => (self as unknown as Worker).postMessage(reply, transfer);
 
-self.onmessage = (event: MessageEvent<WorkerRequest>) => {
+self.onmessage = async (event: MessageEvent<WorkerRequest>) => {
   const message = event.data;
   const { id } = message;
   try {
-    if (message.type === 'open-wads') {
-      post({ id, type: 'wads', summary: requests.openWads(message.files) });
+    if (message.type === 'open-files') {
+      post({ id, type: 'opened', summary: await requests.openFiles(message.request) });
     } else {
-      const loaded = requests.load(message.request, (stage, fraction) => post({ id, type: 'progress', stage, fraction }));
+      const loaded = await requests.load(message.request, (stage, fraction) => post({ id, type: 'progress', stage, fraction }));
       // The freshly built arrays move to the page without a copy; the scene itself is copied, since
       // the worker keeps its textures for the next map of the same WAD.
       const { triangles, bvh, packed } = loaded.prepared;

@@ -6,7 +6,7 @@ import { formatViewParams, LINKED_SETTINGS, linkedRenderSettings, parseViewParam
 describe('view parameters', () => {
   it('round-trip a full view', () => {
     const view: ViewParams = {
-      scene: { kind: 'wad', urls: ['files/0/freedoom1.wad', 'files/1/my.wad'], map: 'E1M2' },
+      scene: { kind: 'files', format: 'doom-wad', urls: ['files/0/freedoom1.wad', 'files/1/my.wad'], part: 'E1M2' },
       pose: { position: [1024.5, 41, -3200.25], yaw: 1.5708, pitch: -0.1 },
       fovDegrees: 73.74,
       mode: 'walk',
@@ -37,8 +37,8 @@ describe('view parameters', () => {
 
   it('reads the scene forms and ignores what is absent', () => {
     expect(parseViewParams(new URLSearchParams('scene=furnace')).view).toEqual({ scene: { kind: 'builtin', name: 'furnace' } });
-    expect(parseViewParams(new URLSearchParams('ply=files/0/dragon.ply.gz')).view.scene).toEqual({ kind: 'ply', url: 'files/0/dragon.ply.gz' });
-    expect(parseViewParams(new URLSearchParams('wad=a.wad&map=e1m1')).view.scene).toEqual({ kind: 'wad', urls: ['a.wad'], map: 'E1M1' });
+    expect(parseViewParams(new URLSearchParams('ply=files/0/dragon.ply.gz')).view.scene).toEqual({ kind: 'files', format: 'ply', urls: ['files/0/dragon.ply.gz'] });
+    expect(parseViewParams(new URLSearchParams('wad=a.wad&map=e1m1')).view.scene).toEqual({ kind: 'files', format: 'doom-wad', urls: ['a.wad'], part: 'E1M1' });
     expect(parseViewParams(new URLSearchParams('')).view).toEqual({});
   });
 

@@ -5,6 +5,7 @@
  *   scene=cornell                      a built-in scene
  *   wad=<url>[&wad=<url>…]&map=E1M1    a Doom map from WAD files the server offers (IWAD first)
  *   ply=<url>                          a PLY mesh the server offers
+ *                                      (the scene parameters: loaders/scene-link.ts, from the registry)
  *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1
  *   and every render setting with a `link` name in RENDER_SETTINGS (renderer/settings.ts): bounces,
  *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
@@ -13,12 +14,10 @@
  */
 import { formatSettingText, getAt, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
 import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
+import { formatSceneLocation, parseSceneLocation, type SceneLocation } from '../loaders/scene-link.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 
-export type SceneLocation =
-  | { readonly kind: 'builtin'; readonly name: string }
-  | { readonly kind: 'wad'; readonly urls: readonly string[]; readonly map?: string }
-  | { readonly kind: 'ply'; readonly url: string };
+export type { SceneLocation };
 
 /** The settings that links carry. */
 export const LINKED_SETTINGS: readonly SettingEntry[] = SETTING_ENTRIES.filter((e) => e.spec.link !== undefined);
@@ -75,13 +74,8 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
     }
     return v;
   };
-  const wads = params.getAll('wad');
-  const ply = params.get('ply');
-  const scene = params.get('scene');
-  const map = params.get('map');
-  if (wads.length > 0) view.scene = { kind: 'wad', urls: wads, ...(map ? { map: map.toUpperCase() } : {}) };
-  else if (ply) view.scene = { kind: 'ply', url: ply };
-  else if (scene) view.scene = { kind: 'builtin', name: scene };
+  const scene = parseSceneLocation(params);
+  if (scene) view.scene = scene;
 
   const cam = numbers('cam', 5);
   if (cam) view.pose = { position: [cam[0]!, cam[1]!, cam[2]!], yaw: cam[3]!, pitch: cam[4]! };
@@ -112,12 +106,7 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
 
 export function formatViewParams(view: ViewParams): URLSearchParams {
   const p = new URLSearchParams();
-  const s = view.scene;
-  if (s?.kind === 'builtin') p.set('scene', s.name);
-  else if (s?.kind === 'wad') {
-    for (const url of s.urls) p.append('wad', url);
-    if (s.map) p.set('map', s.map);
-  } else if (s?.kind === 'ply') p.set('ply', s.url);
+  if (view.scene) formatSceneLocation(view.scene, p);
   if (view.pose) p.set('cam', [...view.pose.position, view.pose.yaw, view.pose.pitch].map(round).join(','));
   if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
   if (view.mode) p.set('mode', view.mode);

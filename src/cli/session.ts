@@ -15,7 +15,7 @@ export interface Session {
 
 export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string): Promise<Session> {
   const t0 = performance.now();
-  const scene = loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
+  const scene = await loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
   const prepared = prepareScene(scene);
   const loadMs = performance.now() - t0;
   const gpu = await acquireNodeGpu({ onNote: note });

@@ -1,12 +1,13 @@
 /**
  * The small local web server behind `lantern view`: the built page (dist/app) and the scene files
- * named on the command line, each at `files/<n>/<name>`, nothing else. It binds to 127.0.0.1 by
- * default and never serves a path it was not given (no directory listing, no `..`).
+ * named on the command line, each at `files/<n>/<name>`, with the siblings its format says it
+ * refers to (a glTF's buffers and textures) at `files/<n>/<relative path>`, nothing else. It binds
+ * to 127.0.0.1 by default and never serves a path it was not given (no directory listing, no `..`).
  */
 import { createReadStream, existsSync, statSync } from 'node:fs';
 import { createServer, type IncomingMessage, type ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
-import { basename, extname, join, normalize, resolve, sep } from 'node:path';
+import { basename, dirname, extname, join, normalize, resolve, sep } from 'node:path';
 import { LanternError } from '../errors.ts';
 
 const CONTENT_TYPES: Record<string, string> = {
@@ -24,11 +25,17 @@ const CONTENT_TYPES: Record<string, string> = {
 export interface ViewServerOptions {
   /** The built page: a folder with index.html. */
   readonly appDir: string;
-  /** Scene files to offer, in order. */
-  readonly files?: readonly string[];
+  /** Scene files to offer, in order: a path, or a path with the siblings it refers to. */
+  readonly files?: readonly (string | OfferedFile)[];
   readonly host?: string;
   /** 0 picks a free port. */
   readonly port?: number;
+}
+
+export interface OfferedFile {
+  readonly path: string;
+  /** Paths relative to `path`'s folder ('/'-separated); any with '..' or a leading '/' is refused. */
+  readonly siblings?: readonly string[];
 }
 
 export interface ViewServer {
@@ -44,7 +51,19 @@ export async function startViewServer(options: ViewServerOptions): Promise<ViewS
   if (!existsSync(join(appDir, 'index.html'))) {
     throw new LanternError(`the page is not built (${join(appDir, 'index.html')} is missing)`, 'Run `npm run build:app`, or start with `npm run view`, which builds it');
   }
-  const files = (options.files ?? []).map((path, i) => ({ path, url: `files/${i}/${encodeURIComponent(basename(path))}` }));
+  const files = (options.files ?? []).flatMap((file, i) => {
+    const { path, siblings = [] } = typeof file === 'string' ? { path: file } : file;
+    const main = { path, url: `files/${i}/${encodeURIComponent(basename(path))}` };
+    const beside = siblings.map((relative) => {
+      const parts = relative.split('/').filter((p) => p !== '.');
+      if (relative.startsWith('/') || parts.some((p) => p === '..' || p === '' || p.includes('\\'))) {
+        throw new LanternError(`${basename(path)} refers to '${relative}', outside its folder`, 'lantern view serves only files in or below the scene file\'s folder');
+      }
+      return { path: join(dirname(path), ...parts), url: `files/${i}/${parts.map(encodeURIComponent).join('/')}`, sibling: true };
+    });
+    return [main, ...beside];
+  });
+  const mains = files.filter((f) => !('sibling' in f));
   const server = createServer((request, response) => serve(request, response, appDir, files));
   await new Promise<void>((resolve, reject) => {
     server.once('error', (e: NodeJS.ErrnoException) =>
@@ -56,7 +75,7 @@ export async function startViewServer(options: ViewServerOptions): Promise<ViewS
   const host = address.family === 'IPv6' ? `[${address.address}]` : address.address;
   return {
     url: `http://${host}:${address.port}/`,
-    fileUrls: files.map((f) => f.url),
+    fileUrls: mains.map((f) => f.url),
     close: () =>
       new Promise<void>((resolve) => {
         server.closeAllConnections();

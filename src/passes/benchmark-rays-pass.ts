@@ -4,7 +4,7 @@
  * (shaders/passes/diffuse-rays.wgsl). Two modules, one small class: they only ever run together.
  */
 import { ComputeKernel } from '../gpu/kernel.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { rayDispatchSize } from './trace-rays-pass.ts';
 import { UniformParams } from './uniform-params.ts';
 

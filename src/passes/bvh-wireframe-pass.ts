@@ -6,7 +6,7 @@
 import { BindGroupFactory, compileShader, createBindGroupLayouts } from '../gpu/kernel.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/bvh-wireframe';

@@ -3,9 +3,9 @@
  * and wireframe lines and composes them with the tone-mapped image into the image that is shown.
  */
 import { ComputeKernel } from '../gpu/kernel.ts';
-import { COLOR_SCALE_STOPS, stopRgb } from '../renderer/debug-legend.ts';
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, type DebugLayout, type DebugView } from '../renderer/settings.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import { COLOR_SCALE_STOPS, stopRgb } from '../math/color-scale.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, type DebugLayout, type DebugView } from './variants.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-compose';

@@ -6,8 +6,8 @@ import { SceneKernels } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { DEBUG_VIEWS, type DebugView } from '../renderer/settings.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import { DEBUG_VIEWS, type DebugView } from './variants.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-view';

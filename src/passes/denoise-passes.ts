@@ -3,7 +3,7 @@
  * (shaders/passes/temporal.wgsl), the à-trous iterations (shaders/passes/atrous.wgsl) and the output
  * (shaders/passes/denoise-output.wgsl). Each is an ImagePass; what differs is its parameters.
  */
-import { DENOISE_VIEWS, type DenoiseView } from '../renderer/settings.ts';
+import { DENOISE_VIEWS, type DenoiseView } from './variants.ts';
 import { ImagePass } from './image-pass.ts';
 import type { UniformValues } from './uniform-params.ts';
 

@@ -6,7 +6,7 @@
  */
 import { ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 /** Must match @workgroup_size of every image pass. */

@@ -6,7 +6,7 @@
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { cameraBasis, type ViewUniform } from '../renderer/view.ts';
+import { cameraBasis, type ViewUniform } from '../gpu/view.ts';
 import type { Camera } from '../scene/types.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';

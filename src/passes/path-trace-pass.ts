@@ -3,8 +3,8 @@ import { SceneKernels, TRACING_FEATURES, type ComputeKernel } from '../gpu/kerne
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import type { ViewUniform } from '../renderer/view.ts';
-import { LIGHT_SAMPLING, type LightSampling } from '../renderer/settings.ts';
+import type { ViewUniform } from '../gpu/view.ts';
+import { LIGHT_SAMPLING, type LightSampling } from './variants.ts';
 import type { Torch } from '../scene/types.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 

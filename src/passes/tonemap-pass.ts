@@ -1,8 +1,8 @@
 /** Tone mapping (shaders/passes/tonemap.wgsl): accumulation → 8-bit sRGB image texture. */
 import { ComputeKernel } from '../gpu/kernel.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { TONE_MAPPERS, type ToneMapper } from '../renderer/settings.ts';
-import type { ViewUniform } from '../renderer/view.ts';
+import { TONE_MAPPERS, type ToneMapper } from './variants.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/tonemap';

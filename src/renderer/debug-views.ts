@@ -22,7 +22,7 @@ import { debugLegend, scaleMax, type DebugLegend, type LegendFacts } from './deb
 import type { PreparedScene } from './prepare.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { RenderSettings } from './settings.ts';
-import type { ViewUniform } from './view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes per pixel of the raw values (one vec4f). */
 const VALUE_BYTES_PER_PIXEL = 16;

@@ -19,7 +19,7 @@ import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass } from '../passes/path-trace-frame-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { RenderSettings } from './settings.ts';
-import type { ViewUniform } from './view.ts';
+import type { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes of one vec4f per pixel. */
 const VEC4_BYTES = 16;

@@ -29,7 +29,7 @@ import { Denoiser } from './denoiser.ts';
 import { moveInstances, MOVED_BUFFERS, prepareScene, type PreparedScene } from './prepare.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
-import { ViewUniform } from './view.ts';
+import { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;

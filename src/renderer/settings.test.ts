@@ -17,7 +17,7 @@ describe('closed lists mirror their WGSL constants by position', () => {
     ['debug views', DEBUG_VIEWS, 'lib/debug-views', 'DEBUG_VIEW'],
     ['debug layouts', DEBUG_LAYOUTS, 'lib/debug-views', 'DEBUG_LAYOUT'],
     ['tone mappers', TONE_MAPPERS, 'lib/color', 'TONEMAP'],
-    ['light sampling', LIGHT_SAMPLING, 'passes/path-trace', 'LIGHT_SAMPLING'],
+    ['light sampling', LIGHT_SAMPLING, 'integrator/path', 'LIGHT_SAMPLING'],
   ] as const)('%s', (_, names, module, prefix) => {
     const constants = wgslConstants(module, prefix);
     expect(constants.size).toBe(names.length);

@@ -2,9 +2,7 @@
  * Render settings: what a user can change without changing the scene, declared once in the table
  * RENDER_SETTINGS below (one entry per setting: type, default, valid range, description, CLI flag,
  * link parameter, whether it restarts accumulation, panel hint). The closed lists mirror WGSL
- * constants by position (TONEMAP_* in shaders/lib/color.wgsl, LIGHT_SAMPLING_* in
- * shaders/passes/path-trace.wgsl, DEBUG_VIEW_* and DEBUG_LAYOUT_* in shaders/lib/debug-views.wgsl);
- * a unit test keeps the two in step.
+ * constants by position (passes/variants.ts says which); a unit test keeps the two in step.
  */
 import type { Scene, Torch } from '../scene/types.ts';
 import {
@@ -12,34 +10,13 @@ import {
   type SettingEntry, type SettingGroup, type SettingsOf, type SettingsPatch,
 } from './settings-schema.ts';
 
-export const TONE_MAPPERS = ['linear', 'reinhard', 'aces'] as const;
-export type ToneMapper = (typeof TONE_MAPPERS)[number];
-
-/** 'bsdf': BSDF sampling only (emitters found by chance). 'mis': next-event estimation + BSDF sampling, combined by MIS. */
-export const LIGHT_SAMPLING = ['bsdf', 'mis'] as const;
-export type LightSampling = (typeof LIGHT_SAMPLING)[number];
-
-/**
- * What the debug views show instead of (or beside, or over) the rendered image: BVH work per primary
- * ray (nodes visited, triangles tested), the boxes at one depth, the size and depth of the leaf hit,
- * and surface attributes. 'none' shows the rendered image only. See renderer/debug-views.ts.
- */
-export const DEBUG_VIEWS = ['none', 'heat-nodes', 'heat-triangles', 'wireframe', 'leaf-size', 'bvh-depth', 'normals', 'albedo', 'barycentrics', 'triangle-id'] as const;
-export type DebugView = (typeof DEBUG_VIEWS)[number];
-
-/** How a debug view meets the image: instead of it, in a pane beside it (both at half size), or blended over it. */
-export const DEBUG_LAYOUTS = ['replace', 'side-by-side', 'overlay'] as const;
-export type DebugLayout = (typeof DEBUG_LAYOUTS)[number];
+// The closed lists live beside the passes that turn them into WGSL constants (passes sit below the renderer).
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS } from '../passes/variants.ts';
+export { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS } from '../passes/variants.ts';
+export type { DebugLayout, DebugView, DenoiseView, LightSampling, ToneMapper } from '../passes/variants.ts';
 
 /** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
 export const MAX_WIREFRAME_DEPTH = 64;
-
-/**
- * What the real-time chain (Renderer.renderFrame) shows: its output, or one of the denoiser's debug
- * views. Mirrors DENOISE_VIEW_* in shaders/passes/denoise-output.wgsl by position.
- */
-export const DENOISE_VIEWS = ['output', 'history-length', 'variance', 'normal', 'depth', 'albedo', 'motion', 'id'] as const;
-export type DenoiseView = (typeof DENOISE_VIEWS)[number];
 
 /** Frames of temporal history: a cap, or no cap (a still camera then converges like progressive rendering). */
 export type HistoryCap = number | 'unlimited';

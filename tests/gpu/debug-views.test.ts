@@ -12,7 +12,7 @@ import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
 import { prepareScene, type PreparedScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
-import { cameraBasis, type CameraBasis } from '../../src/renderer/view.ts';
+import { cameraBasis, type CameraBasis } from '../../src/gpu/view.ts';
 import { testGpu } from './gpu-context.ts';
 
 const W = 64, H = 48;

@@ -10,7 +10,7 @@ import { dot, sub, type Vec3 } from '../../src/math/vec3.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { renderProgressive } from '../../src/renderer/progressive.ts';
 import { Renderer, type LinearImage } from '../../src/renderer/renderer.ts';
-import { cameraBasis } from '../../src/renderer/view.ts';
+import { cameraBasis } from '../../src/gpu/view.ts';
 import { MeshBuilder } from '../../src/scene/builder.ts';
 import type { Camera, Scene } from '../../src/scene/types.ts';
 import { outputBuffer, runOnce, storageBuffer, testKernel } from './compute.ts';

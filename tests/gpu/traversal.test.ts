@@ -17,7 +17,7 @@ import { StructArray } from '../../src/gpu/pack/struct-array.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { TraceRaysPass } from '../../src/passes/trace-rays-pass.ts';
 import { prepareScene, type PreparedScene } from '../../src/renderer/prepare.ts';
-import { cameraBasis } from '../../src/renderer/view.ts';
+import { cameraBasis } from '../../src/gpu/view.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
 import type { Scene } from '../../src/scene/types.ts';
 import { testGpu } from './gpu-context.ts';

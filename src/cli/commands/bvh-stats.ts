@@ -23,7 +23,7 @@ export function registerBvhStats(program: Command, context: CliContext): void {
     .option('--json', 'print as JSON');
   withSceneOptions(command).action((sceneArg: string, options: { json?: boolean; lightTable?: string }) =>
     context.run(async () => {
-      const scene = loadSceneArgument(sceneArg, { onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) });
+      const scene = await loadSceneArgument(sceneArg, { onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) });
       validateScene(scene);
       const { positions, count } = flattenTriangles(scene);
       const perTriangle = triangleBytes();

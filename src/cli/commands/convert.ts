@@ -18,7 +18,7 @@ export function registerConvert(program: Command, context: CliContext): void {
   withSceneOptions(command).action((sceneArg: string, o: { out: string; metersPerUnit?: number; lightTable?: string }) =>
       context.run(async () => {
         if (!o.out.toLowerCase().endsWith('.glb')) throw new LanternError(`--out must name a .glb file, not '${o.out}'`);
-        const scene = loadSceneArgument(sceneArg, { onWarning: context.note, ...(o.lightTable ? { lightTablePath: o.lightTable } : {}) });
+        const scene = await loadSceneArgument(sceneArg, { onWarning: context.note, ...(o.lightTable ? { lightTablePath: o.lightTable } : {}) });
         validateScene(scene);
         const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });
         writeFile(o.out, glb);

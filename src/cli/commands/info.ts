@@ -1,13 +1,12 @@
-/** `lantern info <scene>`: what a scene holds and how its BVH came out; for a WAD, its maps. */
+/** `lantern info <scene>`: what a scene holds and how its BVH came out; for a file of several scenes (a WAD), its parts. */
 import type { Command } from 'commander';
 import { formatBvhStats } from '../../bvh/stats.ts';
-import { summarizeMaps } from '../../loaders/doom/load.ts';
-import { isDoomUri, parseDoomUri } from '../../loaders/doom/uri.ts';
 import { prepareScene } from '../../renderer/prepare.ts';
 import type { CliContext } from '../context.ts';
 import { withSceneOptions } from '../options.ts';
-import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
-import { openWads } from '../wad-files.ts';
+import { builtinScene } from '../../loaders/builtin/index.ts';
+import type { Scene } from '../../scene/types.ts';
+import { loadOptions, openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 
 export function registerInfo(program: Command, context: CliContext): void {
   const command = program
@@ -17,9 +16,22 @@ export function registerInfo(program: Command, context: CliContext): void {
     .option('--json', 'print as JSON');
   withSceneOptions(command).action((sceneArg: string, options: { json?: boolean; lightTable?: string }) =>
       context.run(async () => {
-        if (isDoomUri(sceneArg) && parseDoomUri(sceneArg).map === undefined) return listMaps(sceneArg, options.json ?? false, context);
         const t0 = performance.now();
-        const prepared = prepareScene(loadSceneArgument(sceneArg, { onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) }));
+        const argument = parseSceneArgument(sceneArg);
+        const sceneOptions = loadOptions({ onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) });
+        let loaded: Scene;
+        if (argument.kind === 'builtin') loaded = builtinScene(argument.name);
+        else {
+          const { format, opened, part } = await openSceneFiles(argument);
+          // A file of several scenes named without one: list them rather than pick the first.
+          const inventory = format.part && part === undefined ? opened.inventory?.() : undefined;
+          if (inventory) {
+            context.print(options.json ? JSON.stringify(inventory.json, null, 2) : inventory.lines.join('\n'));
+            return;
+          }
+          loaded = await opened.scene(part, sceneOptions);
+        }
+        const prepared = prepareScene(loaded);
         const loadMs = performance.now() - t0;
         const { scene, triangles, bvh, packed } = prepared;
         if (options.json) {
@@ -34,23 +46,4 @@ export function registerInfo(program: Command, context: CliContext): void {
         );
       }),
     );
-}
-
-function listMaps(uri: string, json: boolean, context: CliContext): void {
-  const { stack } = openWads(uri);
-  const maps = summarizeMaps(stack);
-  if (json) {
-    context.print(JSON.stringify({ wads: stack.files.map((f) => f.name), maps }, null, 2));
-    return;
-  }
-  const n = (x: number | undefined) => (x ?? 0).toLocaleString('en-US').padStart(7);
-  const lines = [`${stack.describe()}: ${maps.length} maps`, '  map        things  lines  sectors  triangles  textures'];
-  for (const m of maps) {
-    if (m.error) lines.push(`  ${m.name.padEnd(8)}  ${m.error}`);
-    else {
-      const failed = m.failures && m.failures.length > 0 ? `  (${m.failures.length} sectors not triangulated)` : '';
-      lines.push(`  ${m.name.padEnd(8)} ${n(m.things)}${n(m.linedefs)}  ${n(m.sectors)}  ${n(m.triangles).padStart(9)}  ${n(m.textures).padStart(8)}${failed}`);
-    }
-  }
-  context.print(lines.join('\n'));
 }

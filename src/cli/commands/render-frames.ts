@@ -12,7 +12,7 @@ import type { Renderer } from '../../renderer/renderer.ts';
 import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { writeFile } from '../output-files.ts';
-import { readJsonFile } from '../wad-files.ts';
+import { readJsonFile } from '../read-files.ts';
 
 export interface FrameModeOptions {
   readonly denoise?: boolean;

@@ -3,18 +3,13 @@
  * opens with the scene loaded (built-in scenes by name; WAD and PLY files are offered by the server,
  * so files on disk such as Freedoom open in the browser). Runs until interrupted.
  */
-import { existsSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import type { Command } from 'commander';
-import { LanternError } from '../../errors.ts';
-import { builtinSceneNames, isBuiltinScene } from '../../loaders/builtin/index.ts';
-import { isDoomUri, parseDoomUri } from '../../loaders/doom/uri.ts';
-import { formatViewParams, type SceneLocation } from '../../app/view-params.ts';
+import { formatSceneLocation, type SceneLocation } from '../../loaders/scene-link.ts';
 import type { CliContext } from '../context.ts';
 import { integerOption } from '../options.ts';
-import { dragonPath, DRAGON_ALIAS, sceneHelp } from '../scene-source.ts';
-import { startViewServer } from '../view-server.ts';
-import { openWads } from '../wad-files.ts';
+import { openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
+import { startViewServer, type OfferedFile } from '../view-server.ts';
 
 interface ViewOptions {
   port: number;
@@ -38,28 +33,23 @@ export function registerView(program: Command, context: CliContext): void {
     .action((sceneArg: string, options: ViewOptions) => context.run(() => view(sceneArg, options, context)));
 }
 
-/** The files to offer and where the scene is, checked now so that a typo fails here, not in the browser. */
-function sceneFiles(arg: string): { files: string[]; location: (urls: readonly string[]) => SceneLocation } {
-  if (isBuiltinScene(arg)) return { files: [], location: () => ({ kind: 'builtin', name: arg }) };
-  if (isDoomUri(arg)) {
-    const { files, map } = parseDoomUri(arg);
-    const { stack } = openWads(arg);
-    if (map && !stack.maps().some((m) => m.name === map)) {
-      throw new LanternError(`${stack.describe()} has no map '${map}'`, `Its maps are: ${stack.maps().map((m) => m.name).join(', ')}`);
-    }
-    return { files: [...files], location: (urls) => ({ kind: 'wad', urls, ...(map ? { map } : {}) }) };
-  }
-  const path = arg === DRAGON_ALIAS ? dragonPath() : arg;
-  if (!path) throw new LanternError('the Stanford Dragon is not installed', 'Run `npm ci` (it comes with the development dependencies)');
-  if (!/\.ply(\.gz)?$/i.test(path)) throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}; built-in scenes are ${builtinSceneNames().join(', ')}`);
-  if (!existsSync(path)) throw new LanternError(`cannot read '${path}': no such file`);
-  return { files: [path], location: (urls) => ({ kind: 'ply', url: urls[0]! }) };
+/**
+ * The files to offer and where the scene is, checked now (the files read and opened, the map
+ * found) so that a typo fails here, not in the browser.
+ */
+async function sceneFiles(arg: string): Promise<{ files: OfferedFile[]; location: (urls: readonly string[]) => SceneLocation }> {
+  const argument = parseSceneArgument(arg);
+  if (argument.kind === 'builtin') return { files: [], location: () => ({ kind: 'builtin', name: argument.name }) };
+  const { format, files: read, part } = await openSceneFiles(argument);
+  // The first file is the main one; only it refers to siblings (a glTF's buffers and textures).
+  const files = read.map((file, i) => ({ path: file.path, siblings: i === 0 && format.siblings ? format.siblings(file) : [] }));
+  return { files, location: (urls) => ({ kind: 'files', format: format.id, urls, ...(part ? { part } : {}) }) };
 }
 
 async function view(sceneArg: string, o: ViewOptions, context: CliContext): Promise<void> {
-  const { files, location } = sceneFiles(sceneArg);
+  const { files, location } = await sceneFiles(sceneArg);
   const server = await startViewServer({ appDir: o.app ?? defaultAppDir(), files, host: o.host, port: o.port });
-  const link = `${server.url}?${formatViewParams({ scene: location(server.fileUrls) })}`;
+  const link = `${server.url}?${formatSceneLocation(location(server.fileUrls))}`;
   context.print(`Lantern viewer: ${link}`);
   context.note('open it in a browser with WebGPU (Chrome, Edge); Ctrl-C stops the server');
   await new Promise<void>((resolve) => {

@@ -141,6 +141,31 @@ export async function readGltfSource(
 }
 
 /** .glb: header, JSON chunk, optional BIN chunk. .gltf: UTF-8 JSON with an "asset" object. */
+/**
+ * Whether the first bytes are glTF: the GLB magic, or JSON whose top-level object has an "asset"
+ * member within the head (the specification requires one; exporters write it first or near it).
+ */
+export function sniffGltf(head: Uint8Array): boolean {
+  if (head.length >= 4 && new DataView(head.buffer, head.byteOffset, head.byteLength).getUint32(0, true) === GLB_MAGIC) return true;
+  let i = 0;
+  if (head[0] === 0xef && head[1] === 0xbb && head[2] === 0xbf) i = 3; // a UTF-8 byte order mark
+  while (i < head.length && (head[i] === 0x20 || head[i] === 0x0a || head[i] === 0x0d || head[i] === 0x09)) i++;
+  if (head[i] !== 0x7b) return false; // '{'
+  return /"asset"\s*:/.test(new TextDecoder().decode(head));
+}
+
+/** The relative URIs (decoded) of the files a glTF refers to: external buffers and images. */
+export function gltfSiblings(main: { name: string; bytes: Uint8Array }): string[] {
+  let json: GltfJson;
+  try {
+    json = splitContainer(main).json;
+  } catch {
+    return [];
+  }
+  const uris = [...(json.buffers ?? []), ...(json.images ?? [])].map((r) => r.uri).filter((u): u is string => typeof u === 'string' && !u.startsWith('data:'));
+  return [...new Set(uris.map((u) => { try { return decodeURIComponent(u); } catch { return u; } }))];
+}
+
 function splitContainer(main: { name: string; bytes: Uint8Array }): { json: GltfJson; bin?: Uint8Array } {
   const { bytes, name } = main;
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);

@@ -1,11 +1,12 @@
 /**
  * The view uniform (bind group 1, shaders/view/bindings.wgsl): the camera basis scaled to the image
- * and the image size. The WGSL struct is reflected; nothing here knows its byte layout.
+ * and the image size. The WGSL struct is reflected; nothing here knows its byte layout. In gpu/, not
+ * renderer/, because every pass binds it and passes sit below the renderer.
  */
 import { makeStructuredView } from 'webgpu-utils';
 import { cross, normalize, scale, type Vec3 } from '../math/vec3.ts';
 import type { Camera } from '../scene/types.ts';
-import { reflectModule } from '../gpu/wgsl/reflect.ts';
+import { reflectModule } from './wgsl/reflect.ts';
 
 export interface CameraBasis {
   readonly position: Vec3;

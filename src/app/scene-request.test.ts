@@ -1,0 +1,44 @@
+import { describe, expect, it } from 'vitest';
+import { squareRoomsWad } from '../loaders/doom/test-wad.ts';
+import { SceneRequests, siblingResolver } from './scene-request.ts';
+
+const bytes = (...values: number[]) => new Uint8Array(values);
+
+describe('SceneRequests', () => {
+  it('opens a WAD set, lists its maps and loads the one asked for', async () => {
+    const requests = new SceneRequests();
+    const summary = await requests.openFiles({ format: 'doom-wad', files: [{ name: 'rooms.wad', bytes: squareRoomsWad([{ name: 'MAP01' }, { name: 'MAP02' }]) }], siblings: [] });
+    expect(summary).toEqual({ format: 'doom-wad', description: 'rooms.wad', parts: [{ name: 'MAP01', loadable: true }, { name: 'MAP02', loadable: true }] });
+    const loaded = await requests.load({ kind: 'part', part: 'MAP02' });
+    expect(loaded.prepared.scene.name).toBe('MAP02');
+    expect(loaded.prepared.triangles.count).toBeGreaterThan(0);
+  });
+
+  it('names the file that is not what its format expects, and loads nothing before a set is open', async () => {
+    const requests = new SceneRequests();
+    await expect(requests.openFiles({ format: 'doom-wad', files: [{ name: 'garbage.wad', bytes: bytes(1, 2, 3) }], siblings: [] })).rejects.toThrow(/garbage\.wad: not a WAD file/);
+    await expect(requests.load({ kind: 'part' })).rejects.toThrow(/no file is open/);
+  });
+});
+
+describe('siblingResolver', () => {
+  const fetched: string[] = [];
+  const fetchFile = (url: string) => {
+    fetched.push(url);
+    return Promise.resolve(url.endsWith('/here.bin') ? bytes(9) : undefined);
+  };
+
+  it('finds given files by name or folder path before fetching beside the served file', async () => {
+    const resolve = siblingResolver({ siblings: [{ name: 'helmet/textures/a.png', bytes: bytes(1) }, { name: 'b.bin', bytes: bytes(2) }], baseUrl: 'http://h/files/0/scene.gltf' }, fetchFile);
+    expect(await resolve('textures/a.png')).toEqual(bytes(1));
+    expect(await resolve('b.bin')).toEqual(bytes(2));
+    expect(fetched).toEqual([]);
+    expect(await resolve('here.bin')).toEqual(bytes(9));
+    expect(await resolve('sub/missing.png')).toBeUndefined();
+    expect(fetched).toEqual(['http://h/files/0/here.bin', 'http://h/files/0/sub/missing.png']);
+  });
+
+  it('answers undefined for a file neither given nor served', async () => {
+    expect(await siblingResolver({ siblings: [] }, fetchFile)('a.png')).toBeUndefined();
+  });
+});

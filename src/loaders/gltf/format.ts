@@ -1,0 +1,29 @@
+/** The glTF 2.0 entry of the loader registry: a .glb, or a .gltf with its .bin and images beside it. */
+import type { SceneFormat } from '../format.ts';
+import { gltfSiblings, sniffGltf } from './document.ts';
+import { loadGltf } from './index.ts';
+
+export const GLTF_FORMAT: SceneFormat = {
+  id: 'gltf',
+  kind: 'scene',
+  description: 'glTF 2.0 scenes',
+  extensions: ['.glb', '.gltf'],
+  siblingExtensions: ['.bin', '.png', '.jpg', '.jpeg', '.webp', '.ktx2'],
+  sniff: sniffGltf,
+  linkParam: 'gltf',
+  stacks: false,
+  example: 'model.glb',
+  siblings: (main) => gltfSiblings(main),
+  async open(set, options = {}) {
+    const file = set.files[0]!;
+    return {
+      description: file.name,
+      parts: [],
+      scene: async () => {
+        const scene = await loadGltf(file, set.resolve);
+        for (const w of scene.warnings ?? []) options.onWarning?.(w);
+        return scene;
+      },
+    };
+  },
+};

@@ -1,0 +1,33 @@
+/**
+ * The closed variant sets of the passes, mirroring WGSL constants by position: TONEMAP_* in
+ * shaders/lib/color.wgsl, LIGHT_SAMPLING_* in shaders/integrator/path.wgsl, DEBUG_VIEW_* and
+ * DEBUG_LAYOUT_* in shaders/lib/debug-views.wgsl, DENOISE_VIEW_* in shaders/passes/denoise-output.wgsl
+ * (a unit test keeps them in step). Here, below the renderer, because the passes map them to those
+ * constants; renderer/settings.ts re-exports them as render settings.
+ */
+
+export const TONE_MAPPERS = ['linear', 'reinhard', 'aces'] as const;
+export type ToneMapper = (typeof TONE_MAPPERS)[number];
+
+/** 'bsdf': BSDF sampling only (emitters found by chance). 'mis': next-event estimation + BSDF sampling, combined by MIS. */
+export const LIGHT_SAMPLING = ['bsdf', 'mis'] as const;
+export type LightSampling = (typeof LIGHT_SAMPLING)[number];
+
+/**
+ * What the debug views show instead of (or beside, or over) the rendered image: BVH work per primary
+ * ray (nodes visited, triangles tested), the boxes at one depth, the size and depth of the leaf hit,
+ * and surface attributes. 'none' shows the rendered image only. See renderer/debug-views.ts.
+ */
+export const DEBUG_VIEWS = ['none', 'heat-nodes', 'heat-triangles', 'wireframe', 'leaf-size', 'bvh-depth', 'normals', 'albedo', 'barycentrics', 'triangle-id'] as const;
+export type DebugView = (typeof DEBUG_VIEWS)[number];
+
+/** How a debug view meets the image: instead of it, in a pane beside it (both at half size), or blended over it. */
+export const DEBUG_LAYOUTS = ['replace', 'side-by-side', 'overlay'] as const;
+export type DebugLayout = (typeof DEBUG_LAYOUTS)[number];
+
+/**
+ * What the real-time chain (Renderer.renderFrame) shows: its output, or one of the denoiser's debug
+ * views. Mirrors DENOISE_VIEW_* in shaders/passes/denoise-output.wgsl by position.
+ */
+export const DENOISE_VIEWS = ['output', 'history-length', 'variance', 'normal', 'depth', 'albedo', 'motion', 'id'] as const;
+export type DenoiseView = (typeof DENOISE_VIEWS)[number];
