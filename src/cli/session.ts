@@ -3,6 +3,8 @@
  * fallback), create the renderer and upload the scene.
  */
 import { prepareScene, type PreparedScene } from '../renderer/prepare.ts';
+import { withEnvironment } from '../scene/environment-override.ts';
+import type { Environment } from '../scene/environment.ts';
 import { Renderer } from '../renderer/renderer.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import { loadSceneArgument } from './scene-source.ts';
@@ -13,9 +15,10 @@ export interface Session {
   readonly loadMs: number;
 }
 
-export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string): Promise<Session> {
+export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string, environment?: Environment): Promise<Session> {
   const t0 = performance.now();
-  const scene = await loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
+  const loaded = await loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
+  const scene = environment ? withEnvironment(loaded, environment) : loaded;
   const prepared = prepareScene(scene);
   const loadMs = performance.now() - t0;
   const gpu = await acquireNodeGpu({ onNote: note });

@@ -7,7 +7,10 @@ import { buildBvh } from '../bvh/build.ts';
 import { refitBvh } from '../bvh/refit.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import type { Bvh } from '../bvh/types.ts';
+import { packEnvironment } from '../gpu/pack/environment-pack.ts';
 import { packGeometry, packScene, type PackedScene } from '../gpu/pack/scene-pack.ts';
+import { withEnvironment } from '../scene/environment-override.ts';
+import type { Environment } from '../scene/environment.ts';
 import { flattenTriangles, writeInstanceTriangles, type TriangleList } from '../scene/triangles.ts';
 import { LanternError } from '../errors.ts';
 import type { Scene } from '../scene/types.ts';
@@ -70,4 +73,15 @@ export function moveInstances(prepared: PreparedScene, moves: ReadonlyMap<number
   const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment);
   const t2 = performance.now();
   return { scene: moved, triangles, bvh, packed, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
+}
+
+/**
+ * The scene under another environment: only the environment, the light table and the scene info
+ * change (packed again around the same BVH, triangles and materials); the camera's exposure follows
+ * scene/environment-override.ts.
+ */
+export function withPreparedEnvironment(prepared: PreparedScene, environment: Environment): PreparedScene {
+  const scene = withEnvironment(prepared.scene, environment);
+  const packed = packGeometry(scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, packEnvironment(environment));
+  return { ...prepared, scene, packed };
 }

@@ -26,7 +26,8 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
-import { moveInstances, MOVED_BUFFERS, prepareScene, type PreparedScene } from './prepare.ts';
+import { moveInstances, MOVED_BUFFERS, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
 import { ViewUniform } from '../gpu/view.ts';
@@ -123,15 +124,36 @@ export class Renderer {
   /** Uploads a scene (prepared here unless given prepared) and frees the previous one. Uses its camera. */
   async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
     const prepared = 'packed' in scene ? scene : prepareScene(scene);
+    await this.upload(prepared);
+    this.setCamera(prepared.scene.camera);
+    return prepared;
+  }
+
+  /**
+   * Lights the scene with another environment (a sky, an HDR map, none) without preparing it again:
+   * the environment, the light table and the scene info are packed anew and the scene's GPU resources
+   * replaced. The camera is kept, with the exposure change the sky brings (scene/environment-override.ts).
+   * Restarts accumulation.
+   */
+  async setEnvironment(environment: Environment): Promise<PreparedScene> {
+    if (!this.prepared) throw new Error('Renderer: setScene() before setEnvironment()');
+    const before = this.prepared.scene.camera.exposureStops ?? 0;
+    const prepared = withPreparedEnvironment(this.prepared, environment);
+    await this.upload(prepared);
+    const shift = (prepared.scene.camera.exposureStops ?? 0) - before;
+    if (this.cameraValue) this.setCamera({ ...this.cameraValue, exposureStops: (this.cameraValue.exposureStops ?? 0) + shift });
+    this.resetAccumulation();
+    return prepared;
+  }
+
+  /** Compiles what the scene needs, then uploads it and frees the previous one (a failure leaves the old scene). */
+  private async upload(prepared: PreparedScene): Promise<void> {
     const features = prepared.packed.features;
-    // The pipelines this scene needs compile before anything is freed, so a failure leaves the old scene.
     await Promise.all([this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features)]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
     this.resources?.destroy();
     this.resources = resources;
     this.prepared = prepared;
-    this.setCamera(prepared.scene.camera);
-    return prepared;
   }
 
   /**

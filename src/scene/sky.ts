@@ -35,6 +35,15 @@ export const SUN_ANGULAR_RADIUS_DEG = 0.2667;
  */
 export const SOLAR_ILLUMINANCE_CONSTANT_LUX = 133_800;
 
+/**
+ * The exposure that daylight wants, in stops: the "sunny 16" rule's EV100 = 15, i.e. luminance
+ * (cd/m²) scaled by 1 / (1.2 · 2^15) (ISO 2720's saturation-based calibration). The sky's radiance is
+ * radiometric (W m⁻² sr⁻¹, ×683 gives cd/m²), so the scale on radiance is 683 / (1.2 · 2^15): a white
+ * Lambertian surface in sunlight (~80 klx, 25,000 cd/m², L ≈ 37) then shows about 0.6. Scenes lit by
+ * the sky carry this as their camera's exposure compensation.
+ */
+export const DAYLIGHT_EXPOSURE_STOPS = Math.log2(683 / 1.2) - 15;
+
 /** Luminous efficacy that converts the model's W m⁻² sr⁻¹ (its Y channel) to cd/m². */
 export const LUMENS_PER_WATT = 683;
 

@@ -5,11 +5,12 @@ import type { CliContext } from '../context.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import type { SettingEntry } from '../../renderer/settings-schema.ts';
 import { integerOption, withImageOptions, withSceneOptions } from '../options.ts';
+import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 
-interface BenchOptions extends Readonly<Record<string, unknown>> {
+interface BenchOptions extends EnvironmentOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   repeats: number;
@@ -25,14 +26,14 @@ export function registerBench(program: Command, context: CliContext): void {
     .command('bench')
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
     .argument('<scene>', sceneHelp());
-  withSettingOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 })), benchSetting)
+  withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting)
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
 }
 
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   const result = await runBenchmark(renderer, { repeats: o.repeats });

@@ -9,11 +9,12 @@ import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
+import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
-interface RenderOptions extends FrameModeOptions, Readonly<Record<string, unknown>> {
+interface RenderOptions extends FrameModeOptions, EnvironmentOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   spp: number;
@@ -30,7 +31,7 @@ export function registerRender(program: Command, context: CliContext): void {
     .command('render')
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
     .argument('<scene>', sceneHelp());
-  withSettingOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 })))
+  withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 }))))
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
     .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)')
@@ -46,7 +47,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   // A sequence of frames writes only what was asked for.
   const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));

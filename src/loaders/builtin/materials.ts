@@ -7,6 +7,7 @@
 import { fromTrs, translation } from '../../math/mat4.ts';
 import type { Vec3 } from '../../math/vec3.ts';
 import { floorSquare, uvSphere } from '../../scene/shapes.ts';
+import { DAYLIGHT_EXPOSURE_STOPS } from '../../scene/sky.ts';
 import { diffuse, type Instance, type Material, type Scene, type Texture } from '../../scene/types.ts';
 
 const SPHERE_RADIUS = 1;
@@ -84,7 +85,7 @@ export function materialsScene(): Scene {
     instances,
     materials,
     textures: [checker()],
-    camera: { position: [0, 5.5, 19], forward: [0, -0.25, -1], up: [0, 1, 0], vfovDegrees: 35 },
+    camera: { position: [0, 4, 15], forward: [0, -0.22, -1], up: [0, 1, 0], vfovDegrees: 40, exposureStops: DAYLIGHT_EXPOSURE_STOPS },
     environment: { kind: 'sky', sunElevationDeg: 35, sunAzimuthDeg: 40, turbidity: 3, groundAlbedo: 0.3, intensity: 1 },
     metersPerUnit: 0.1,
   };

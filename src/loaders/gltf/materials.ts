@@ -71,9 +71,9 @@ export function convertMaterial(m: GltfMaterial, index: number, textures: Textur
     metallicRoughnessTexture: textures.ref(m.getMetallicRoughnessTexture(), m.getMetallicRoughnessTextureInfo(), 'data', name),
     emissionTexture: textures.ref(m.getEmissiveTexture(), m.getEmissiveTextureInfo(), 'color', name),
     normalTexture,
-    specularTexture: specular && textures.ref(specular.getSpecularTexture(), specular.getSpecularTextureInfo(), 'data', name),
-    specularColorTexture: specular && textures.ref(specular.getSpecularColorTexture(), specular.getSpecularColorTextureInfo(), 'color', name),
-    transmissionTexture: transmission && textures.ref(transmission.getTransmissionTexture(), transmission.getTransmissionTextureInfo(), 'data', name),
+    specularTexture: specular ? textures.ref(specular.getSpecularTexture(), specular.getSpecularTextureInfo(), 'data', name) : undefined,
+    specularColorTexture: specular ? textures.ref(specular.getSpecularColorTexture(), specular.getSpecularColorTextureInfo(), 'color', name) : undefined,
+    transmissionTexture: transmission ? textures.ref(transmission.getTransmissionTexture(), transmission.getTransmissionTextureInfo(), 'data', name) : undefined,
   };
   const material: MetallicRoughnessMaterial = {
     kind: 'metallic-roughness',

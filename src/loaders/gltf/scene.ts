@@ -10,6 +10,7 @@
  */
 import type { Document, Node } from '@gltf-transform/core';
 import type { InstancedMesh, Light } from '@gltf-transform/extensions';
+import { DAYLIGHT_EXPOSURE_STOPS } from '../../scene/sky.ts';
 import { LanternError } from '../../errors.ts';
 import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../../math/aabb.ts';
 import { fromTrs, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
@@ -112,7 +113,8 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
     instances,
     materials,
     textures: textures.textures,
-    camera,
+    // The sky is in photometric units (cd/m²): expose for daylight unless the file's own lights do the lighting.
+    camera: emits ? camera : { ...camera, exposureStops: (camera.exposureStops ?? 0) + DAYLIGHT_EXPOSURE_STOPS },
     ...(emits ? {} : { environment: DEFAULT_SKY }),
     lights,
     metersPerUnit: 1,
