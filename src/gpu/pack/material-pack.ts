@@ -10,7 +10,8 @@ import { luminance, type Vec3 } from '../../math/vec3.ts';
 import { coverageOf, type Material, type MaterialKind, type Scene, type Texture, type TextureRef } from '../../scene/types.ts';
 import type { StructLayout } from '../wgsl/reflect.ts';
 import { StructArray } from './struct-array.ts';
-import { meanLinearColor, packTextureAtlas, type TextureAtlas } from './texture-atlas.ts';
+import { fitForMips, mipLevelCount, withMipChain } from './mip-chain.ts';
+import { MAX_PAGE_SIDE, meanLinearColor, packTextureAtlas, type TextureAtlas } from './texture-atlas.ts';
 
 /** Sentinels and flag bits shared with shaders/scene/types.wgsl and lib/constants.wgsl. */
 export const NO_TEXTURE = 0xffffffff;
@@ -74,34 +75,40 @@ function absorptionOf(color: Vec3, distance: number): Vec3 {
 export function packMaterials(scene: Scene, layouts: { material: StructLayout; textureRef: StructLayout }, maxTextureSide: number): PackedMaterials {
   const textures = scene.textures ?? [];
   const warnings: string[] = [];
-  // Every texture is placed in the atlas of each encoding it is used with (usually one).
-  const srgbUsed = new Map<number, number>();
-  const linearUsed = new Map<number, number>();
+  // Every texture is placed in the atlas of each encoding it is used with (usually one), with its
+  // mip chain where it is filtered (mip-chain.ts), halved first if that would not fit on a page.
+  const pageSide = Math.min(maxTextureSide, MAX_PAGE_SIDE);
+  const placed = new Map<string, { slot: number; levels: number; width: number; height: number }>();
   const srgbTextures: Texture[] = [];
   const linearTextures: Texture[] = [];
-  const place = (index: number, srgb: boolean): number => {
-    const used = srgb ? srgbUsed : linearUsed;
-    let slot = used.get(index);
-    if (slot === undefined) {
+  const place = (index: number, srgb: boolean, bilinear: boolean) => {
+    const key = `${index}:${srgb}:${bilinear}`;
+    let entry = placed.get(key);
+    if (!entry) {
       const t = textures[index];
       if (!t) throw new LanternError(`scene '${scene.name}' refers to texture ${index} of ${textures.length}`);
-      slot = (srgb ? srgbTextures : linearTextures).push(t) - 1;
-      used.set(index, slot);
+      const encoded: Texture = { ...t, encoding: srgb ? 'srgb' : 'linear' };
+      const fitted = bilinear ? fitForMips(encoded, pageSide) : fitNearest(encoded, pageSide);
+      if (fitted.width !== t.width) warnings.push(`texture '${t.name}' (${t.width}×${t.height}) is drawn at ${fitted.width}×${fitted.height} to fit an atlas page${bilinear ? ' with its mip levels' : ''}`);
+      const stored = bilinear ? withMipChain(fitted) : fitted;
+      const slot = (srgb ? srgbTextures : linearTextures).push(stored) - 1;
+      entry = { slot, levels: bilinear ? mipLevelCount(fitted.width, fitted.height) : 1, width: fitted.width, height: fitted.height };
+      placed.set(key, entry);
     }
-    return slot;
+    return entry;
   };
 
-  const refs: { ref: TextureRef; srgb: boolean; slot: number; bilinear: boolean }[] = [];
+  const refs: { ref: TextureRef; srgb: boolean; placement: ReturnType<typeof place>; bilinear: boolean }[] = [];
   const refIndex = new Map<string, number>();
   const materialRefs = scene.materials.map((m) => {
     return textureUses(m).map((u) => {
       const bilinear = (textures[u.ref.texture]?.filter ?? 'bilinear') === 'bilinear';
       if (u.ref.texCoord === 1) warnings.push(`material '${m.name}' uses a second uv set, which Lantern does not carry to the GPU yet: its ${u.field.replace(/_/g, ' ')} uses the first`);
-      const slot = place(u.ref.texture, u.srgb);
-      const key = `${u.srgb}:${slot}:${bilinear}:${JSON.stringify(u.ref.transform ?? null)}`;
+      const placement = place(u.ref.texture, u.srgb, bilinear);
+      const key = `${u.srgb}:${placement.slot}:${bilinear}:${JSON.stringify(u.ref.transform ?? null)}`;
       let index = refIndex.get(key);
       if (index === undefined) {
-        index = refs.push({ ref: u.ref, srgb: u.srgb, slot, bilinear }) - 1;
+        index = refs.push({ ref: u.ref, srgb: u.srgb, placement, bilinear }) - 1;
         refIndex.set(key, index);
       }
       return { field: u.field, index };
@@ -112,12 +119,14 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
   const linearAtlas = packTextureAtlas(linearTextures, maxTextureSide);
   const textureRefs = new StructArray(layouts.textureRef, refs.length);
   {
-    const origin = textureRefs.vec2u('origin'), size = textureRefs.vec2u('size'), page = textureRefs.u32Field('page'), flags = textureRefs.u32Field('flags');
+    const origin = textureRefs.vec2u('origin'), size = textureRefs.vec2u('size'), page = textureRefs.u32Field('page'), flags = textureRefs.u32Field('flags'), levels = textureRefs.u32Field('levels');
     const tu = textureRefs.vec3('transform_u'), tv = textureRefs.vec3('transform_v');
     refs.forEach((r, i) => {
-      const rect = (r.srgb ? atlas : linearAtlas).rects[r.slot]!;
+      const rect = (r.srgb ? atlas : linearAtlas).rects[r.placement.slot]!;
       origin(i, rect.x, rect.y);
-      size(i, rect.width, rect.height);
+      // The size of level 0; the rectangle holds the mip chain beside it.
+      size(i, r.placement.width, r.placement.height);
+      levels(i, r.placement.levels);
       page(i, rect.page);
       flags(i, (r.srgb ? 0 : TEXTURE_LINEAR) | (r.bilinear ? TEXTURE_BILINEAR : 0));
       // KHR_texture_transform: uv' = T · R · S · uv, with R rotating counter-clockwise in uv space.
@@ -213,4 +222,16 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     textureRefCount: refs.length,
     warnings: [...new Set(warnings)],
   };
+}
+
+/** A nearest-filtered texture halved (by dropping every other texel) until it fits a page. */
+function fitNearest(t: Texture, side: number): Texture {
+  let out = t;
+  while (out.width > side || out.height > side) {
+    const w = Math.max(1, out.width >> 1), h = Math.max(1, out.height >> 1);
+    const rgba = new Uint8Array(w * h * 4);
+    for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) rgba.set(out.rgba.subarray(((2 * y) * out.width + 2 * x) * 4, ((2 * y) * out.width + 2 * x) * 4 + 4), (y * w + x) * 4);
+    out = { ...out, width: w, height: h, rgba };
+  }
+  return out;
 }

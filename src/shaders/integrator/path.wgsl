@@ -53,7 +53,14 @@ struct PathSettings {
   light_sampling: u32,
   torch: TorchLight,
   torch_position: vec3f,
+  // Angle (radians) one pixel subtends at the camera: the spread of a camera ray's cone.
+  pixel_spread: f32,
 }
+
+// The spread a ray cone gets from a non-delta bounce: glossy lobes widen it by about twice the GGX α
+// (Akenine-Möller et al. 2021 widen by the surface's curvature; a lobe's width matters more here),
+// diffuse by this much — texture detail seen after a diffuse bounce is averaged away anyway.
+const DIFFUSE_CONE_SPREAD: f32 = 2.0;
 
 struct PathResult {
   radiance: vec3f,
@@ -79,6 +86,9 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
   var after_delta = false;
   // Absorption coefficient of the medium the ray travels in (inside glass with a volume).
   var absorption = vec3f(0.0);
+  // The ray cone (texture level of detail): width at the ray's origin and spread angle.
+  var cone_width = 0.0;
+  var cone_spread = settings.pixel_spread;
   let use_nee = settings.light_sampling == LIGHT_SAMPLING_MIS && scene_info.light_count > 0u;
 
   for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
@@ -100,6 +110,10 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
     }
     let surface = surface_at(hit);
     let material = materials[surface.material];
+    if (SCENE_HAS_GENERAL_MATERIALS) {
+      cone_width += cone_spread * hit.t;
+      texture_lod = texture_lod_at(surface, hit.triangle, cone_width, ray.direction);
+    }
 
     // Emission, seen only from the side the geometric normal faces.
     let cos_emitter = -dot(surface.geometric_normal, ray.direction);
@@ -221,6 +235,10 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       throughput *= s.weight;
       last_bsdf_pdf = s.pdf;
       after_delta = s.delta;
+      if (!s.delta) {
+        let alpha = bsdf.roughness * bsdf.roughness;
+        cone_spread += select(2.0 * alpha, DIFFUSE_CONE_SPREAD, bsdf.kind == BSDF_DIFFUSE);
+      }
       if (s.transmitted && (bsdf.thin_walled == 0u)) {
         // Crossing the interface: entering from the front puts the ray inside the volume.
         absorption = select(vec3f(0.0), material.absorption, side_g < 0.0 && front);

@@ -40,7 +40,7 @@ var<workgroup> workgroup_shadow_rays: atomic<u32>;
 
 // The integrator's settings for this dispatch.
 fn path_settings() -> PathSettings {
-  return PathSettings(params.max_bounces, params.light_sampling, params.torch, view.camera.position);
+  return PathSettings(params.max_bounces, params.light_sampling, params.torch, view.camera.position, 2.0 * length(view.camera.up) / f32(view.image_size.y));
 }
 
 // Adds n to the counter whose low word is ray_counters[low]; n < 2³², so at most one carry.

@@ -19,23 +19,57 @@ fn texture_fetch(t: TextureRef, texel: vec2i) -> vec4f {
   return textureLoad(texture_atlas, t.origin + wrapped, t.page, 0);
 }
 
-// The texture of reference `index` at uv ((0, 0) top left, 1 = the whole texture), wrapped; linear colour.
-fn texture_texel(index: u32, uv: vec2f) -> vec4f {
-  let t = texture_refs[index];
-  let st = vec2f(dot(t.transform_u, vec3f(uv, 1.0)), dot(t.transform_v, vec3f(uv, 1.0)));
-  let size = vec2f(t.size);
-  if ((t.flags & TEXTURE_BILINEAR) == 0u) {
-    // floor keeps negative coordinates wrapping the same way as positive ones.
-    return texture_fetch(t, vec2i(floor(st * size)));
+// The level of detail of texture lookups at the current hit, before the texture's own size: log2 of
+// the ray cone's footprint in uv units (integrator/path.wgsl sets it per hit from the ray cone; 0
+// elsewhere, e.g. alpha tests during traversal: the sharpest level). A texture of w × h texels then
+// reads level texture_lod + log2(sqrt(w·h)) (Akenine-Möller et al. 2021, "Improved Shader and Texture
+// Level of Detail Using Ray Cones", JCGT 10(1)).
+var<private> texture_lod: f32 = -1e30;
+
+// Level k of a mip-mapped texture reference (gpu/pack/mip-chain.ts lays the levels out).
+fn texture_level(t: TextureRef, level: u32) -> TextureRef {
+  if (level == 0u) {
+    return t;
   }
-  // Texel centres sit at half-integers: interpolate between the four around st.
-  let p = st * size - 0.5;
+  var r = t;
+  var y = 0u;
+  for (var j = 1u; j < level; j++) {
+    y += max(1u, t.size.y >> j);
+  }
+  r.origin = t.origin + vec2u(t.size.x, y);
+  r.size = max(vec2u(1u), t.size >> vec2u(level));
+  return r;
+}
+
+// Bilinear filtering inside one level: texel centres sit at half-integers.
+fn texture_bilinear(t: TextureRef, st: vec2f) -> vec4f {
+  let p = st * vec2f(t.size) - 0.5;
   let p0 = floor(p);
   let f = p - p0;
   let i0 = vec2i(p0);
   let top = mix(texture_fetch(t, i0), texture_fetch(t, i0 + vec2i(1, 0)), f.x);
   let bottom = mix(texture_fetch(t, i0 + vec2i(0, 1)), texture_fetch(t, i0 + vec2i(1, 1)), f.x);
   return mix(top, bottom, f.y);
+}
+
+// The texture of reference `index` at uv ((0, 0) top left, 1 = the whole texture), wrapped; linear
+// colour. Nearest textures read level 0; filtered ones blend the two mip levels around the ray
+// cone's level of detail (trilinear).
+fn texture_texel(index: u32, uv: vec2f) -> vec4f {
+  let t = texture_refs[index];
+  let st = vec2f(dot(t.transform_u, vec3f(uv, 1.0)), dot(t.transform_v, vec3f(uv, 1.0)));
+  if ((t.flags & TEXTURE_BILINEAR) == 0u) {
+    // floor keeps negative coordinates wrapping the same way as positive ones.
+    return texture_fetch(t, vec2i(floor(st * vec2f(t.size))));
+  }
+  let lod = clamp(texture_lod + 0.5 * log2(f32(t.size.x) * f32(t.size.y)), 0.0, f32(t.levels - 1u));
+  let level = u32(lod);
+  let f = lod - f32(level);
+  let fine = texture_bilinear(texture_level(t, level), st);
+  if (f <= 0.0 || level + 1u >= t.levels) {
+    return fine;
+  }
+  return mix(fine, texture_bilinear(texture_level(t, level + 1u), st), f);
 }
 
 // Base colour (rgb: diffuse albedo, glTF base colour or glass tint) and coverage (a) at uv.

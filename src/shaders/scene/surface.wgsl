@@ -63,3 +63,17 @@ fn normal_mapped(surface: Surface, triangle: u32, material: Material) -> vec3f {
   let len = length(mapped);
   return select(n, mapped / len, len > 1e-12);
 }
+
+// log2 of the footprint, in uv units, of a ray cone of width `cone_width` (scene units) arriving along
+// `direction`: the cone's width widened by 1/|cos| on the surface, times the triangle's uv per world
+// length, sqrt(uv area / world area). scene/materials.wgsl adds log2 of the texture's size to pick
+// the mip level (Akenine-Möller et al. 2021, "Improved Shader and Texture Level of Detail Using Ray
+// Cones", JCGT 10(1), §3).
+fn texture_lod_at(surface: Surface, triangle: u32, cone_width: f32, direction: vec3f) -> f32 {
+  let s = triangles_shading[triangle];
+  let duv1 = s.uv1 - s.uv0;
+  let duv2 = s.uv2 - s.uv0;
+  let uv_area = 0.5 * abs(duv1.x * duv2.y - duv1.y * duv2.x);
+  let cos_theta = max(abs(dot(surface.geometric_normal, direction)), 1e-4);
+  return log2(max(cone_width, 1e-30) / cos_theta) + 0.5 * log2(max(uv_area, 1e-30) / max(surface.area, 1e-30));
+}

@@ -115,6 +115,9 @@ struct TextureRef {
   flags: u32,
   // uv' = (dot(transform_u, (u, v, 1)), dot(transform_v, (u, v, 1))).
   transform_u: vec3f,
+  // Mip levels stored (1: level 0 only). Level k > 0 lies at origin + (size.x, Σ_{j=1}^{k-1} h_j)
+  // with h_j = max(1, size.y >> j) (gpu/pack/mip-chain.ts).
+  levels: u32,
   transform_v: vec3f,
 }
 
