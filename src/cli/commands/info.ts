@@ -1,7 +1,7 @@
 /** `lantern info <scene>`: what a scene holds and how its BVH came out; for a file of several scenes (a WAD), its parts. */
 import type { Command } from 'commander';
 import { formatBvhStats } from '../../bvh/stats.ts';
-import { prepareScene } from '../../renderer/prepare.ts';
+import { prepareScene, type PreparedScene } from '../../renderer/prepare.ts';
 import type { CliContext } from '../context.ts';
 import { withSceneOptions } from '../options.ts';
 import { builtinScene } from '../../loaders/builtin/index.ts';
@@ -34,16 +34,39 @@ export function registerInfo(program: Command, context: CliContext): void {
         const prepared = prepareScene(loaded);
         const loadMs = performance.now() - t0;
         const { scene, triangles, bvh, packed } = prepared;
+        const summary = sceneSummary(prepared);
         if (options.json) {
-          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, triangles: triangles.count, materials: scene.materials.length, textures: packed.counts.textures, lights: packed.counts.lights, loadMs, bvh: bvh.stats }, null, 2));
+          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.count, ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [] }, null, 2));
           return;
         }
+        const kinds = Object.entries(summary.materialKinds).map(([k, n]) => `${n} ${k}`).join(', ');
+        const lights = [`${packed.counts.emissiveTriangles.toLocaleString('en-US')} emissive triangles`, `${packed.counts.punctualLights} punctual lights`, `environment: ${summary.environment}`].join(', ');
+        const mib = (b: number) => `${(b / 2 ** 20).toFixed(1)} MiB`;
         context.print(
           [
-            `${scene.name}: ${triangles.count.toLocaleString('en-US')} triangles in ${scene.meshes.length} mesh(es), ${scene.materials.length} materials, ${packed.counts.textures} textures, ${packed.counts.lights.toLocaleString('en-US')} emissive triangles (loaded and prepared in ${loadMs.toFixed(1)} ms)`,
+            `${scene.name}: ${triangles.count.toLocaleString('en-US')} triangles in ${scene.meshes.length} mesh(es) placed by ${scene.instances.length} instance(s) (loaded and prepared in ${loadMs.toFixed(1)} ms)`,
+            `materials: ${scene.materials.length} (${kinds})`,
+            `lights: ${lights}`,
+            `textures: ${packed.counts.textures}, on the GPU ${mib(summary.textureBytes)} (atlas pages with mip levels: ${packed.atlas.pages.length} sRGB + ${packed.linearAtlas.pages.length} linear)`,
             formatBvhStats(bvh),
           ].join('\n'),
         );
       }),
     );
+}
+
+/** What `info` reports beyond the BVH: materials by kind, the environment, the GPU memory of textures. */
+function sceneSummary({ scene, packed }: PreparedScene) {
+  const materialKinds: Record<string, number> = {};
+  for (const m of scene.materials) materialKinds[m.kind] = (materialKinds[m.kind] ?? 0) + 1;
+  const pageBytes = (a: typeof packed.atlas) => (a.rects.length === 0 ? 0 : a.pages.length * a.pageSize * a.pageSize * 4);
+  return {
+    materials: scene.materials.length,
+    materialKinds,
+    textures: packed.counts.textures,
+    textureBytes: pageBytes(packed.atlas) + pageBytes(packed.linearAtlas),
+    emissiveTriangles: packed.counts.emissiveTriangles,
+    punctualLights: packed.counts.punctualLights,
+    environment: scene.environment?.kind ?? 'none',
+  };
 }

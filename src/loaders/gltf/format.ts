@@ -19,9 +19,9 @@ export const GLTF_FORMAT: SceneFormat = {
     return {
       description: file.name,
       parts: [],
-      scene: async () => {
+      scene: async (_part, sceneOptions = options) => {
         const scene = await loadGltf(file, set.resolve);
-        for (const w of scene.warnings ?? []) options.onWarning?.(w);
+        for (const w of scene.warnings ?? []) sceneOptions.onWarning?.(w);
         return scene;
       },
     };
