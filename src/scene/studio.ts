@@ -6,6 +6,7 @@
 import { LanternError } from '../errors.ts';
 import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../math/aabb.ts';
 import { add, cross, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
+import { frameBounds } from './framing.ts';
 import { placeEachOnce } from './instances.ts';
 import { diffuse, type Camera, type Material, type Mesh, type Scene } from './types.ts';
 
@@ -16,7 +17,8 @@ export const STUDIO_VFOV_DEGREES = 40;
  * camera sits at a three-quarter view; the key light comes from above, on the camera's side but
  * swung away from it so shading and a soft shadow show the form; the fill comes from the other side.
  */
-const CAMERA_DIRECTION = direction(35, 20);
+const CAMERA_AZIMUTH = 35;
+const CAMERA_ELEVATION = 20;
 const KEY_DIRECTION = direction(-25, 55);
 const FILL_DIRECTION = direction(105, 35);
 
@@ -74,7 +76,7 @@ export function studioScene(name: string, meshes: readonly Mesh[], materials: re
     meshes: all,
     instances: placeEachOnce(all),
     materials: [...materials, ...studioMaterials],
-    camera: frameCamera(bounds, centre, radius),
+    camera: frameBounds(bounds, { vfovDegrees: STUDIO_VFOV_DEGREES, azimuthDegrees: CAMERA_AZIMUTH, elevationDegrees: CAMERA_ELEVATION, margin: MARGIN }),
   };
 }
 
@@ -122,33 +124,3 @@ function quad(name: string, centre: Vec3, a: Vec3, b: Vec3, materialId: number):
   };
 }
 
-/**
- * Puts the camera along CAMERA_DIRECTION at the distance where every corner of the bounds lies
- * inside the vertical field of view with a margin. Horizontal extent is held to the same angle,
- * so the framing also holds for square and portrait-ish images up to aspect 1.
- */
-function frameCamera(bounds: Aabb, centre: Vec3, radius: number): Camera {
-  const forward = scale(CAMERA_DIRECTION, -1);
-  const right = normalize(cross(forward, [0, 1, 0]));
-  const up = cross(right, forward);
-  const tanHalf = Math.tan(((STUDIO_VFOV_DEGREES / 2) * Math.PI) / 180) / MARGIN;
-  // A corner at (x, y) across the view and z along it, seen from distance d: |x|, |y| ≤ tanHalf·(d + z).
-  let distance = 1.05 * radius; // at least outside the bounding sphere
-  for (const cx of [bounds.min[0], bounds.max[0]]) {
-    for (const cy of [bounds.min[1], bounds.max[1]]) {
-      for (const cz of [bounds.min[2], bounds.max[2]]) {
-        const q = sub([cx, cy, cz], centre);
-        const x = Math.abs(q[0] * right[0] + q[1] * right[1] + q[2] * right[2]);
-        const y = Math.abs(q[0] * up[0] + q[1] * up[1] + q[2] * up[2]);
-        const z = q[0] * forward[0] + q[1] * forward[1] + q[2] * forward[2];
-        distance = Math.max(distance, Math.max(x, y) / tanHalf - z);
-      }
-    }
-  }
-  return {
-    position: add(centre, scale(CAMERA_DIRECTION, distance)),
-    forward,
-    up: [0, 1, 0],
-    vfovDegrees: STUDIO_VFOV_DEGREES,
-  };
-}

@@ -219,6 +219,27 @@ export function diffuse(name: string, albedo: Vec3, emission: Vec3 = [0, 0, 0], 
   return { kind: 'diffuse', name, albedo, emission, ...extra };
 }
 
+/** A glTF metallic-roughness material with the specification's defaults for everything not given (glTF 2.0 and its KHR_materials_* extensions). */
+export function metallicRoughness(name: string, fields: Partial<Omit<MetallicRoughnessMaterial, 'kind' | 'name'>> = {}): MetallicRoughnessMaterial {
+  return {
+    kind: 'metallic-roughness',
+    name,
+    emission: [0, 0, 0],
+    baseColor: [1, 1, 1],
+    opacity: 1,
+    metallic: 1,
+    roughness: 1,
+    ior: 1.5,
+    specular: 1,
+    specularColor: [1, 1, 1],
+    transmission: 0,
+    thickness: 0,
+    attenuationDistance: Infinity,
+    attenuationColor: [1, 1, 1],
+    ...fields,
+  };
+}
+
 /**
  * A small spherical light the viewer carries at the camera (a torch). Sampled by next-event
  * estimation only: it is not geometry, so it never blocks or appears in view.

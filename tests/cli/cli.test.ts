@@ -198,7 +198,7 @@ describe('lantern info and bench', () => {
     const r = lantern(['info', 'cornell', '--json']);
     expect(r.code).toBe(0);
     const info = JSON.parse(r.stdout);
-    expect(info).toMatchObject({ scene: 'cornell', triangles: 32, lights: 2 });
+    expect(info).toMatchObject({ scene: 'cornell', triangles: 32, emissiveTriangles: 2, punctualLights: 0, environment: 'none', materialKinds: { diffuse: 4 } });
     expect(info.bvh.nodeCount).toBeGreaterThan(0);
   });
 

@@ -8,7 +8,7 @@ import { fromTrs, translation } from '../../math/mat4.ts';
 import type { Vec3 } from '../../math/vec3.ts';
 import { floorSquare, uvSphere } from '../../scene/shapes.ts';
 import { DAYLIGHT_EXPOSURE_STOPS } from '../../scene/sky.ts';
-import { diffuse, type Instance, type Material, type Scene, type Texture } from '../../scene/types.ts';
+import { diffuse, metallicRoughness, type Instance, type Material, type Scene, type Texture } from '../../scene/types.ts';
 
 const SPHERE_RADIUS = 1;
 const SPACING = 2.3;
@@ -32,28 +32,11 @@ export const MATERIAL_SPHERES: readonly Material[] = [
 ];
 
 function metal(name: string, color: Vec3, roughness: number): Material {
-  return { ...glTfDefaults(name), baseColor: color, metallic: 1, roughness };
+  return metallicRoughness(name, { baseColor: color, metallic: 1, roughness });
 }
 
 function plastic(name: string, color: Vec3, roughness: number): Material {
-  return { ...glTfDefaults(name), baseColor: color, metallic: 0, roughness };
-}
-
-/** The glTF metallic-roughness defaults (glTF 2.0 and its KHR_materials_* extensions). */
-function glTfDefaults(name: string): Omit<Extract<Material, { kind: 'metallic-roughness' }>, 'baseColor' | 'metallic' | 'roughness'> {
-  return {
-    kind: 'metallic-roughness',
-    name,
-    emission: [0, 0, 0],
-    opacity: 1,
-    ior: 1.5,
-    specular: 1,
-    specularColor: [1, 1, 1],
-    transmission: 0,
-    thickness: 0,
-    attenuationDistance: Infinity,
-    attenuationColor: [1, 1, 1],
-  };
+  return metallicRoughness(name, { baseColor: color, metallic: 0, roughness });
 }
 
 /** A two-tone checker, one texel per tile (sampled nearest, so the tiles stay sharp). */

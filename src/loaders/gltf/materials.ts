@@ -10,7 +10,7 @@
  */
 import type { Material as GltfMaterial } from '@gltf-transform/core';
 import type { EmissiveStrength, IOR, Specular, Transmission, Volume } from '@gltf-transform/extensions';
-import type { MetallicRoughnessMaterial, NormalTextureRef } from '../../scene/types.ts';
+import { metallicRoughness, type MetallicRoughnessMaterial, type NormalTextureRef } from '../../scene/types.ts';
 import type { TextureTable } from './textures.ts';
 import type { Warnings } from './warnings.ts';
 
@@ -28,23 +28,7 @@ const HANDLED = new Set([
  * i.e. every default: white base colour, metallic 1, roughness 1, single-sided, opaque.
  */
 export function defaultMaterial(): MetallicRoughnessMaterial {
-  return {
-    kind: 'metallic-roughness',
-    name: 'glTF default material',
-    emission: [0, 0, 0],
-    baseColor: [1, 1, 1],
-    opacity: 1,
-    metallic: 1,
-    roughness: 1,
-    ior: 1.5,
-    specular: 1,
-    specularColor: [1, 1, 1],
-    transmission: 0,
-    thickness: 0,
-    attenuationDistance: Infinity,
-    attenuationColor: [1, 1, 1],
-    doubleSided: false,
-  };
+  return metallicRoughness('glTF default material', { doubleSided: false });
 }
 
 export function convertMaterial(m: GltfMaterial, index: number, textures: TextureTable, warnings: Warnings): MetallicRoughnessMaterial {
