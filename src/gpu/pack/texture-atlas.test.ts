@@ -58,3 +58,12 @@ describe('texture atlas', () => {
     expect(b).toBeCloseTo(0.5, 6);
   });
 });
+
+describe('pages for wide textures', () => {
+  it('grows the page to hold a texture wider than the smallest page that would hold its height (a mip chain)', () => {
+    const wide = { name: 'mips', width: 384, height: 256, rgba: new Uint8Array(384 * 256 * 4) };
+    const atlas = packTextureAtlas([wide], 8192);
+    expect(atlas.pageSize).toBe(512);
+    expect(atlas.rects[0]).toEqual({ page: 0, x: 0, y: 0, width: 384, height: 256 });
+  });
+});

@@ -66,7 +66,11 @@ export function packTextureAtlas(textures: readonly Texture[], maxSide: number):
   if (big) throw new LanternError(`texture '${big.name}' (${big.width}×${big.height}) is larger than the ${limit}×${limit} texels an atlas page may hold`);
   if (textures.length === 0) return { pageSize: 1, pages: [new Uint8Array(4)], rects: [] };
 
+  // Start at the smallest power of two that holds the largest side (a texture wider than its page
+  // would otherwise be placed on a page of one, overflowing it), then grow until one page holds all.
   let side = 16;
+  const largest = textures.reduce((m, t) => Math.max(m, t.width, t.height), 0);
+  while (side < largest) side *= 2;
   let placed = layout(textures, side);
   while (placed.pages > 1 && side < limit) {
     side *= 2;
