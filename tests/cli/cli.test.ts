@@ -162,6 +162,10 @@ describe('bad input', () => {
     [['render', 'cornell', '--debug', 'wireframe', '--wireframe-depth', '99'], /--wireframe-depth must be a whole number from 0 to 64/],
     [['render', 'cornell', '--debug', 'heat-nodes', '--heat-max', '0'], /--heat-max must be a positive number or 'auto'/],
     [['bvh-stats', 'nope'], /unknown scene 'nope'/],
+    [['render', 'cornell', '--sky', '100,0'], /--sky: the sun's elevation must be from -90 to 90 degrees, not 100/],
+    [['render', 'cornell', '--sky', '30'], /--sky/],
+    [['render', 'cornell', '--env', 'nowhere.hdr'], /--env: cannot read 'nowhere\.hdr'/],
+    [['render', 'cornell', '--sky', '30,0', '--env', 'x.hdr'], /--sky and --env both give the environment/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);
@@ -190,6 +194,27 @@ describe('bad input', () => {
     const r = lantern(['--verbose', 'render', 'nope']);
     expect(r.code).toBe(1);
     expect(r.rawStderr).toMatch(/^\s+at /m);
+  });
+});
+
+const GLTF = '../shared/assets/gltf';
+const haveGltf = existsSync(GLTF);
+
+describe.skipIf(!haveGltf)('glTF from the command line (needs ../shared/assets/gltf)', () => {
+  it('info names a missing texture once and reports the materials and lights', () => {
+    const r = lantern(['info', `${GLTF}/Lantern/glTF/Lantern.gltf`, '--json']);
+    expect(r.code).toBe(0);
+    expect(r.stderr.match(/Lantern_baseColor\.png/g)).toHaveLength(1);
+    const info = JSON.parse(r.stdout);
+    expect(info).toMatchObject({ scene: 'Lantern', materialKinds: { 'metallic-roughness': 1 }, environment: 'none' });
+    expect(info.emissiveTriangles).toBeGreaterThan(0);
+  });
+
+  it('renders a .glb under the sky given on the command line', () => {
+    const out = join(dir, 'duck.png');
+    const r = lantern(['render', `${GLTF}/Duck/glTF-Binary/Duck.glb`, '--width', '16', '--height', '16', '--spp', '2', '--sky', '30,45,3', '--out', out]);
+    expect(r.code, r.stderr).toBe(0);
+    expect(existsSync(out)).toBe(true);
   });
 });
 
