@@ -103,9 +103,9 @@ interface MaterialBase {
   /** Default 0.5. */
   readonly alphaCutoff?: number;
   /**
-   * Whether the back of the surface is a surface too (default true). glTF's single-sided materials
-   * (false) are seen from the front only: rays pass through their back faces, unless the material
-   * transmits (its back faces are the inside of a volume).
+   * glTF's doubleSided (default true), kept so exporters write it back. Light transport treats every
+   * surface as two-sided (a closed model's back faces are never seen; culling the backs of an open
+   * one would cost every glTF scene the traversal's hit filter), so rendering does not depend on it.
    */
   readonly doubleSided?: boolean;
   /** Tangent-space normal map (needs Mesh.tangents or derives them from uvs). */

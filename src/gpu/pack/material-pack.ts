@@ -19,7 +19,6 @@ export const MATERIAL_KINDS: readonly MaterialKind[] = ['diffuse', 'metallic-rou
 export const MATERIAL_ALPHA_MASK = 1;
 export const MATERIAL_EMISSION_PANORAMA = 2;
 export const MATERIAL_ALPHA_BLEND = 4;
-export const MATERIAL_SINGLE_SIDED = 8;
 export const MATERIAL_THIN_WALLED = 16;
 export const TEXTURE_LINEAR = 1;
 export const TEXTURE_BILINEAR = 2;
@@ -174,7 +173,6 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     const filter = alpha !== 'opaque' && (coverage.texture !== undefined || coverage.opacity < 1);
     if (filter) f |= alpha === 'mask' ? MATERIAL_ALPHA_MASK : MATERIAL_ALPHA_BLEND;
     hasHitFilter.push(filter);
-    if (m.doubleSided === false) f |= MATERIAL_SINGLE_SIDED;
     const mapping = m.emissionMapping;
     if (mapping?.kind === 'panorama') {
       f |= MATERIAL_EMISSION_PANORAMA;

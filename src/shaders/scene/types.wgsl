@@ -99,8 +99,6 @@ const MATERIAL_ALPHA_MASK: u32 = 1u;
 const MATERIAL_EMISSION_PANORAMA: u32 = 2u;
 // Coverage is a probability (stochastic transparency).
 const MATERIAL_ALPHA_BLEND: u32 = 4u;
-// Seen from the front only: rays pass through back faces (glTF doubleSided false, opaque kinds).
-const MATERIAL_SINGLE_SIDED: u32 = 8u;
 // Transmission does not bend rays (glTF transmission without a volume).
 const MATERIAL_THIN_WALLED: u32 = 16u;
 
