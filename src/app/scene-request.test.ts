@@ -42,3 +42,13 @@ describe('siblingResolver', () => {
     expect(await siblingResolver({ siblings: [] }, fetchFile)('a.png')).toBeUndefined();
   });
 });
+
+describe('siblingResolver with folder paths', () => {
+  it('prefers the exact relative path over another file of the same name, and reads escaped URIs', async () => {
+    const resolve = siblingResolver({ siblings: [{ name: '../other/a.png', bytes: bytes(1) }, { name: 'textures/a.png', bytes: bytes(2) }, { name: 'my wood.png', bytes: bytes(3) }] }, () => Promise.resolve(undefined));
+    expect(await resolve('textures/a.png')).toEqual(bytes(2));
+    expect(await resolve('./textures/a.png')).toEqual(bytes(2));
+    expect(await resolve('my%20wood.png')).toEqual(bytes(3));
+    expect(await resolve('../other/a.png')).toEqual(bytes(1));
+  });
+});
