@@ -15,6 +15,7 @@ import type { Pose } from './camera-controller.ts';
 import { Input } from './input.ts';
 import { SettingsPanel } from './panel.ts';
 import { pathRelativeTo, walkEntries, type PathedFile, type WalkEntry } from './dropped-files.ts';
+import { environmentOfLink } from './environment-choice.ts';
 import { SceneLoader } from './scene-loader.ts';
 import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
@@ -127,7 +128,9 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
     panel?.readFromViewer();
-    if (loaded.warnings.length > 0) showMessage(`${loaded.prepared.scene.name}: ${loaded.warnings.length} warning(s), first: ${loaded.warnings[0]}`, 'warning');
+    // Each warning once (a texture missing from ten materials is one problem), one per line.
+    const warnings = [...new Set(loaded.warnings)];
+    if (warnings.length > 0) showMessage([`${loaded.prepared.scene.name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`}`, ...warnings.map((w) => `· ${w}`)].join('\n'), 'warning');
   } catch (e) {
     if (token === loadToken) showMessage(describeError(e), 'error');
   } finally {
@@ -256,6 +259,8 @@ const actions = {
       showMessage(`The address bar now holds the link to this view${note}.`, 'info');
     }
   },
+  decodeEnvironmentMap: (file: File) => loader.decodeEnvironment(file),
+  report: (e: unknown) => showMessage(describeError(e), 'error'),
 };
 
 // ---- wiring ----
@@ -333,7 +338,10 @@ window.addEventListener('drop', (e) => {
     .catch((err) => showMessage(describeError(err), 'error'));
 });
 
-// Settings from the link, then the panel, then the scene.
+// Settings from the link (a sky too: it lights every scene from now on), then the panel, then the scene.
+const linkedEnvironment = environmentOfLink(linked);
+if (linkedEnvironment) await viewer.setEnvironment(linkedEnvironment);
+else if (linked.envIntensity !== undefined) problems.push('env-intensity goes with sky=elevation,azimuth (an HDR map cannot be linked)');
 await viewer.updateSettings({
   ...(linked.samplesPerFrame !== undefined ? { samplesPerFrame: linked.samplesPerFrame } : {}),
   ...(linked.scale !== undefined ? { scale: linked.scale } : {}),

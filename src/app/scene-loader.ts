@@ -3,6 +3,7 @@
  * progress callbacks. One worker for the page's lifetime (it keeps an open WAD's textures between maps).
  */
 import { LanternError } from '../errors.ts';
+import type { EnvironmentImage } from '../scene/environment.ts';
 import type { PathedFile } from './dropped-files.ts';
 import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
 import type { FileSetSummary, LoadedScene, NamedBytes, ProgressListener, SceneRequest } from './scene-request.ts';
@@ -44,6 +45,14 @@ export class SceneLoader {
     const reply = await this.send({ id: this.nextId++, type: 'load', request }, [], onProgress);
     if (reply.type !== 'loaded') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
     return reply.loaded;
+  }
+
+  /** Decodes an HDR panorama (.hdr or .exr) in the worker; a file of another kind is a LanternError naming it. */
+  async decodeEnvironment(file: File): Promise<EnvironmentImage> {
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    const reply = await this.send({ id: this.nextId++, type: 'decode-environment', file: { name: file.name, bytes } }, [bytes.buffer]);
+    if (reply.type !== 'environment-decoded') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
+    return reply.image;
   }
 
   terminate(): void {

@@ -20,6 +20,7 @@ import { Renderer } from '../renderer/renderer.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
+import { linkOfEnvironment } from './environment-choice.ts';
 import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
@@ -333,6 +334,7 @@ export class Viewer {
       scale: s.scale,
       accumulate: s.accumulate,
       ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
+      ...linkOfEnvironment(this.environmentOverride),
       torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
     };
   }
