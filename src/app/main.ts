@@ -60,6 +60,8 @@ let loading: string | undefined;
 /** Where the open file set was served from (links can name it), or undefined for local files. */
 let fileSource: { format: string; urls: readonly string[] } | undefined;
 let loadToken = 0;
+/** Scenes shown so far (the test hook: an environment change must not load the scene again). */
+let sceneLoads = 0;
 
 // What the picker offers and the drop zone says come from the registry, like everything else about formats.
 fileInput.accept = acceptedExtensions();
@@ -127,6 +129,7 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
     await viewer.setScene(loaded, { ...(view.pose ? { pose: view.pose } : {}), ...(view.mode ? { mode: view.mode } : {}), ...(view.fovDegrees !== undefined ? { fovDegrees: view.fovDegrees } : {}) });
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
+    sceneLoads++;
     panel?.readFromViewer();
     // Each warning once (a texture missing from ten materials is one problem), one per line.
     const warnings = [...new Set(loaded.warnings)];
@@ -381,6 +384,7 @@ declare global {
       readonly samples: number;
       readonly scene: string;
       readonly loading: boolean;
+      readonly sceneLoads: number;
       readonly camera: Pose | undefined;
       readonly gpuResources: ResourceCount;
       readonly link: string;
@@ -400,6 +404,9 @@ window.lantern = {
   },
   get loading() {
     return loading !== undefined;
+  },
+  get sceneLoads() {
+    return sceneLoads;
   },
   get camera() {
     return viewer.controller?.pose;
