@@ -79,6 +79,9 @@ export class SceneRequests {
     const onWarning = (w: string) => warnings.push(w);
     onProgress(LOAD_STAGE, STAGE_FRACTIONS[LOAD_STAGE]!);
     const scene = await this.scene(request, onWarning);
+    // Loaders report through onWarning or in Scene.warnings (the glTF loader's missing textures):
+    // both reach the page, each once.
+    for (const w of scene.warnings ?? []) if (!warnings.includes(w)) warnings.push(w);
     const prepared = prepareScene(scene, (stage) => onProgress(stage, STAGE_FRACTIONS[stage] ?? 0));
     onProgress('done', 1);
     return { prepared, warnings, loadMs: performance.now() - t0 };

@@ -421,7 +421,7 @@ describe('the page', () => {
     const { page, errors } = await open('scene=furnace&scale=0.1');
     const own = await settledImage(page, 2);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
-    await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select').selectOption('sky');
+    await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select').selectOption({ label: 'sun and sky' });
     await expect.poll(() => page.evaluate(() => window.lantern.link)).toMatch(/sky=35%2C45%2C3/);
     const low = await settledImage(page, 2);
     expect(imageDifference(own, low)).toBeGreaterThan(3);
