@@ -385,6 +385,8 @@ declare global {
       readonly scene: string;
       readonly loading: boolean;
       readonly sceneLoads: number;
+      /** The environment that lights the image now (after an environment change has been uploaded), without map pixels. */
+      readonly environment: Record<string, unknown> | undefined;
       readonly camera: Pose | undefined;
       readonly gpuResources: ResourceCount;
       readonly link: string;
@@ -407,6 +409,11 @@ window.lantern = {
   },
   get sceneLoads() {
     return sceneLoads;
+  },
+  get environment() {
+    const e = viewer.scene?.prepared.scene.environment;
+    if (!e) return undefined;
+    return e.kind === 'map' ? { kind: e.kind, name: e.image.name, rotationDeg: e.rotationDeg, intensity: e.intensity } : { ...e };
   },
   get camera() {
     return viewer.controller?.pose;

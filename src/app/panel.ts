@@ -137,8 +137,13 @@ export class SettingsPanel {
           this.pane.refresh();
           this.applyEnvironment();
         })
-        .catch((error) => actions.report(error));
+        .catch((error) => {
+          actions.report(error);
+          this.showViewerEnvironment();
+        });
     });
+    // No file picked for a map that has none: the folder goes back to what lights the scene.
+    mapInput.addEventListener('cancel', () => this.showViewerEnvironment());
 
     const kinds: Record<string, EnvironmentChoiceKind> = { "scene's own": 'scene', 'sun and sky': 'sky', 'HDR map': 'map', none: 'none' };
     folder.addBinding(e, 'kind', { label: 'light from', options: kinds }).on('change', () => {
@@ -161,6 +166,19 @@ export class SettingsPanel {
       folder.addBinding(e, 'rotation', { label: 'rotation (°)', min: -180, max: 180, step: 1 }).on('change', onChange),
     ];
     this.showEnvironmentControls();
+  }
+
+  /** Takes the environment the viewer has into the folder (a map chosen but never opened is undone). */
+  private showViewerEnvironment(): void {
+    if (this.environment.kind !== 'map' || this.environmentMap) return;
+    this.syncing = true;
+    try {
+      Object.assign(this.environment, choiceOfEnvironment(this.viewer.environment, this.environment));
+      this.showEnvironmentControls();
+      this.pane.refresh();
+    } finally {
+      this.syncing = false;
+    }
   }
 
   /** Shows the controls of the chosen kind only. */

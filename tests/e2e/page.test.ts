@@ -418,31 +418,56 @@ describe('the page', () => {
   });
 
   it('relights the scene with the sky from the panel without reloading it, and a link restores the sky', async () => {
-    const { page, errors } = await open('scene=furnace&scale=0.1');
-    const own = await settledImage(page, 2);
+    // The spheres stand in the open, so the sky shows and lights them.
+    const { page, errors } = await open('scene=materials&scale=0.1');
+    await settledImage(page, 1);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select').selectOption({ label: 'sun and sky' });
     await expect.poll(() => page.evaluate(() => window.lantern.link)).toMatch(/sky=35%2C45%2C3/);
-    const low = await settledImage(page, 2);
-    expect(imageDifference(own, low)).toBeGreaterThan(3);
+    // Applied: the scene is lit by the panel's sky (its own has the sun at azimuth 40).
+    await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'sky', sunElevationDeg: 35, sunAzimuthDeg: 45 });
+    const high = await settledImage(page, 2);
     const elevation = page.locator('.tp-lblv', { hasText: 'sun elevation' }).locator('input');
     await elevation.fill('3');
     await elevation.press('Enter');
     await expect.poll(() => page.evaluate(() => window.lantern.link)).toMatch(/sky=3%2C45%2C3/);
+    await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'sky', sunElevationDeg: 3 });
+    // A sun 3° above the horizon: a darker, redder sky than at 35°.
     const grazing = await settledImage(page, 2);
-    expect(imageDifference(low, grazing)).toBeGreaterThan(1);
+    expect(imageDifference(high, grazing)).toBeGreaterThan(3);
     // The same scene all along: relit, not loaded again.
     expect(await page.evaluate(() => window.lantern.sceneLoads)).toBe(loads);
 
     const second = await browser.newPage({ viewport: VIEWPORT });
     await second.goto(await page.evaluate(() => window.lantern.link));
-    await waitLoaded(second, 'furnace');
+    await waitLoaded(second, 'materials');
     expect(await second.locator('.tp-lblv', { hasText: 'light from' }).locator('select').inputValue()).toBe('sky');
     expect(await second.locator('.tp-lblv', { hasText: 'sun elevation' }).locator('input').inputValue()).toMatch(/^3(\.0+)?$/);
     const restored = await settledImage(second, 2);
-    expect(imageDifference(grazing, restored)).toBeLessThan(imageDifference(own, grazing));
+    expect(imageDifference(grazing, restored)).toBeLessThan(imageDifference(high, grazing));
     expect(errors).toEqual([]);
     await second.close();
+    await page.close();
+  });
+
+  it('lights the scene with an HDR map opened from the panel', async () => {
+    // A flat (uncompressed) Radiance file, 4 × 2, every pixel RGBE (128, 0, 0, 130): radiance (2, 0, 0).
+    const header = Buffer.from('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n', 'latin1');
+    const red = Buffer.from(Array.from({ length: 8 }, () => [128, 0, 0, 130]).flat());
+    const { page, errors } = await open('scene=materials&scale=0.1');
+    await page.locator('.tp-fldv_b', { hasText: 'Environment' }).click({ trial: true });
+    await page.setInputFiles('#open-environment', { name: 'red.hdr', mimeType: 'application/octet-stream', buffer: Buffer.concat([header, red]) });
+    await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'map', name: 'red.hdr' });
+    expect(await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select').inputValue()).toBe(await page.locator('.tp-lblv', { hasText: 'light from' }).locator('option', { hasText: 'HDR map' }).getAttribute('value'));
+    const img = await settledImage(page, 2);
+    const [r, g, b] = meanRgb(img, 0, 1, 0, 1);
+    expect(r).toBeGreaterThan(2 * (g + b) / 2);
+    expect(r).toBeGreaterThan(10);
+    // A file that is not an HDR image: an error naming it, the map stays.
+    await page.setInputFiles('#open-environment', { name: 'notes.hdr', mimeType: 'text/plain', buffer: Buffer.from('hello') });
+    await expect.poll(() => messageText(page)).toMatch(/notes\.hdr/);
+    expect(await page.evaluate(() => window.lantern.environment)).toMatchObject({ kind: 'map', name: 'red.hdr' });
+    expect(errors).toEqual([]);
     await page.close();
   });
 });
