@@ -14,6 +14,8 @@ import { acceptedExtensions, describeFormats, SNIFF_BYTES, sortFiles } from '../
 import type { Pose } from './camera-controller.ts';
 import { Input } from './input.ts';
 import { SettingsPanel } from './panel.ts';
+import { pathRelativeTo, walkEntries, type PathedFile, type WalkEntry } from './dropped-files.ts';
+import { environmentOfLink } from './environment-choice.ts';
 import { SceneLoader } from './scene-loader.ts';
 import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
@@ -25,6 +27,7 @@ const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as 
 const canvas = $<HTMLCanvasElement>('view');
 const sceneSelect = $<HTMLSelectElement>('scene');
 const fileInput = $<HTMLInputElement>('open-file');
+const folderInput = $<HTMLInputElement>('open-folder');
 const mapPicker = $<HTMLLabelElement>('map-picker');
 const mapSelect = $<HTMLSelectElement>('map');
 const playButton = $<HTMLButtonElement>('play');
@@ -57,11 +60,14 @@ let loading: string | undefined;
 /** Where the open file set was served from (links can name it), or undefined for local files. */
 let fileSource: { format: string; urls: readonly string[] } | undefined;
 let loadToken = 0;
+/** Scenes shown so far (the test hook: an environment change must not load the scene again). */
+let sceneLoads = 0;
 
 // What the picker offers and the drop zone says come from the registry, like everything else about formats.
 fileInput.accept = acceptedExtensions();
-$('open-label').title = `Open ${describeFormats()}; pick the files a scene needs together (an IWAD with its PWADs); you can also drop files on the page`;
-dropZone.textContent = `Drop ${describeFormats()} (a WAD stack: IWAD and PWADs together)`;
+$('open-label').title = `Open ${describeFormats()}; pick the files a scene needs together (an IWAD with its PWADs, a .gltf with its .bin and textures); you can also drop files or a folder on the page`;
+$('open-folder-label').title = 'Open a folder holding a scene (a .gltf with its .bin and its textures, in subfolders too)';
+dropZone.textContent = `Drop ${describeFormats()}: a WAD stack (IWAD and PWADs together), a .glb, or a .gltf with its .bin and textures (or their folder)`;
 
 for (const name of builtinSceneNames()) {
   const option = document.createElement('option');
@@ -123,8 +129,11 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
     await viewer.setScene(loaded, { ...(view.pose ? { pose: view.pose } : {}), ...(view.mode ? { mode: view.mode } : {}), ...(view.fovDegrees !== undefined ? { fovDegrees: view.fovDegrees } : {}) });
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
+    sceneLoads++;
     panel?.readFromViewer();
-    if (loaded.warnings.length > 0) showMessage(`${loaded.prepared.scene.name}: ${loaded.warnings.length} warning(s), first: ${loaded.warnings[0]}`, 'warning');
+    // Each warning once (a texture missing from ten materials is one problem), one per line.
+    const warnings = [...new Set(loaded.warnings)];
+    if (warnings.length > 0) showMessage([`${loaded.prepared.scene.name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`}`, ...warnings.map((w) => `· ${w}`)].join('\n'), 'warning');
   } catch (e) {
     if (token === loadToken) showMessage(describeError(e), 'error');
   } finally {
@@ -159,12 +168,15 @@ function markFileScene(label: string): void {
  * WAD stack, IWAD first) and siblings (a glTF's buffers and textures); a set of several scenes
  * (a WAD's maps) gets a map picker, a set of one is shown at once.
  */
-async function openFiles(files: readonly File[], where?: { urls: readonly string[]; part?: string }, view: ViewParams = {}): Promise<void> {
+async function openFiles(files: readonly PathedFile[], where?: { urls: readonly string[]; part?: string }, view: ViewParams = {}): Promise<void> {
   try {
-    const heads = await Promise.all(files.map(async (file) => ({ file, name: file.name, head: new Uint8Array(await file.slice(0, SNIFF_BYTES).arrayBuffer()) })));
+    const heads = await Promise.all(files.map(async ({ file, path }) => ({ file, path, name: file.name, head: new Uint8Array(await file.slice(0, SNIFF_BYTES).arrayBuffer()) })));
     const { format, main, siblings } = sortFiles(heads);
     const baseUrl = where?.urls[0] ? new URL(where.urls[0], location.href).href : undefined;
-    const summary = await loader.openFiles(format.id, main.map((f) => f.file), siblings.map((f) => f.file), baseUrl);
+    // Siblings are named from the main file's folder, the way a glTF's URIs name them.
+    const mainPath = main[0]?.path ?? '';
+    const beside = siblings.map((f) => ({ file: f.file, path: pathRelativeTo(mainPath, f.path) }));
+    const summary = await loader.openFiles(format.id, main.map((f) => f.file), beside, baseUrl);
     fileSource = where ? { format: format.id, urls: where.urls } : undefined;
     markFileScene(summary.description);
     if (summary.parts.length === 0) {
@@ -250,6 +262,8 @@ const actions = {
       showMessage(`The address bar now holds the link to this view${note}.`, 'info');
     }
   },
+  decodeEnvironmentMap: (file: File) => loader.decodeEnvironment(file),
+  report: (e: unknown) => showMessage(describeError(e), 'error'),
 };
 
 // ---- wiring ----
@@ -278,12 +292,32 @@ mapSelect.addEventListener('change', () => {
   clearMessage();
   void showPart(mapSelect.value);
 });
-fileInput.addEventListener('change', () => {
-  const files = [...(fileInput.files ?? [])];
-  fileInput.value = '';
-  clearMessage();
-  if (files.length > 0) void openFiles(files);
-});
+/** Files of a file input, with their path inside the folder when a folder was picked. */
+function pickedFiles(input: HTMLInputElement): PathedFile[] {
+  const files = [...(input.files ?? [])].map((file) => ({ file, path: file.webkitRelativePath || file.name }));
+  input.value = '';
+  return files;
+}
+for (const input of [fileInput, folderInput]) {
+  input.addEventListener('change', () => {
+    const files = pickedFiles(input);
+    clearMessage();
+    if (files.length > 0) void openFiles(files);
+  });
+}
+
+/**
+ * What was dropped: folders are walked (a glTF with its .bin and textures/ dropped as one folder);
+ * where the browser offers no entries (a synthetic drop, an old browser), the plain file list.
+ */
+async function droppedFiles(data: DataTransfer): Promise<PathedFile[]> {
+  const entries = [...data.items].filter((item) => item.kind === 'file').map((item) => item.webkitGetAsEntry());
+  const files = [...data.files];
+  if (entries.length > 0 && entries.every((e) => e !== null)) {
+    return walkEntries(entries as unknown as WalkEntry[]);
+  }
+  return files.map((file) => ({ file, path: file.name }));
+}
 let dragDepth = 0;
 window.addEventListener('dragenter', (e) => {
   e.preventDefault();
@@ -298,12 +332,19 @@ window.addEventListener('drop', (e) => {
   e.preventDefault();
   dragDepth = 0;
   dropZone.hidden = true;
-  const files = [...(e.dataTransfer?.files ?? [])];
+  const data = e.dataTransfer;
   clearMessage();
-  if (files.length > 0) void openFiles(files);
+  if (!data) return;
+  // The entries must be taken now: the DataTransfer is emptied once the event handler returns.
+  droppedFiles(data)
+    .then((files) => (files.length > 0 ? openFiles(files) : showMessage('Nothing to open in what was dropped (an empty folder?)', 'warning')))
+    .catch((err) => showMessage(describeError(err), 'error'));
 });
 
-// Settings from the link, then the panel, then the scene.
+// Settings from the link (a sky too: it lights every scene from now on), then the panel, then the scene.
+const linkedEnvironment = environmentOfLink(linked);
+if (linkedEnvironment) await viewer.setEnvironment(linkedEnvironment);
+else if (linked.envIntensity !== undefined) problems.push('env-intensity goes with sky=elevation,azimuth (an HDR map cannot be linked)');
 await viewer.updateSettings({
   ...(linked.samplesPerFrame !== undefined ? { samplesPerFrame: linked.samplesPerFrame } : {}),
   ...(linked.scale !== undefined ? { scale: linked.scale } : {}),
@@ -322,7 +363,7 @@ const scene = linked.scene;
 if (scene?.kind === 'files') {
   const urls = scene.urls;
   fetchFiles(urls)
-    .then((files) => openFiles(files, { urls, ...(scene.part ? { part: scene.part } : {}) }, linked))
+    .then((files) => openFiles(files.map((file) => ({ file, path: file.name })), { urls, ...(scene.part ? { part: scene.part } : {}) }, linked))
     .catch(async (e) => {
       showMessage(describeError(e), 'error');
       await showBuiltin('cornell');
@@ -343,6 +384,9 @@ declare global {
       readonly samples: number;
       readonly scene: string;
       readonly loading: boolean;
+      readonly sceneLoads: number;
+      /** The environment that lights the image now (after an environment change has been uploaded), without map pixels. */
+      readonly environment: Record<string, unknown> | undefined;
       readonly camera: Pose | undefined;
       readonly gpuResources: ResourceCount;
       readonly link: string;
@@ -362,6 +406,14 @@ window.lantern = {
   },
   get loading() {
     return loading !== undefined;
+  },
+  get sceneLoads() {
+    return sceneLoads;
+  },
+  get environment() {
+    const e = viewer.scene?.prepared.scene.environment;
+    if (!e) return undefined;
+    return e.kind === 'map' ? { kind: e.kind, name: e.image.name, rotationDeg: e.rotationDeg, intensity: e.intensity } : { ...e };
   },
   get camera() {
     return viewer.controller?.pose;

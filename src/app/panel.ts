@@ -1,5 +1,6 @@
 /**
- * The settings panel (Tweakpane): render settings, camera, torch, what the GPU is doing, and output.
+ * The settings panel (Tweakpane): render settings, camera, torch, the environment (scene's own, sky,
+ * HDR map, none), what the GPU is doing, and output.
  * Every change goes through the Viewer, which restarts accumulation when the change invalidates the
  * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
  * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
@@ -7,18 +8,24 @@
  * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters.
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
-import { Pane, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
+import { Pane, type BladeApi, type ButtonApi, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
 import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry, type SettingsPatch } from '../renderer/settings-schema.ts';
 import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
 import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
+import type { EnvironmentImage } from '../scene/environment.ts';
+import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, type EnvironmentChoice, type EnvironmentChoiceKind } from './environment-choice.ts';
 
 export interface PanelActions {
   screenshot(): void;
   exportExr(): void;
   copyLink(): void;
+  /** Decodes an HDR panorama the user picked (in the scene worker). */
+  decodeEnvironmentMap(file: File): Promise<EnvironmentImage>;
+  /** Shows a problem in the page's message line (a file that is not an HDR image). */
+  report(error: unknown): void;
 }
 
 const options = <T extends string>(values: readonly T[]) => Object.fromEntries(values.map((v) => [v, v])) as Record<T, T>;
@@ -41,6 +48,12 @@ export class SettingsPanel {
   private readonly settingParams: Record<string, unknown> = {};
   private depthBinding?: SliderInputBindingApi;
   private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, rays: '', image: '', scene: '', gpuMemory: '' };
+  /** The Environment folder's values; the map is the last HDR file opened (kept while another kind is shown). */
+  private readonly environment: EnvironmentChoice = { ...DEFAULT_ENVIRONMENT_CHOICE };
+  private environmentMap?: EnvironmentImage;
+  /** The bindings shown only for one kind of environment. */
+  private readonly environmentControls: Partial<Record<EnvironmentChoiceKind, BladeApi[]>> = {};
+  private openMapButton?: ButtonApi;
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
 
@@ -66,6 +79,8 @@ export class SettingsPanel {
         this.pane.refresh();
       }
     });
+
+    this.addEnvironmentFolder(container, actions);
 
     const folders: Record<PanelFolder, FolderApi> = {
       render,
@@ -93,6 +108,94 @@ export class SettingsPanel {
     output.addButton({ title: 'Copy link to this view' }).on('click', () => actions.copyLink());
   }
 
+  /**
+   * The Environment folder: what lights the scene from outside. Every change relights the scene
+   * through the viewer at once (no reload; the image restarts). The HDR file is decoded in the
+   * scene worker, so that a large panorama does not stall the page.
+   */
+  private addEnvironmentFolder(container: HTMLElement, actions: PanelActions): void {
+    const e = this.environment;
+    const folder = this.pane.addFolder({ title: 'Environment' });
+    folder.element.title =
+      'What lights the scene from outside: its own environment, the sun and sky (Hosek–Wilkie), an HDR panorama (.hdr, .exr) or nothing. ' +
+      'A copied link keeps the sky (sky=elevation,azimuth,turbidity and env-intensity); an HDR file opened from this computer cannot be linked: open it again.';
+    const mapInput = document.createElement('input');
+    mapInput.type = 'file';
+    mapInput.id = 'open-environment';
+    mapInput.accept = '.hdr,.exr';
+    mapInput.hidden = true;
+    container.append(mapInput);
+    mapInput.addEventListener('change', () => {
+      const file = mapInput.files?.[0];
+      mapInput.value = '';
+      if (!file) return;
+      actions
+        .decodeEnvironmentMap(file)
+        .then((image) => {
+          this.environmentMap = image;
+          e.kind = 'map';
+          this.pane.refresh();
+          this.applyEnvironment();
+        })
+        .catch((error) => {
+          actions.report(error);
+          this.showViewerEnvironment();
+        });
+    });
+    // No file picked for a map that has none: the folder goes back to what lights the scene.
+    mapInput.addEventListener('cancel', () => this.showViewerEnvironment());
+
+    const kinds: Record<string, EnvironmentChoiceKind> = { "scene's own": 'scene', 'sun and sky': 'sky', 'HDR map': 'map', none: 'none' };
+    folder.addBinding(e, 'kind', { label: 'light from', options: kinds }).on('change', () => {
+      if (this.syncing) return;
+      // An HDR map with no file yet: ask for one; the scene keeps its light until it is decoded.
+      if (e.kind === 'map' && !this.environmentMap) mapInput.click();
+      this.applyEnvironment();
+    });
+    const onChange = () => this.applyEnvironment();
+    this.environmentControls.sky = [
+      folder.addBinding(e, 'elevation', { label: 'sun elevation (°)', min: -10, max: 90, step: 0.5 }).on('change', onChange),
+      folder.addBinding(e, 'azimuth', { label: 'sun azimuth (°)', min: -180, max: 180, step: 1 }).on('change', onChange),
+      folder.addBinding(e, 'turbidity', { label: 'turbidity', min: 1, max: 10, step: 0.1 }).on('change', onChange),
+      folder.addBinding(e, 'skyIntensity', { label: 'sky intensity', min: 0, max: 4, step: 0.01 }).on('change', onChange),
+    ];
+    this.openMapButton = folder.addButton({ title: 'Open HDR…' }).on('click', () => mapInput.click());
+    this.environmentControls.map = [
+      this.openMapButton,
+      folder.addBinding(e, 'mapIntensity', { label: 'map intensity', min: 0, max: 10, step: 0.01 }).on('change', onChange),
+      folder.addBinding(e, 'rotation', { label: 'rotation (°)', min: -180, max: 180, step: 1 }).on('change', onChange),
+    ];
+    this.showEnvironmentControls();
+  }
+
+  /** Takes the environment the viewer has into the folder (a map chosen but never opened is undone). */
+  private showViewerEnvironment(): void {
+    if (this.environment.kind !== 'map' || this.environmentMap) return;
+    this.syncing = true;
+    try {
+      Object.assign(this.environment, choiceOfEnvironment(this.viewer.environment, this.environment));
+      this.showEnvironmentControls();
+      this.pane.refresh();
+    } finally {
+      this.syncing = false;
+    }
+  }
+
+  /** Shows the controls of the chosen kind only. */
+  private showEnvironmentControls(): void {
+    for (const [kind, controls] of Object.entries(this.environmentControls)) for (const c of controls ?? []) c.hidden = kind !== this.environment.kind;
+    if (this.openMapButton) this.openMapButton.title = this.environmentMap ? `Open HDR… (${this.environmentMap.name})` : 'Open HDR…';
+  }
+
+  private applyEnvironment(): void {
+    this.showEnvironmentControls();
+    if (this.syncing) return;
+    const e = this.environment;
+    // A map chosen before its file is decoded changes nothing yet.
+    if (e.kind === 'map' && !this.environmentMap) return;
+    this.viewer.setEnvironment(environmentOfChoice(e, this.environmentMap)).catch((error) => this.viewer.fail(error));
+  }
+
   /** Takes the viewer's current settings and camera into the panel (after a scene switch or a link). */
   readFromViewer(): void {
     this.syncing = true;
@@ -100,6 +203,7 @@ export class SettingsPanel {
       this.read();
       // The depth slider spans the scene's BVH depth.
       this.fitDepthSlider();
+      this.showEnvironmentControls();
       this.pane?.refresh();
     } finally {
       this.syncing = false;
@@ -112,6 +216,8 @@ export class SettingsPanel {
     p.samplesPerFrame = s.samplesPerFrame;
     p.scale = s.scale;
     p.accumulate = s.accumulate;
+    Object.assign(this.environment, choiceOfEnvironment(this.viewer.environment, this.environment));
+    if (this.environment.kind === 'map' && this.viewer.environment?.kind === 'map') this.environmentMap = this.viewer.environment.image;
     const c = this.viewer.controller;
     if (c) {
       p.fov = c.vfovDegrees;

@@ -3,6 +3,8 @@
  * progress callbacks. One worker for the page's lifetime (it keeps an open WAD's textures between maps).
  */
 import { LanternError } from '../errors.ts';
+import type { EnvironmentImage } from '../scene/environment.ts';
+import type { PathedFile } from './dropped-files.ts';
 import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
 import type { FileSetSummary, LoadedScene, NamedBytes, ProgressListener, SceneRequest } from './scene-request.ts';
 
@@ -26,11 +28,13 @@ export class SceneLoader {
     };
   }
 
-  /** Opens one scene's files, sorted by the registry: the main files in load order, and their siblings. */
-  async openFiles(format: string, files: readonly File[], siblings: readonly File[], baseUrl?: string): Promise<FileSetSummary> {
-    // Siblings keep their path inside a picked folder, since a glTF names its textures by relative path.
+  /**
+   * Opens one scene's files, sorted by the registry: the main files in load order, and their
+   * siblings named by their path relative to the main file's folder (a glTF names its textures so).
+   */
+  async openFiles(format: string, files: readonly File[], siblings: readonly PathedFile[], baseUrl?: string): Promise<FileSetSummary> {
     const read = (f: File, name: string): Promise<NamedBytes> => f.arrayBuffer().then((b) => ({ name, bytes: new Uint8Array(b) }));
-    const [main, beside] = await Promise.all([Promise.all(files.map((f) => read(f, f.name))), Promise.all(siblings.map((f) => read(f, f.webkitRelativePath || f.name)))]);
+    const [main, beside] = await Promise.all([Promise.all(files.map((f) => read(f, f.name))), Promise.all(siblings.map((f) => read(f.file, f.path)))]);
     const request = { format, files: main, siblings: beside, ...(baseUrl ? { baseUrl } : {}) };
     const reply = await this.send({ id: this.nextId++, type: 'open-files', request }, [...main, ...beside].map((f) => f.bytes.buffer as ArrayBuffer));
     if (reply.type !== 'opened') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
@@ -41,6 +45,14 @@ export class SceneLoader {
     const reply = await this.send({ id: this.nextId++, type: 'load', request }, [], onProgress);
     if (reply.type !== 'loaded') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
     return reply.loaded;
+  }
+
+  /** Decodes an HDR panorama (.hdr or .exr) in the worker; a file of another kind is a LanternError naming it. */
+  async decodeEnvironment(file: File): Promise<EnvironmentImage> {
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    const reply = await this.send({ id: this.nextId++, type: 'decode-environment', file: { name: file.name, bytes } }, [bytes.buffer]);
+    if (reply.type !== 'environment-decoded') throw new Error(`unexpected reply '${reply.type}' from the scene worker`);
+    return reply.image;
   }
 
   terminate(): void {

@@ -42,3 +42,36 @@ describe('siblingResolver', () => {
     expect(await siblingResolver({ siblings: [] }, fetchFile)('a.png')).toBeUndefined();
   });
 });
+
+describe('siblingResolver with folder paths', () => {
+  it('prefers the exact relative path over another file of the same name, and reads escaped URIs', async () => {
+    const resolve = siblingResolver({ siblings: [{ name: '../other/a.png', bytes: bytes(1) }, { name: 'textures/a.png', bytes: bytes(2) }, { name: 'my wood.png', bytes: bytes(3) }] }, () => Promise.resolve(undefined));
+    expect(await resolve('textures/a.png')).toEqual(bytes(2));
+    expect(await resolve('./textures/a.png')).toEqual(bytes(2));
+    expect(await resolve('my%20wood.png')).toEqual(bytes(3));
+    expect(await resolve('../other/a.png')).toEqual(bytes(1));
+  });
+});
+
+describe('SceneRequests warnings', () => {
+  it('passes on the warnings a scene carries (a glTF missing a texture), each once', async () => {
+    const { Document, NodeIO } = await import('@gltf-transform/core');
+    const doc = new Document();
+    doc.createBuffer();
+    const position = doc.createAccessor().setType('VEC3').setArray(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]));
+    const texture = doc.createTexture('wood').setURI('textures/wood.png').setMimeType('image/png').setImage(new Uint8Array([0x89, 0x50, 0x4e, 0x47]));
+    const material = doc.createMaterial().setBaseColorTexture(texture);
+    const mesh = doc.createMesh().addPrimitive(doc.createPrimitive().setAttribute('POSITION', position).setMaterial(material));
+    doc.createScene().addChild(doc.createNode().setMesh(mesh));
+    // The texture's bytes are left out of the set: only the .gltf and its .bin are given.
+    const { json, resources } = await new NodeIO().writeJSON(doc);
+    delete (resources as Record<string, Uint8Array>)['textures/wood.png'];
+    const siblings = Object.entries(resources).map(([name, b]) => ({ name, bytes: b }));
+    const requests = new SceneRequests();
+    await requests.openFiles({ format: 'gltf', files: [{ name: 'tri.gltf', bytes: new TextEncoder().encode(JSON.stringify(json)) }], siblings });
+    const loaded = await requests.load({ kind: 'part' });
+    const named = loaded.warnings.filter((w) => w.includes('textures/wood.png'));
+    expect(named).toHaveLength(1);
+    expect(loaded.prepared.triangles.count).toBe(1);
+  });
+});

@@ -7,6 +7,7 @@
 import { LanternError } from '../errors.ts';
 import { builtinScene, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { formatById, type NamedBytes, type OpenedScene, type ResolveSibling, type ScenePart } from '../loaders/registry.ts';
+import { normalizeRelativePath } from './dropped-files.ts';
 import { prepareScene, PREPARE_STAGES, type PreparedScene } from '../renderer/prepare.ts';
 import type { Scene } from '../scene/types.ts';
 
@@ -78,6 +79,9 @@ export class SceneRequests {
     const onWarning = (w: string) => warnings.push(w);
     onProgress(LOAD_STAGE, STAGE_FRACTIONS[LOAD_STAGE]!);
     const scene = await this.scene(request, onWarning);
+    // Loaders report through onWarning or in Scene.warnings (the glTF loader's missing textures):
+    // both reach the page, each once.
+    for (const w of scene.warnings ?? []) if (!warnings.includes(w)) warnings.push(w);
     const prepared = prepareScene(scene, (stage) => onProgress(stage, STAGE_FRACTIONS[stage] ?? 0));
     onProgress('done', 1);
     return { prepared, warnings, loadMs: performance.now() - t0 };
@@ -100,10 +104,16 @@ export class SceneRequests {
  * inside a picked folder, else fetched beside the served main file, else absent.
  */
 export function siblingResolver(request: Pick<OpenFilesRequest, 'siblings' | 'baseUrl'>, fetchFile: FetchFile): ResolveSibling {
-  return (relativePath) => {
-    const given = request.siblings.find((f) => f.name === relativePath || f.name.endsWith(`/${relativePath}`) || relativePath.endsWith(`/${f.name}`));
+  return (reference) => {
+    // The page names siblings by their path relative to the main file's folder: an exact match
+    // first, so that two textures of the same name in different folders are not confused; then a
+    // path that ends the same way (files picked from several folders, or a loose texture).
+    const relativePath = normalizeRelativePath(reference);
+    const given =
+      request.siblings.find((f) => normalizeRelativePath(f.name) === relativePath) ??
+      request.siblings.find((f) => f.name.endsWith(`/${relativePath}`) || relativePath.endsWith(`/${f.name}`));
     if (given) return Promise.resolve(given.bytes);
-    return request.baseUrl ? fetchFile(new URL(relativePath, request.baseUrl).href) : Promise.resolve(undefined);
+    return request.baseUrl ? fetchFile(new URL(reference, request.baseUrl).href) : Promise.resolve(undefined);
   };
 }
 

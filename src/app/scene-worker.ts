@@ -1,9 +1,10 @@
 /**
- * The scene worker: opens files of any registered format (WADs, meshes), builds the BVH and packs the scene off the main thread,
+ * The scene worker: opens files of any registered format (WADs, meshes, glTF), decodes HDR environment maps, builds the BVH and packs the scene off the main thread,
  * so that the page keeps drawing (and the progress bar keeps moving) while a level loads. Protocol:
  * scene-protocol.ts. Errors travel back as message + hint and become LanternErrors again.
  */
 import { LanternError } from '../errors.ts';
+import { loadEnvironmentImage } from '../loaders/environment-image.ts';
 import { SceneRequests, transferables } from './scene-request.ts';
 import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
 
@@ -24,6 +25,10 @@ self.onmessage = async (event: MessageEvent<WorkerRequest>) => {
   try {
     if (message.type === 'open-files') {
       post({ id, type: 'opened', summary: await requests.openFiles(message.request) });
+    } else if (message.type === 'decode-environment') {
+      // A 4k panorama takes a moment to decode: here, the page keeps drawing meanwhile.
+      const image = loadEnvironmentImage(message.file.bytes, message.file.name);
+      post({ id, type: 'environment-decoded', image }, [image.rgb.buffer as ArrayBuffer]);
     } else {
       const loaded = await requests.load(message.request, (stage, fraction) => post({ id, type: 'progress', stage, fraction }));
       // The freshly built arrays move to the page without a copy; the scene itself is copied, since

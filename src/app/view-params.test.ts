@@ -26,6 +26,8 @@ describe('view parameters', () => {
       historyCap: 'unlimited',
       denoiseView: 'variance',
       torch: { enabled: true, color: [1, 0.8, 0.6], intensity: 2000, range: 900 },
+      sky: { elevation: 12.5, azimuth: -40, turbidity: 4.5 },
+      envIntensity: 0.25,
     };
     const { view: back, problems } = parseViewParams(new URLSearchParams(formatViewParams(view).toString()));
     expect(problems).toEqual([]);
@@ -82,5 +84,15 @@ describe('render settings in links, from the schema', () => {
   it('reads the boolean words links have always used', () => {
     expect(parseViewParams(new URLSearchParams('torch=off&temporal=0&denoise=1')).view).toEqual({ torch: { enabled: false }, temporal: false, denoise: true });
     expect(parseViewParams(new URLSearchParams('torch=on&temporal=true')).view).toEqual({ torch: { enabled: true }, temporal: true });
+  });
+
+  it('read a sky with the CLI default turbidity, and refuse one outside the sky model', () => {
+    expect(parseViewParams(new URLSearchParams('sky=30,120&env-intensity=2')).view).toMatchObject({ sky: { elevation: 30, azimuth: 120, turbidity: 3 }, envIntensity: 2 });
+    for (const bad of ['sky=95,0', 'sky=30', 'sky=30,0,11', 'sky=30,0,0.5', 'sky=a,b', 'env-intensity=-1']) {
+      const { view, problems } = parseViewParams(new URLSearchParams(bad));
+      expect(view.sky, bad).toBeUndefined();
+      expect(view.envIntensity, bad).toBeUndefined();
+      expect(problems, bad).toHaveLength(1);
+    }
   });
 });

@@ -11,6 +11,10 @@
  *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
  *   layout, heat-max=<n>|auto, depth, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited,
  *   denoise-view; parsed, checked and written from their schema entries.
+ *   sky=elevation,azimuth[,turbidity]  env-intensity=x
+ *                                      the Hosek–Wilkie sky instead of the scene's own environment
+ *                                      (as the CLI's --sky and --env-intensity); an HDR map opened
+ *                                      from this computer cannot be linked
  */
 import { formatSettingText, getAt, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
 import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
@@ -31,7 +35,20 @@ export type ViewParams = RenderSettingsPatch & {
   readonly samplesPerFrame?: number;
   readonly scale?: number;
   readonly accumulate?: boolean;
+  /** The sky that replaces the scene's environment: sun elevation and azimuth (degrees), turbidity. */
+  readonly sky?: SkyParams;
+  /** Multiplies the sky's radiance. */
+  readonly envIntensity?: number;
 };
+
+export interface SkyParams {
+  readonly elevation: number;
+  readonly azimuth: number;
+  readonly turbidity: number;
+}
+
+/** The sky's default turbidity when a link gives only elevation and azimuth (the CLI's --sky too). */
+export const DEFAULT_TURBIDITY = 3;
 
 /** The top-level render settings a link carries under their RenderSettings names (the torch, a group, apart: its parts wait for the scene). */
 export const LINKED_RENDER_SETTINGS: readonly (keyof RenderSettings)[] = LINKED_SETTINGS.filter((e) => e.path.length === 1).map((e) => e.path[0] as keyof RenderSettings);
@@ -48,6 +65,10 @@ export const LIMITS = {
   samplesPerFrame: [1, 64],
   scale: [0.01, 2],
   fovDegrees: [5, 150],
+  skyElevation: [-90, 90],
+  skyAzimuth: [-360, 360],
+  turbidity: [1, 10],
+  envIntensity: [0, 1e6],
 } as const;
 
 const round = (v: number) => Number(v.toFixed(4));
@@ -92,6 +113,19 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   if (scale !== undefined) view.scale = scale;
   const acc = params.get('acc');
   if (acc !== null) view.accumulate = acc !== '0';
+  const skyRaw = params.get('sky');
+  if (skyRaw !== null) {
+    const values = skyRaw.split(',').map(Number);
+    const [elevation, azimuth, turbidity = DEFAULT_TURBIDITY] = values as [number, number, number?];
+    const inside = (v: number, [lo, hi]: readonly [number, number]) => v >= lo && v <= hi;
+    if ((values.length !== 2 && values.length !== 3) || !values.every(Number.isFinite)) problems.push(`sky=${skyRaw} is not elevation,azimuth[,turbidity]`);
+    else if (!inside(elevation, LIMITS.skyElevation)) problems.push(`sky=${skyRaw}: the sun's elevation must be from -90 to 90 degrees`);
+    else if (!inside(azimuth, LIMITS.skyAzimuth)) problems.push(`sky=${skyRaw}: the azimuth must be from -360 to 360 degrees`);
+    else if (!inside(turbidity, LIMITS.turbidity)) problems.push(`sky=${skyRaw}: turbidity must be from 1 to 10`);
+    else view.sky = { elevation, azimuth, turbidity };
+  }
+  const envIntensity = ranged('env-intensity', LIMITS.envIntensity);
+  if (envIntensity !== undefined) view.envIntensity = envIntensity;
 
   for (const { path, spec } of LINKED_SETTINGS) {
     const name = spec.link!;
@@ -113,6 +147,8 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
+  if (view.sky) p.set('sky', [view.sky.elevation, view.sky.azimuth, view.sky.turbidity].map(round).join(','));
+  if (view.envIntensity !== undefined) p.set('env-intensity', String(round(view.envIntensity)));
   for (const { path, spec } of LINKED_SETTINGS) {
     const value = getAt(view, path);
     if (value !== undefined) p.set(spec.link!, formatSettingText(spec, value));

@@ -20,8 +20,15 @@ import { Renderer } from '../renderer/renderer.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
+import { linkOfEnvironment } from './environment-choice.ts';
 import type { LoadedScene } from './scene-request.ts';
+import { withPreparedEnvironment } from '../renderer/prepare.ts';
+import type { Environment } from '../scene/environment.ts';
+import type { Camera } from '../scene/types.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
+
+/** A scene without an environment has this one (black), one object so that it compares equal to itself. */
+const NO_ENVIRONMENT: Environment = Object.freeze({ kind: 'none' });
 
 export type ViewerState = 'idle' | 'starting' | 'playing' | 'paused' | 'failed';
 
@@ -102,6 +109,10 @@ export class Viewer {
   private lastRayCount = 0;
   private lastEpoch = -1;
   private settingsQueue: Promise<void> = Promise.resolve();
+  /** What lights every scene instead of its own (the panel's Environment folder, a link's sky); undefined: the scene's own. */
+  private environmentOverride?: Environment;
+  /** The loaded scene's own environment, for going back to it. */
+  private sceneEnvironment?: Environment;
   private losses: number[] = [];
   private legendValue?: DebugLegend;
   /** Real-time frames since the estimate last restarted (scene, settings, size). */
@@ -179,7 +190,15 @@ export class Viewer {
    * Shows a loaded scene; before the first Play only remembers it (no GPU work). The torch keeps
    * only on/off: its other settings belong to the previous scene.
    */
-  async setScene(loaded: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number } = {}): Promise<void> {
+  setScene(loaded: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number } = {}): Promise<void> {
+    // In line with settings and environment changes, so that an environment upload still under way
+    // cannot land on top of the new scene.
+    return this.enqueue(() => this.applyScene(loaded, view));
+  }
+
+  private async applyScene(given: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number }): Promise<void> {
+    this.sceneEnvironment = given.prepared.scene.environment;
+    const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
     const { scene, bvh } = loaded.prepared;
     const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, scene.walkMap), scene.walkMap);
     if (view.pose) controller.setPose(view.pose);
@@ -191,6 +210,7 @@ export class Viewer {
     if (this.renderer) {
       this.renderer.updateSettings(this.settings.render);
       await this.renderer.setScene(loaded.prepared);
+      // The controller starts from this scene's camera, exposure included.
       this.renderer.setCamera(controller.camera());
       this.renderer.resetHistory();
     }
@@ -203,10 +223,52 @@ export class Viewer {
 
   /** Applies settings; whatever changes the estimate restarts accumulation. */
   updateSettings(changes: Partial<Omit<ViewerSettings, 'render'>> & { render?: Partial<RenderSettings> }): Promise<void> {
-    // One change at a time, in order: a change may wait for pipelines to compile.
-    const next = this.settingsQueue.then(() => this.applySettings(changes));
+    return this.enqueue(() => this.applySettings(changes));
+  }
+
+  /** The environment that replaces every scene's own, or undefined while scenes keep theirs. */
+  get environment(): Environment | undefined {
+    return this.environmentOverride;
+  }
+
+  /**
+   * Relights the current scene (and the ones loaded after it) without reloading it: the scene is
+   * packed again around the same BVH and the image restarts. `undefined` goes back to the scene's own.
+   * A slider sends many changes: each waits its turn, and those overtaken by a later one do nothing.
+   */
+  setEnvironment(environment: Environment | undefined): Promise<void> {
+    this.environmentOverride = environment;
+    return this.enqueue(() => this.applyEnvironment());
+  }
+
+  private async applyEnvironment(): Promise<void> {
+    const loaded = this.loaded;
+    if (!loaded) return;
+    const wanted = this.environmentOverride ?? this.sceneEnvironment ?? NO_ENVIRONMENT;
+    if ((loaded.prepared.scene.environment ?? NO_ENVIRONMENT) === wanted) return;
+    const prepared = this.renderer ? await this.renderer.setEnvironment(wanted) : withPreparedEnvironment(loaded.prepared, wanted);
+    this.loaded = { ...loaded, prepared };
+    this.realTimeFrames = 0;
+    if (this.renderer) {
+      // The sky moves the exposure by the daylight stops: the camera takes the scene's new exposure.
+      if (this.controllerValue) this.renderer.setCamera(this.cameraOf(this.controllerValue));
+      this.renderer.resetHistory();
+    }
+    this.hooks.onChange(this);
+  }
+
+  /** One change at a time, in order: a change may wait for pipelines to compile or a scene to upload. */
+  private enqueue(change: () => Promise<void>): Promise<void> {
+    const next = this.settingsQueue.then(change);
     this.settingsQueue = next.catch(() => {});
     return next;
+  }
+
+  /** The controller's camera with the current scene's exposure (which an environment change may move). */
+  private cameraOf(controller: CameraController): Camera {
+    const camera = controller.camera();
+    const exposureStops = this.loaded?.prepared.scene.camera.exposureStops;
+    return exposureStops === undefined ? camera : { ...camera, exposureStops };
   }
 
   private async applySettings(changes: Partial<Omit<ViewerSettings, 'render'>> & { render?: Partial<RenderSettings> }): Promise<void> {
@@ -231,12 +293,12 @@ export class Viewer {
   setFieldOfView(degrees: number): void {
     if (!this.controllerValue) return;
     this.controllerValue.vfovDegrees = degrees;
-    this.renderer?.setCamera(this.controllerValue.camera());
+    this.renderer?.setCamera(this.cameraOf(this.controllerValue));
   }
 
   setMoveMode(mode: MoveMode): boolean {
     const ok = this.controllerValue?.setMode(mode) ?? false;
-    if (ok && this.controllerValue) this.renderer?.setCamera(this.controllerValue.camera());
+    if (ok && this.controllerValue) this.renderer?.setCamera(this.cameraOf(this.controllerValue));
     return ok;
   }
 
@@ -272,6 +334,7 @@ export class Viewer {
       scale: s.scale,
       accumulate: s.accumulate,
       ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
+      ...linkOfEnvironment(this.environmentOverride),
       torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
     };
   }
@@ -315,7 +378,7 @@ export class Viewer {
     this.timer = gpu.hasTimestamps ? new GpuTimer(gpu.device) : undefined;
     await this.resizeRenderer();
     if (this.loaded) await renderer.setScene(this.loaded.prepared);
-    if (this.controllerValue) renderer.setCamera(this.controllerValue.camera());
+    if (this.controllerValue) renderer.setCamera(this.cameraOf(this.controllerValue));
     void gpu.lost.then((info) => this.onDeviceLost(gpu, info));
   }
 
@@ -356,7 +419,7 @@ export class Viewer {
     const h = Math.max(1, Math.round(this.canvas.height * this.settings.scale));
     await this.renderer.resize(w, h);
     this.realTimeFrames = 0;
-    if (this.controllerValue) this.renderer.setCamera(this.controllerValue.camera());
+    if (this.controllerValue) this.renderer.setCamera(this.cameraOf(this.controllerValue));
   }
 
   private requireRenderer(): Renderer {
@@ -402,7 +465,7 @@ export class Viewer {
     if (c) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
-      if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(c.camera());
+      if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
     // The counters restart with the estimate (every camera move too): then the whole count is this frame's.

@@ -3,7 +3,7 @@
  * keyboard, the settings panel, the file input, the map picker. Renders are tiny (a fraction of the
  * canvas through the `scale` parameter) so SwiftShader frames stay short.
  */
-import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -64,6 +64,36 @@ async function waitLoaded(page: Page, scene?: string): Promise<void> {
 async function playUntil(page: Page, samples: number): Promise<void> {
   if ((await page.evaluate(() => window.lantern.state)) !== 'playing') await page.click('#play');
   await page.waitForFunction((n) => window.lantern.samples >= n, samples, { timeout: 120_000 });
+}
+
+/** The glTF sample models shared between worktrees (../shared/assets/gltf): tests that need them skip without them. */
+const GLTF_ASSETS = join(import.meta.dirname, '../../../shared/assets/gltf');
+const SHARED_GLTF = existsSync(GLTF_ASSETS) ? GLTF_ASSETS : '/work/shared/assets/gltf';
+const asset = (path: string) => join(SHARED_GLTF, path);
+const hasAssets = (...paths: string[]) => {
+  const missing = paths.filter((p) => !existsSync(asset(p)));
+  if (missing.length > 0) console.warn(`skipped: no ${missing.join(', ')} under ${SHARED_GLTF}`);
+  return missing.length === 0;
+};
+
+/** Mean absolute difference per channel between two images of the same size. */
+function imageDifference(a: { data: Uint8Array }, b: { data: Uint8Array }): number {
+  let sum = 0;
+  for (let i = 0; i < a.data.length; i++) sum += Math.abs(a.data[i]! - b.data[i]!);
+  return sum / a.data.length;
+}
+
+/** Renders a few samples, pauses and returns the settled image. */
+async function settledImage(page: Page, samples: number) {
+  await playUntil(page, samples);
+  await page.click('#play');
+  await expect.poll(() => page.evaluate(() => window.lantern.state)).toBe('paused');
+  return canvasImage(page);
+}
+
+/** Waits until a scene other than `before` is shown and loaded. */
+async function waitNewScene(page: Page, before: number): Promise<void> {
+  await page.waitForFunction((n) => window.lantern.sceneLoads > n && !window.lantern.loading, before, { timeout: 120_000 });
 }
 
 const canvasImage = async (page: Page) => decodePng(await page.locator('#view').screenshot());
@@ -297,6 +327,146 @@ describe('the page', () => {
     expect(restored.yaw).toBeCloseTo(camera.yaw, 3);
     expect(errors).toEqual([]);
     await second.close();
+    await page.close();
+  });
+
+  it('opens a .glb through the file input: the model renders', async () => {
+    if (!hasAssets('Duck/glTF-Binary/Duck.glb')) return;
+    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const before = await settledImage(page, 2);
+    const loads = await page.evaluate(() => window.lantern.sceneLoads);
+    await page.setInputFiles('#open-file', asset('Duck/glTF-Binary/Duck.glb'));
+    await waitNewScene(page, loads);
+    expect(await page.locator('#scene option:checked').textContent()).toBe('Duck.glb');
+    expect(await page.evaluate(() => window.lantern.scene)).not.toBe('furnace');
+    const after = await settledImage(page, 2);
+    const [r, g, b] = meanRgb(after, 0, 1, 0, 1);
+    expect(r + g + b).toBeGreaterThan(15);
+    expect(imageDifference(before, after)).toBeGreaterThan(5);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('opens a picked folder: a .gltf finds its .bin and a texture in a subfolder by relative path, not a decoy of the same name', async () => {
+    if (!hasAssets('Duck/glTF/Duck.gltf')) return;
+    const folder = join(dir, 'duck-folder');
+    mkdirSync(join(folder, 'textures'), { recursive: true });
+    mkdirSync(join(folder, 'decoy'), { recursive: true });
+    const gltf = JSON.parse(readFileSync(asset('Duck/glTF/Duck.gltf'), 'utf8')) as { images: { uri: string }[] };
+    gltf.images = gltf.images.map((i) => ({ ...i, uri: `textures/${i.uri}` }));
+    writeFileSync(join(folder, 'Duck.gltf'), JSON.stringify(gltf));
+    cpSync(asset('Duck/glTF/Duck0.bin'), join(folder, 'Duck0.bin'));
+    cpSync(asset('Duck/glTF/DuckCM.png'), join(folder, 'textures/DuckCM.png'));
+    // A file of the same name that is not an image: picking it would give a texture warning.
+    writeFileSync(join(folder, 'decoy/DuckCM.png'), 'not a png');
+    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const loads = await page.evaluate(() => window.lantern.sceneLoads);
+    await page.setInputFiles('#open-folder', folder);
+    await waitNewScene(page, loads);
+    expect(await page.locator('#scene option:checked').textContent()).toBe('Duck.gltf');
+    expect((await messageText(page)) ?? '').not.toMatch(/DuckCM/);
+    const img = await settledImage(page, 2);
+    const [r, g, b] = meanRgb(img, 0, 1, 0, 1);
+    expect(r + g + b).toBeGreaterThan(15);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('opens a .gltf, its .bin and its texture dropped together on the page', async () => {
+    if (!hasAssets('Duck/glTF/Duck.gltf')) return;
+    const files = readdirSync(asset('Duck/glTF')).map((name) => ({ name, bytes: [...readFileSync(asset(`Duck/glTF/${name}`))] }));
+    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const before = await settledImage(page, 2);
+    const loads = await page.evaluate(() => window.lantern.sceneLoads);
+    // A drop as the browser delivers it: a DataTransfer of File objects on a drop event.
+    await page.evaluate((list) => {
+      const data = new DataTransfer();
+      for (const f of list) data.items.add(new File([new Uint8Array(f.bytes)], f.name));
+      window.dispatchEvent(new DragEvent('dragenter', { dataTransfer: data, cancelable: true }));
+      window.dispatchEvent(new DragEvent('drop', { dataTransfer: data, cancelable: true }));
+    }, files);
+    await waitNewScene(page, loads);
+    expect(await page.locator('#drop-zone').isHidden()).toBe(true);
+    expect(await page.locator('#scene option:checked').textContent()).toBe('Duck.gltf');
+    expect((await messageText(page)) ?? '').not.toMatch(/DuckCM|Duck0/);
+    const after = await settledImage(page, 2);
+    expect(imageDifference(before, after)).toBeGreaterThan(5);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('names a texture missing from a picked glTF folder, once, and renders the model', async () => {
+    if (!hasAssets('Lantern/glTF/Lantern.gltf')) return;
+    const missing = 'Lantern_baseColor.png';
+    if (existsSync(asset(`Lantern/glTF/${missing}`))) {
+      console.warn(`skipped: ${missing} is not missing any more`);
+      return;
+    }
+    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const loads = await page.evaluate(() => window.lantern.sceneLoads);
+    await page.setInputFiles('#open-folder', asset('Lantern/glTF'));
+    await waitNewScene(page, loads);
+    const text = (await messageText(page)) ?? '';
+    expect(text).toContain(missing);
+    expect(text.split(missing).length - 1).toBe(1);
+    expect(await page.locator('#message').getAttribute('data-kind')).toBe('warning');
+    const img = await settledImage(page, 2);
+    const [r, g, b] = meanRgb(img, 0, 1, 0, 1);
+    expect(r + g + b).toBeGreaterThan(10);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('relights the scene with the sky from the panel without reloading it, and a link restores the sky', async () => {
+    // The spheres stand in the open, so the sky shows and lights them.
+    const { page, errors } = await open('scene=materials&scale=0.1');
+    await settledImage(page, 1);
+    const loads = await page.evaluate(() => window.lantern.sceneLoads);
+    await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select').selectOption({ label: 'sun and sky' });
+    await expect.poll(() => page.evaluate(() => window.lantern.link)).toMatch(/sky=35%2C45%2C3/);
+    // Applied: the scene is lit by the panel's sky (its own has the sun at azimuth 40).
+    await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'sky', sunElevationDeg: 35, sunAzimuthDeg: 45 });
+    const high = await settledImage(page, 2);
+    const elevation = page.locator('.tp-lblv', { hasText: 'sun elevation' }).locator('input');
+    await elevation.fill('3');
+    await elevation.press('Enter');
+    await expect.poll(() => page.evaluate(() => window.lantern.link)).toMatch(/sky=3%2C45%2C3/);
+    await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'sky', sunElevationDeg: 3 });
+    // A sun 3° above the horizon: a darker, redder sky than at 35°.
+    const grazing = await settledImage(page, 2);
+    expect(imageDifference(high, grazing)).toBeGreaterThan(3);
+    // The same scene all along: relit, not loaded again.
+    expect(await page.evaluate(() => window.lantern.sceneLoads)).toBe(loads);
+
+    const second = await browser.newPage({ viewport: VIEWPORT });
+    await second.goto(await page.evaluate(() => window.lantern.link));
+    await waitLoaded(second, 'materials');
+    expect(await second.locator('.tp-lblv', { hasText: 'light from' }).locator('select option:checked').textContent()).toBe('sun and sky');
+    expect(await second.locator('.tp-lblv', { hasText: 'sun elevation' }).locator('input').inputValue()).toMatch(/^3(\.0+)?$/);
+    const restored = await settledImage(second, 2);
+    expect(imageDifference(grazing, restored)).toBeLessThan(imageDifference(high, grazing));
+    expect(errors).toEqual([]);
+    await second.close();
+    await page.close();
+  });
+
+  it('lights the scene with an HDR map opened from the panel', async () => {
+    // A flat (uncompressed) Radiance file, 4 × 2, every pixel RGBE (128, 0, 0, 130): radiance (2, 0, 0).
+    const header = Buffer.from('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n', 'latin1');
+    const red = Buffer.from(Array.from({ length: 8 }, () => [128, 0, 0, 130]).flat());
+    const { page, errors } = await open('scene=materials&scale=0.1');
+    await page.setInputFiles('#open-environment', { name: 'red.hdr', mimeType: 'application/octet-stream', buffer: Buffer.concat([header, red]) });
+    await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'map', name: 'red.hdr' });
+    expect(await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select option:checked').textContent()).toBe('HDR map');
+    const img = await settledImage(page, 2);
+    const [r, g, b] = meanRgb(img, 0, 1, 0, 1);
+    expect(r).toBeGreaterThan(2 * (g + b) / 2);
+    expect(r).toBeGreaterThan(10);
+    // A file that is not an HDR image: an error naming it, the map stays.
+    await page.setInputFiles('#open-environment', { name: 'notes.hdr', mimeType: 'text/plain', buffer: Buffer.from('hello') });
+    await expect.poll(() => messageText(page)).toMatch(/notes\.hdr/);
+    expect(await page.evaluate(() => window.lantern.environment)).toMatchObject({ kind: 'map', name: 'red.hdr' });
+    expect(errors).toEqual([]);
     await page.close();
   });
 });
