@@ -156,3 +156,24 @@ describe('the sun and sky light a diffuse floor', () => {
     for (let c = 0; c < 3; c++) expect(Math.abs(mean[c]! - expected[c]!) / expected[c]!, `channel ${c}`).toBeLessThan(0.03);
   });
 });
+
+describe('Renderer.setEnvironment', () => {
+  it('relights a scene exactly as if it had been built with that environment (same seed)', async () => {
+    const options = { width: 8, height: 8, spp: 8, maxBounces: 4, seed: 13 };
+    const sky = { kind: 'sky', sunElevationDeg: 30, sunAzimuthDeg: 20, turbidity: 4, groundAlbedo: 0.3, intensity: 1e-3 } as const;
+    const grey50 = diffuse('grey', grey(0.5));
+    const dark = await renderScene(sphereScene(grey50, { kind: 'none' }), options);
+    for (const v of dark.radiance) expect(v).toBe(0);
+    const relit = await renderScene(sphereScene(grey50, { kind: 'none' }), options, async (r) => {
+      await r.setEnvironment(sky);
+    });
+    const built = await renderScene(sphereScene(grey50, sky), options);
+    let worst = 0, total = 0;
+    for (let i = 0; i < relit.radiance.length; i++) {
+      worst = Math.max(worst, Math.abs(relit.radiance[i]! - built.radiance[i]!));
+      total += built.radiance[i]!;
+    }
+    expect(total).toBeGreaterThan(0);
+    expect(worst).toBeLessThanOrEqual(1e-6 * (total / relit.radiance.length));
+  });
+});
