@@ -81,11 +81,13 @@ fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocatio
   let pixel = params.tile_origin + id.xy;
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
-    var rng = rng_seed(pixel_index, params.sample_index, params.seed);
     var sum = vec4f(0.0);
     var extension_rays = 0u;
     var shadow_rays = 0u;
     for (var s = 0u; s < params.samples; s++) {
+      // One stream per sample (not per dispatch), so that an image depends on the seed alone and not on
+      // how the dispatch planner batched its samples into submits.
+      var rng = rng_seed(pixel_index, params.sample_index + s, params.seed);
       let jitter = rng_next_2d(&rng);
       let path = trace_path(camera_ray(vec2f(pixel) + jitter), &rng, path_settings());
       // A non-finite sample (a numerical accident) is dropped rather than poisoning the pixel forever.
