@@ -32,8 +32,8 @@ function pointRadiance(intensity: number, h: number): (x: number, z: number) => 
   };
 }
 
-function renderLights(lights: PunctualLight[], spp = 32): Promise<Accumulation> {
-  return renderScene(floorScene('floor under punctual lights', [FLOOR], { lights, camera: CAMERA }), { width: SIZE, height: SIZE, spp, maxBounces: 1, seed: 2 });
+function renderLights(lights: PunctualLight[], spp = 32, lightSampling: 'mis' | 'bsdf' = 'mis'): Promise<Accumulation> {
+  return renderScene(floorScene('floor under punctual lights', [FLOOR], { lights, camera: CAMERA }), { width: SIZE, height: SIZE, spp, maxBounces: 1, seed: 2, lightSampling });
 }
 
 /** |measured − expected| within 5 standard errors plus 0.5 % (float error; the jitter's noise can be ~0). */
@@ -51,6 +51,13 @@ describe('punctual lights on a diffuse floor (1 bounce)', () => {
     const centre = lum(acc, (SIZE / 2) * SIZE + SIZE / 2), corner = lum(acc, 0);
     expect(centre / corner).toBeGreaterThan(4);
     expect(centre).toBeCloseTo((RHO * I) / Math.PI, 1);
+  });
+
+  it('BSDF-only sampling still samples a point light (no BSDF ray can find it)', async () => {
+    const I = 4;
+    const acc = await renderLights([{ kind: 'point', name: 'point', position: [0, H, 0], color: [1, 1, 1], intensity: I, range: Infinity }], 32, 'bsdf');
+    const f = pointRadiance(I, H);
+    for (let py = 0; py < SIZE; py++) for (let px = 0; px < SIZE; px++) expectPixel(acc, py * SIZE + px, squareMean(f, pixelFootprint([0, 0], HALF, SIZE, px, py)), 'point, bsdf');
   });
 
   it('a spot light: a point light inside the inner cone, 0 outside the outer cone', async () => {

@@ -90,6 +90,10 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
   var cone_width = 0.0;
   var cone_spread = settings.pixel_spread;
   let use_nee = settings.light_sampling == LIGHT_SAMPLING_MIS && scene_info.light_count > 0u;
+  // Punctual lights are not geometry: no BSDF ray finds them, so even BSDF-only sampling samples
+  // them. It draws from the whole light table and keeps only punctual picks (dividing by their
+  // selection probability keeps it unbiased); other lights are left to BSDF rays, weighted 1.
+  let sample_lights = use_nee || (SCENE_HAS_PUNCTUAL_LIGHTS && scene_info.light_count > 0u);
 
   for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
     let hit = trace_closest(ray);
@@ -137,10 +141,10 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       let albedo = material_albedo(material, surface.uv).rgb;
       let brdf = albedo * INV_PI;
 
-      if (use_nee) {
+      if (sample_lights) {
         let light = sample_light(origin, rng_next_2d(rng), rng_next_2d(rng));
         let cos_surface = dot(ns, light.direction);
-        if (light.pdf > 0.0 && cos_surface > 0.0 && dot(ng, light.direction) > 0.0) {
+        if (light.pdf > 0.0 && (use_nee || light.delta) && cos_surface > 0.0 && dot(ng, light.direction) > 0.0) {
           result.shadow_rays += 1u;
           if (!trace_any(Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
             let weight = select(power_heuristic(light.pdf, cosine_hemisphere_pdf(cos_surface)), 1.0, light.delta);
@@ -185,9 +189,9 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       let wo = vec3f(dot(wo_world, frame[0]), dot(wo_world, frame[1]), dot(wo_world, frame[2]));
 
       if (bsdf_has_non_delta(bsdf)) {
-        if (use_nee) {
+        if (sample_lights) {
           let light = sample_light(surface.position, rng_next_2d(rng), rng_next_2d(rng));
-          if (light.pdf > 0.0) {
+          if (light.pdf > 0.0 && (use_nee || light.delta)) {
             let wi_world = light.direction;
             let wi = vec3f(dot(wi_world, frame[0]), dot(wi_world, frame[1]), dot(wi_world, frame[2]));
             let side_g = dot(ng, wi_world);
