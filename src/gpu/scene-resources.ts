@@ -11,7 +11,7 @@ import { withErrorScope } from './device.ts';
 
 const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs'] as const;
 const UNIFORM_NAMES = ['scene_info', 'punctual_lights'] as const;
-type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf' | 'bsdf_tables';
+type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf' | 'bsdf_tables' | 'triangle_attributes';
 
 type BufferName = (typeof UNIFORM_NAMES)[number] | (typeof STORAGE_NAMES)[number];
 
@@ -25,6 +25,8 @@ export class SceneResources {
     readonly linearAtlas: GPUTexture,
     private readonly environment: UploadedEnvironment,
     private readonly bsdfTables: GPUTexture,
+    /** Per-vertex tangents and second uvs (group 0 binding 15); rewritten in place when instances move. */
+    readonly triangleAttributes: GPUTexture,
     readonly counts: PackedScene['counts'],
     readonly features: PackedScene['features'],
     readonly byteSize: number,
@@ -35,6 +37,7 @@ export class SceneResources {
       texture_atlas_linear: linearAtlas.createView({ label: 'linear texture atlas', dimension: '2d-array' }),
       ...environment.bindings,
       bsdf_tables: bsdfTables.createView({ label: 'BSDF tables' }),
+      triangle_attributes: triangleAttributes.createView({ label: 'triangle attributes' }),
     };
   }
 
@@ -63,9 +66,21 @@ export class SceneResources {
     const linearAtlas = await uploadAtlas(device, packed.linearAtlas, 'rgba8unorm', `${label} linear texture atlas`);
     const environment = await uploadEnvironment(device, packed.environment, label);
     const bsdfTables = await uploadBsdfTables(device);
+    const attributes = packed.triangleAttributes;
+    if (attributes.height > device.limits.maxTextureDimension2D) {
+      throw new LanternError(
+        `scene '${label}' is too large for this GPU: its ${packed.counts.triangles.toLocaleString('en-US')} triangles' tangents need a texture ${attributes.height} texels tall, more than the ${device.limits.maxTextureDimension2D} it allows`,
+        'Use a smaller scene, or one without normal maps and second uv sets',
+      );
+    }
+    const triangleAttributes = await withErrorScope(device, `the tangents of scene '${label}'`, () => {
+      const texture = device.createTexture({ label: `${label} triangle attributes`, size: [attributes.width, attributes.height], format: 'rgba32uint', usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+      writeTriangleAttributes(device, texture, attributes);
+      return texture;
+    });
     const atlasBytes = (a: PackedScene['atlas']) => a.pages.length * a.pageSize * a.pageSize * 4;
     const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0) + atlasBytes(packed.atlas) + atlasBytes(packed.linearAtlas) + environment.byteSize;
-    return new SceneResources(buffers, atlas, linearAtlas, environment, bsdfTables, packed.counts, packed.features, byteSize + bsdfTables.width * bsdfTables.height * 4);
+    return new SceneResources(buffers, atlas, linearAtlas, environment, bsdfTables, triangleAttributes, packed.counts, packed.features, byteSize + bsdfTables.width * bsdfTables.height * 4 + attributes.data.byteLength);
   }
 
   destroy(): void {
@@ -74,7 +89,13 @@ export class SceneResources {
     this.linearAtlas.destroy();
     this.environment.destroy();
     this.bsdfTables.destroy();
+    this.triangleAttributes.destroy();
   }
+}
+
+/** Writes triangle_attributes' texels (f32 bits into rgba32uint). */
+export function writeTriangleAttributes(device: GPUDevice, texture: GPUTexture, a: PackedScene['triangleAttributes']): void {
+  device.queue.writeTexture({ texture }, a.data, { bytesPerRow: a.width * 16, rowsPerImage: a.height }, [a.width, a.height]);
 }
 
 /** The BSDF energy tables (group 0 binding 12): the same for every scene, 41 KB. */

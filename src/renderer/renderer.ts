@@ -17,7 +17,7 @@ import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
 import { withErrorScope } from '../gpu/device.ts';
 import { readBuffer, readTexture4x8 } from '../gpu/readback.ts';
-import { SceneResources } from '../gpu/scene-resources.ts';
+import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
@@ -166,6 +166,7 @@ export class Renderer {
     if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateInstances()');
     const prepared = moveInstances(this.prepared, moves);
     for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
+    writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
     this.prepared = prepared;
     this.resetAccumulation();
     return prepared;

@@ -22,6 +22,7 @@ export const MATERIAL_ALPHA_BLEND = 4;
 export const MATERIAL_THIN_WALLED = 16;
 export const TEXTURE_LINEAR = 1;
 export const TEXTURE_BILINEAR = 2;
+export const TEXTURE_UV1 = 4;
 
 export interface PackedMaterials {
   readonly materials: ArrayBuffer;
@@ -35,6 +36,8 @@ export interface PackedMaterials {
   readonly hasHitFilter: readonly boolean[];
   /** Whether any material needs more than the Lambertian path (see SCENE_HAS_GENERAL_MATERIALS). */
   readonly general: boolean;
+  /** Whether any material reads per-vertex tangents (a normal map) or the second uv set. */
+  readonly needsVertexAttributes: boolean;
   readonly textureRefCount: number;
   readonly warnings: readonly string[];
 }
@@ -102,9 +105,8 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
   const materialRefs = scene.materials.map((m) => {
     return textureUses(m).map((u) => {
       const bilinear = (textures[u.ref.texture]?.filter ?? 'bilinear') === 'bilinear';
-      if (u.ref.texCoord === 1) warnings.push(`material '${m.name}' uses a second uv set, which Lantern does not carry to the GPU yet: its ${u.field.replace(/_/g, ' ')} uses the first`);
       const placement = place(u.ref.texture, u.srgb, bilinear);
-      const key = `${u.srgb}:${placement.slot}:${bilinear}:${JSON.stringify(u.ref.transform ?? null)}`;
+      const key = `${u.srgb}:${placement.slot}:${bilinear}:${u.ref.texCoord ?? 0}:${JSON.stringify(u.ref.transform ?? null)}`;
       let index = refIndex.get(key);
       if (index === undefined) {
         index = refs.push({ ref: u.ref, srgb: u.srgb, placement, bilinear }) - 1;
@@ -127,7 +129,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
       size(i, r.placement.width, r.placement.height);
       levels(i, r.placement.levels);
       page(i, rect.page);
-      flags(i, (r.srgb ? 0 : TEXTURE_LINEAR) | (r.bilinear ? TEXTURE_BILINEAR : 0));
+      flags(i, (r.srgb ? 0 : TEXTURE_LINEAR) | (r.bilinear ? TEXTURE_BILINEAR : 0) | (r.ref.texCoord === 1 ? TEXTURE_UV1 : 0));
       // KHR_texture_transform: uv' = T · R · S · uv, with R rotating counter-clockwise in uv space.
       const t = r.ref.transform;
       const [ox, oy] = t?.offset ?? [0, 0];
@@ -216,7 +218,8 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     linearAtlas,
     emissionMean,
     hasHitFilter,
-    general,
+    general: general || refs.some((r) => r.ref.texCoord === 1),
+    needsVertexAttributes: scene.materials.some((m) => m.normalTexture !== undefined) || refs.some((r) => r.ref.texCoord === 1),
     textureRefCount: refs.length,
     warnings: [...new Set(warnings)],
   };

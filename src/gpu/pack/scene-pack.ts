@@ -7,7 +7,7 @@
  * becomes `features`, from which the pipelines' override constants are chosen.
  */
 import type { Bvh } from '../../bvh/types.ts';
-import { normalMatrix } from '../../math/mat4.ts';
+import { determinant3, normalMatrix } from '../../math/mat4.ts';
 import { luminance } from '../../math/vec3.ts';
 import type { TriangleList } from '../../scene/triangles.ts';
 import type { Scene } from '../../scene/types.ts';
@@ -41,6 +41,12 @@ export interface PackedScene {
   readonly light_slots: ArrayBuffer;
   readonly texture_refs: ArrayBuffer;
   readonly punctual_lights: ArrayBuffer;
+  /**
+   * triangle_attributes (binding 15): per leaf-order triangle, the world-space tangents of its three
+   * vertices and its second uv set, as f32 texels of an rgba32uint texture; 1×1 when no material
+   * needs them (see TRIANGLE_ATTRIBUTE_* in shaders/scene/types.wgsl).
+   */
+  readonly triangleAttributes: { readonly width: number; readonly height: number; readonly data: Float32Array };
   /** The pages of texture_atlas (sRGB colour) and texture_atlas_linear (data), bound as 2D array textures. */
   readonly atlas: TextureAtlas;
   readonly linearAtlas: TextureAtlas;
@@ -175,6 +181,8 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
     }
   }
 
+  const triangleAttributes = packTriangleAttributes(scene, triangles, bvh, packedMaterials.needsVertexAttributes);
+
   const b = bvh.bounds;
   const sceneRadius = bvh.nodeCount > 0 ? 0.5 * Math.hypot(b[3]! - b[0]!, b[4]! - b[1]!, b[5]! - b[2]!) : 1;
   // Lights at infinity: the flux through a disk of the scene's radius (irradiance × πR²), with the
@@ -211,6 +219,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
     light_slots: lights.lightSlots,
     texture_refs: packedMaterials.textureRefs,
     punctual_lights: lights.punctualLights,
+    triangleAttributes,
     atlas: packedMaterials.atlas,
     linearAtlas: packedMaterials.linearAtlas,
     counts: {
@@ -233,4 +242,45 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
     packedMaterials,
     environment,
   };
+}
+
+/** Texels per triangle and triangles per row of triangle_attributes (TRIANGLE_ATTRIBUTE_* in shaders/scene/types.wgsl). */
+export const TRIANGLE_ATTRIBUTE_TEXELS = 5;
+export const TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW = 819;
+
+/**
+ * Tangents (transformed like directions, their handedness flipped by a mirroring instance) and the
+ * second uv set per vertex of every leaf-order triangle, where a material needs them.
+ */
+function packTriangleAttributes(scene: Scene, triangles: TriangleList, bvh: Bvh, needed: boolean): PackedScene['triangleAttributes'] {
+  if (!needed || triangles.count === 0) return { width: 1, height: 1, data: new Float32Array(4) };
+  const perRow = TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW, texels = TRIANGLE_ATTRIBUTE_TEXELS;
+  const width = perRow * texels, height = Math.ceil(triangles.count / perRow);
+  const data = new Float32Array(width * height * 4);
+  const mirrors = scene.instances.map((inst) => (determinant3(inst.worldFromObject) < 0 ? -1 : 1));
+  for (let leaf = 0; leaf < triangles.count; leaf++) {
+    const t = bvh.triIndices[leaf]!;
+    const ii = triangles.instanceIds[t]!;
+    const inst = scene.instances[ii]!;
+    const mesh = scene.meshes[inst.mesh]!;
+    const m = inst.worldFromObject;
+    const k = triangles.meshTriangleIds[t]!;
+    const swapped = triangles.swapped[t] === 1;
+    const base = (Math.floor(leaf / perRow) * width + (leaf % perRow) * texels) * 4;
+    for (let c = 0; c < 3; c++) {
+      const vi = mesh.indices[k * 3 + (swapped && c > 0 ? 3 - c : c)]!;
+      if (mesh.tangents) {
+        const x = mesh.tangents[vi * 4]!, y = mesh.tangents[vi * 4 + 1]!, z = mesh.tangents[vi * 4 + 2]!, w = mesh.tangents[vi * 4 + 3]!;
+        const wx = m[0]! * x + m[4]! * y + m[8]! * z, wy = m[1]! * x + m[5]! * y + m[9]! * z, wz = m[2]! * x + m[6]! * y + m[10]! * z;
+        const len = Math.hypot(wx, wy, wz);
+        if (len > 0) data.set([wx / len, wy / len, wz / len, (w < 0 ? -1 : 1) * mirrors[ii]!], base + c * 4);
+      }
+      if (mesh.uvs1) {
+        const o = base + 12 + c * 2;
+        data[o] = mesh.uvs1[vi * 2]!;
+        data[o + 1] = mesh.uvs1[vi * 2 + 1]!;
+      }
+    }
+  }
+  return { width, height, data };
 }

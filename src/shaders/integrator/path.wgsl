@@ -117,6 +117,9 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
     if (SCENE_HAS_GENERAL_MATERIALS) {
       cone_width += cone_spread * hit.t;
       texture_lod = texture_lod_at(surface, hit.triangle, cone_width, ray.direction);
+      if (textureDimensions(triangle_attributes).x > 1u) {
+        surface_uv1 = triangle_uv1(hit.triangle, vec2f(hit.u, hit.v));
+      }
     }
 
     // Emission, seen only from the side the geometric normal faces.
@@ -177,7 +180,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       let bsdf = material_bsdf(material, surface.uv);
       let front = dot(surface.geometric_normal, ray.direction) < 0.0;
       var ng = surface.geometric_normal;
-      var ns = normal_mapped(surface, hit.triangle, material);
+      var ns = normal_mapped(surface, hit, material);
       // Opaque reflectors are two-sided: their frame turns toward the ray. Interfaces keep their
       // front (outside) side, and the BSDF sees wo.z < 0 from inside.
       if (!front && material_is_two_sided_reflector(material, bsdf)) {

@@ -16,6 +16,9 @@
 // rgba8unorm pages for data textures (TEXTURE_LINEAR).
 @group(0) @binding(13) var texture_atlas_linear: texture_2d_array<f32>;
 @group(0) @binding(14) var<uniform> punctual_lights: PunctualLights;
+// Per-vertex tangents and the second uv set, only for scenes with normal maps or TEXCOORD_1 (else
+// 1×1): f32 bits in an rgba32uint texture (gpu/pack/scene-pack.ts), read where a material needs them.
+@group(0) @binding(15) var triangle_attributes: texture_2d<u32>;
 
 // ---- Environment (bindings 8–11): scene/environment.wgsl reads these; gpu/pack/environment-pack.ts
 // packs them. environment_map is a lat-long image of f32 RGBA radiance (top row = +y) stored as the

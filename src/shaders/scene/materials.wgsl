@@ -26,6 +26,23 @@ fn texture_fetch(t: TextureRef, texel: vec2i) -> vec4f {
 // Level of Detail Using Ray Cones", JCGT 10(1)).
 var<private> texture_lod: f32 = -1e30;
 
+// The second uv set at the current hit (integrator/path.wgsl sets it for scenes that have one).
+var<private> surface_uv1: vec2f;
+
+// Texel k of triangle `triangle`'s per-vertex attributes, as f32.
+fn triangle_attribute(triangle: u32, k: u32) -> vec4f {
+  let row = triangle / TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW;
+  let column = (triangle % TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * TRIANGLE_ATTRIBUTE_TEXELS + k;
+  return bitcast<vec4f>(textureLoad(triangle_attributes, vec2u(column, row), 0));
+}
+
+// The second uv set at barycentrics (u, v) of v1 and v2.
+fn triangle_uv1(triangle: u32, bary: vec2f) -> vec2f {
+  let a = triangle_attribute(triangle, 3u);
+  let b = triangle_attribute(triangle, 4u);
+  return (1.0 - bary.x - bary.y) * a.xy + bary.x * a.zw + bary.y * b.xy;
+}
+
 // Level k of a mip-mapped texture reference (gpu/pack/mip-chain.ts lays the levels out).
 fn texture_level(t: TextureRef, level: u32) -> TextureRef {
   if (level == 0u) {
@@ -57,7 +74,8 @@ fn texture_bilinear(t: TextureRef, st: vec2f) -> vec4f {
 // cone's level of detail (trilinear).
 fn texture_texel(index: u32, uv: vec2f) -> vec4f {
   let t = texture_refs[index];
-  let st = vec2f(dot(t.transform_u, vec3f(uv, 1.0)), dot(t.transform_v, vec3f(uv, 1.0)));
+  let coords = select(uv, surface_uv1, (t.flags & TEXTURE_UV1) != 0u);
+  let st = vec2f(dot(t.transform_u, vec3f(coords, 1.0)), dot(t.transform_v, vec3f(coords, 1.0)));
   if ((t.flags & TEXTURE_BILINEAR) == 0u) {
     // floor keeps negative coordinates wrapping the same way as positive ones.
     return texture_fetch(t, vec2i(floor(st * vec2f(t.size))));

@@ -31,32 +31,42 @@ fn surface_at(hit: Hit) -> Surface {
 }
 
 // The shading normal perturbed by the material's tangent-space normal map (glTF normalTexture:
-// n = normalize((2·rgb − 1) · (scale, scale, 1)) in the frame (t, b, n)). The tangent is the
-// triangle's dp/du, made orthogonal to the shading normal; the bitangent is n × t, pointing toward
-// decreasing v as glTF's "+Y up in the image" requires (its sign flips where the uvs are mirrored).
-// A per-triangle frame, not the per-vertex MikkTSpace one: smooth enough for path tracing, though
-// seams of a mirrored uv layout can show.
-fn normal_mapped(surface: Surface, triangle: u32, material: Material) -> vec3f {
+// n = normalize((2·rgb − 1) · (scale, scale, 1)) in the frame (t, b, n)). The tangent is the mesh's
+// per-vertex tangent (glTF TANGENT, or MikkTSpace's when the file has none) interpolated, made
+// orthogonal to the shading normal, with b = w · n × t. A mesh without tangents falls back to the
+// triangle's dp/du, with the bitangent toward decreasing v as glTF's "+Y up in the image" requires.
+fn normal_mapped(surface: Surface, hit: Hit, material: Material) -> vec3f {
   if (material.normal_texture == NO_TEXTURE) {
     return surface.shading_normal;
   }
-  let tri = triangles_hot[triangle];
-  let s = triangles_shading[triangle];
-  let duv1 = s.uv1 - s.uv0;
-  let duv2 = s.uv2 - s.uv0;
-  let det = duv1.x * duv2.y - duv1.y * duv2.x;
-  if (abs(det) < 1e-20) {
-    return surface.shading_normal;
-  }
-  let dpdu = (tri.e1 * duv2.y - tri.e2 * duv1.y) / det;
-  let dpdv = (tri.e2 * duv1.x - tri.e1 * duv2.x) / det;
+  let triangle = hit.triangle;
   let n = surface.shading_normal;
-  let t_raw = dpdu - n * dot(n, dpdu);
+  let t0 = triangle_attribute(triangle, 0u);
+  let t1 = triangle_attribute(triangle, 1u);
+  let t2 = triangle_attribute(triangle, 2u);
+  var t_raw = (1.0 - hit.u - hit.v) * t0.xyz + hit.u * t1.xyz + hit.v * t2.xyz;
+  var sign = select(1.0, -1.0, t0.w < 0.0);
+  if (t0.w == 0.0) {
+    // No tangents: the triangle's uv parameterisation.
+    let tri = triangles_hot[triangle];
+    let s = triangles_shading[triangle];
+    let duv1 = s.uv1 - s.uv0;
+    let duv2 = s.uv2 - s.uv0;
+    let det = duv1.x * duv2.y - duv1.y * duv2.x;
+    if (abs(det) < 1e-20) {
+      return n;
+    }
+    let dpdu = (tri.e1 * duv2.y - tri.e2 * duv1.y) / det;
+    let dpdv = (tri.e2 * duv1.x - tri.e1 * duv2.x) / det;
+    t_raw = dpdu;
+    sign = select(1.0, -1.0, dot(cross(n, dpdu), dpdv) > 0.0);
+  }
+  t_raw -= n * dot(n, t_raw);
   if (dot(t_raw, t_raw) < 1e-30) {
-    return surface.shading_normal;
+    return n;
   }
   let t = normalize(t_raw);
-  let b = cross(n, t) * select(1.0, -1.0, dot(cross(n, t), dpdv) > 0.0);
+  let b = cross(n, t) * sign;
   let texel = texture_texel(material.normal_texture, surface.uv).rgb * 2.0 - 1.0;
   let local = vec3f(texel.xy * material.normal_scale, texel.z);
   let mapped = t * local.x + b * local.y + n * local.z;

@@ -123,6 +123,14 @@ struct TextureRef {
 const TEXTURE_LINEAR: u32 = 1u;
 // Filtered bilinearly (glTF); else the nearest texel (Doom's pixels).
 const TEXTURE_BILINEAR: u32 = 2u;
+// Looked up with the second uv set (glTF TEXCOORD_1; triangle_attributes holds it).
+const TEXTURE_UV1: u32 = 4u;
+
+// triangle_attributes: per leaf-order triangle, TRIANGLE_ATTRIBUTE_TEXELS texels of a row of
+// TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW triangles: the world-space tangents of v0, v1, v2 (xyz, w =
+// bitangent sign; all zero without tangents), then the second uv set ((u0, v0, u1, v1), (u2, v2, 0, 0)).
+const TRIANGLE_ATTRIBUTE_TEXELS: u32 = 5u;
+const TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW: u32 = 819u;
 
 // One slot of the alias table over every light (Walker 1977; Vose 1991): pick a slot uniformly,
 // keep its light with probability `keep`, otherwise take the slot's alias. Lights are LIGHT_* codes.
