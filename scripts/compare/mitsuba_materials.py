@@ -260,8 +260,25 @@ def compare(mi, lantern_path, mitsuba_rgb, extra_mitsuba=None):
             row['mitsuba_noise_rel_diff'] = (e - row['mitsuba_lum']) / row['mitsuba_lum']
         rows.append(row)
     floor = ~np.any(masks, axis=0)
-    return dict(rel_mse=rel_mse(lan, mts), rel_mse_outside_spheres=float(np.mean(((lan - mts) ** 2 / (mts ** 2 + 0.01))[floor])),
+    noise = {} if extra_mitsuba is None else dict(noise_rel_mse=rel_mse(extra_mitsuba, mts))
+    return dict(**noise, rel_mse=rel_mse(lan, mts), rel_mse_outside_spheres=float(np.mean(((lan - mts) ** 2 / (mts ** 2 + 0.01))[floor])),
                 spheres=rows, masks=masks)
+
+
+def figure(mi, panels_linear, heatmap_png, out_png, scale=2):
+    """Lantern | Mitsuba | heat map, side by side: both renders through one tone curve (clamp to 1,
+    sRGB), so what differs is the radiance; each panel enlarged `scale` times (nearest)."""
+    def srgb(x):
+        x = np.clip(x, 0, 1)
+        return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+    panels = [srgb(p) for p in panels_linear]
+    if heatmap_png:
+        heat = np.array(mi.Bitmap(heatmap_png).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False), dtype=np.float64)
+        panels.append(srgb(heat))  # back to the PNG's own (display) values
+    gap = np.ones((panels[0].shape[0], 2, 3))
+    row = np.concatenate(sum(([p, gap] for p in panels), [])[:-1], axis=1)
+    row = row.repeat(scale, 0).repeat(scale, 1)
+    mi.Bitmap(np.ascontiguousarray(row, dtype=np.float32)).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=False).write(out_png)
 
 
 def main():
@@ -275,9 +292,13 @@ def main():
     ap.add_argument('--out', help='Mitsuba EXR to write')
     ap.add_argument('--noise-spp', type=int, default=0,
                     help='also render another seed at this many spp (e.g. Lantern\'s) and report its per-sphere difference: the noise floor')
+    ap.add_argument('--noise-out', help='write the --noise-spp render here (EXR)')
     ap.add_argument('--lantern', help="Lantern's EXR of the same scene to compare with")
     ap.add_argument('--json', help='write the comparison here')
     ap.add_argument('--mask-png', help='write the sphere masks as a PNG (a check of the projection)')
+    ap.add_argument('--figure', help='write Lantern | Mitsuba | heat map as a PNG here (needs --lantern)')
+    ap.add_argument('--heatmap', help="a heat map PNG from `lantern diff --heatmap` for --figure")
+    ap.add_argument('--from-exr', help='compare this Mitsuba EXR instead of rendering')
     ap.add_argument('--write-env', help='only write the constant radiance-1 .hdr for Lantern here')
     ap.add_argument('--tmp', default='/tmp/lantern-mitsuba')
     a = ap.parse_args()
@@ -294,10 +315,12 @@ def main():
         scene = mi.load_dict(build_scene(mi, a.width, a.height, spp, a.bounces, seed, a.tmp))
         return np.array(mi.render(scene, seed=seed), dtype=np.float64)[..., :3]
 
-    img = render(a.seed)
+    img = read_exr(mi, a.from_exr) if a.from_exr else render(a.seed)
     if a.out:
         write_exr(a.out, img.astype(np.float32))
     extra = render(a.seed + 1, a.noise_spp) if a.noise_spp else None
+    if extra is not None and a.noise_out:
+        write_exr(a.noise_out, extra.astype(np.float32))
     if a.lantern:
         result = compare(mi, a.lantern, img, extra)
         masks = result.pop('masks')
@@ -305,10 +328,14 @@ def main():
             mi.Bitmap((np.any(masks, axis=0)[..., None] * np.ones(3)).astype(np.float32)).convert(
                 mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=True).write(a.mask_png)
         print('relMSE (whole image) %.5f, outside the spheres %.5f' % (result['rel_mse'], result['rel_mse_outside_spheres']))
+        if 'noise_rel_mse' in result:
+            print('relMSE of a %d-spp Mitsuba render against this one (noise floor) %.5f' % (a.noise_spp, result['noise_rel_mse']))
         print('%-24s %6s %10s %10s %9s %s' % ('material', 'pixels', 'lantern', 'mitsuba', 'rel.diff', '(mitsuba, %d spp, other seed)' % a.noise_spp if extra is not None else ''))
         for r in result['spheres']:
             print('%-24s %6d %10.4f %10.4f %+8.2f%% %s' % (r['material'], r['pixels'], r['lantern_lum'], r['mitsuba_lum'], 100 * r['rel_diff'],
                                                          ('%+.2f%%' % (100 * r['mitsuba_noise_rel_diff'])) if extra is not None else ''))
+        if a.figure:
+            figure(mi, [read_exr(mi, a.lantern), img], a.heatmap, a.figure)
         if a.json:
             with open(a.json, 'w') as f:
                 json.dump(dict(width=a.width, height=a.height, spp=a.spp, bounces=a.bounces, variant=a.variant, **result), f, indent=1)
