@@ -4,11 +4,13 @@ Lantern's built-in `materials` scene rebuilt in Mitsuba 3, rendered under a unif
 environment, and compared with Lantern's EXR of the same scene (docs/materials.md).
 
     python3 -m venv /tmp/mtsvenv && /tmp/mtsvenv/bin/pip install mitsuba numpy
-    /tmp/mtsvenv/bin/python scripts/compare/mitsuba_materials.py --write-env /tmp/cmp/const.hdr
-    VK_ICD_FILENAMES=... node dist/cli/lantern.mjs render materials --width 192 --height 108 \
-        --spp 256 --bounces 8 --env /tmp/cmp/const.hdr --exr /tmp/cmp/lantern.exr
-    /tmp/mtsvenv/bin/python scripts/compare/mitsuba_materials.py --width 192 --height 108 \
-        --spp 1024 --bounces 8 --out /tmp/cmp/mitsuba.exr --lantern /tmp/cmp/lantern.exr --json out.json
+    PY=/tmp/mtsvenv/bin/python S=scripts/compare/mitsuba_materials.py
+    $PY $S --write-env const.hdr
+    VK_ICD_FILENAMES=/usr/lib/chromium/vk_swiftshader_icd.json node dist/cli/lantern.mjs render materials \
+        --width 192 --height 108 --spp 64 --bounces 8 --env const.hdr --exr lantern.exr
+    $PY $S --width 192 --height 108 --spp 4096 --bounces 8 --noise-spp 64 --noise-out mitsuba64.exr --out mitsuba.exr
+    node dist/cli/lantern.mjs diff lantern.exr mitsuba.exr --json --heatmap heat.png --heatmap-scale 0.5
+    $PY $S --from-exr mitsuba.exr --lantern lantern.exr --json compare.json --figure compare.png --heatmap heat.png
 
 Everything the scene is made of is written here from the constants of
 src/loaders/builtin/materials.ts (keep them in step):
