@@ -97,10 +97,11 @@ export function bvhTeaching(): Scene {
   for (const s of [-1, 1]) b.quad(slab, point(a, s, -1), point(e, s, -1), point(e, s, 1), point(a, s, 1));
   for (const end of [a, e]) b.quad(slab, point(end, -1, -1), point(end, 1, -1), point(end, 1, 1), point(end, -1, 1));
 
+  const meshes = [b.build()];
   return {
     name: 'bvh-teaching',
-    meshes: [b.build()],
-    instances: placeEachOnce([b.build()]),
+    meshes,
+    instances: placeEachOnce(meshes),
     materials: b.materials,
     // From the open side, above the floor, so both halves and the whole slab are in view.
     camera: { position: [0, 7, -19], forward: normalize([0, -0.33, 1]), up: [0, 1, 0], vfovDegrees: 55 },

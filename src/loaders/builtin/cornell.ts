@@ -47,10 +47,11 @@ export function cornellBox(): Scene {
   b.quad(white, [314.0, 0, 456.0], [314.0, 330.0, 456.0], [265.0, 330.0, 296.0], [265.0, 0, 296.0]);
   b.quad(white, [265.0, 0, 296.0], [265.0, 330.0, 296.0], [423.0, 330.0, 247.0], [423.0, 0, 247.0]);
 
+  const meshes = [b.build()];
   return {
     name: 'cornell',
-    meshes: [b.build()],
-    instances: placeEachOnce([b.build()]),
+    meshes,
+    instances: placeEachOnce(meshes),
     materials: b.materials,
     // Published camera: focal length 35 mm, 25 mm film: 2·atan(12.5 / 35) = 39.3077°.
     camera: { position: [278, 273, -800], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 39.3077 },

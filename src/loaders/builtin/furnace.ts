@@ -29,10 +29,11 @@ export function whiteFurnace(): Scene {
   b.quad(m, p(1, -1, -1), p(1, -1, 1), p(1, 1, 1), p(1, 1, -1)); // x = +1, normal -x
   b.quad(m, p(-1, -1, -1), p(1, -1, -1), p(1, 1, -1), p(-1, 1, -1)); // z = -1, normal +z
   b.quad(m, p(-1, -1, 1), p(-1, 1, 1), p(1, 1, 1), p(1, -1, 1)); // z = +1, normal -z
+  const meshes = [b.build()];
   return {
     name: 'furnace',
-    meshes: [b.build()],
-    instances: placeEachOnce([b.build()]),
+    meshes,
+    instances: placeEachOnce(meshes),
     materials: b.materials,
     camera: { position: [0.2, -0.1, -0.3], forward: [0.3, 0.2, 1], up: [0, 1, 0], vfovDegrees: 90 },
   };
