@@ -311,6 +311,40 @@ export interface Mesh {
   readonly tangents?: Float32Array;
   /** One index into `Scene.materials` per triangle. */
   readonly materialIds: Uint32Array;
+  /**
+   * Analytic spheres and capsules placed with the triangles. An instance of a mesh that has them must
+   * be a similarity (rotation, uniform scale, translation; validate.ts checks), so a sphere stays a sphere.
+   */
+  readonly spheres?: SphereSet;
+  readonly capsules?: CapsuleSet;
+}
+
+/**
+ * Spheres: an analytic primitive, intersected exactly (no tessellation) in the same BVH as the
+ * triangles. Both sides are surfaces (glass works from inside); emission leaves the outside.
+ * uv: u = longitude / 2π around the object's +y axis from +z (as scene/shapes.ts uvSphere), v =
+ * colatitude / π from +y (0 at the top).
+ */
+export interface SphereSet {
+  /** xyz per sphere, object space. */
+  readonly centers: Float32Array;
+  /** One radius (> 0) per sphere, object space. */
+  readonly radii: Float32Array;
+  /** One index into `Scene.materials` per sphere. */
+  readonly materialIds: Uint32Array;
+}
+
+/**
+ * Capsules: every point within `radius` of the segment a–b (a cylinder closed by two hemispheres), an
+ * analytic primitive like SphereSet. Molecules draw bonds with them. uv: u around the axis, v from a
+ * (0) to b (1) along it.
+ */
+export interface CapsuleSet {
+  /** Six floats per capsule: a xyz, b xyz (object space; a = b gives a sphere). */
+  readonly endpoints: Float32Array;
+  /** One radius (> 0) per capsule. */
+  readonly radii: Float32Array;
+  readonly materialIds: Uint32Array;
 }
 
 /** One placement of a mesh in the world. */
@@ -328,7 +362,19 @@ export interface Instance {
   readonly material?: number;
 }
 
-/** A pinhole camera. `forward` and `up` need not be unit length nor exactly orthogonal. */
+/**
+ * A thin lens (pbrt-v4 §5.2.3): rays start on a disk of `apertureRadius` around the camera position,
+ * in the plane facing `forward`, and converge on the plane at `focusDistance` along forward, which
+ * stays sharp. Scene units.
+ */
+export interface ThinLens {
+  /** Radius of the aperture disk (> 0; a pinhole has no lens). Ray Tracing in One Weekend's `aperture` is the diameter. */
+  readonly apertureRadius: number;
+  /** Distance from the lens to the plane in focus, measured along forward (> 0). */
+  readonly focusDistance: number;
+}
+
+/** A pinhole or thin-lens camera. `forward` and `up` need not be unit length nor exactly orthogonal. */
 export interface Camera {
   readonly position: Vec3;
   readonly forward: Vec3;
@@ -340,6 +386,8 @@ export interface Camera {
    * tone mapping. A user's exposure setting adds to it.
    */
   readonly exposureStops?: number;
+  /** Depth of field. Absent: a pinhole (everything sharp). */
+  readonly lens?: ThinLens;
 }
 
 export interface Scene {
