@@ -78,6 +78,8 @@ export interface KernelOptions {
   readonly entryPoint: string;
   /** Values of WGSL `override` constants. */
   readonly constants?: Record<string, number>;
+  /** Keep the shader module for later kernels of the same code (default); specialised kernels, made once per scene, do not. */
+  readonly cacheModule?: boolean;
 }
 
 export class ComputeKernel extends BindGroupFactory {
@@ -97,7 +99,7 @@ export class ComputeKernel extends BindGroupFactory {
     const shader = typeof options.module === 'string' ? reflectModule(options.module) : options.module;
     const label = `${shader.linked.entry}:${options.entryPoint}`;
     const slots = entryPointBindings(shader, [options.entryPoint], GPUShaderStage.COMPUTE);
-    const module = await cachedModule(device, shader);
+    const module = await (options.cacheModule === false ? compileShader(device, shader.linked) : cachedModule(device, shader));
     const layouts = createBindGroupLayouts(device, label, slots);
     const layout = device.createPipelineLayout({ label, bindGroupLayouts: layouts });
     let pipeline: GPUComputePipeline;

@@ -28,7 +28,8 @@ export interface FrameTarget {
 
 export class PathTraceFramePass {
   private constructor(
-    private readonly kernels: TracingKernels,
+    /** Its kernels: the generic variants and, once the renderer specialises, the scene's own. */
+    readonly kernels: TracingKernels,
     private readonly params: UniformParams<UniformValues>,
     private readonly frame: UniformParams<UniformValues>,
   ) {}

@@ -2,6 +2,7 @@
 import { SceneKernels, TRACING_FEATURES, type ComputeKernel } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
+import { compileSpecialised, type SceneSpecialisation, type SpecialisedKernel } from '../gpu/specialisation.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import { LIGHT_SAMPLING, type LightSampling } from './variants.ts';
@@ -71,10 +72,34 @@ export class TracingKernels {
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
   private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
 
-  private constructor(private readonly kernels: SceneKernels) {}
+  /** The kernel specialised to one uploaded scene, used instead of the generic variants while set. */
+  private active?: { readonly scene: SceneResources; readonly kernel: ComputeKernel };
+
+  private constructor(
+    private readonly device: GPUDevice,
+    private readonly kernels: SceneKernels,
+    private readonly base: { readonly module: string; readonly entryPoint: string },
+    private readonly extraConstants: Record<string, number>,
+  ) {}
 
   static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}): Promise<TracingKernels> {
-    return new TracingKernels(await SceneKernels.create(device, { module, entryPoint }, TRACING_FEATURES, extraConstants));
+    const base = { module, entryPoint };
+    return new TracingKernels(device, await SceneKernels.create(device, base, TRACING_FEATURES, extraConstants), base, extraConstants);
+  }
+
+  /** Compiles this entry point specialised to a frozen scene (gpu/specialisation.ts), asynchronously; it is not used until useSpecialised. */
+  compileSpecialised(s: SceneSpecialisation): Promise<SpecialisedKernel> {
+    return compileSpecialised(this.device, this.base, s, this.extraConstants);
+  }
+
+  /** Dispatches over `scene` use `kernel` from now on; undefined goes back to the generic variants. */
+  useSpecialised(active?: { readonly scene: SceneResources; readonly kernel: ComputeKernel }): void {
+    this.active = active;
+  }
+
+  /** Whether dispatches over `scene` run a specialised kernel. */
+  isSpecialised(scene: SceneResources): boolean {
+    return this.active?.scene === scene;
   }
 
   /** Compiles the variant a scene with these features needs (Renderer.setScene awaits it). */
@@ -84,7 +109,7 @@ export class TracingKernels {
 
   /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
   dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, timer?: GpuTimer): void {
-    const kernel = this.kernels.get(scene.features);
+    const kernel = this.active?.scene === scene ? this.active.kernel : this.kernels.get(scene.features);
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     kernel.dispatch(
       pass,
@@ -102,7 +127,8 @@ export class TracingKernels {
 
 export class PathTracePass {
   private constructor(
-    private readonly kernels: TracingKernels,
+    /** Its kernels: the generic variants and, once the renderer specialises, the scene's own. */
+    readonly kernels: TracingKernels,
     private readonly params: UniformParams<UniformValues>,
   ) {}
 

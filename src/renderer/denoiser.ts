@@ -17,6 +17,7 @@ import { reflectModule } from '../gpu/wgsl/reflect.ts';
 import { ATROUS_STEPS, atrousParams, createDenoisePasses, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass } from '../passes/path-trace-frame-pass.ts';
+import type { TracingKernels } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { RenderSettings } from './settings.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -92,6 +93,11 @@ export class Denoiser {
   /** Compiles the frame path tracer's variant for a scene with these features. */
   prepare(features: SceneFeatures): Promise<void> {
     return this.frame.prepare(features);
+  }
+
+  /** The frame path tracer's kernels (the renderer specialises them with the progressive ones). */
+  get frameKernels(): TracingKernels {
+    return this.frame.kernels;
   }
 
   /** The chain's linear output of the last frame (vec4f per pixel), if a frame was rendered. */

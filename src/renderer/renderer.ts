@@ -31,11 +31,27 @@ import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
 import { ViewUniform } from '../gpu/view.ts';
+import { describeSpecialisation, specialiseScene, type SpecialiseOptions } from '../gpu/specialisation.ts';
+import { LIGHT_SAMPLING } from '../passes/variants.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;
 /** An image side beyond this is refused even where the GPU would allow it. */
 export const MAX_IMAGE_SIDE = 16384;
+
+/** Which kernels the tracing passes run: the generic ones (the scene read from buffers) or those specialised to the frozen scene. */
+export type KernelKind = 'generic' | 'specialised';
+
+/** What requestSpecialisation compiled and switched to. */
+export interface SpecialisationReport {
+  /** Wall milliseconds of the asynchronous compile (every specialised pipeline, in parallel). */
+  readonly compileMs: number;
+  /** gpu/specialisation.ts describeSpecialisation: traversal, material kinds, inlined settings. */
+  readonly description: string;
+  /** Traced without a BVH (primitives unrolled as constants). */
+  readonly unrolled: boolean;
+  readonly primitiveCount: number;
+}
 
 export interface RayCounts {
   readonly extension: number;
@@ -79,6 +95,14 @@ export class Renderer {
   private denoiser?: Denoiser;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
+  /** Specialisation (see requestSpecialisation): bumped by every edit, so a compile that an edit overtook is dropped. */
+  private specialisationEpoch = 0;
+  private pendingSpecialisation?: { readonly epoch: number; readonly done: Promise<SpecialisationReport | undefined> };
+  private specialisationValue?: SpecialisationReport;
+  private idleSpecialisationMs?: number;
+  private idleTimer?: ReturnType<typeof setTimeout>;
+  /** The error of the last automatic (idle) specialisation, if it failed; rendering stays generic. */
+  specialisationError?: unknown;
 
   private constructor(
     readonly gpu: GpuContext,
@@ -151,9 +175,11 @@ export class Renderer {
     const features = prepared.packed.features;
     await Promise.all([this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features)]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
+    this.invalidateSpecialisation();
     this.resources?.destroy();
     this.resources = resources;
     this.prepared = prepared;
+    this.scheduleSpecialisation();
   }
 
   /**
@@ -168,6 +194,7 @@ export class Renderer {
     for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
     writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
     this.prepared = prepared;
+    this.invalidateSpecialisation();
     this.resetAccumulation();
     return prepared;
   }
@@ -182,7 +209,95 @@ export class Renderer {
     const next = validateSettings({ ...this.settingsValue, ...changes });
     const restart = ESTIMATE_SETTINGS.some((k) => next[k] !== this.settingsValue[k]);
     this.settingsValue = next;
-    if (restart) this.resetAccumulation();
+    if (restart) {
+      // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
+      this.invalidateSpecialisation();
+      this.resetAccumulation();
+    }
+  }
+
+  /**
+   * Which kernels accumulate() and renderFrame() run now. Generic until requestSpecialisation's
+   * compile is ready; every edit (scene, environment, instances, materials, an estimate setting)
+   * goes back to generic at once. Camera moves, resizes and display settings keep the kernel.
+   */
+  get kernel(): KernelKind {
+    return this.resources && this.pathTrace.kernels.isSpecialised(this.resources) ? 'specialised' : 'generic';
+  }
+
+  /** What the specialised kernels in use were compiled for, and how long that took. */
+  get specialisation(): SpecialisationReport | undefined {
+    return this.kernel === 'specialised' ? this.specialisationValue : undefined;
+  }
+
+  /**
+   * Compiles the tracing kernels specialised to the scene and settings as they are now
+   * (gpu/specialisation.ts), asynchronously: frames keep rendering with the generic kernels until
+   * the compile is ready, then the next one uses them. Accumulation continues, since both compute the
+   * same estimator. Resolves with the report once switched, or undefined when an edit came first (the
+   * result is dropped). Calling it again while a compile runs waits for that one.
+   */
+  requestSpecialisation(options: SpecialiseOptions = {}): Promise<SpecialisationReport | undefined> {
+    if (!this.prepared || !this.resources) throw new Error('Renderer: setScene() before requestSpecialisation()');
+    if (this.kernel === 'specialised') return Promise.resolve(this.specialisationValue);
+    const epoch = this.specialisationEpoch;
+    if (this.pendingSpecialisation?.epoch === epoch) return this.pendingSpecialisation.done;
+    const done = this.specialise(epoch, options);
+    this.pendingSpecialisation = { epoch, done };
+    return done;
+  }
+
+  private async specialise(epoch: number, options: SpecialiseOptions): Promise<SpecialisationReport | undefined> {
+    const prepared = this.prepared!, resources = this.resources!;
+    const s = this.settingsValue;
+    const spec = specialiseScene(prepared.packed, prepared.scene.name, { maxBounces: s.maxBounces, lightSampling: LIGHT_SAMPLING.indexOf(s.lightSampling) }, options);
+    const sets = [this.pathTrace.kernels, ...(this.denoiser ? [this.denoiser.frameKernels] : [])];
+    const t0 = performance.now();
+    const compiled = await Promise.all(sets.map((k) => k.compileSpecialised(spec)));
+    const compileMs = performance.now() - t0;
+    if (epoch !== this.specialisationEpoch || resources !== this.resources) return undefined;
+    sets.forEach((k, i) => k.useSpecialised({ scene: resources, kernel: compiled[i]!.kernel }));
+    this.specialisationValue = { compileMs, description: describeSpecialisation(spec), unrolled: spec.unrolled !== undefined, primitiveCount: spec.primitiveCount };
+    return this.specialisationValue;
+  }
+
+  /**
+   * Goes back to the generic kernels at once and drops any compile under way; with an idle delay set
+   * (setIdleSpecialisation), restarts its timer. Every method that edits the scene or an estimate
+   * setting calls it; so must any new one (material editing, for instance).
+   */
+  invalidateSpecialisation(): void {
+    this.specialisationEpoch++;
+    this.pendingSpecialisation = undefined;
+    this.specialisationValue = undefined;
+    this.pathTrace.kernels.useSpecialised(undefined);
+    this.denoiser?.frameKernels.useSpecialised(undefined);
+    this.scheduleSpecialisation();
+  }
+
+  /**
+   * The idle policy shared by the front ends: specialise once the scene has gone `idleMs` without an
+   * edit (the viewer uses 1000); undefined turns it off (the default). A failed compile is kept in
+   * specialisationError and rendering stays generic.
+   */
+  setIdleSpecialisation(idleMs: number | undefined): void {
+    if (idleMs !== undefined && !(Number.isFinite(idleMs) && idleMs >= 0)) throw new LanternError(`the idle delay before specialising must be a number of milliseconds ≥ 0, not ${idleMs}`);
+    this.idleSpecialisationMs = idleMs;
+    this.scheduleSpecialisation();
+  }
+
+  private scheduleSpecialisation(): void {
+    if (this.idleTimer !== undefined) clearTimeout(this.idleTimer);
+    this.idleTimer = undefined;
+    if (this.idleSpecialisationMs === undefined || !this.prepared || this.kernel === 'specialised') return;
+    this.idleTimer = setTimeout(() => {
+      this.idleTimer = undefined;
+      if (!this.prepared) return;
+      this.requestSpecialisation().then(
+        () => (this.specialisationError = undefined),
+        (e: unknown) => (this.specialisationError = e),
+      );
+    }, this.idleSpecialisationMs);
   }
 
   /** Sets the image size, checked against the GPU's limits. */
@@ -255,8 +370,11 @@ export class Renderer {
 
   /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output). */
   async enableRealTime(): Promise<void> {
+    const created = !this.denoiser;
     this.denoiser ??= await Denoiser.create(this.device);
     if (this.prepared) await this.denoiser.prepare(this.prepared.packed.features);
+    // Specialised kernels are compiled for every tracing pass at once: specialise again with the frame kernel.
+    if (created && this.kernel === 'specialised') this.invalidateSpecialisation();
   }
 
   /**
@@ -397,6 +515,8 @@ export class Renderer {
 
   /** Frees every GPU resource this renderer created (the device stays). */
   destroy(): void {
+    this.setIdleSpecialisation(undefined);
+    this.invalidateSpecialisation();
     this.resources?.destroy();
     this.resources = undefined;
     this.destroyTargets();

@@ -28,15 +28,19 @@ export interface LinkedShader {
 /**
  * Links `entry` (a module in `sources`) with everything it imports. `sources` defaults to the shaders
  * in src/shaders; tests pass an extended map to link their own kernels against the real modules.
+ * `substitutes` links another module wherever one is imported (an implementation chosen at link time:
+ * gpu/specialisation.ts links scene/traversal-unrolled where the integrator imports scene/bvh); the
+ * line map names the module actually linked.
  */
-export function linkWgsl(entry: string, sources: ReadonlyMap<string, string> = SHADER_MODULES): LinkedShader {
+export function linkWgsl(entry: string, sources: ReadonlyMap<string, string> = SHADER_MODULES, substitutes: ReadonlyMap<string, string> = new Map()): LinkedShader {
   const emitted: string[] = [];
   const done = new Set<string>();
   const visiting: string[] = [];
   const out: string[] = [];
   const lineMap: (SourceLine | null)[] = [];
 
-  const visit = (name: string, importedBy?: string): void => {
+  const visit = (imported: string, importedBy?: string): void => {
+    const name = substitutes.get(imported) ?? imported;
     if (done.has(name)) return;
     if (visiting.includes(name)) {
       throw new LanternError(`WGSL import cycle: ${[...visiting, name].join(' -> ')}`);

@@ -38,9 +38,18 @@ const COUNTER_SHADOW_RAYS: u32 = 2u;
 var<workgroup> workgroup_extension_rays: atomic<u32>;
 var<workgroup> workgroup_shadow_rays: atomic<u32>;
 
+// Settings inlined into a kernel specialised to a frozen scene (gpu/specialisation.ts): the value the
+// params uniform holds, fixed while the kernel is in use (any change drops back to the generic kernel),
+// so loops and branches on it are known to the compiler. INLINED_FROM_PARAMS: read the uniform.
+const INLINED_FROM_PARAMS: i32 = -1;
+override INLINED_MAX_BOUNCES: i32 = INLINED_FROM_PARAMS;
+override INLINED_LIGHT_SAMPLING: i32 = INLINED_FROM_PARAMS;
+
 // The integrator's settings for this dispatch.
 fn path_settings() -> PathSettings {
-  return PathSettings(params.max_bounces, params.light_sampling, params.torch, view.camera.position, 2.0 * length(view.camera.up) / f32(view.image_size.y));
+  let max_bounces = select(params.max_bounces, u32(INLINED_MAX_BOUNCES), INLINED_MAX_BOUNCES != INLINED_FROM_PARAMS);
+  let light_sampling = select(params.light_sampling, u32(INLINED_LIGHT_SAMPLING), INLINED_LIGHT_SAMPLING != INLINED_FROM_PARAMS);
+  return PathSettings(max_bounces, light_sampling, params.torch, view.camera.position, 2.0 * length(view.camera.up) / f32(view.image_size.y));
 }
 
 // Adds n to the counter whose low word is ray_counters[low]; n < 2³², so at most one carry.

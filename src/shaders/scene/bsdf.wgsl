@@ -16,6 +16,12 @@ const BSDF_DIFFUSE: u32 = 0u;              // Lambertian, base_color = albedo, t
 const BSDF_METALLIC_ROUGHNESS: u32 = 1u;   // the glTF 2.0 metallic-roughness model (with KHR_materials_specular, _ior, _transmission)
 const BSDF_DIELECTRIC: u32 = 2u;           // glass: Fresnel reflection + refraction, smooth or rough (Walter et al. 2007)
 
+// Whether the scene has materials of these kinds (pipeline constants; gpu/specialisation.ts sets them
+// for a frozen scene). Where a kind is absent its branch of bsdf_lobes folds away, and with it the
+// lobes only that kind weights (a scene without them computes those weights as zero anyway).
+override SCENE_HAS_METALLIC_ROUGHNESS: bool = true;
+override SCENE_HAS_DIELECTRIC: bool = true;
+
 // Below this GGX alpha (roughness ≈ 0.032) a microfacet lobe is treated as a perfect mirror or
 // refraction (a delta lobe): its width (~α radians, < 0.06°) is below any pixel's footprint, and
 // D ∝ 1/α² would overflow the f32 range of the pdf long before α reaches 0.
@@ -111,9 +117,9 @@ fn bsdf_lobes(p: BsdfParams, wo: vec3f) -> BsdfLobes {
   l.metal_f0 = p.base_color;
   l.tint = p.base_color;
   l.thin = p.thin_walled != 0u;
-  if (p.kind == BSDF_DIFFUSE) {
+  if (p.kind == BSDF_DIFFUSE || !(SCENE_HAS_METALLIC_ROUGHNESS || SCENE_HAS_DIELECTRIC)) {
     l.base = 1.0;
-  } else if (p.kind == BSDF_DIELECTRIC) {
+  } else if (SCENE_HAS_DIELECTRIC && (p.kind == BSDF_DIELECTRIC || !SCENE_HAS_METALLIC_ROUGHNESS)) {
     l.glass = 1.0;
   } else {
     let metallic = clamp(p.metallic, 0.0, 1.0);

@@ -1,0 +1,136 @@
+/**
+ * Scene-specialised kernels: what a frozen scene lets the compiler know, as data in one place.
+ * The generic kernels read the scene from buffers, like an interpreter; once a scene stops changing
+ * the renderer compiles its tracing kernels again with a SceneSpecialisation:
+ *
+ *   (a) material kinds present: SCENE_HAS_METALLIC_ROUGHNESS / SCENE_HAS_DIELECTRIC (scene/bsdf.wgsl)
+ *       and the scene features (gpu/kernel.ts FEATURE_CONSTANTS) fold absent kinds' code away;
+ *   (b) settings fixed while the scene is frozen: INLINED_MAX_BOUNCES, INLINED_LIGHT_SAMPLING
+ *       (passes/path-trace.wgsl) replace the uniform's values by constants;
+ *   (c) small scenes (at most `unrollLimit` primitives): scene/traversal-unrolled is linked in place
+ *       of scene/bvh, with the scene's primitives as constants in a generated module
+ *       (gpu/pack/primitives-module.ts) and one intersection call per primitive: no BVH at all.
+ *
+ * Every choice keeps the estimator: the constants equal what the buffers hold, and the unrolled
+ * traversal returns the same closest hit as the BVH (the same ray/triangle arithmetic; a tie between
+ * equally distant triangles may go either way). Images therefore agree within Monte Carlo error.
+ */
+import { LanternError } from '../errors.ts';
+import { ComputeKernel, FEATURE_CONSTANTS, type KernelOptions } from './kernel.ts';
+import { PRIMITIVES_MODULE, primitivesModule } from './pack/primitives-module.ts';
+import { sceneLayouts, type PackedScene, type SceneFeatures } from './pack/scene-pack.ts';
+import { linkWgsl } from './wgsl/linker.ts';
+import { reflectLinked, type ReflectedShader } from './wgsl/reflect.ts';
+import { SHADER_MODULES } from '../shaders/index.ts';
+
+/**
+ * Scenes with at most this many primitives trace without a BVH. Unrolled code grows with the count
+ * (two calls per primitive) and so does compile time; the BVH wins once a ray would skip most
+ * primitives. docs/perf.md records the measurements that place it.
+ */
+export const UNROLL_PRIMITIVE_LIMIT = 64;
+
+/** The module the unrolled traversal replaces, and its replacement. */
+const TRAVERSAL_MODULE = 'scene/bvh';
+const UNROLLED_TRAVERSAL_MODULE = 'scene/traversal-unrolled';
+
+/** Sampling settings inlined as constants; they are fixed while a specialised kernel is in use. */
+export interface InlinedSettings {
+  readonly maxBounces: number;
+  /** Index in passes/variants.ts LIGHT_SAMPLING (LIGHT_SAMPLING_* of integrator/path.wgsl). */
+  readonly lightSampling: number;
+}
+
+export interface MaterialKindsPresent {
+  readonly metallicRoughness: boolean;
+  readonly dielectric: boolean;
+}
+
+export interface SceneSpecialisation {
+  readonly sceneName: string;
+  readonly features: SceneFeatures;
+  readonly materialKinds: MaterialKindsPresent;
+  readonly settings: InlinedSettings;
+  readonly primitiveCount: number;
+  /** The generated primitives module when the scene is traced without a BVH. */
+  readonly unrolled?: string;
+  /** Every override constant the specialisation sets (a kernel takes those its module declares). */
+  readonly constants: Readonly<Record<string, number>>;
+}
+
+export interface SpecialiseOptions {
+  /** Largest primitive count traced without a BVH (0: never). */
+  readonly unrollLimit?: number;
+}
+
+/** MATERIAL_KIND_* of shaders/scene/types.wgsl, in the order of scene/types.ts MaterialKind. */
+const MATERIAL_KIND_METALLIC_ROUGHNESS = 1;
+const MATERIAL_KIND_DIELECTRIC = 2;
+
+/** The material kinds the packed materials hold (read back from the bytes the GPU reads). */
+export function materialKindsPresent(packed: PackedScene): MaterialKindsPresent {
+  const layout = sceneLayouts().material;
+  const words = new Uint32Array(packed.materials);
+  const kindWord = layout.word('kind', 'u32');
+  const count = Math.floor(packed.materials.byteLength / layout.stride);
+  const kinds = new Set<number>();
+  for (let i = 0; i < count; i++) kinds.add(words[i * layout.strideWords + kindWord]!);
+  return { metallicRoughness: kinds.has(MATERIAL_KIND_METALLIC_ROUGHNESS), dielectric: kinds.has(MATERIAL_KIND_DIELECTRIC) };
+}
+
+/** What the kernels specialised to this packed scene and these settings know at compile time. */
+export function specialiseScene(packed: PackedScene, sceneName: string, settings: InlinedSettings, options: SpecialiseOptions = {}): SceneSpecialisation {
+  const limit = options.unrollLimit ?? UNROLL_PRIMITIVE_LIMIT;
+  if (!Number.isInteger(limit) || limit < 0) throw new LanternError(`the unroll limit must be a whole number ≥ 0, not ${limit}`);
+  if (!Number.isInteger(settings.maxBounces) || settings.maxBounces < 0) throw new LanternError(`max bounces must be a whole number ≥ 0, not ${settings.maxBounces}`);
+  const materialKinds = materialKindsPresent(packed);
+  const primitiveCount = packed.counts.triangles;
+  const constants: Record<string, number> = {};
+  for (const [name, constant] of Object.entries(FEATURE_CONSTANTS) as [keyof SceneFeatures, string][]) constants[constant] = packed.features[name] ? 1 : 0;
+  constants.SCENE_HAS_METALLIC_ROUGHNESS = materialKinds.metallicRoughness ? 1 : 0;
+  constants.SCENE_HAS_DIELECTRIC = materialKinds.dielectric ? 1 : 0;
+  constants.INLINED_MAX_BOUNCES = settings.maxBounces;
+  constants.INLINED_LIGHT_SAMPLING = settings.lightSampling;
+  const unrolled = primitiveCount > 0 && primitiveCount <= limit ? primitivesModule(sceneLayouts().hot, packed.triangles_hot, primitiveCount, sceneName) : undefined;
+  return { sceneName, features: packed.features, materialKinds, settings, primitiveCount, ...(unrolled ? { unrolled } : {}), constants };
+}
+
+/** A one-line account of a specialisation, for logs and the bench report. */
+export function describeSpecialisation(s: SceneSpecialisation): string {
+  const kinds = ['diffuse', s.materialKinds.metallicRoughness ? 'metallic-roughness' : '', s.materialKinds.dielectric ? 'dielectric' : ''].filter(Boolean).join(' + ');
+  const traversal = s.unrolled ? `${s.primitiveCount} primitives unrolled, no BVH` : `BVH over ${s.primitiveCount} primitives`;
+  return `${traversal}; materials ${kinds}; ${s.settings.maxBounces} bounces inlined`;
+}
+
+/** Names of the `override` constants a WGSL text declares. */
+export function declaredOverrides(code: string): Set<string> {
+  return new Set([...code.matchAll(/^\s*override\s+([A-Za-z_][A-Za-z0-9_]*)/gm)].map((m) => m[1]!));
+}
+
+/** `entry` linked for a specialisation: the unrolled traversal and its generated data in place of scene/bvh when the scene is small. */
+export function specialisedShader(entry: string, s: SceneSpecialisation): ReflectedShader {
+  if (!s.unrolled) return reflectLinked(linkWgsl(entry));
+  const sources = new Map(SHADER_MODULES);
+  sources.set(PRIMITIVES_MODULE, s.unrolled);
+  return reflectLinked(linkWgsl(entry, sources, new Map([[TRAVERSAL_MODULE, UNROLLED_TRAVERSAL_MODULE]])));
+}
+
+export interface SpecialisedKernel {
+  readonly kernel: ComputeKernel;
+  /** Wall milliseconds from linking to the pipeline being ready (createComputePipelineAsync). */
+  readonly compileMs: number;
+}
+
+/**
+ * Compiles `base` specialised to `s`, asynchronously. `extraConstants` are the entry point's own
+ * (CAPTURE_PRIMARY). Only constants the linked module declares are passed (WebGPU refuses others).
+ */
+export async function compileSpecialised(device: GPUDevice, base: { readonly module: string; readonly entryPoint: string }, s: SceneSpecialisation, extraConstants: Record<string, number> = {}): Promise<SpecialisedKernel> {
+  const t0 = performance.now();
+  const shader = specialisedShader(base.module, s);
+  const declared = declaredOverrides(shader.linked.code);
+  const constants = Object.fromEntries(Object.entries({ ...s.constants, ...extraConstants }).filter(([name]) => declared.has(name)));
+  const options: KernelOptions = { module: shader, entryPoint: base.entryPoint, constants, cacheModule: false };
+  const kernel = await ComputeKernel.create(device, options);
+  return { kernel, compileMs: performance.now() - t0 };
+}

@@ -1,0 +1,65 @@
+// Traversal without a BVH for small frozen scenes: trace_closest and trace_any with scene/bvh's
+// signatures, testing every primitive of the generated module scene/specialised-primitives (its data
+// as constants, one call per primitive: gpu/pack/primitives-module.ts writes it from triangles_hot).
+// gpu/specialisation.ts links this module wherever scene/bvh is imported. Expects the scene bindings
+// (group 0) for shading and alpha tests. Hits are leaf-order indices, exactly as scene/bvh's.
+
+// As in scene/bvh: whether the scene has alpha-masked or alpha-blended triangles.
+override SCENE_HAS_ALPHA_MASKS: bool = true;
+
+// Identifies the ray being traced, so stochastic transparency draws a new number for every ray.
+var<private> alpha_salt: u32;
+
+// A candidate hit that survives the alpha test, if the triangle has one (scene/bvh's rule).
+fn accept_hit(tri: TriangleHot, triangle: u32, bary: vec2f) -> bool {
+  if (!SCENE_HAS_ALPHA_MASKS) {
+    return true;
+  }
+  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(triangle, bary, alpha_salt);
+}
+
+fn set_alpha_salt(ray: Ray) {
+  if (SCENE_HAS_ALPHA_MASKS) {
+    let d = bitcast<vec3u>(ray.direction);
+    alpha_salt = d.x ^ (d.y * 0x9e3779b9u) ^ (d.z * 0x85ebca6bu);
+  }
+}
+
+#import scene/bindings
+#import scene/intersect
+#import scene/materials
+#import scene/specialised-primitives
+
+// The one intersection routine every primitive goes through (its record's flags say its kind once
+// the primitive list carries analytic shapes): vec3f(t, u, v), or t = T_MISS.
+fn unrolled_intersect(ray: Ray, prim: TriangleHot, t_best: f32) -> vec3f {
+  return intersect_triangle(ray.origin, ray.direction, prim, ray.t_min, t_best);
+}
+
+// Closest-hit test of one primitive: `hit` becomes it when it is nearer and passes the alpha test.
+// The generated unrolled_closest calls this once per primitive with constant arguments.
+fn closest_candidate(ray: Ray, prim: TriangleHot, index: u32, hit: ptr<function, Hit>) {
+  let r = unrolled_intersect(ray, prim, (*hit).t);
+  if (r.x < (*hit).t && accept_hit(prim, index, r.yz)) {
+    *hit = Hit(r.x, index, r.y, r.z);
+  }
+}
+
+// Any-hit test of one primitive against (t_min, t_max).
+fn any_candidate(ray: Ray, prim: TriangleHot, index: u32) -> bool {
+  let r = unrolled_intersect(ray, prim, ray.t_max);
+  return r.x < ray.t_max && accept_hit(prim, index, r.yz);
+}
+
+fn trace_closest(ray: Ray) -> Hit {
+  var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0);
+  set_alpha_salt(ray);
+  unrolled_closest(ray, &hit);
+  return hit;
+}
+
+// True when anything lies strictly between t_min and t_max along the ray.
+fn trace_any(ray: Ray) -> bool {
+  set_alpha_salt(ray);
+  return unrolled_any(ray);
+}
