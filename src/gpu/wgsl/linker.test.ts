@@ -40,3 +40,18 @@ describe('WGSL linker', () => {
     for (const p of passes) expect(() => linkWgsl(p)).not.toThrow();
   });
 });
+
+describe('linker substitutes', () => {
+  it('links the substitute wherever the module is imported, once', () => {
+    const sources = new Map([
+      ['entry', '#import x\n#import y\nfn main() {}'],
+      ['y', '#import x\nfn y() {}'],
+      ['x', 'fn x_generic() {}'],
+      ['x-fast', 'fn x_fast() {}'],
+    ]);
+    const linked = linkWgsl('entry', sources, new Map([['x', 'x-fast']]));
+    expect(linked.modules).toEqual(['x-fast', 'y', 'entry']);
+    expect(linked.code).not.toContain('x_generic');
+    expect(linked.code.match(/fn x_fast/g)).toHaveLength(1);
+  });
+});
