@@ -16,7 +16,7 @@ import type { ResourceCount } from '../gpu/resource-count.ts';
 import { GpuTimer } from '../gpu/timestamps.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
-import { Renderer } from '../renderer/renderer.ts';
+import { Renderer, type KernelKind } from '../renderer/renderer.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
@@ -52,6 +52,9 @@ export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPe
 /** Whether these settings ask for the real-time frame chain (temporal and/or spatial denoising). */
 export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise'>) => s.temporal || s.denoise;
 
+/** Milliseconds without an edit after which the scene's specialised kernels are compiled (Lantern issue #11). */
+const SPECIALISE_AFTER_IDLE_MS = 1000;
+
 export interface PassTime {
   readonly name: string;
   readonly ms: number;
@@ -72,6 +75,8 @@ export interface ViewerStats {
   readonly sceneName: string;
   readonly adapter: string;
   readonly gpuResources: ResourceCount;
+  /** The tracing kernels in use: generic, or specialised to the scene once it has gone a second without edits. */
+  readonly kernel: KernelKind;
 }
 
 export interface ViewerHooks {
@@ -168,6 +173,7 @@ export class Viewer {
       sceneName: this.loaded?.prepared.scene.name ?? '',
       adapter: this.gpu?.adapterName ?? '',
       gpuResources: this.gpu?.resources.count ?? { buffers: 0, textures: 0, bytes: 0 },
+      kernel: this.renderer?.kernel ?? 'generic',
     };
   }
 
@@ -367,6 +373,9 @@ export class Viewer {
     if (!context) throw new LanternError('the canvas has no WebGPU context', 'Reload the page; if it persists, the browser has WebGPU disabled');
     context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
     const renderer = await Renderer.create(gpu);
+    // The renderer's idle policy: kernels specialised to the scene once it has gone this long without an
+    // edit. Not on SwiftShader (a CPU): compiling them there takes minutes of the CPU the page runs on.
+    if (!/swiftshader/i.test(gpu.adapterName)) renderer.setIdleSpecialisation(SPECIALISE_AFTER_IDLE_MS);
     await renderer.enablePresentation();
     if (this.settings.render.debugView !== 'none') await renderer.enableDebugViews();
     if (isRealTime(this.settings.render)) await renderer.enableRealTime();

@@ -1,6 +1,6 @@
 /** Parsing and checking of numeric command-line options, with messages that name the option. */
 import { InvalidArgumentError, type Command } from 'commander';
-import { MAX_IMAGE_SIDE } from '../renderer/renderer.ts';
+import { KERNEL_KINDS, MAX_IMAGE_SIDE, type KernelKind } from '../renderer/renderer.ts';
 
 export function integerOption(name: string, min: number, max: number): (value: string) => number {
   return (value: string) => {
@@ -49,4 +49,9 @@ export function numberListOption(name: string, counts: readonly number[]): (valu
 /** --light-table, for every command that builds a scene. */
 export function withSceneOptions(command: Command): Command {
   return command.option('--light-table <file.json>', 'Doom maps: JSON overrides of which textures and flats emit, and how strongly (see the README)');
+}
+
+/** --kernel: the generic tracing kernels, or those specialised to the scene (renderer.ts requestSpecialisation). */
+export function withKernelOption(command: Command, defaultKind: KernelKind, help: string): Command {
+  return command.option('--kernel <kind>', `${KERNEL_KINDS.join(' | ')}: ${help}`, choiceOption('--kernel', KERNEL_KINDS), defaultKind);
 }

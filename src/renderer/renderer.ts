@@ -40,7 +40,8 @@ const ACCUMULATION_BYTES_PER_PIXEL = 16;
 export const MAX_IMAGE_SIDE = 16384;
 
 /** Which kernels the tracing passes run: the generic ones (the scene read from buffers) or those specialised to the frozen scene. */
-export type KernelKind = 'generic' | 'specialised';
+export const KERNEL_KINDS = ['generic', 'specialised'] as const;
+export type KernelKind = (typeof KERNEL_KINDS)[number];
 
 /** What requestSpecialisation compiled and switched to. */
 export interface SpecialisationReport {

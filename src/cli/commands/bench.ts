@@ -4,7 +4,8 @@ import { runBenchmark } from '../../renderer/benchmark.ts';
 import type { CliContext } from '../context.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import type { SettingEntry } from '../../renderer/settings-schema.ts';
-import { integerOption, withImageOptions, withSceneOptions } from '../options.ts';
+import { integerOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
+import type { KernelKind } from '../../renderer/renderer.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
@@ -16,6 +17,7 @@ interface BenchOptions extends EnvironmentOptions, Readonly<Record<string, unkno
   repeats: number;
   lightTable?: string;
   json?: boolean;
+  kernel: KernelKind;
 }
 
 /** The settings that change what path tracing costs: those that change the estimate. */
@@ -26,7 +28,11 @@ export function registerBench(program: Command, context: CliContext): void {
     .command('bench')
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
     .argument('<scene>', sceneHelp());
-  withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting)
+  withKernelOption(
+    withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting),
+    'generic',
+    'which path-tracing kernels to time; specialised reports their compile time too (the ray figures always use the BVH)',
+  )
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
@@ -36,6 +42,8 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
+  const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation() : undefined;
+  if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const s = prepared.bvh.stats;
   const report = {
@@ -44,6 +52,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     lights: prepared.packed.counts.lights,
     loadMs,
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
+    kernel: { kind: o.kernel, ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, unrolled: specialisation.unrolled } : {}) },
     ...result,
   };
   renderer.destroy();
@@ -60,6 +69,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
       `  BVH build       ${f(s.buildMs)} ms: ${s.nodeCount.toLocaleString('en-US')} nodes, depth ${s.maxDepth}, SAH cost ${f(s.sahCost, 2)}`,
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,
       `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms)`,
+      `  kernel          ${specialisation ? `specialised (${specialisation.description}), compiled in ${f(specialisation.compileMs, 0)} ms` : 'generic'}`,
       `  path tracing    ${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`,
     ].join('\n'),
   );

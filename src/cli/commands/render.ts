@@ -4,7 +4,8 @@ import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { cameraFromOptions } from '../camera-option.ts';
-import { integerOption, numberListOption, numberOption, withImageOptions, withSceneOptions } from '../options.ts';
+import { integerOption, numberListOption, numberOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
+import type { KernelKind } from '../../renderer/renderer.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';
@@ -24,6 +25,7 @@ interface RenderOptions extends FrameModeOptions, EnvironmentOptions, Readonly<R
   fov?: number;
   lightTable?: string;
   json?: boolean;
+  kernel: KernelKind;
 }
 
 export function registerRender(program: Command, context: CliContext): void {
@@ -31,7 +33,11 @@ export function registerRender(program: Command, context: CliContext): void {
     .command('render')
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
     .argument('<scene>', sceneHelp());
-  withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 }))))
+  withKernelOption(
+    withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 })))),
+    'generic',
+    'specialised compiles kernels for this scene while rendering starts with the generic ones and switches when they are ready (the same estimate); it pays on long renders on a GPU (docs/perf.md)',
+  )
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
     .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)')
@@ -67,8 +73,20 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   }
   const bar = !o.json && process.stderr.isTTY ? new SingleBar({ format: 'rendering [{bar}] {value}/{total} spp | {eta_formatted} left', hideCursor: true, stream: process.stderr }) : undefined;
   bar?.start(spp, 0);
-  const { seconds } = await renderProgressive(renderer, { spp, onProgress: (done) => bar?.update(done) });
+  // The scene never changes during a render: specialise up front, rendering on with the generic
+  // kernels until the compile is ready (frame mode above keeps the generic ones).
+  const specialising = o.kernel === 'specialised' && spp > 0 ? renderer.requestSpecialisation() : undefined;
+  let specialisedAt: number | undefined;
+  const { seconds } = await renderProgressive(renderer, {
+    spp,
+    onProgress: (done) => {
+      bar?.update(done);
+      if (specialisedAt === undefined && renderer.kernel === 'specialised') specialisedAt = done;
+    },
+  });
   bar?.stop();
+  // Wait for a compile still under way (it must not outlive the device); a render that ends first used the generic kernels throughout.
+  const specialisation = specialising ? await specialising : undefined;
 
   const rays = await renderer.readRayCounts();
   if (png) await writePng(renderer, png);
@@ -89,6 +107,10 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     seconds,
     rays: { extension: rays.extension, shadow: rays.shadow, total },
     raysPerSecond: seconds > 0 ? total / seconds : 0,
+    kernel: {
+      requested: o.kernel,
+      ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, ...(specialisedAt !== undefined ? { specialisedAfterSpp: specialisedAt } : {}) } : {}),
+    },
     ...(legend ? { debug: { view: legend.view, layout: s.debugLayout, label: legend.label, ...(legend.scale ? { scale: { min: legend.scale.min, max: legend.scale.max, auto: legend.scale.auto } } : {}) } } : {}),
     outputs: { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) },
   };
@@ -104,6 +126,10 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
       `${report.scene}: ${o.width}×${o.height}, ${report.spp} spp, ${s.maxBounces} bounces in ${seconds.toFixed(2)} s on ${report.adapter} ` +
         `(${(report.raysPerSecond / 1e6).toFixed(1)} Mrays/s) -> ${files}`,
     );
+    if (specialisation) {
+      const from = specialisedAt !== undefined ? `from sample ${specialisedAt}` : 'ready after the last sample';
+      context.note(`specialised kernel (${specialisation.description}) compiled in ${specialisation.compileMs.toFixed(0)} ms, ${from}`);
+    }
   }
   renderer.destroy();
 }
