@@ -7,7 +7,7 @@
 import { describe, expect, it } from 'vitest';
 import { makeRandom, randomSoup, uvSphere } from '../../src/bvh/test-scenes.ts';
 import { traverseClosest } from '../../src/bvh/traverse.ts';
-import { prepareRay, intersectTriangle } from '../../src/bvh/ray.ts';
+import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
 import { readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
 import { compileSpecialised, specialiseScene } from '../../src/gpu/specialisation.ts';
@@ -111,12 +111,32 @@ async function trace(device: GPUDevice, prepared: PreparedScene, rays: TestRay[]
   return out;
 }
 
+/** Triangles of a small soup with spheres and capsules among them (every primitive kind, each through intersect_primitive). */
+function mixedScene(): Scene {
+  const soup = soupScene('mixed', randomSoup(24, 5), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 });
+  const mesh = soup.meshes[0]!;
+  const spheres: [Vec3, number][] = [[[0, 0, 0], 3], [[6, -2, 4], 1.5], [[-5, 4, -3], 2]];
+  const capsules: [Vec3, Vec3, number][] = [[[-6, -6, 0], [6, -6, 2], 1], [[2, 5, -5], [2, 8, 5], 0.7]];
+  return {
+    ...soup,
+    meshes: [
+      {
+        ...mesh,
+        spheres: { centers: new Float32Array(spheres.flatMap(([c]) => c)), radii: new Float32Array(spheres.map(([, r]) => r)), materialIds: new Uint32Array(spheres.length) },
+        capsules: { endpoints: new Float32Array(capsules.flatMap(([a, b]) => [...a, ...b])), radii: new Float32Array(capsules.map(([, , r]) => r)), materialIds: new Uint32Array(capsules.length) },
+      },
+    ],
+    environment: { kind: 'constant', radiance: [1, 1, 1] },
+  };
+}
+
 /** Scenes small enough to unroll, with the fraction of random rays from inside their bounds that must hit. */
 const SMALL_SCENES: [string, () => Scene, number][] = [
   ['cornell', () => builtinScene('cornell'), 0.5],
   ['furnace', () => builtinScene('furnace'), 0.5],
   ['random soup of 60', () => soupScene('soup', randomSoup(60, 3), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 }), 0.01],
   ['coarse UV sphere', () => soupScene('sphere', uvSphere(4, 8, 2), { position: [0.3, 0.2, -6], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 45 }), 0.5],
+  ['triangles, spheres and capsules', mixedScene, 0.1],
 ];
 
 describe('the unrolled traversal finds the BVH traversal’s hits', () => {
@@ -125,11 +145,11 @@ describe('the unrolled traversal finds the BVH traversal’s hits', () => {
     const prepared = prepareScene(make());
     const rays = randomRays(prepared, 2048, 17);
     const [unrolled, bvh] = await Promise.all([trace(device, prepared, rays, true), trace(device, prepared, rays, false)]);
-    const positions = prepared.triangles.positions;
+    const { positions, kinds } = prepared.triangles;
     const failures: string[] = [];
     let hits = 0, ties = 0;
     rays.forEach((ray, i) => {
-      const cpu = traverseClosest(prepared.bvh, positions, ray);
+      const cpu = traverseClosest(prepared.bvh, positions, ray, kinds);
       const u = unrolled.tri[i]!, b = bvh.tri[i]!;
       if (u === b && (u === NO_TRIANGLE || Math.abs(unrolled.t[i]! - bvh.t[i]!) <= 1e-5 * bvh.t[i]!)) {
         if (u !== NO_TRIANGLE) hits++;
@@ -141,7 +161,7 @@ describe('the unrolled traversal finds the BVH traversal’s hits', () => {
       // And against the CPU oracle (f64): the same triangle, or one the oracle hits at the same distance.
       if ((cpu === null) !== (u === NO_TRIANGLE)) failures.push(`ray ${i}: oracle ${cpu ? `hit ${cpu.triangle}` : 'miss'}, unrolled ${u === NO_TRIANGLE ? 'miss' : `hit ${u}`}`);
       else if (cpu && u !== cpu.triangle) {
-        const tAlt = intersectTriangle(positions, u, prepareRay(ray), 0, 3e38, { u: 0, v: 0 });
+        const tAlt = intersectPrimitive(positions, kinds, u, prepareRay(ray), 0, 3e38, { u: 0, v: 0 });
         if (Math.abs(tAlt - cpu.t) > 1e-4 * cpu.t) failures.push(`ray ${i}: oracle ${cpu.triangle} at ${cpu.t}, unrolled ${u} (oracle has it at ${tAlt})`);
       }
     });
@@ -223,6 +243,7 @@ describe('specialised images equal generic ones within Monte Carlo error', () =>
     ['cornell (unrolled)', () => builtinScene('cornell'), { size: 24, spp: 16, maxBounces: 4 }, true],
     ['furnace (unrolled)', () => builtinScene('furnace'), { size: 16, spp: 16, maxBounces: 6 }, true],
     ['materials (BVH, metal + glass)', () => builtinScene('materials'), { size: 24, spp: 8, maxBounces: 4 }, false],
+    ['triangles, spheres and capsules under a white sky (unrolled)', mixedScene, { size: 16, spp: 8, maxBounces: 3 }, true],
     ['a soup of 40 under a white sky (unrolled)', () => ({ ...soupScene('soup', randomSoup(40, 11), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 }), environment: { kind: 'constant', radiance: [1, 1, 1] } }), { size: 16, spp: 8, maxBounces: 2 }, true],
   ];
   it.each(cases)('%s', async (_, make, o, unrolled) => {

@@ -30,10 +30,11 @@ fn set_alpha_salt(ray: Ray) {
 #import scene/materials
 #import scene/specialised-primitives
 
-// The one intersection routine every primitive goes through (its record's flags say its kind once
-// the primitive list carries analytic shapes): vec3f(t, u, v), or t = T_MISS.
+// The one intersection routine every primitive goes through: scene/intersect's intersect_primitive,
+// which reads the kind (triangle, sphere, capsule) from the record's flags; with the record constant,
+// the compiler keeps only that kind's test. vec3f(t, u, v), or t = T_MISS.
 fn unrolled_intersect(ray: Ray, prim: TriangleHot, t_best: f32) -> vec3f {
-  return intersect_triangle(ray.origin, ray.direction, prim, ray.t_min, t_best);
+  return intersect_primitive(ray.origin, ray.direction, prim, ray.t_min, t_best);
 }
 
 // Closest-hit test of one primitive: `hit` becomes it when it is nearer and passes the alpha test.
