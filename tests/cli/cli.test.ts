@@ -166,6 +166,7 @@ describe('bad input', () => {
     [['render', 'cornell', '--sky', '30'], /--sky/],
     [['render', 'cornell', '--env', 'nowhere.hdr'], /--env: cannot read 'nowhere\.hdr'/],
     [['render', 'cornell', '--sky', '30,0', '--env', 'x.hdr'], /--sky and --env both give the environment/],
+    [['bench', 'cornell', '--kernel', 'fast'], /--kernel must be one of generic, specialised, not 'fast'/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);
@@ -238,6 +239,16 @@ describe('lantern info and bench', () => {
     }
     expect(b.pathTracing.raysPerPath).toBeGreaterThan(1);
     expect(b.bvh.nodes).toBe(33);
+    expect(b.kernel).toEqual({ kind: 'generic' });
+  });
+
+  it('bench --kernel specialised times the kernels specialised to the scene and reports their compile time', () => {
+    const r = lantern(['bench', 'furnace', '-W', '16', '-H', '16', '-r', '1', '--bounces', '1', '--kernel', 'specialised', '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const b = JSON.parse(r.stdout);
+    expect(b.kernel).toMatchObject({ kind: 'specialised', unrolled: true, specialisation: expect.stringMatching(/^12 primitives unrolled, no BVH; .* 1 bounces inlined$/) });
+    expect(b.kernel.compileMs).toBeGreaterThan(0);
+    expect(b.pathTracing.samplesPerSecond).toBeGreaterThan(0);
   });
 });
 
