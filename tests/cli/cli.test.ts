@@ -167,6 +167,7 @@ describe('bad input', () => {
     [['render', 'cornell', '--env', 'nowhere.hdr'], /--env: cannot read 'nowhere\.hdr'/],
     [['render', 'cornell', '--sky', '30,0', '--env', 'x.hdr'], /--sky and --env both give the environment/],
     [['bench', 'cornell', '--kernel', 'fast'], /--kernel must be one of generic, specialised, not 'fast'/],
+    [['bench', 'cornell', '--unroll-limit', '8'], /--unroll-limit applies to the specialised kernel only/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);

@@ -6,6 +6,8 @@ import { mergeSettings } from '../../renderer/settings-schema.ts';
 import type { SettingEntry } from '../../renderer/settings-schema.ts';
 import { integerOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
 import type { KernelKind } from '../../renderer/renderer.ts';
+import { UNROLL_PRIMITIVE_LIMIT } from '../../gpu/specialisation.ts';
+import { LanternError } from '../../errors.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
@@ -18,6 +20,7 @@ interface BenchOptions extends EnvironmentOptions, Readonly<Record<string, unkno
   lightTable?: string;
   json?: boolean;
   kernel: KernelKind;
+  unrollLimit?: number;
 }
 
 /** The settings that change what path tracing costs: those that change the estimate. */
@@ -33,16 +36,18 @@ export function registerBench(program: Command, context: CliContext): void {
     'generic',
     'which path-tracing kernels to time; specialised reports their compile time too (the ray figures always use the BVH)',
   )
+    .option('--unroll-limit <n>', `with --kernel specialised: trace scenes of at most n primitives without a BVH (default ${UNROLL_PRIMITIVE_LIMIT}; 0: never)`, integerOption('--unroll-limit', 0, 1_000_000))
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
 }
 
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
+  if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
-  const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation() : undefined;
+  const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation(o.unrollLimit !== undefined ? { unrollLimit: o.unrollLimit } : {}) : undefined;
   if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const s = prepared.bvh.stats;
