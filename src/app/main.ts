@@ -389,6 +389,8 @@ declare global {
       readonly environment: Record<string, unknown> | undefined;
       readonly camera: Pose | undefined;
       readonly gpuResources: ResourceCount;
+      /** The tracing kernels in use: 'generic', or 'specialised' once the scene has gone a second without edits. */
+      readonly kernel: string;
       readonly link: string;
       simulateDeviceLoss(): void;
     };
@@ -420,6 +422,9 @@ window.lantern = {
   },
   get gpuResources() {
     return viewer.stats.gpuResources;
+  },
+  get kernel() {
+    return viewer.stats.kernel;
   },
   get link() {
     return viewLink();

@@ -47,7 +47,7 @@ export class SettingsPanel {
   /** The render settings' panel values by setting id (a colour as {r, g, b}; 'auto' as 0). */
   private readonly settingParams: Record<string, unknown> = {};
   private depthBinding?: SliderInputBindingApi;
-  private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, rays: '', image: '', scene: '', gpuMemory: '' };
+  private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, rays: '', image: '', scene: '', gpuMemory: '', kernel: '' };
   /** The Environment folder's values; the map is the last HDR file opened (kept while another kind is shown). */
   private readonly environment: EnvironmentChoice = { ...DEFAULT_ENVIRONMENT_CHOICE };
   private environmentMap?: EnvironmentImage;
@@ -101,6 +101,7 @@ export class SettingsPanel {
     numbers.addBinding(m, 'image', { label: 'image', readonly: true });
     numbers.addBinding(m, 'scene', { label: 'scene', readonly: true, multiline: true, rows: 2 });
     numbers.addBinding(m, 'gpuMemory', { label: 'GPU memory', readonly: true });
+    numbers.addBinding(m, 'kernel', { label: 'kernel', readonly: true });
 
     const output = this.pane.addFolder({ title: 'Output' });
     output.addButton({ title: 'Screenshot (PNG)' }).on('click', () => actions.screenshot());
@@ -339,6 +340,7 @@ export class SettingsPanel {
     m.image = s.width > 0 ? `${s.width}×${s.height}` : '–';
     m.scene = s.sceneName ? `${s.sceneName}\n${s.triangles.toLocaleString('en')} triangles · ${s.bvhNodes.toLocaleString('en')} BVH nodes` : '–';
     m.gpuMemory = s.adapter ? `${(s.gpuResources.bytes / 2 ** 20).toFixed(1)} MiB in ${s.gpuResources.buffers} buffers, ${s.gpuResources.textures} textures` : '–';
+    m.kernel = s.adapter ? (s.kernel === 'specialised' ? 'specialised to the scene' : 'generic') : '–';
   }
 
   private fitDepthSlider(): void {

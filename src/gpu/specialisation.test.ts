@@ -25,6 +25,7 @@ describe('SceneSpecialisation', () => {
       SCENE_HAS_DIELECTRIC: 0,
       INLINED_MAX_BOUNCES: 5,
       INLINED_LIGHT_SAMPLING: 1,
+      INLINED_LIGHT_COUNT: 2,
     });
     const materials = specialiseScene(prepareScene(builtinScene('materials')).packed, 'materials', { maxBounces: 0, lightSampling: 0 });
     expect(materials.constants).toMatchObject({ SCENE_HAS_GENERAL_MATERIALS: 1, SCENE_HAS_METALLIC_ROUGHNESS: 1, SCENE_HAS_DIELECTRIC: 1, INLINED_MAX_BOUNCES: 0 });

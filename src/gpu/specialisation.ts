@@ -5,8 +5,9 @@
  *
  *   (a) material kinds present: SCENE_HAS_METALLIC_ROUGHNESS / SCENE_HAS_DIELECTRIC (scene/bsdf.wgsl)
  *       and the scene features (gpu/kernel.ts FEATURE_CONSTANTS) fold absent kinds' code away;
- *   (b) settings fixed while the scene is frozen: INLINED_MAX_BOUNCES, INLINED_LIGHT_SAMPLING
- *       (passes/path-trace.wgsl) replace the uniform's values by constants;
+ *   (b) what uniforms hold but a frozen scene fixes: INLINED_MAX_BOUNCES, INLINED_LIGHT_SAMPLING
+ *       (passes/path-trace.wgsl) and INLINED_LIGHT_COUNT (scene/lights.wgsl) become constants
+ *       (a scene without lights loses light sampling altogether);
  *   (c) small scenes (at most `unrollLimit` primitives): scene/traversal-unrolled is linked in place
  *       of scene/bvh, with the scene's primitives as constants in a generated module
  *       (gpu/pack/primitives-module.ts) and one intersection call per primitive: no BVH at all.
@@ -91,6 +92,7 @@ export function specialiseScene(packed: PackedScene, sceneName: string, settings
   constants.SCENE_HAS_DIELECTRIC = materialKinds.dielectric ? 1 : 0;
   constants.INLINED_MAX_BOUNCES = settings.maxBounces;
   constants.INLINED_LIGHT_SAMPLING = settings.lightSampling;
+  constants.INLINED_LIGHT_COUNT = packed.counts.lights;
   const unrolled = primitiveCount > 0 && primitiveCount <= limit ? primitivesModule(sceneLayouts().hot, packed.triangles_hot, primitiveCount, sceneName) : undefined;
   return { sceneName, features: packed.features, materialKinds, settings, primitiveCount, ...(unrolled ? { unrolled } : {}), constants };
 }

@@ -374,8 +374,9 @@ export class Renderer {
     const created = !this.denoiser;
     this.denoiser ??= await Denoiser.create(this.device);
     if (this.prepared) await this.denoiser.prepare(this.prepared.packed.features);
-    // Specialised kernels are compiled for every tracing pass at once: specialise again with the frame kernel.
-    if (created && this.kernel === 'specialised') this.invalidateSpecialisation();
+    // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
+    // frame kernel): specialise again with it.
+    if (created) this.invalidateSpecialisation();
   }
 
   /**

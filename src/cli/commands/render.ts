@@ -63,6 +63,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const spp = debug && s.debugLayout === 'replace' ? 0 : o.spp;
 
   if (isFrameMode(o)) {
+    if (o.kernel === 'specialised') context.note('frame mode renders with the generic kernels (--kernel specialised applies to progressive renders)');
     const camera = renderer.camera!;
     const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) });
     const report = { scene: prepared.scene.name, width: o.width, height: o.height, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...result };

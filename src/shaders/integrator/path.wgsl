@@ -89,11 +89,11 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
   // The ray cone (texture level of detail): width at the ray's origin and spread angle.
   var cone_width = 0.0;
   var cone_spread = settings.pixel_spread;
-  let use_nee = settings.light_sampling == LIGHT_SAMPLING_MIS && scene_info.light_count > 0u;
+  let use_nee = settings.light_sampling == LIGHT_SAMPLING_MIS && scene_light_count() > 0u;
   // Punctual lights are not geometry: no BSDF ray finds them, so even BSDF-only sampling samples
   // them. It draws from the whole light table and keeps only punctual picks (dividing by their
   // selection probability keeps it unbiased); other lights are left to BSDF rays, weighted 1.
-  let sample_lights = use_nee || (SCENE_HAS_PUNCTUAL_LIGHTS && scene_info.light_count > 0u);
+  let sample_lights = use_nee || (SCENE_HAS_PUNCTUAL_LIGHTS && scene_light_count() > 0u);
 
   for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
     let hit = trace_closest(ray);

@@ -18,6 +18,14 @@
 override SCENE_HAS_PUNCTUAL_LIGHTS: bool = true;
 override SCENE_HAS_ENVIRONMENT: bool = true;
 
+// The slots of the light table, inlined into kernels specialised to a frozen scene
+// (gpu/specialisation.ts); -1 (the generic kernels): read scene_info.light_count.
+override INLINED_LIGHT_COUNT: i32 = -1;
+
+fn scene_light_count() -> u32 {
+  return select(scene_info.light_count, u32(INLINED_LIGHT_COUNT), INLINED_LIGHT_COUNT >= 0);
+}
+
 struct LightSample {
   // Unit direction from the shading point toward the light.
   direction: vec3f,
@@ -165,9 +173,10 @@ fn sample_punctual_light(index: u32, p: vec3f) -> LightSample {
 }
 
 // One light sample for the shading point p: u_select picks the light (slot, keep), u the point.
-// Requires scene_info.light_count > 0.
+// Requires scene_light_count() > 0.
 fn sample_light(p: vec3f, u_select: vec2f, u: vec2f) -> LightSample {
-  let slot_index = min(u32(u_select.x * f32(scene_info.light_count)), scene_info.light_count - 1u);
+  let light_count = scene_light_count();
+  let slot_index = min(u32(u_select.x * f32(light_count)), light_count - 1u);
   let slot = light_slots[slot_index];
   let code = select(slot.alias_light, slot.light, u_select.y < slot.keep);
   let kind = code >> LIGHT_KIND_SHIFT;
