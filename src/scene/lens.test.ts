@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { apertureRadiusForFNumber, blurDiameterPixels, focalLengthForFov, lensProblem } from './lens.ts';
+import { apertureRadiusForFNumber, blurDiameterPixels, fNumberForAperture, focalLengthForFov, lensProblem } from './lens.ts';
 import type { Camera } from './types.ts';
 
 const camera: Camera = { position: [0, 0, 0], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 60 };
@@ -20,6 +20,8 @@ describe('thin lens arithmetic', () => {
     expect(focalLengthForFov((2 * Math.atan(12 / 35) * 180) / Math.PI)).toBeCloseTo(35, 10);
     // 35 mm at f/1.4 in a scene of centimetres: pupil 25 mm, radius 1.25 cm.
     expect(apertureRadiusForFNumber(1.4, 0.01, 60, 35)).toBeCloseTo(1.25, 12);
+    expect(fNumberForAperture(1.25, 0.01, 60, 35)).toBeCloseTo(1.4, 12);
+    expect(fNumberForAperture(apertureRadiusForFNumber(5.6, 0.001, 39.3), 0.001, 39.3)).toBeCloseTo(5.6, 12);
   });
 
   it('spreads a point by 2A·|d − F|/d on the plane of focus, in pixels of that plane', () => {

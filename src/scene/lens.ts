@@ -36,6 +36,11 @@ export function apertureRadiusForFNumber(fNumber: number, metersPerUnit: number,
   return (pupilDiameterMm / 2 / 1000) / metersPerUnit;
 }
 
+/** The inverse of apertureRadiusForFNumber: the f-number of an aperture radius (scene units) at the focal length of the field of view. */
+export function fNumberForAperture(apertureRadius: number, metersPerUnit: number, vfovDegrees: number, focalLengthMm = focalLengthForFov(vfovDegrees)): number {
+  return focalLengthMm / (2 * apertureRadius * metersPerUnit * 1000);
+}
+
 /**
  * Diameter in pixels of the blur disk of a point at depth `depth` (along forward, scene units) seen
  * by `camera` with its lens, in an image `imageHeight` pixels high: on the plane of focus the disk's
