@@ -81,7 +81,7 @@ export function openMolecules(fileName: string, molecules: readonly Molecule[]):
   };
 
   return {
-    description: single ? `${fileName}: ${molecules[0]!.name || 'a molecule'}` : `${fileName}: ${molecules.length} molecules`,
+    description: fileName,
     parts,
     partNamed: (selector) => {
       const model = find(selector);
