@@ -287,6 +287,9 @@ describe('bad files: one line naming the line', () => {
   it("a missing 'M  END'", () => {
     expectLanternError(parse(lines.filter((l) => l !== 'M  END').join('\n')), /^bad\.mol line 53: missing 'M {2}END'/);
   });
+  it('a counts line promising more bonds than there are', () => {
+    expectLanternError(parse(withLine(4, ' 24 26  0     0  0  0  0  0  0999 V2000')), /^bad\.mol line 54: 'M {2}END' inside the bond block: the counts line promises 26 bonds, there are 25/);
+  });
   it('a truncated bond block', () => {
     expectLanternError(parse(lines.slice(0, 40).join('\n')), /^bad\.mol line 40: the molfile ends inside the bond block \(12 of 25 bonds read\)/);
   });

@@ -90,6 +90,7 @@ export function parseMolBlock(lines: readonly string[], start: number, end: numb
     const at = countsAt + 1 + i;
     if (at >= end) fail(at - 1, `the molfile ends inside the atom block (${i} of ${atomCount} atoms read)`);
     const line = lines[at]!;
+    if (line.startsWith('M  END')) fail(at, `'M  END' inside the atom block: the counts line promises ${atomCount} atoms, there are ${i}`);
     if (line.length < 32 || line.slice(31, 34).trim() === '') {
       fail(at, `atom line too short (${line.trimEnd().length} characters): a V2000 atom line has x, y, z in columns 1-30 and the element symbol in columns 32-34`);
     }
@@ -107,6 +108,7 @@ export function parseMolBlock(lines: readonly string[], start: number, end: numb
     const at = bondStart + i;
     if (at >= end) fail(at - 1, `the molfile ends inside the bond block (${i} of ${bondCount} bonds read)`);
     const line = lines[at]!;
+    if (line.startsWith('M  END')) fail(at, `'M  END' inside the bond block: the counts line promises ${bondCount} bonds, there are ${i}`);
     if (line.length < 9) fail(at, `bond line too short (${line.trimEnd().length} characters): a V2000 bond line has the two atoms in columns 1-6 and the type in 7-9`);
     const a = integerField(line.slice(0, 3), 'first atom', at, fail);
     const b = integerField(line.slice(3, 6), 'second atom', at, fail);
@@ -181,7 +183,7 @@ function readV3000(lines: readonly string[], from: number, end: number, source: 
   const peek = () => v30[i];
   const expect = (keyword: string): V30Line => {
     const line = v30[i];
-    if (!line) return fail(next - 2, `missing 'M  V30 ${keyword}' before 'M  END'`);
+    if (!line) return fail(next - 1, `missing 'M  V30 ${keyword}' before 'M  END'`);
     if (line.text.toUpperCase() !== keyword && !line.text.toUpperCase().startsWith(`${keyword} `)) fail(line.at, `expected 'M  V30 ${keyword}', found 'M  V30 ${line.text}'`);
     i++;
     return line;
@@ -200,7 +202,7 @@ function readV3000(lines: readonly string[], from: number, end: number, source: 
   let sawBonds = false;
   for (;;) {
     const line = peek();
-    if (!line) return fail(next - 2, "missing 'M  V30 END CTAB' before 'M  END'");
+    if (!line) return fail(next - 1, "missing 'M  V30 END CTAB' before 'M  END'");
     const upper = line.text.toUpperCase();
     if (upper === 'END CTAB') {
       i++;
