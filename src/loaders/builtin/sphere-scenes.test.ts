@@ -1,4 +1,8 @@
 import { describe, expect, it } from 'vitest';
+import { traverseClosest } from '../../bvh/traverse.ts';
+import { cameraBasis } from '../../gpu/view.ts';
+import { prepareScene } from '../../renderer/prepare.ts';
+import { PRIMITIVE_KIND } from '../../scene/triangles.ts';
 import { expectLanternError } from '../../expect-lantern-error.ts';
 import { isIdentity } from '../../math/mat4.ts';
 import { seededRandom } from '../../math/seeded-random.ts';
@@ -83,6 +87,45 @@ describe('sphere scenes: structure', () => {
     // The camera looks at something: the first listed sphere that is not a ground sphere is in view.
     const subject = spheres.find((s) => s.radius < 50)!;
     expect(inView(scene, subject.center)).toBe(true);
+  });
+
+  it.each(SPHERE_SCENES)('%s: seen from its camera (pinhole rays through the CPU oracle), its subject spans a good part of a 16:9 frame', (name) => {
+    const prepared = prepareScene(builtinScene(name));
+    const { bvh, triangles } = prepared;
+    const b = cameraBasis(prepared.scene.camera, 16 / 9);
+    // The subject: spheres and capsules, less any ground sphere (radius 50 or more).
+    const isSubject = (primitive: number) => {
+      const kind = triangles.kinds[primitive];
+      if (kind === PRIMITIVE_KIND.capsule) return true;
+      if (kind !== PRIMITIVE_KIND.sphere) return false;
+      const mesh = prepared.scene.meshes[prepared.scene.instances[triangles.instanceIds[primitive]!]!.mesh]!;
+      return mesh.spheres!.radii[triangles.meshTriangleIds[primitive]!]! < 50;
+    };
+    const [W, H] = [32, 18];
+    let subject = 0;
+    let centre = false;
+    const xs: number[] = [], ys: number[] = [];
+    for (let y = 0; y < H; y++) {
+      for (let x = 0; x < W; x++) {
+        const nx = (2 * (x + 0.5)) / W - 1, ny = 1 - (2 * (y + 0.5)) / H;
+        const direction = [0, 1, 2].map((k) => b.forward[k]! + nx * b.right[k]! + ny * b.up[k]!) as unknown as Vec3;
+        const hit = traverseClosest(bvh, triangles.positions, { origin: b.position, direction }, triangles.kinds);
+        if (hit && isSubject(hit.triangle)) {
+          subject++;
+          xs.push(x);
+          ys.push(y);
+          if (Math.abs(x - W / 2 + 0.5) <= 3 && Math.abs(y - H / 2 + 0.5) <= 2) centre = true;
+        }
+      }
+    }
+    // Framed: the subject spans at least half the frame's width or height and leaves something else
+    // in view, some of it near the centre. (Coverage is low for a ball-and-stick molecule, sticks and
+    // small balls with space between: caffeine covers about 6 %.)
+    expect(subject / (W * H)).toBeGreaterThan(0.04);
+    expect(subject / (W * H)).toBeLessThan(0.97);
+    const span = Math.max((Math.max(...xs) - Math.min(...xs) + 1) / W, (Math.max(...ys) - Math.min(...ys) + 1) / H);
+    expect(span).toBeGreaterThan(0.5);
+    expect(centre).toBe(true);
   });
 
   it('a built-in parameter only where the scene takes one', () => {

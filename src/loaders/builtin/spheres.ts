@@ -38,7 +38,7 @@ export function spheresScene(): Scene {
     meshes,
     instances: placeEachOnce(meshes),
     materials,
-    camera: lookAt([-2, 2, 1], [0, 0, -1], 30),
+    camera: lookAt([-2, 2, 1], [0, 0, -1], 40),
     environment: { kind: 'gradient', zenith: [0.5, 0.7, 1.0], horizon: [0.75, 0.85, 1.0], ground: [1, 1, 1] },
   };
 }
