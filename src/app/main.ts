@@ -5,7 +5,7 @@
  * touches the GPU before Play. URL parameters (view-params.ts) choose the scene, camera and
  * settings, so a copied link restores a view.
  *
- * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera and live GPU
+ * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera, lens and live GPU
  * resources, and the canvas carries data-state and data-samples, so scripts can wait for frames.
  */
 import { LanternError } from '../errors.ts';
@@ -21,6 +21,7 @@ import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
 import { describeError, Viewer } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
+import type { ThinLens } from '../scene/types.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
@@ -126,7 +127,8 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
       showViewer(viewer);
     });
     if (token !== loadToken) return;
-    await viewer.setScene(loaded, { ...(view.pose ? { pose: view.pose } : {}), ...(view.mode ? { mode: view.mode } : {}), ...(view.fovDegrees !== undefined ? { fovDegrees: view.fovDegrees } : {}) });
+    const { pose, mode, fovDegrees, apertureRadius, focusDistance } = view;
+    await viewer.setScene(loaded, { pose, mode, fovDegrees, apertureRadius, focusDistance });
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
     sceneLoads++;
@@ -388,6 +390,8 @@ declare global {
       /** The environment that lights the image now (after an environment change has been uploaded), without map pixels. */
       readonly environment: Record<string, unknown> | undefined;
       readonly camera: Pose | undefined;
+      /** The camera's thin lens (undefined: a pinhole). */
+      readonly lens: ThinLens | undefined;
       readonly gpuResources: ResourceCount;
       /** The tracing kernels in use: 'generic', or 'specialised' once the scene has gone a second without edits. */
       readonly kernel: string;
@@ -419,6 +423,9 @@ window.lantern = {
   },
   get camera() {
     return viewer.controller?.pose;
+  },
+  get lens() {
+    return viewer.lens;
   },
   get gpuResources() {
     return viewer.stats.gpuResources;

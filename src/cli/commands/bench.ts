@@ -11,9 +11,11 @@ import { LanternError } from '../../errors.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
+import { centreFocusDistance } from '../../renderer/focus.ts';
+import { cameraWithLens, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { openSession } from '../session.ts';
 
-interface BenchOptions extends EnvironmentOptions, Readonly<Record<string, unknown>> {
+interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   repeats: number;
@@ -32,7 +34,7 @@ export function registerBench(program: Command, context: CliContext): void {
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
     .argument('<scene>', sceneHelp());
   withKernelOption(
-    withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting),
+    withLensOptions(withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting)),
     'generic',
     'which path-tracing kernels to time; specialised reports their compile time too (the ray figures always use the BVH)',
   )
@@ -47,6 +49,9 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
+  // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.
+  const camera = cameraWithLens(prepared.scene.camera, o, { scene: prepared.scene, centreDistance: (c) => centreFocusDistance(prepared, c) });
+  renderer.setCamera(camera);
   const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation(o.unrollLimit !== undefined ? { unrollLimit: o.unrollLimit } : {}) : undefined;
   if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
   const result = await runBenchmark(renderer, { repeats: o.repeats });
@@ -56,6 +61,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     triangles: prepared.triangles.count,
     lights: prepared.packed.counts.lights,
     loadMs,
+    ...(camera.lens ? { lens: camera.lens } : {}),
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
     kernel: { kind: o.kernel, ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, unrolled: specialisation.unrolled } : {}) },
     ...result,
@@ -70,6 +76,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   context.print(
     [
       `Lantern bench: ${report.scene} at ${o.width}×${o.height} on ${result.adapter} (${result.timing === 'gpu-timestamps' ? 'GPU timestamps' : 'wall clock'}, median of ${o.repeats})`,
+      ...(camera.lens ? [`  lens            aperture radius ${camera.lens.apertureRadius.toPrecision(3)}, focus distance ${camera.lens.focusDistance.toPrecision(4)} (scene units)`] : []),
       `  triangles       ${report.triangles.toLocaleString('en-US')} (${report.lights} emissive)`,
       `  BVH build       ${f(s.buildMs)} ms: ${s.nodeCount.toLocaleString('en-US')} nodes, depth ${s.maxDepth}, SAH cost ${f(s.sahCost, 2)}`,
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,

@@ -3,7 +3,9 @@ import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
+import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraFromOptions } from '../camera-option.ts';
+import { cameraWithLens, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { integerOption, numberListOption, numberOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
 import type { KernelKind } from '../../renderer/renderer.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
@@ -15,7 +17,7 @@ import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
-interface RenderOptions extends FrameModeOptions, EnvironmentOptions, Readonly<Record<string, unknown>> {
+interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   spp: number;
@@ -34,7 +36,7 @@ export function registerRender(program: Command, context: CliContext): void {
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
     .argument('<scene>', sceneHelp());
   withKernelOption(
-    withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 })))),
+    withLensOptions(withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 }))))),
     'generic',
     'specialised compiles kernels for this scene while rendering starts with the generic ones and switches when they are ready (the same estimate); it pays on long renders on a GPU (docs/perf.md)',
   )
@@ -55,7 +57,9 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
-  renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
+  const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
+  const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;
+  renderer.setCamera(cameraWithLens(camera, o, { scene: prepared.scene, ...(target ? { target } : {}), centreDistance: (c) => centreFocusDistance(prepared, c) }));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   const s = renderer.settings;
   const debug = s.debugView !== 'none';
@@ -102,6 +106,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     bounces: s.maxBounces,
     seed: s.seed,
     lightSampling: s.lightSampling,
+    ...(renderer.camera?.lens ? { lens: renderer.camera.lens } : {}),
     adapter: renderer.gpu.adapterName,
     triangles: prepared.triangles.count,
     loadSeconds: loadMs / 1000,
