@@ -49,8 +49,7 @@ export interface LensContext {
  * the camera as it is (the scene's own lens, if any). `--aperture 0`: a pinhole.
  */
 export function cameraWithLens(camera: Camera, o: LensOptions, context: LensContext): Camera {
-  if (o.aperture !== undefined && o.fNumber !== undefined) throw new LanternError('--aperture and --f-number both give the aperture', 'Give one of them');
-  if (o.focalLength !== undefined && o.fNumber === undefined) throw new LanternError('--focal-length sets the aperture only with --f-number', 'Add --f-number <N>, or give the radius with --aperture');
+  checkLensOptions(o);
   const radius = apertureRadius(camera, o, context.scene);
   if (radius === undefined) {
     if (o.focusDistance === undefined) return camera;
@@ -63,6 +62,12 @@ export function cameraWithLens(camera: Camera, o: LensOptions, context: LensCont
   }
   const lens: ThinLens = { apertureRadius: radius, focusDistance: o.focusDistance ?? defaultFocusDistance(camera, context) };
   return { ...camera, lens };
+}
+
+/** Refuses lens options that contradict each other; needs no scene, so commands call it before opening one. */
+export function checkLensOptions(o: LensOptions): void {
+  if (o.aperture !== undefined && o.fNumber !== undefined) throw new LanternError('--aperture and --f-number both give the aperture', 'Give one of them');
+  if (o.focalLength !== undefined && o.fNumber === undefined) throw new LanternError('--focal-length sets the aperture only with --f-number', 'Add --f-number <N>, or give the radius with --aperture');
 }
 
 /** The aperture radius in scene units the options give, or undefined when they give none. */
