@@ -28,12 +28,15 @@ function boundedNumber(name: string, min: number, open: boolean, meaning: string
   };
 }
 
+/** The parser of --aperture (≥ 0) or --focus-distance (> 0), for commands that take only those (`view`). */
+export const lensNumber = (name: '--aperture' | '--focus-distance', allowZero: boolean) => boundedNumber(name, 0, !allowZero, allowZero ? 'a radius in scene units' : 'scene units');
+
 export function withLensOptions(command: Command): Command {
   return command
-    .option('--aperture <radius>', 'depth of field: the lens aperture radius in scene units (0: a pinhole)', boundedNumber('--aperture', 0, false, 'a radius in scene units'))
+    .option('--aperture <radius>', 'depth of field: the lens aperture radius in scene units (0: a pinhole)', lensNumber('--aperture', true))
     .option('--f-number <N>', 'depth of field: the aperture as an f-number (needs a scene that knows its unit size)', boundedNumber('--f-number', 0, true, 'focal length over aperture diameter'))
     .option('--focal-length <mm>', 'with --f-number: 35 mm-equivalent focal length (default: the one that gives the field of view on a 24 mm-high sensor)', boundedNumber('--focal-length', 0, true, 'millimetres'))
-    .option('--focus-distance <d>', 'depth of field: distance to the plane in focus along the view (default: the --camera target, the scene\'s own, or what lies at the image centre)', boundedNumber('--focus-distance', 0, true, 'scene units'));
+    .option('--focus-distance <d>', 'depth of field: distance to the plane in focus along the view (default: the --camera target, the scene\'s own, or what lies at the image centre)', lensNumber('--focus-distance', false));
 }
 
 export interface LensContext {

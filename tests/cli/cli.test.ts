@@ -354,6 +354,11 @@ describe('lantern view', () => {
     const builtin = await startView(['furnace', '--app', app]);
     builtin.stop();
     expect(new URL(builtin.link).searchParams.get('scene')).toBe('furnace');
+    // A lens on the command line is a lens in the link, as the page reads it (aperture=, focus=).
+    const lensed = await startView(['cornell', '--app', app, '--aperture', '12.5', '--focus-distance', '800']);
+    lensed.stop();
+    const params = new URL(lensed.link).searchParams;
+    expect([params.get('scene'), params.get('aperture'), params.get('focus')]).toEqual(['cornell', '12.5', '800']);
   });
 
   it('refuses unknown scenes, missing maps and a page that was not built, before serving', () => {
