@@ -63,7 +63,7 @@ fn debug_value(kind: u32, ray: Ray, hit: Hit) -> vec4f {
     }
     default: {}
   }
-  let surface = surface_at(hit);
+  let surface = surface_at(hit, ray);
   switch kind {
     case DEBUG_VIEW_NORMALS: {
       return vec4f(surface.shading_normal, 1.0);

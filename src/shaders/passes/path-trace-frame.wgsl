@@ -36,7 +36,7 @@ fn centre_texel(pixel: vec2u) -> GBufferTexel {
     let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
     return GBufferTexel(-ray.direction, MISS_DEPTH, vec3f(1.0), NO_ID, vec3f(0.0), MISS_DEPTH, position);
   }
-  let surface = surface_at(hit);
+  let surface = surface_at(hit, ray);
   let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
   let previous = project_point(frame.previous_camera, view.image_size, surface.position);
   let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
