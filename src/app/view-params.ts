@@ -9,7 +9,8 @@
  *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1
  *   aperture=<radius>  focus=<distance>  the camera's thin lens, scene units (aperture 0: a pinhole;
  *                                      a link with only one of them takes the other from the scene's
- *                                      lens, or focuses on what lies at the image centre)
+ *                                      lens, or focuses on what lies at the image centre;
+ *                                      renderer/lens-link.ts, which `lantern view` writes too)
  *   and every render setting with a `link` name in RENDER_SETTINGS (renderer/settings.ts): bounces,
  *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
  *   layout, heat-max=<n>|auto, depth, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited,
@@ -22,6 +23,7 @@
 import { formatSettingText, getAt, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
 import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
 import { formatSceneLocation, parseSceneLocation, type SceneLocation } from '../loaders/scene-link.ts';
+import { formatLensLink, parseLensLink } from '../renderer/lens-link.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 
 export type { SceneLocation };
@@ -109,17 +111,7 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   if (cam) view.pose = { position: [cam[0]!, cam[1]!, cam[2]!], yaw: cam[3]!, pitch: cam[4]! };
   const fov = ranged('fov', LIMITS.fovDegrees);
   if (fov !== undefined) view.fovDegrees = fov;
-  const positive = (name: string, allowZero: boolean): number | undefined => {
-    const v = numbers(name, 1)?.[0];
-    if (v === undefined) return undefined;
-    if (allowZero ? v >= 0 : v > 0) return v;
-    problems.push(`${name}=${v} is not ${allowZero ? '≥' : '>'} 0`);
-    return undefined;
-  };
-  const aperture = positive('aperture', true);
-  if (aperture !== undefined) view.apertureRadius = aperture;
-  const focus = positive('focus', false);
-  if (focus !== undefined) view.focusDistance = focus;
+  Object.assign(view, parseLensLink(params, problems));
   const mode = params.get('mode');
   if (mode !== null) {
     if ((MOVE_MODES as readonly string[]).includes(mode)) view.mode = mode as MoveMode;
@@ -161,9 +153,7 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.scene) formatSceneLocation(view.scene, p);
   if (view.pose) p.set('cam', [...view.pose.position, view.pose.yaw, view.pose.pitch].map(round).join(','));
   if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
-  // Six significant digits: lens sizes span millimetre scenes and metre scenes alike.
-  if (view.apertureRadius !== undefined) p.set('aperture', String(Number(view.apertureRadius.toPrecision(6))));
-  if (view.focusDistance !== undefined) p.set('focus', String(Number(view.focusDistance.toPrecision(6))));
+  formatLensLink(view, p);
   if (view.mode) p.set('mode', view.mode);
   if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
