@@ -58,6 +58,13 @@ export class CameraController {
   yaw: number;
   pitch: number;
   vfovDegrees: number;
+  /**
+   * The thin lens (Camera.lens): its aperture radius (0: a pinhole, no lens) and the distance in
+   * focus along forward, kept while the aperture is 0 so that opening it finds the focus where a
+   * click set it (Viewer.focusAt).
+   */
+  apertureRadius: number;
+  focusDistance?: number;
   private walker?: WalkPosition;
 
   constructor(
@@ -71,6 +78,8 @@ export class CameraController {
     this.yaw = pose.yaw;
     this.pitch = pose.pitch;
     this.vfovDegrees = base.vfovDegrees;
+    this.apertureRadius = base.lens?.apertureRadius ?? 0;
+    this.focusDistance = base.lens?.focusDistance;
   }
 
   get mode(): MoveMode {
@@ -142,7 +151,8 @@ export class CameraController {
   }
 
   camera(): Camera {
-    return { ...this.base, position: [this.x, this.y, this.z], forward: forwardOf(this.yaw, this.pitch), up: [0, 1, 0], vfovDegrees: this.vfovDegrees };
+    const lens = this.apertureRadius > 0 && this.focusDistance !== undefined ? { apertureRadius: this.apertureRadius, focusDistance: this.focusDistance } : undefined;
+    return { ...this.base, position: [this.x, this.y, this.z], forward: forwardOf(this.yaw, this.pitch), up: [0, 1, 0], vfovDegrees: this.vfovDegrees, lens };
   }
 }
 

@@ -1,6 +1,6 @@
 /**
  * The settings panel (Tweakpane): render settings, camera, torch, the environment (scene's own, sky,
- * HDR map, none), what the GPU is doing, and output.
+ * HDR map, none), the selected material (material-panel.ts), what the GPU is doing, and output.
  * Every change goes through the Viewer, which restarts accumulation when the change invalidates the
  * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
  * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
@@ -15,6 +15,7 @@ import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-setti
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
+import { MaterialPanel } from './material-panel.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
 import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, type EnvironmentChoice, type EnvironmentChoiceKind } from './environment-choice.ts';
 
@@ -54,6 +55,7 @@ export class SettingsPanel {
   /** The bindings shown only for one kind of environment. */
   private readonly environmentControls: Partial<Record<EnvironmentChoiceKind, BladeApi[]>> = {};
   private openMapButton?: ButtonApi;
+  private readonly materialPanel: MaterialPanel;
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
 
@@ -81,6 +83,7 @@ export class SettingsPanel {
     });
 
     this.addEnvironmentFolder(container, actions);
+    this.materialPanel = new MaterialPanel(this.pane, viewer, actions.report);
 
     const folders: Record<PanelFolder, FolderApi> = {
       render,
@@ -328,6 +331,7 @@ export class SettingsPanel {
 
   /** Refreshes the numbers (called on every frame; Tweakpane redraws monitors on its own interval). */
   showStats(): void {
+    this.materialPanel.update();
     const s = this.viewer.stats;
     const m = this.monitor;
     m.fps = s.framesPerSecond;
