@@ -73,4 +73,15 @@ describe('camera controller', () => {
     expect(new CameraController(camera, 1).setMode('walk')).toBe(false);
     expect(new CameraController({ ...camera, position: [1000, 0, 0] }, 1, room()).setMode('walk')).toBe(false);
   });
+
+  it("keeps a focus distance set while the aperture is 0 and gives the camera a lens once it opens", () => {
+    const c = new CameraController(camera, 1);
+    expect(c.camera().lens).toBeUndefined();
+    c.focusDistance = 3.5;
+    expect(c.camera().lens).toBeUndefined();
+    c.apertureRadius = 0.02;
+    expect(c.camera().lens).toEqual({ apertureRadius: 0.02, focusDistance: 3.5 });
+    const lensed = new CameraController({ ...camera, lens: { apertureRadius: 0.1, focusDistance: 7 } }, 1);
+    expect(lensed.camera().lens).toEqual({ apertureRadius: 0.1, focusDistance: 7 });
+  });
 });
