@@ -8,6 +8,7 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { parseViewParams } from '../../src/app/view-params.ts';
+import { decodePng } from '../../src/image/png.ts';
 import { launchBrowser, servePage, type ServedPage } from './browser.ts';
 
 let browser: Browser;
@@ -62,6 +63,17 @@ async function playUntil(page: Page, samples: number): Promise<void> {
   await page.waitForFunction((n) => window.lantern.samples >= n, samples, { timeout: 120_000 });
 }
 
+/** Pixels of the canvas in the selection outline's orange (1, 0.55, 0.1). */
+async function orangePixels(page: Page): Promise<number> {
+  const img = decodePng(await page.locator('#view').screenshot());
+  let n = 0;
+  for (let i = 0; i < img.data.length; i += 4) {
+    const r = img.data[i]!, g = img.data[i + 1]!, b = img.data[i + 2]!;
+    if (r > 220 && g > 100 && g < 180 && b < 70) n++;
+  }
+  return n;
+}
+
 /** Waits in the page for the estimate to restart (fewer samples than `before`) and reads its first frame at once. */
 function firstFramesAfterRestart(page: Page, before: number): Promise<Image> {
   return page.evaluate(async (n) => {
@@ -77,10 +89,14 @@ describe('live material editing', () => {
   it('selects the red wall by a click, turns it blue from the panel within two frames, and the link carries the edit', async () => {
     const { page, errors } = await openPage('scene=cornell&scale=0.125&spf=1');
     await playUntil(page, 2);
+    const orangeBefore = await orangePixels(page);
     const box = (await page.locator('#view').boundingBox())!;
     await page.mouse.click(box.x + box.width * 0.07, box.y + box.height * 0.5);
     await page.waitForFunction(() => window.lantern.selection?.materialName === 'red', undefined, { timeout: 30_000 });
     await expect.poll(() => page.locator('.tp-lblv', { hasText: 'selected' }).locator('textarea').inputValue(), { timeout: 5_000 }).toMatch(/red \(diffuse/);
+
+    // The canvas shows the outline (SELECTION_COLOR), drawn over the image.
+    await expect.poll(() => orangePixels(page), { timeout: 10_000 }).toBeGreaterThan(orangeBefore + 50);
 
     await playUntil(page, 12);
     const before = await page.evaluate(() => window.lantern.readImage());
