@@ -8,7 +8,7 @@
  * upward. forward = (sin yaw · cos pitch, sin pitch, −cos yaw · cos pitch).
  */
 import type { Vec3 } from '../math/vec3.ts';
-import type { Camera } from '../scene/types.ts';
+import type { Camera, ThinLens } from '../scene/types.ts';
 import { eyeLevel, moveWalker, NO_SECTOR, sectorAt, type WalkMap, type WalkPosition } from '../scene/walk-map.ts';
 
 export type MoveMode = 'fly' | 'walk';
@@ -58,13 +58,8 @@ export class CameraController {
   yaw: number;
   pitch: number;
   vfovDegrees: number;
-  /**
-   * The thin lens (Camera.lens): its aperture radius (0: a pinhole, no lens) and the distance in
-   * focus along forward, kept while the aperture is 0 so that opening it finds the focus where a
-   * click set it (Viewer.focusAt).
-   */
-  apertureRadius: number;
-  focusDistance?: number;
+  /** The thin lens (depth of field), the scene camera's to begin with; undefined: a pinhole. */
+  lens: ThinLens | undefined;
   private walker?: WalkPosition;
 
   constructor(
@@ -78,8 +73,7 @@ export class CameraController {
     this.yaw = pose.yaw;
     this.pitch = pose.pitch;
     this.vfovDegrees = base.vfovDegrees;
-    this.apertureRadius = base.lens?.apertureRadius ?? 0;
-    this.focusDistance = base.lens?.focusDistance;
+    this.lens = base.lens;
   }
 
   get mode(): MoveMode {
@@ -151,8 +145,8 @@ export class CameraController {
   }
 
   camera(): Camera {
-    const lens = this.apertureRadius > 0 && this.focusDistance !== undefined ? { apertureRadius: this.apertureRadius, focusDistance: this.focusDistance } : undefined;
-    return { ...this.base, position: [this.x, this.y, this.z], forward: forwardOf(this.yaw, this.pitch), up: [0, 1, 0], vfovDegrees: this.vfovDegrees, lens };
+    const { lens: _, ...base } = this.base;
+    return { ...base, position: [this.x, this.y, this.z], forward: forwardOf(this.yaw, this.pitch), up: [0, 1, 0], vfovDegrees: this.vfovDegrees, ...(this.lens ? { lens: this.lens } : {}) };
   }
 }
 

@@ -8,9 +8,9 @@
  * Clicks on the canvas select (Esc or empty space deselects) and Alt-clicks focus the lens
  * (input.ts); the panel's Material folder edits what is selected, and links carry the edits.
  *
- * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera, selection and
- * live GPU resources, and reads the estimate with its sample count; the canvas carries data-state
- * and data-samples, so scripts can wait for frames.
+ * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera, lens,
+ * selection and live GPU resources, and reads the estimate with its sample count; the canvas
+ * carries data-state and data-samples, so scripts can wait for frames.
  */
 import { LanternError } from '../errors.ts';
 import { BUILTIN_SCENES, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
@@ -25,6 +25,7 @@ import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
 import { describeError, Viewer } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
+import type { ThinLens } from '../scene/types.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
@@ -130,7 +131,8 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
       showViewer(viewer);
     });
     if (token !== loadToken) return;
-    await viewer.setScene(loaded, { ...(view.pose ? { pose: view.pose } : {}), ...(view.mode ? { mode: view.mode } : {}), ...(view.fovDegrees !== undefined ? { fovDegrees: view.fovDegrees } : {}) });
+    const { pose, mode, fovDegrees, apertureRadius, focusDistance } = view;
+    await viewer.setScene(loaded, { pose, mode, fovDegrees, apertureRadius, focusDistance });
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
     // The link's problems again (this warning replaces the line that named them), with the material
@@ -289,7 +291,12 @@ viewer.input = new Input(canvas, {
     if (alt) {
       viewer
         .focusAt(x, y)
-        .then((depth) => depth !== undefined && showMessage(`In focus at ${depth.toPrecision(4)} scene units (the lens's focus distance).`, 'info'))
+        .then((depth) => {
+          if (depth === undefined) return;
+          // The Camera folder shows the new focus distance.
+          panel?.readFromViewer();
+          showMessage(`In focus at ${depth.toPrecision(4)} scene units (the lens's focus distance; the aperture radius sets the blur).`, 'info');
+        })
         .catch((e) => showMessage(describeError(e), 'error'));
     } else viewer.select(x, y).catch((e) => showMessage(describeError(e), 'error'));
   },
@@ -405,6 +412,8 @@ declare global {
       /** The environment that lights the image now (after an environment change has been uploaded), without map pixels. */
       readonly environment: Record<string, unknown> | undefined;
       readonly camera: Pose | undefined;
+      /** The camera's thin lens (undefined: a pinhole). */
+      readonly lens: ThinLens | undefined;
       readonly gpuResources: ResourceCount;
       readonly link: string;
       /** What a click selected: material index and name, instance index. */
@@ -438,6 +447,9 @@ window.lantern = {
   },
   get camera() {
     return viewer.controller?.pose;
+  },
+  get lens() {
+    return viewer.lens;
   },
   get gpuResources() {
     return viewer.stats.gpuResources;

@@ -7,6 +7,9 @@
  *   ply=<url>                          a PLY mesh the server offers
  *                                      (the scene parameters: loaders/scene-link.ts, from the registry)
  *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1
+ *   aperture=<radius>  focus=<distance>  the camera's thin lens, scene units (aperture 0: a pinhole;
+ *                                      a link with only one of them takes the other from the scene's
+ *                                      lens, or focuses on what lies at the image centre)
  *   and every render setting with a `link` name in RENDER_SETTINGS (renderer/settings.ts): bounces,
  *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
  *   layout, heat-max=<n>|auto, depth, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited,
@@ -34,6 +37,10 @@ export type ViewParams = RenderSettingsPatch & {
   readonly scene?: SceneLocation;
   readonly pose?: Pose;
   readonly fovDegrees?: number;
+  /** The thin lens's aperture radius (scene units, ≥ 0). */
+  readonly apertureRadius?: number;
+  /** The thin lens's focus distance (scene units, > 0). */
+  readonly focusDistance?: number;
   readonly mode?: MoveMode;
   readonly samplesPerFrame?: number;
   readonly scale?: number;
@@ -107,6 +114,17 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   if (cam) view.pose = { position: [cam[0]!, cam[1]!, cam[2]!], yaw: cam[3]!, pitch: cam[4]! };
   const fov = ranged('fov', LIMITS.fovDegrees);
   if (fov !== undefined) view.fovDegrees = fov;
+  const positive = (name: string, allowZero: boolean): number | undefined => {
+    const v = numbers(name, 1)?.[0];
+    if (v === undefined) return undefined;
+    if (allowZero ? v >= 0 : v > 0) return v;
+    problems.push(`${name}=${v} is not ${allowZero ? '≥' : '>'} 0`);
+    return undefined;
+  };
+  const aperture = positive('aperture', true);
+  if (aperture !== undefined) view.apertureRadius = aperture;
+  const focus = positive('focus', false);
+  if (focus !== undefined) view.focusDistance = focus;
   const mode = params.get('mode');
   if (mode !== null) {
     if ((MOVE_MODES as readonly string[]).includes(mode)) view.mode = mode as MoveMode;
@@ -157,6 +175,9 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.scene) formatSceneLocation(view.scene, p);
   if (view.pose) p.set('cam', [...view.pose.position, view.pose.yaw, view.pose.pitch].map(round).join(','));
   if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
+  // Six significant digits: lens sizes span millimetre scenes and metre scenes alike.
+  if (view.apertureRadius !== undefined) p.set('aperture', String(Number(view.apertureRadius.toPrecision(6))));
+  if (view.focusDistance !== undefined) p.set('focus', String(Number(view.focusDistance.toPrecision(6))));
   if (view.mode) p.set('mode', view.mode);
   if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));

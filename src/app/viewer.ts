@@ -32,7 +32,9 @@ import { linkOfEnvironment } from './environment-choice.ts';
 import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
-import type { Camera } from '../scene/types.ts';
+import { lensProblem } from '../scene/lens.ts';
+import type { Camera, ThinLens } from '../scene/types.ts';
+import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
 
 /** A scene without an environment has this one (black), one object so that it compares equal to itself. */
@@ -204,13 +206,13 @@ export class Viewer {
    * Shows a loaded scene; before the first Play only remembers it (no GPU work). The torch keeps
    * only on/off: its other settings belong to the previous scene.
    */
-  setScene(loaded: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number } = {}): Promise<void> {
+  setScene(loaded: LoadedScene, view: SceneView = {}): Promise<void> {
     // In line with settings and environment changes, so that an environment upload still under way
     // cannot land on top of the new scene.
     return this.enqueue(() => this.applyScene(loaded, view));
   }
 
-  private async applyScene(given: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number }): Promise<void> {
+  private async applyScene(given: LoadedScene, view: SceneView): Promise<void> {
     this.sceneEnvironment = given.prepared.scene.environment;
     const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
     const { scene, bvh } = loaded.prepared;
@@ -218,6 +220,11 @@ export class Viewer {
     if (view.pose) controller.setPose(view.pose);
     if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
     controller.setMode(view.mode ?? (controller.canWalk ? 'walk' : 'fly'));
+    if (view.apertureRadius !== undefined || view.focusDistance !== undefined) {
+      // What the link leaves out comes from the scene's lens; a focus distance from neither, from the image centre.
+      const focusDistance = view.focusDistance ?? controller.lens?.focusDistance ?? defaultFocus(loaded.prepared, controller.camera());
+      controller.lens = { apertureRadius: view.apertureRadius ?? controller.lens?.apertureRadius ?? 0, focusDistance };
+    }
     // Torch colour, intensity and range set for the last scene mean nothing in this one's units:
     // only on/off carries over.
     this.settings = { ...this.settings, render: { ...this.settings.render, torch: { enabled: this.settings.render.torch.enabled } } };
@@ -320,17 +327,13 @@ export class Viewer {
 
   /**
    * Focuses the lens on what lies under a canvas point: the focus distance becomes the picked depth
-   * along forward (the lens keeps it while its aperture is 0). Returns the depth, or undefined for
-   * empty space or before Play.
+   * along forward (setFocusDistance: a pinhole gets a closed lens that keeps it for when the aperture
+   * opens). Returns the depth, or undefined for empty space or before Play.
    */
   async focusAt(x: number, y: number): Promise<number | undefined> {
     const pick = await this.pickAt(x, y);
-    const c = this.controllerValue;
-    if (!pick || !c || !(pick.depth > 0)) return undefined;
-    c.focusDistance = pick.depth;
-    this.renderer?.setCamera(this.cameraOf(c));
-    this.renderer?.resetHistory();
-    this.hooks.onChange(this);
+    if (!pick || !this.controllerValue || !(pick.depth > 0)) return undefined;
+    this.setFocusDistance(pick.depth);
     return pick.depth;
   }
 
@@ -420,6 +423,45 @@ export class Viewer {
     this.hooks.onChange(this);
   }
 
+  /** The camera's thin lens (undefined: a pinhole). */
+  get lens(): ThinLens | undefined {
+    return this.controllerValue?.lens;
+  }
+
+  /**
+   * Sets the camera's thin lens (undefined: a pinhole; an aperture of 0 is a pinhole that keeps its
+   * focus distance). The image restarts, the real-time history too (a refocus changes every pixel).
+   * Throws a LanternError for a negative aperture or a focus distance ≤ 0.
+   */
+  setLens(lens: ThinLens | undefined): void {
+    const c = this.controllerValue;
+    if (!c) return;
+    const problem = lens && lensProblem(lens);
+    if (problem) throw new LanternError(problem);
+    c.lens = lens;
+    this.realTimeFrames = 0;
+    if (this.renderer) {
+      this.renderer.setCamera(this.cameraOf(c));
+      this.renderer.resetHistory();
+    }
+    this.hooks.onChange(this);
+  }
+
+  /**
+   * Focuses at `depth` scene units along the viewing direction, keeping the aperture (a pinhole
+   * gets a closed lens that remembers the distance for when the aperture opens). Click-to-focus:
+   * `viewer.setFocusDistance(pick.depth)` with the picked point's depth along forward.
+   */
+  setFocusDistance(depth: number): void {
+    this.setLens({ apertureRadius: this.lens?.apertureRadius ?? 0, focusDistance: depth });
+  }
+
+  /** Where a lens opened without a focus distance focuses: the depth at the image centre (CPU BVH), else half the scene's size. */
+  defaultFocusDistance(): number | undefined {
+    const c = this.controllerValue;
+    return this.loaded && c ? defaultFocus(this.loaded.prepared, c.camera()) : undefined;
+  }
+
   setFieldOfView(degrees: number): void {
     if (!this.controllerValue) return;
     this.controllerValue.vfovDegrees = degrees;
@@ -468,6 +510,7 @@ export class Viewer {
     const t = s.render.torch;
     return {
       ...(c ? { pose: c.pose, fovDegrees: c.vfovDegrees, mode: c.mode } : {}),
+      ...(c?.lens ? { apertureRadius: c.lens.apertureRadius, focusDistance: c.lens.focusDistance } : {}),
       samplesPerFrame: s.samplesPerFrame,
       scale: s.scale,
       accumulate: s.accumulate,
@@ -637,6 +680,14 @@ export class Viewer {
     this.frames.push({ at: performance.now(), rays });
     if (this.frames.length > STATS_WINDOW) this.frames.shift();
   }
+}
+
+/** What a link may say about the view of the scene it opens. */
+export type SceneView = Pick<ViewParams, 'pose' | 'mode' | 'fovDegrees' | 'apertureRadius' | 'focusDistance'>;
+
+/** The depth at the image centre, or half the scene's size when the centre ray meets nothing. */
+function defaultFocus(prepared: LoadedScene['prepared'], camera: Camera): number {
+  return centreFocusDistance(prepared, camera) ?? Math.max(boundsDiagonal(prepared.bvh) / 2, 1e-3);
 }
 
 /** Whether the device reports itself lost within a moment (frames fail before `lost` resolves). */

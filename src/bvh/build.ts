@@ -44,7 +44,9 @@ function resolveOptions(partial: Partial<BvhBuildOptions>): BvhBuildOptions {
 const Split = { Leaf: 0, Binned: 1, Small: 2, Middle: 3 } as const;
 
 /**
- * Builds a BVH over `positions` (9 floats per triangle: v0 xyz, v1 xyz, v2 xyz).
+ * Builds a BVH over `positions` (9 floats per primitive: for triangles v0 xyz, v1 xyz, v2 xyz; with
+ * `kinds`, spheres and capsules too, laid out as scene/triangles.ts says). Everything below works on
+ * the primitives' boxes, so the kinds only matter there.
  *
  * A node becomes a leaf when it holds one triangle, sits at maxDepth, or when no split is cheaper
  * than the leaf (count·Ci <= Ct + (A_L·N_L + A_R·N_R)/A·Ci) and it holds at most maxLeafSize
@@ -55,11 +57,11 @@ const Split = { Leaf: 0, Binned: 1, Small: 2, Middle: 3 } as const;
  * axis spanning the node's box (the centroid bounds when that finds nothing); smaller nodes score
  * every gap between sorted centroids exactly (sah-small.ts).
  */
-export function buildBvh(positions: Float32Array, options: Partial<BvhBuildOptions> = {}): Bvh {
+export function buildBvh(positions: Float32Array, options: Partial<BvhBuildOptions> = {}, kinds?: Uint8Array): Bvh {
   const startMs = performance.now();
   const opts = resolveOptions(options);
-  /** Triangle boxes, permuted in step with `index` so every node's triangles are contiguous in it. */
-  const work = computeTriangleBoxes(positions);
+  /** Primitive boxes, permuted in step with `index` so every node's primitives are contiguous in it. */
+  const work = computeTriangleBoxes(positions, kinds);
   const workBits = new Uint32Array(work.buffer, work.byteOffset, work.length);
   const n = work.length / 6;
   if (n === 0) throw new LanternError('cannot build a BVH over zero triangles');

@@ -5,11 +5,13 @@
  * sees every child before its parent. The tree's quality degrades as things move far; a rebuild is
  * the remedy (a two-level BVH makes moving instances cheap to rebuild at the top).
  */
+import { computeTriangleBoxes } from './triangle-boxes.ts';
 import type { Bvh } from './types.ts';
 
-/** A new BVH with the same tree as `bvh` and boxes fitted to `positions` (9 floats per triangle). */
-export function refitBvh(bvh: Bvh, positions: Float32Array): Bvh {
+/** A new BVH with the same tree as `bvh` and boxes fitted to `positions` (9 floats per primitive, of `kinds`; triangles without). */
+export function refitBvh(bvh: Bvh, positions: Float32Array, kinds?: Uint8Array): Bvh {
   const bounds = new Float32Array(bvh.bounds);
+  const boxes = computeTriangleBoxes(positions, kinds);
   const { leftFirst, triCount, triIndices } = bvh;
   for (let node = bvh.nodeCount - 1; node >= 0; node--) {
     if (node === 1) continue; // the unused slot keeps its inverted box
@@ -17,16 +19,13 @@ export function refitBvh(bvh: Bvh, positions: Float32Array): Bvh {
     if (triCount[node]! > 0) {
       const first = leftFirst[node]!, end = first + triCount[node]!;
       for (let i = first; i < end; i++) {
-        const o = triIndices[i]! * 9;
-        for (let c = 0; c < 9; c += 3) {
-          const x = positions[o + c]!, y = positions[o + c + 1]!, z = positions[o + c + 2]!;
-          if (x < minX) minX = x;
-          if (y < minY) minY = y;
-          if (z < minZ) minZ = z;
-          if (x > maxX) maxX = x;
-          if (y > maxY) maxY = y;
-          if (z > maxZ) maxZ = z;
-        }
+        const o = triIndices[i]! * 6;
+        minX = Math.min(minX, boxes[o]!);
+        minY = Math.min(minY, boxes[o + 1]!);
+        minZ = Math.min(minZ, boxes[o + 2]!);
+        maxX = Math.max(maxX, boxes[o + 3]!);
+        maxY = Math.max(maxY, boxes[o + 4]!);
+        maxZ = Math.max(maxZ, boxes[o + 5]!);
       }
     } else {
       for (const child of [leftFirst[node]!, leftFirst[node]! + 1]) {

@@ -3,12 +3,15 @@
  * trace_any), step for step, so hits and the visited-node / tested-triangle counts agree with the
  * GPU (up to f32 rounding). Plus a brute-force closest hit over all triangles, the oracle's oracle.
  *
+ * Primitives are triangles, or of the kinds `kinds` gives (scene/triangles.ts: spheres, capsules);
+ * "triangle" in the names below means any primitive.
+ *
  * Counting convention (the GPU's counters must follow it):
  * - nodesVisited: nodes whose record the loop fetched (root included), or 1 when the root box is
  *   missed and the loop never starts;
  * - trianglesTested: ray/triangle tests run.
  */
-import { intersectAabb, intersectTriangle, prepareRay, T_MISS, type Barycentrics, type Ray } from './ray.ts';
+import { intersectAabb, intersectPrimitive, prepareRay, T_MISS, type Barycentrics, type Ray } from './ray.ts';
 import type { Bvh } from './types.ts';
 
 /** A closest hit found without a BVH. */
@@ -47,7 +50,7 @@ export interface AnyTrace {
  * closest hit so far, the nearer is visited next and the farther is pushed if it was hit (ties go
  * left). Popped nodes are not re-tested against a closer hit found meanwhile (the GPU does the same).
  */
-export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray): ClosestTrace {
+export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?: Uint8Array): ClosestTrace {
   const r = prepareRay(ray);
   const { bounds, leftFirst, triCount, triIndices } = bvh;
   const bary: Barycentrics = { u: 0, v: 0 };
@@ -64,7 +67,7 @@ export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray): Close
       const first = leftFirst[node]!;
       for (let i = first; i < first + count; i++) {
         trianglesTested++;
-        const t = intersectTriangle(positions, triIndices[i]!, r, r.tMin, tBest, bary);
+        const t = intersectPrimitive(positions, kinds, triIndices[i]!, r, r.tMin, tBest, bary);
         if (t < tBest) {
           tBest = t;
           bestLeaf = i;
@@ -101,8 +104,8 @@ export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray): Close
 }
 
 /** The closest hit at tMin < t < tMax, or null. See traceClosest for counts on misses. */
-export function traverseClosest(bvh: Bvh, positions: Float32Array, ray: Ray): Hit | null {
-  return traceClosest(bvh, positions, ray).hit;
+export function traverseClosest(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?: Uint8Array): Hit | null {
+  return traceClosest(bvh, positions, ray, kinds).hit;
 }
 
 /**
@@ -110,7 +113,7 @@ export function traverseClosest(bvh: Bvh, positions: Float32Array, ray: Ray): Hi
  * storage order, left first, without ordering by distance: any hit ends the search, so ordering
  * buys little (as trace_any in bvh.wgsl).
  */
-export function traverseAny(bvh: Bvh, positions: Float32Array, ray: Ray): AnyTrace {
+export function traverseAny(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?: Uint8Array): AnyTrace {
   const r = prepareRay(ray);
   const { bounds, leftFirst, triCount, triIndices } = bvh;
   const bary: Barycentrics = { u: 0, v: 0 };
@@ -126,7 +129,7 @@ export function traverseAny(bvh: Bvh, positions: Float32Array, ray: Ray): AnyTra
       const first = leftFirst[node]!;
       for (let i = first; i < first + count; i++) {
         trianglesTested++;
-        if (intersectTriangle(positions, triIndices[i]!, r, r.tMin, r.tMax, bary) < r.tMax) return { hit: true, nodesVisited, trianglesTested };
+        if (intersectPrimitive(positions, kinds, triIndices[i]!, r, r.tMin, r.tMax, bary) < r.tMax) return { hit: true, nodesVisited, trianglesTested };
       }
     } else {
       const left = leftFirst[node]!;
@@ -147,13 +150,13 @@ export function traverseAny(bvh: Bvh, positions: Float32Array, ray: Ray): AnyTra
  * Brute-force closest hit over every triangle in source order, no BVH. Because a hit must beat the
  * best so far strictly, the smallest t wins and, among equal t, the lowest source index.
  */
-export function intersectAll(positions: Float32Array, ray: Ray): TriangleHit | null {
+export function intersectAll(positions: Float32Array, ray: Ray, kinds?: Uint8Array): TriangleHit | null {
   const r = prepareRay(ray);
   const bary: Barycentrics = { u: 0, v: 0 };
   let best: TriangleHit | null = null;
   let tBest = r.tMax;
   for (let tri = 0, n = positions.length / 9; tri < n; tri++) {
-    const t = intersectTriangle(positions, tri, r, r.tMin, tBest, bary);
+    const t = intersectPrimitive(positions, kinds, tri, r, r.tMin, tBest, bary);
     if (t < tBest) {
       tBest = t;
       best = { t, u: bary.u, v: bary.v, triangle: tri };

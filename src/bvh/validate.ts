@@ -3,15 +3,17 @@
  * (GPU packing, traversal) relies on. Throws an Error naming the first broken invariant. Linear
  * time; meant for tests and debugging, not for every render.
  */
-import { F32_MAX } from './triangle-boxes.ts';
+import { computeTriangleBoxes, F32_MAX } from './triangle-boxes.ts';
 import type { Bvh } from './types.ts';
 
-export function checkBvh(bvh: Bvh, positions: Float32Array, maxDepth = Infinity): void {
+/** `kinds`: the primitive kinds (scene/triangles.ts), absent when every primitive is a triangle. */
+export function checkBvh(bvh: Bvh, positions: Float32Array, maxDepth = Infinity, kinds?: Uint8Array): void {
   const fail = (what: string): never => {
     throw new Error(`invalid BVH: ${what}`);
   };
   const { nodeCount, bounds, leftFirst, triCount, triIndices } = bvh;
   const n = positions.length / 9;
+  const boxes = computeTriangleBoxes(positions, kinds);
   if (triIndices.length !== n) fail(`triIndices has ${triIndices.length} entries for ${n} triangles`);
   if (nodeCount < 2 || bounds.length !== nodeCount * 6 || leftFirst.length !== nodeCount || triCount.length !== nodeCount) {
     fail(`array sizes do not match nodeCount ${nodeCount}`);
@@ -48,12 +50,10 @@ export function checkBvh(bvh: Bvh, positions: Float32Array, maxDepth = Infinity)
       for (let i = first; i < first + count; i++) {
         if (coveredLeafSlot[i]) fail(`entry ${i} of triIndices is in two leaves`);
         coveredLeafSlot[i] = 1;
-        const p = triIndices[i]! * 9;
-        for (let v = 0; v < 3; v++) {
-          for (let a = 0; a < 3; a++) {
-            union[a] = Math.min(union[a]!, positions[p + v * 3 + a]!);
-            union[3 + a] = Math.max(union[3 + a]!, positions[p + v * 3 + a]!);
-          }
+        const p = triIndices[i]! * 6;
+        for (let a = 0; a < 3; a++) {
+          union[a] = Math.min(union[a]!, boxes[p + a]!);
+          union[3 + a] = Math.max(union[3 + a]!, boxes[p + 3 + a]!);
         }
       }
     } else {

@@ -164,6 +164,7 @@ export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
   generalMaterials: 'SCENE_HAS_GENERAL_MATERIALS',
   punctualLights: 'SCENE_HAS_PUNCTUAL_LIGHTS',
   environment: 'SCENE_HAS_ENVIRONMENT',
+  analyticPrimitives: 'SCENE_HAS_ANALYTIC_PRIMITIVES',
 };
 
 /**
@@ -214,6 +215,8 @@ export class SceneKernels {
   }
 }
 
-export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false });
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false });
 /** The features every path-tracing entry point compiles by. */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment'];
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives'];
+/** The features of passes that only trace (debug views, ray buffers). */
+export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives'];

@@ -1,6 +1,6 @@
 /**
- * The view uniform (bind group 1, shaders/view/bindings.wgsl): the camera basis scaled to the image
- * and the image size. The WGSL struct is reflected; nothing here knows its byte layout. In gpu/, not
+ * The view uniform (bind group 1, shaders/view/bindings.wgsl): the camera basis scaled to the image,
+ * the thin lens (aperture radius, focus distance; 0, 0 for a pinhole) and the image size. The WGSL struct is reflected; nothing here knows its byte layout. In gpu/, not
  * renderer/, because every pass binds it and passes sit below the renderer.
  */
 import { makeStructuredView } from 'webgpu-utils';
@@ -43,6 +43,28 @@ export function primaryRay(camera: Camera, width: number, height: number, x: num
   return { origin: b.position, direction: normalize(d) };
 }
 
+/** The WGSL Camera struct's values (view/bindings.wgsl): the pinhole basis and the lens (aperture 0: a pinhole). */
+export type CameraUniform = {
+  readonly position: Vec3;
+  readonly right: Vec3;
+  readonly up: Vec3;
+  readonly forward: Vec3;
+  readonly aperture_radius: number;
+  readonly focus_distance: number;
+};
+
+export function cameraUniform(camera: Camera, aspect: number): CameraUniform {
+  const b = cameraBasis(camera, aspect);
+  return {
+    position: b.position,
+    right: b.right,
+    up: b.up,
+    forward: b.forward,
+    aperture_radius: camera.lens?.apertureRadius ?? 0,
+    focus_distance: camera.lens?.focusDistance ?? 0,
+  };
+}
+
 export class ViewUniform {
   readonly buffer: GPUBuffer;
   private readonly values = makeStructuredView(reflectModule('view/bindings').defs.uniforms.view!);
@@ -55,10 +77,9 @@ export class ViewUniform {
   }
 
   update(camera: Camera, width: number, height: number): void {
-    const b = cameraBasis(camera, width / height);
     this.width = width;
     this.height = height;
-    this.values.set({ camera: { position: b.position, right: b.right, up: b.up, forward: b.forward }, image_size: [width, height] });
+    this.values.set({ camera: cameraUniform(camera, width / height), image_size: [width, height] });
     this.device.queue.writeBuffer(this.buffer, 0, this.values.arrayBuffer);
   }
 

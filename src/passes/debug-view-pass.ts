@@ -2,7 +2,7 @@
  * The tracing half of the debug views (shaders/passes/debug-view.wgsl): one pixel-centre primary ray
  * per pixel through the counting variant of the BVH traversal, raw values out.
  */
-import { SceneKernels } from '../gpu/kernel.ts';
+import { SceneKernels, TRAVERSAL_FEATURES } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
@@ -34,7 +34,7 @@ export class DebugViewPass {
 
   static async create(device: GPUDevice): Promise<DebugViewPass> {
     // The traversal with scene/bvh.wgsl's work counters compiled in; variants by alpha tests only.
-    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, ['alphaMasks'], { BVH_COUNT_WORK: 1 });
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, TRAVERSAL_FEATURES, { BVH_COUNT_WORK: 1 });
     return new DebugViewPass(kernels, new UniformParams(device, MODULE));
   }
 

@@ -2,7 +2,7 @@
  * Closest-hit tracing of a ray buffer (shaders/passes/trace-rays.wgsl): the traversal benchmark and
  * the GPU side of the traversal-versus-oracle test.
  */
-import { SceneKernels, type ComputeKernel } from '../gpu/kernel.ts';
+import { SceneKernels, TRAVERSAL_FEATURES, type ComputeKernel } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
@@ -80,7 +80,7 @@ export class TraceRaysPass {
   ) {}
 
   static async create(device: GPUDevice): Promise<TraceRaysPass> {
-    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'trace_rays' }, ['alphaMasks']);
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'trace_rays' }, TRAVERSAL_FEATURES);
     return new TraceRaysPass(device, kernels, new UniformParams(device, MODULE));
   }
 

@@ -28,7 +28,7 @@ export interface PreparedScene {
 }
 
 /** The CPU stages of preparation, in order, for progress reports. */
-export const PREPARE_STAGES = ['flattening triangles', 'building the BVH', 'packing for the GPU'] as const;
+export const PREPARE_STAGES = ['flattening primitives', 'building the BVH', 'packing for the GPU'] as const;
 
 /** Prepares `scene`; `onStage` hears of each stage as it begins (a worker reports progress with it). */
 export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STAGES)[number]) => void): PreparedScene {
@@ -38,7 +38,7 @@ export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STA
   const triangles = flattenTriangles(scene);
   const t1 = performance.now();
   onStage?.(PREPARE_STAGES[1]);
-  const bvh = buildBvh(triangles.positions);
+  const bvh = buildBvh(triangles.positions, {}, triangles.kinds);
   const t2 = performance.now();
   onStage?.(PREPARE_STAGES[2]);
   const packed = packScene(scene, triangles, bvh);
@@ -70,7 +70,7 @@ export function moveInstances(prepared: PreparedScene, moves: ReadonlyMap<number
     if (moves.has(inst.id)) writeInstanceTriangles(moved, inst, i, triangles, triangles.instanceFirstTriangle[i]!);
   });
   const t0 = performance.now();
-  const bvh = refitBvh(prepared.bvh, triangles.positions);
+  const bvh = refitBvh(prepared.bvh, triangles.positions, triangles.kinds);
   const t1 = performance.now();
   const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment);
   const t2 = performance.now();

@@ -30,6 +30,7 @@ import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes
 import { dot, type Vec3 } from '../math/vec3.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
+import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
@@ -310,7 +311,15 @@ export class Renderer {
     return this.selectionRange;
   }
 
+  /**
+   * Sets the camera (restarts accumulation; the real-time history is reprojected). `camera.lens` gives
+   * depth of field: `setCamera({ ...renderer.camera, lens: { apertureRadius, focusDistance } })`;
+   * no lens, or an aperture of 0, is a pinhole. A lens with a negative aperture or a focus distance
+   * ≤ 0 is refused (LanternError).
+   */
   setCamera(camera: Camera): void {
+    const problem = camera.lens && lensProblem(camera.lens);
+    if (problem) throw new LanternError(problem, 'Give an aperture radius ≥ 0 and a focus distance > 0 (scene units)');
     this.cameraValue = camera;
     this.updateView();
   }

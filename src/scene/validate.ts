@@ -4,6 +4,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
+import { lensProblem } from './lens.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
 export function validateScene(scene: Scene): void {
@@ -79,8 +80,26 @@ export function validateScene(scene: Scene): void {
       if (mesh.materialIds[t]! >= scene.materials.length) fail(`${where} triangle ${t} uses material ${mesh.materialIds[t]} of ${scene.materials.length}`);
     }
     triangles += triCount;
+    for (const [kind, set, floats] of [['sphere', mesh.spheres, 3], ['capsule', mesh.capsules, 6]] as const) {
+      if (!set) continue;
+      const coords = kind === 'sphere' ? mesh.spheres!.centers : mesh.capsules!.endpoints;
+      const n = set.radii.length;
+      if (coords.length !== n * floats || set.materialIds.length !== n) fail(`${where} has ${kind} arrays of inconsistent lengths (${n} radii, ${coords.length / floats} positions, ${set.materialIds.length} material ids)`);
+      for (let i = 0; i < n; i++) {
+        if (!(set.radii[i]! > 0 && set.radii[i]! < Infinity)) fail(`${where} ${kind} ${i} has radius ${set.radii[i]}, not a positive finite number`);
+        if (set.materialIds[i]! >= scene.materials.length) fail(`${where} ${kind} ${i} uses material ${set.materialIds[i]} of ${scene.materials.length}`);
+      }
+      for (let i = 0; i < coords.length; i++) if (!Number.isFinite(coords[i]!)) fail(`${where} ${kind} ${Math.floor(i / floats)} has a non-finite position`);
+      triangles += n;
+    }
   });
-  if (triangles === 0) fail('it has no triangles');
+  if (triangles === 0) fail('it has no geometry (no triangles, spheres or capsules)');
+  scene.instances.forEach((inst, i) => {
+    const mesh = scene.meshes[inst.mesh]!;
+    if ((mesh.spheres || mesh.capsules) && !isSimilarity(inst.worldFromObject)) {
+      fail(`instance ${i} of mesh '${mesh.name}' has spheres or capsules but a transform that is not a similarity (rotation, uniform scale, translation): a sphere would become an ellipsoid`);
+    }
+  });
   if (scene.instances.length === 0) fail('it places no mesh (no instances)');
   const c = scene.camera;
   if (!isFiniteVec3(c.position)) fail('the camera position is not finite');
@@ -89,6 +108,20 @@ export function validateScene(scene: Scene): void {
   if (!(length(side) > 1e-9 * length(c.forward) * length(c.up))) fail('the camera up vector is zero or parallel to forward');
   if (!(c.vfovDegrees > 0 && c.vfovDegrees < 180)) fail(`the camera field of view ${c.vfovDegrees}° is outside (0, 180)`);
   if (c.exposureStops !== undefined && !(Math.abs(c.exposureStops) <= 64)) fail(`the camera exposure ${c.exposureStops} stops is outside ±64`);
+  const lens = c.lens && lensProblem(c.lens);
+  if (lens) fail(lens);
+}
+
+/** Whether the linear part of m is a rotation (or reflection) times a uniform scale, to 1e-4 relative. */
+function isSimilarity(m: readonly number[] | Float32Array | Float64Array): boolean {
+  const cols = [0, 4, 8].map((o) => [m[o]!, m[o + 1]!, m[o + 2]!] as Vec3);
+  const lengths = cols.map(length);
+  const s = lengths[0]!;
+  if (!(s > 0)) return false;
+  const tol = 1e-4;
+  if (lengths.some((l) => Math.abs(l - s) > tol * s)) return false;
+  const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  return Math.abs(dot(cols[0]!, cols[1]!)) <= tol * s * s && Math.abs(dot(cols[0]!, cols[2]!)) <= tol * s * s && Math.abs(dot(cols[1]!, cols[2]!)) <= tol * s * s;
 }
 
 function materialTextures(m: Material): (TextureRef | undefined)[] {

@@ -8,7 +8,7 @@
 import { IDENTITY } from '../../src/math/mat4.ts';
 import { describe, expect, it } from 'vitest';
 import { traverseClosest } from '../../src/bvh/traverse.ts';
-import { prepareRay, intersectTriangle } from '../../src/bvh/ray.ts';
+import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
 import { quadGrid, randomSoup, uvSphere, makeRandom } from '../../src/bvh/test-scenes.ts';
 import { readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
@@ -35,7 +35,49 @@ function soupScene(name: string, positions: Float32Array, camera: Scene['camera'
   };
 }
 
+/**
+ * Spheres and capsules among triangles: random small ones, nested and touching ones, long thin
+ * capsules, a capsule with a = b, and the huge ground sphere (radius 1000) of the tutorial scenes.
+ */
+function analyticScene(): Scene {
+  const rnd = makeRandom(5);
+  const centers: number[] = [], radii: number[] = [], endpoints: number[] = [], capsuleRadii: number[] = [];
+  for (let i = 0; i < 60; i++) {
+    centers.push(rnd() * 16 - 8, rnd() * 6, rnd() * 16 - 8);
+    radii.push(0.1 + rnd() * 0.9);
+  }
+  centers.push(0, -1000, 0, 2, 1, 2, 2, 1, 2);
+  radii.push(1000, 1, 0.5); // the ground, and a sphere inside another
+  for (let i = 0; i < 60; i++) {
+    const a = [rnd() * 16 - 8, rnd() * 6, rnd() * 16 - 8];
+    const len = i % 10 === 0 ? 0 : 0.2 + rnd() * 4;
+    const d = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
+    const dl = Math.hypot(d[0]!, d[1]!, d[2]!);
+    endpoints.push(a[0]!, a[1]!, a[2]!, a[0]! + (d[0]! / dl) * len, a[1]! + (d[1]! / dl) * len, a[2]! + (d[2]! / dl) * len);
+    capsuleRadii.push(0.05 + rnd() * 0.4);
+  }
+  const soup = randomSoup(200, 3, 0.4);
+  const nt = soup.length / 9;
+  return {
+    name: 'analytic',
+    meshes: [
+      {
+        name: 'mixed',
+        positions: soup,
+        indices: Uint32Array.from({ length: nt * 3 }, (_, i) => i),
+        materialIds: new Uint32Array(nt),
+        spheres: { centers: new Float32Array(centers), radii: new Float32Array(radii), materialIds: new Uint32Array(radii.length) },
+        capsules: { endpoints: new Float32Array(endpoints), radii: new Float32Array(capsuleRadii), materialIds: new Uint32Array(capsuleRadii.length) },
+      },
+    ],
+    instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }],
+    materials: [{ kind: 'diffuse', name: 'grey', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] }],
+    camera: { position: [13, 2, 3], forward: [-13, -2, -3], up: [0, 1, 0], vfovDegrees: 60 },
+  };
+}
+
 const SCENES: [string, () => Scene][] = [
+  ['spheres and capsules among triangles', analyticScene],
   ['cornell', () => builtinScene('cornell')],
   ['furnace (inside a closed box)', () => builtinScene('furnace')],
   ['random soup', () => soupScene('soup', randomSoup(3000, 7), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 })],
@@ -119,13 +161,16 @@ describe('GPU traversal equals the CPU oracle', () => {
     const prepared = prepareScene(make());
     const rays = makeRays(prepared);
     const gpu = await traceOnGpu(device, prepared, rays);
-    const positions = prepared.triangles.positions;
+    const { positions, kinds } = prepared.triangles;
     let exact = 0, ties = 0, grazing = 0;
     const failures: string[] = [];
     rays.forEach((ray, i) => {
-      const cpu = traverseClosest(prepared.bvh, positions, ray);
+      const cpu = traverseClosest(prepared.bvh, positions, ray, kinds);
       const gpuTri = gpu.tri[i]!;
-      const onEdge = (u: number, v: number) => Math.min(u, v, 1 - u - v) < EDGE;
+      // A triangle's edge; for a sphere or capsule, the hit uv says nothing of grazing, so a ray
+      // that the other side misses is checked for a near-tangent approach instead.
+      const onEdge = (u: number, v: number, prim = cpu?.triangle ?? gpuTri) =>
+        kinds[prim] === 0 ? Math.min(u, v, 1 - u - v) < EDGE : grazesAnalytic(positions, kinds, prim, ray);
       if (!cpu || gpuTri === NO_TRIANGLE) {
         if (!cpu && gpuTri === NO_TRIANGLE) exact++;
         else if (cpu && onEdge(cpu.u, cpu.v)) grazing++;
@@ -140,7 +185,7 @@ describe('GPU traversal equals the CPU oracle', () => {
       }
       // A different triangle: the oracle must hit it at (nearly) the same distance.
       const bary = { u: 0, v: 0 };
-      const tAlt = intersectTriangle(positions, gpuTri, prepareRay(ray), 0, 3e38, bary);
+      const tAlt = intersectPrimitive(positions, kinds, gpuTri, prepareRay(ray), 0, 3e38, bary);
       if (Math.abs(tAlt - cpu.t) / Math.max(cpu.t, 1e-3) < 1e-4 || (onEdge(cpu.u, cpu.v) && Math.abs(gpu.t[i]! - cpu.t) / cpu.t < 1e-3)) ties++;
       else failures.push(`ray ${i}: cpu triangle ${cpu.triangle} at ${cpu.t}, gpu triangle ${gpuTri} at ${gpu.t[i]} (oracle has it at ${tAlt})`);
     });
@@ -150,3 +195,26 @@ describe('GPU traversal equals the CPU oracle', () => {
     expect(exact + ties + grazing).toBe(rays.length);
   });
 });
+
+/**
+ * Whether the ray passes a sphere's or capsule's surface nearly tangentially: the distance from the
+ * ray's line to the centre (sphere) or to the axis segment (capsule) is within 2e-3 of the radius.
+ */
+function grazesAnalytic(positions: Float32Array, kinds: Uint8Array, prim: number, ray: TestRay): boolean {
+  const o = prim * 9;
+  const len = Math.hypot(...ray.direction);
+  const u = ray.direction.map((x) => x / len);
+  // Distance from point c to the line.
+  const lineDistance = (c: readonly number[]) => {
+    const f = [0, 1, 2].map((k) => ray.origin[k]! - c[k]!);
+    const b = f[0]! * u[0]! + f[1]! * u[1]! + f[2]! * u[2]!;
+    return Math.hypot(f[0]! - b * u[0]!, f[1]! - b * u[1]!, f[2]! - b * u[2]!);
+  };
+  const a = [positions[o]!, positions[o + 1]!, positions[o + 2]!];
+  if (kinds[prim] === 1) return Math.abs(lineDistance(a) - positions[o + 3]!) < 2e-3 * positions[o + 3]!;
+  const b = [positions[o + 3]!, positions[o + 4]!, positions[o + 5]!], r = positions[o + 6]!;
+  // The line-to-segment distance, by dense sampling along the segment (a test, not a hot path).
+  let nearest = Infinity;
+  for (let i = 0; i <= 2000; i++) nearest = Math.min(nearest, lineDistance(a.map((x, k) => x + (i / 2000) * (b[k]! - x))));
+  return Math.abs(nearest - r) < 2e-3 * r + 2e-3 * Math.hypot(b[0]! - a[0]!, b[1]! - a[1]!, b[2]! - a[2]!) / 2000;
+}

@@ -9,7 +9,7 @@
 import type { Bvh } from '../../bvh/types.ts';
 import { determinant3, normalMatrix } from '../../math/mat4.ts';
 import { luminance } from '../../math/vec3.ts';
-import type { TriangleList } from '../../scene/triangles.ts';
+import { PRIMITIVE_KIND, type TriangleList } from '../../scene/triangles.ts';
 import type { Scene } from '../../scene/types.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
 import { packEnvironment, type PackedEnvironment } from './environment-pack.ts';
@@ -29,6 +29,8 @@ export interface SceneFeatures {
   readonly punctualLights: boolean;
   /** An environment map or a sun. */
   readonly environment: boolean;
+  /** Spheres or capsules among the primitives. */
+  readonly analyticPrimitives: boolean;
 }
 
 /** The group-0 resources, keyed by their WGSL variable names. */
@@ -59,6 +61,9 @@ export interface PackedScene {
     readonly punctualLights: number;
     readonly textures: number;
     readonly maskedTriangles: number;
+    readonly spheres: number;
+    readonly capsules: number;
+    readonly emissiveSpheres: number;
   };
   readonly features: SceneFeatures;
   /** Σ of the light powers (the light table's normaliser). */
@@ -86,6 +91,8 @@ export function sceneLayouts() {
 }
 
 export const TRIANGLE_ALPHA_MASKED = 1;
+/** PRIMITIVE_* kind bits of TriangleHot.flags (shaders/scene/types.wgsl), by scene/triangles.ts kind. */
+export const PRIMITIVE_FLAGS: readonly number[] = [0, 256, 512];
 
 /** Options of packing that depend on the device. */
 export interface PackOptions {
@@ -126,16 +133,57 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
   const shading = new StructArray(layouts.shading, n);
   const lightTriangles: number[] = [];
   const lightPowers: number[] = [];
-  let maskedTriangles = 0;
+  let maskedTriangles = 0, emissiveSpheres = 0;
+  const warnings: string[] = [];
   {
     const v0 = hot.vec3('v0'), e1 = hot.vec3('e1'), e2 = hot.vec3('e2'), flags = hot.u32Field('flags');
     const normals = [shading.vec3('n0'), shading.vec3('n1'), shading.vec3('n2')] as const;
     const uvs = [shading.vec2('uv0'), shading.vec2('uv1'), shading.vec2('uv2')] as const;
     const material = shading.u32Field('material'), sourceIndex = shading.u32Field('source_index');
     const p = triangles.positions;
+    let emissiveCapsules = 0;
     for (let leaf = 0; leaf < n; leaf++) {
       const t = bvh.triIndices[leaf]!;
       const o = t * 9;
+      const kind = triangles.kinds[t]!;
+      const m = triangles.materialIds[t]!;
+      const mat = scene.materials[m]!;
+      material(leaf, m);
+      sourceIndex(leaf, t);
+      let flagBits = PRIMITIVE_FLAGS[kind]!;
+      if (packedMaterials.hasHitFilter[m]) {
+        flagBits |= TRIANGLE_ALPHA_MASKED;
+        maskedTriangles++;
+      }
+      flags(leaf, flagBits);
+      if (kind !== PRIMITIVE_KIND.triangle) {
+        // Analytic: the record of shaders/scene/types.wgsl TriangleHot. The shading uvs (0,0), (1,0),
+        // (0,1) make triangle_uv(prim, hit uv) return the hit's analytic uv unchanged.
+        v0(leaf, p[o]!, p[o + 1]!, p[o + 2]!);
+        uvs[1](leaf, 1, 0);
+        uvs[2](leaf, 0, 1);
+        let area: number;
+        if (kind === PRIMITIVE_KIND.sphere) {
+          const r = p[o + 3]!;
+          e1(leaf, r, 0, 0);
+          area = 4 * Math.PI * r * r;
+        } else {
+          const r = p[o + 6]!;
+          const ax = p[o + 3]! - p[o]!, ay = p[o + 4]! - p[o + 1]!, az = p[o + 5]! - p[o + 2]!;
+          e1(leaf, ax, ay, az);
+          e2(leaf, r, 0, 0);
+          area = 2 * Math.PI * r * Math.hypot(ax, ay, az) + 4 * Math.PI * r * r;
+        }
+        const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * area;
+        if (power > 0 && kind === PRIMITIVE_KIND.sphere) {
+          lightTriangles.push(leaf);
+          lightPowers.push(power);
+          emissiveSpheres++;
+        } else if (power > 0) {
+          emissiveCapsules++;
+        }
+        continue;
+      }
       const ax = p[o]!, ay = p[o + 1]!, az = p[o + 2]!;
       const e1x = p[o + 3]! - ax, e1y = p[o + 4]! - ay, e1z = p[o + 5]! - az;
       const e2x = p[o + 6]! - ax, e2y = p[o + 7]! - ay, e2z = p[o + 8]! - az;
@@ -163,21 +211,16 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
         }
         if (mesh.uvs) uvs[c]!(leaf, mesh.uvs[vi * 2]!, mesh.uvs[vi * 2 + 1]!);
       }
-      const m = triangles.materialIds[t]!;
-      material(leaf, m);
-      sourceIndex(leaf, t);
-      if (packedMaterials.hasHitFilter[m]) {
-        flags(leaf, TRIANGLE_ALPHA_MASKED);
-        maskedTriangles++;
-      }
 
       // Power in the luminance sense, as lights.wgsl light_selection_pmf computes it.
-      const mat = scene.materials[m]!;
       const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * 0.5 * twiceArea;
       if (power > 0) {
         lightTriangles.push(leaf);
         lightPowers.push(power);
       }
+    }
+    if (emissiveCapsules > 0) {
+      warnings.push(`${emissiveCapsules} emissive capsule(s) are not sampled as lights: only rays that happen to hit them find their light (unbiased, but noisy)`);
     }
   }
 
@@ -230,15 +273,19 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
       punctualLights: lights.punctualCount,
       textures: (scene.textures ?? []).length,
       maskedTriangles,
+      spheres: triangles.kindCounts.sphere,
+      capsules: triangles.kindCounts.capsule,
+      emissiveSpheres,
     },
     features: {
       alphaMasks: maskedTriangles > 0,
       generalMaterials: packedMaterials.general,
       punctualLights: lights.punctualCount > 0,
       environment: lights.environmentSelectPmf > 0 || lights.sunSelectPmf > 0,
+      analyticPrimitives: triangles.kindCounts.sphere + triangles.kindCounts.capsule > 0,
     },
     totalLightPower: lights.totalPower,
-    warnings: [...packedMaterials.warnings, ...lights.warnings],
+    warnings: [...packedMaterials.warnings, ...lights.warnings, ...warnings],
     packedMaterials,
     environment,
   };
@@ -260,13 +307,18 @@ function packTriangleAttributes(scene: Scene, triangles: TriangleList, bvh: Bvh,
   const mirrors = scene.instances.map((inst) => (determinant3(inst.worldFromObject) < 0 ? -1 : 1));
   for (let leaf = 0; leaf < triangles.count; leaf++) {
     const t = bvh.triIndices[leaf]!;
+    const base = (Math.floor(leaf / perRow) * width + (leaf % perRow) * texels) * 4;
+    if (triangles.kinds[t] !== PRIMITIVE_KIND.triangle) {
+      // Analytic: no tangents; the second uv set is the first (as triangle_uv1 interpolates it).
+      data.set([0, 0, 1, 0, 0, 1, 0, 0], base + 12);
+      continue;
+    }
     const ii = triangles.instanceIds[t]!;
     const inst = scene.instances[ii]!;
     const mesh = scene.meshes[inst.mesh]!;
     const m = inst.worldFromObject;
     const k = triangles.meshTriangleIds[t]!;
     const swapped = triangles.swapped[t] === 1;
-    const base = (Math.floor(leaf / perRow) * width + (leaf % perRow) * texels) * 4;
     for (let c = 0; c < 3; c++) {
       const vi = mesh.indices[k * 3 + (swapped && c > 0 ? 3 - c : c)]!;
       if (mesh.tangents) {

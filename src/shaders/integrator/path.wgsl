@@ -112,7 +112,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       }
       break;
     }
-    let surface = surface_at(hit);
+    let surface = surface_at(hit, ray);
     let material = materials[surface.material];
     if (SCENE_HAS_GENERAL_MATERIALS) {
       cone_width += cone_spread * hit.t;
@@ -125,7 +125,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
     // Emission, seen only from the side the geometric normal faces.
     let cos_emitter = -dot(surface.geometric_normal, ray.direction);
     if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
-      let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, emitter_pdf(material, surface.area, hit.t, cos_emitter));
+      let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
       result.radiance += throughput * material_emission(material, surface.uv, ray.direction) * weight;
     }
     if (CAPTURE_PRIMARY && bounce == 0u) {
@@ -140,7 +140,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
       let ng = facing * surface.geometric_normal;
       let ns = facing * surface.shading_normal;
-      let origin = offset_ray_origin(surface.position, ng);
+      let origin = spawn_point(surface, ng);
       let albedo = material_albedo(material, surface.uv).rgb;
       let brdf = albedo * INV_PI;
 
@@ -202,7 +202,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
             if (side_g * wi.z > 0.0) {
               let f = bsdf_eval(bsdf, wo, wi);
               if (any(f > vec3f(0.0))) {
-                let origin = offset_ray_origin(surface.position, select(-ng, ng, side_g > 0.0));
+                let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
                 result.shadow_rays += 1u;
                 if (!trace_any(Ray(origin, 0.0, wi_world, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
                   let weight = select(power_heuristic(light.pdf, bsdf_pdf(bsdf, wo, wi)), 1.0, light.delta);
@@ -219,7 +219,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
           if (side_g * wi.z > 0.0) {
             let f = bsdf_eval(bsdf, wo, wi);
             if (any(f > vec3f(0.0))) {
-              let origin = offset_ray_origin(surface.position, select(-ng, ng, side_g > 0.0));
+              let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
               result.shadow_rays += 1u;
               if (!trace_any(Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
                 result.radiance += throughput * f * torch.radiance * (abs(wi.z) / torch.pdf);
@@ -250,7 +250,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
         // Crossing the interface: entering from the front puts the ray inside the volume.
         absorption = select(vec3f(0.0), material.absorption, side_g < 0.0 && front);
       }
-      ray = Ray(offset_ray_origin(surface.position, select(-ng, ng, side_g > 0.0)), 0.0, wi_world, T_MISS);
+      ray = Ray(spawn_point(surface, select(-ng, ng, side_g > 0.0)), 0.0, wi_world, T_MISS);
     }
 
     if (bounce + 1u >= ROULETTE_START_BOUNCE) {

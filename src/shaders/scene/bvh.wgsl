@@ -79,7 +79,7 @@ fn trace_closest(ray: Ray) -> Hit {
     if (n.tri_count > 0u) {
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
-        let r = intersect_triangle(ray.origin, ray.direction, tri, ray.t_min, hit.t);
+        let r = intersect_primitive(ray.origin, ray.direction, tri, ray.t_min, hit.t);
         if (BVH_COUNT_WORK) {
           bvh_work.triangles_tested += 1u;
         }
@@ -142,7 +142,7 @@ fn trace_any(ray: Ray) -> bool {
     if (n.tri_count > 0u) {
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
-        let r = intersect_triangle(ray.origin, ray.direction, tri, ray.t_min, ray.t_max);
+        let r = intersect_primitive(ray.origin, ray.direction, tri, ray.t_min, ray.t_max);
         if (r.x < ray.t_max && accept_hit(tri, i, r.yz)) {
           return true;
         }

@@ -1,4 +1,4 @@
-// Light selection behind one interface: every light the scene has — emissive triangles, punctual
+// Light selection behind one interface: every light the scene has — emissive triangles and spheres, punctual
 // lights (KHR_lights_punctual), the environment map and the sun — sits in one alias table with a
 // probability proportional to its (estimated) power; sample_light picks one and a point or
 // direction on it, and reports the solid-angle density of the whole strategy, so a BSDF-sampled ray
@@ -8,6 +8,7 @@
 
 #import scene/bindings
 #import scene/materials
+#import scene/surface
 #import scene/environment
 #import lib/sampling
 #import lib/color
@@ -37,10 +38,31 @@ fn light_selection_pmf(material: Material, area: f32) -> f32 {
   return luminance(material.emission) * material.emission_texture_mean * area / scene_info.total_light_power;
 }
 
-// Solid-angle density with which sample_light finds an emissive triangle's point seen at distance t
-// under cosine cos_emitter (> 0) from the shading point: for the MIS weight of a BSDF ray that hit it.
-fn emitter_pdf(material: Material, area: f32, t: f32, cos_emitter: f32) -> f32 {
-  return light_selection_pmf(material, area) / area * t * t / cos_emitter;
+// Solid-angle density with which sample_light finds the emitter point `surface`, hit at distance t
+// from `origin` under cosine cos_emitter (> 0): for the MIS weight of a BSDF ray that hit it. A
+// triangle is sampled by area; a sphere by the cone it subtends (sample_sphere_light); capsules are
+// not in the light table (only BSDF rays find them), so their density is 0.
+fn emitter_pdf(surface: Surface, material: Material, origin: vec3f, t: f32, cos_emitter: f32) -> f32 {
+  let select_pmf = light_selection_pmf(material, surface.area);
+  if (SCENE_HAS_ANALYTIC_PRIMITIVES && surface.kind != 0u) {
+    if (surface.kind != PRIMITIVE_SPHERE) {
+      return 0.0;
+    }
+    // The sphere's radius follows from its area; its centre from the surface point and normal.
+    let r = sqrt(surface.area / (4.0 * PI));
+    let centre = surface.position - r * surface.geometric_normal;
+    let d = origin - centre;
+    return select_pmf / sphere_cone_solid_angle(r * r / dot(d, d));
+  }
+  return select_pmf / surface.area * t * t / cos_emitter;
+}
+
+// Solid angle 2π(1 − cos θmax) of a sphere seen from outside, given sin²θmax = r²/d² (< 1). For tiny
+// spheres 1 − cos θmax is formed as sin² / (1 + cos), without cancellation (pbrt-v4 §6.2.4 uses a
+// series there for the same reason).
+fn sphere_cone_solid_angle(sin2_max: f32) -> f32 {
+  let cos_max = sqrt(max(0.0, 1.0 - sin2_max));
+  return 2.0 * PI * sin2_max / (1.0 + cos_max);
 }
 
 // The same for a BSDF ray that left the scene along `direction` (environment map and sun together).
@@ -82,6 +104,41 @@ fn sample_triangle_light(triangle: u32, p: vec3f, u: vec2f) -> LightSample {
   return LightSample(wi, distance, emission, pdf, false);
 }
 
+// A point of an emissive sphere (leaf order), by the cone of directions it subtends from p (pbrt-v4
+// §6.2.4): uniform in that cone, so the density is 1 / its solid angle. The sphere emits outward
+// only, so a point inside it receives nothing from it.
+fn sample_sphere_light(sphere: u32, p: vec3f, u: vec2f) -> LightSample {
+  let prim = triangles_hot[sphere];
+  let r = prim.e1.x;
+  let material = materials[triangles_shading[sphere].material];
+  let to_centre = prim.v0 - p;
+  let d2 = dot(to_centre, to_centre);
+  let sin2_max = r * r / d2;
+  if (!(sin2_max < 1.0)) {
+    return no_light();
+  }
+  let cos_max = sqrt(1.0 - sin2_max);
+  // cos θ uniform in [cos θmax, 1], with 1 − cos θ formed without cancellation.
+  let one_minus_cos = u.x * sin2_max / (1.0 + cos_max);
+  let cos_theta = 1.0 - one_minus_cos;
+  let sin_theta = sqrt(max(0.0, one_minus_cos * (2.0 - one_minus_cos)));
+  let phi = 2.0 * PI * u.y;
+  let d = sqrt(d2);
+  let axis = to_centre / d;
+  let wi = orthonormal_basis(axis) * vec3f(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+  // Distance to the sphere along wi, by the same test the shadow ray will run: the closed form
+  // d·cos θ − √(r² − d²·sin² θ) is ill-conditioned near the silhouette, and GPU sin/cos are only
+  // accurate to ~2⁻¹¹ (the Vulkan limit), so wi itself may lie a little off the sampled cone (then it
+  // grazes past and the tangent distance stands in).
+  let hit = intersect_sphere(p, wi, prim, 0.0, T_MISS);
+  let distance = select(d * cos_theta, hit.x, hit.x < T_MISS);
+  let point = p + distance * wi;
+  let emission = material_emission(material, sphere_uv(point - prim.v0), wi);
+  let area = 4.0 * PI * r * r;
+  let pdf = light_selection_pmf(material, area) / sphere_cone_solid_angle(sin2_max);
+  return LightSample(wi, distance, emission, pdf, false);
+}
+
 // A punctual light: intensity / d², with glTF's range window and a spot's smooth cone.
 fn sample_punctual_light(index: u32, p: vec3f) -> LightSample {
   let light = punctual_lights.lights[index];
@@ -116,6 +173,9 @@ fn sample_light(p: vec3f, u_select: vec2f, u: vec2f) -> LightSample {
   let kind = code >> LIGHT_KIND_SHIFT;
   let index = code & LIGHT_INDEX_MASK;
   if (kind == LIGHT_KIND_TRIANGLE) {
+    if (SCENE_HAS_ANALYTIC_PRIMITIVES && (triangles_hot[index].flags & PRIMITIVE_SPHERE) != 0u) {
+      return sample_sphere_light(index, p, u);
+    }
     return sample_triangle_light(index, p, u);
   }
   if (SCENE_HAS_PUNCTUAL_LIGHTS && kind == LIGHT_KIND_PUNCTUAL) {

@@ -13,11 +13,13 @@ struct BvhNode {
   tri_count: u32,
 }
 
-// What traversal reads: one triangle in leaf order as a vertex and two edges, ready for
-// Möller–Trumbore (v1 = v0 + e1, v2 = v0 + e2). The "hot" half of the triangle data.
+// What traversal reads: one primitive in leaf order. A triangle is a vertex and two edges, ready for
+// Möller–Trumbore (v1 = v0 + e1, v2 = v0 + e2). A sphere (PRIMITIVE_SPHERE) is its centre v0 and
+// radius e1.x; a capsule (PRIMITIVE_CAPSULE) its end a = v0, axis e1 = b − a and radius e2.x. The
+// "hot" half of the primitive data (scene/triangles.ts has the kinds).
 struct TriangleHot {
   v0: vec3f,
-  // TRIANGLE_* bits; fills the slot after v0 that alignment would leave empty anyway.
+  // TRIANGLE_* and PRIMITIVE_* bits; fills the slot after v0 that alignment would leave empty anyway.
   flags: u32,
   e1: vec3f,
   e2: vec3f,
@@ -25,8 +27,13 @@ struct TriangleHot {
 
 // The triangle's material is alpha-masked: a hit counts only where its texture is opaque.
 const TRIANGLE_ALPHA_MASKED: u32 = 1u;
+// The primitive's kind, when not a triangle (gpu/pack/scene-pack.ts sets these bits).
+const PRIMITIVE_SPHERE: u32 = 256u;
+const PRIMITIVE_CAPSULE: u32 = 512u;
+const PRIMITIVE_ANALYTIC: u32 = 768u;
 
-// What shading reads once per closest hit, same order as TriangleHot. The "cold" half.
+// What shading reads once per closest hit, same order as TriangleHot. The "cold" half. Spheres and
+// capsules use only material and source_index (their normals and uvs are analytic).
 struct TriangleShading {
   // Unit shading normals at v0, v1, v2 (the geometric normal where the mesh has none).
   n0: vec3f,
@@ -201,7 +208,8 @@ struct Ray {
   t_max: f32,
 }
 
-// The closest hit along a ray: leaf-order triangle (NO_TRIANGLE for a miss), distance, barycentrics of v1, v2.
+// The closest hit along a ray: leaf-order primitive (NO_TRIANGLE for a miss), distance, and for a
+// triangle the barycentrics of v1, v2, for a sphere or capsule the surface uv.
 struct Hit {
   t: f32,
   triangle: u32,
