@@ -6,7 +6,8 @@ import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { builtinScene } from '../loaders/builtin/index.ts';
 import { applyMaterialEdit, type MaterialEdit } from '../scene/material-edit.ts';
-import { metallicRoughness, type Scene } from '../scene/types.ts';
+import { diffuse, metallicRoughness, type Scene } from '../scene/types.ts';
+import { IDENTITY } from '../math/mat4.ts';
 import { editMaterials, LIGHT_BUFFERS, prepareScene } from './prepare.ts';
 
 const bytes = (b: ArrayBuffer) => Array.from(new Uint8Array(b));
@@ -51,6 +52,22 @@ describe('editMaterials', () => {
     expect(glow.packed.light_slots.byteLength).toBeGreaterThan(prepared.packed.light_slots.byteLength);
     const dark = editMaterials(prepared, new Map([[3, { emission: [0, 0, 0] }]])).prepared;
     expect(dark.packed.counts.lights).toBe(0);
+  });
+
+  it('makes a sphere an emitter: its light enters the table as a fresh preparation puts it there', () => {
+    const base = builtinScene('cornell');
+    const scene: Scene = {
+      ...base,
+      meshes: [...base.meshes, { name: 'ball', positions: new Float32Array(0), indices: new Uint32Array(0), materialIds: new Uint32Array(0), spheres: { centers: new Float32Array([278, 100, 280]), radii: new Float32Array([60]), materialIds: new Uint32Array([4]) } }],
+      instances: [...base.instances, { id: 99, mesh: base.meshes.length, worldFromObject: IDENTITY }],
+      materials: [...base.materials, diffuse('ball', [0.5, 0.5, 0.5])],
+    };
+    const edits = new Map<number, MaterialEdit>([[4, { emission: [3, 2, 1] }]]);
+    const prepared = prepareScene(scene);
+    const live = editMaterials(prepared, edits).prepared;
+    const fresh = prepareScene(edited(scene, edits));
+    expect(live.packed.counts.lights).toBe(prepared.packed.counts.lights + 1);
+    for (const name of ['materials', ...LIGHT_BUFFERS] as const) expect(bytes(live.packed[name]), name).toEqual(bytes(fresh.packed[name]));
   });
 
   it('refuses a material that does not exist, a field its kind lacks and values out of range', () => {

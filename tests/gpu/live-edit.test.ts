@@ -16,7 +16,8 @@ import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
 import { applyMaterialEdit, type MaterialEdit } from '../../src/scene/material-edit.ts';
-import { metallicRoughness, type Scene } from '../../src/scene/types.ts';
+import { diffuse, metallicRoughness, type Scene } from '../../src/scene/types.ts';
+import { IDENTITY, translation } from '../../src/math/mat4.ts';
 import { testGpu } from './gpu-context.ts';
 import { renderScene } from './scene-render.ts';
 
@@ -82,6 +83,62 @@ function expectSameImage(a: Float32Array, b: Float32Array): void {
   for (let i = 0; i < a.length; i++) worst = Math.max(worst, Math.abs(a[i]! - b[i]!) / Math.max(Math.abs(b[i]!), 1e-3));
   expect(worst).toBeLessThan(1e-5);
 }
+
+/** A floor (instance 0) and a mesh of one sphere and one capsule placed by a translation (instance 1), each primitive its own material. */
+function analyticScene(): Scene {
+  return {
+    name: 'sphere and capsule',
+    meshes: [
+      { name: 'floor', positions: new Float32Array([-4, 0, -4, 4, 0, -4, 4, 0, 4, -4, 0, 4]), indices: new Uint32Array([0, 2, 1, 0, 3, 2]), materialIds: new Uint32Array([0, 0]) },
+      {
+        name: 'shapes',
+        positions: new Float32Array(0),
+        indices: new Uint32Array(0),
+        materialIds: new Uint32Array(0),
+        spheres: { centers: new Float32Array([-1, 1, 0]), radii: new Float32Array([0.9]), materialIds: new Uint32Array([1]) },
+        capsules: { endpoints: new Float32Array([1, 0.5, -0.5, 1.5, 1.8, 0.5]), radii: new Float32Array([0.4]), materialIds: new Uint32Array([2]) },
+      },
+    ],
+    instances: [
+      { id: 10, mesh: 0, worldFromObject: IDENTITY },
+      { id: 11, mesh: 1, worldFromObject: translation([0, 0.1, 0]) },
+    ],
+    materials: [diffuse('floor', [0.5, 0.5, 0.5]), diffuse('sphere', [0.8, 0.2, 0.2]), diffuse('capsule', [0.2, 0.8, 0.2])],
+    camera: { position: [0, 2.5, 6], forward: [0, -0.35, -1], up: [0, 1, 0], vfovDegrees: 50 },
+    environment: { kind: 'constant', radiance: [1, 1, 1] },
+  };
+}
+
+describe('Renderer.pick on spheres and capsules', () => {
+  it('equals the CPU oracle and names the instance and material of each primitive kind', async () => {
+    const renderer = await Renderer.create(await testGpu());
+    try {
+      await renderer.setScene(analyticScene());
+      await renderer.resize(W, H);
+      const prepared = renderer.scene!;
+      const seen = new Set<string>();
+      for (let y = 1; y < H; y += 3) {
+        for (let x = 1; x < W; x += 3) {
+          const ray = primaryRay(prepared.scene.camera, W, H, x + 0.5, y + 0.5);
+          const f32 = { origin: ray.origin.map(Math.fround) as unknown as Vec3, direction: ray.direction.map(Math.fround) as unknown as Vec3 };
+          const cpu = traverseClosest(prepared.bvh, prepared.triangles.positions, f32, prepared.triangles.kinds);
+          const gpu = await renderer.pick(x, y);
+          expect(gpu === null, `pixel ${x},${y}`).toBe(cpu === null);
+          if (!cpu || !gpu) continue;
+          expect(Math.abs(gpu.distance - cpu.t) / cpu.t, `pixel ${x},${y}`).toBeLessThan(1e-4);
+          // The floor's two triangles share a diagonal: a tie there is either.
+          if (gpu.primitive !== cpu.triangle) expect(gpu.material).toBe(0);
+          else expect(gpu.material).toBe(prepared.triangles.materialIds[cpu.triangle]);
+          expect(gpu.instanceId).toBe(gpu.material === 0 ? 10 : 11);
+          seen.add(prepared.scene.materials[gpu.material]!.name);
+        }
+      }
+      expect([...seen].sort()).toEqual(['capsule', 'floor', 'sphere']);
+    } finally {
+      renderer.destroy();
+    }
+  });
+});
 
 describe('Renderer.updateMaterials', () => {
   const o = { width: 16, height: 16, spp: 4, maxBounces: 3, seed: 5 };
