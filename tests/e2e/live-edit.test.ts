@@ -2,8 +2,8 @@
  * Live material editing in the page (headless Chromium, WebGPU on SwiftShader): a click on the
  * Cornell box's red wall selects it; a colour typed into the panel's Material folder restarts the
  * image with the wall blue within two frames while the opposite (green) wall barely changes; the
- * link then carries the edit, and opening it shows the blue wall again. Esc deselects. Renders are
- * tiny (1/8 of the canvas).
+ * link then carries the edit, and opening it shows the blue wall again. Alt-click focuses the lens
+ * on the back wall without touching the selection; Esc deselects. Renders are tiny (1/8 of the canvas).
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
@@ -124,6 +124,14 @@ describe('live material editing', () => {
     const { view, problems } = parseViewParams(new URL(link).searchParams);
     expect(problems).toEqual([]);
     expect(view.materials).toEqual([{ index: 1, name: 'red', edit: { color: [0, 0, 1] } }]);
+
+    // Alt-click focuses on the back wall (z = 559.2; the camera is at z = −800 looking along +z)
+    // above the blocks, and leaves the selection alone.
+    await page.locator('#view').click({ position: { x: box.width * 0.5, y: box.height * 0.15 }, modifiers: ['Alt'] });
+    await page.waitForFunction(() => window.lantern.lens !== undefined, undefined, { timeout: 10_000 });
+    expect((await page.evaluate(() => window.lantern.lens))!.focusDistance).toBeCloseTo(1359.2, 0);
+    expect(await page.evaluate(() => window.lantern.selection?.materialName)).toBe('red');
+    expect(await page.evaluate(() => window.lantern.link)).toMatch(/focus=1359/);
 
     // Esc deselects (outside the panel's text fields, where Esc belongs to the field).
     await page.locator('#view').focus();
