@@ -125,9 +125,9 @@ describe('live material editing', () => {
     expect(problems).toEqual([]);
     expect(view.materials).toEqual([{ index: 1, name: 'red', edit: { color: [0, 0, 1] } }]);
 
-    // Alt-click focuses on the back wall (z = 559.2; the camera is at z = −800 looking along +z)
-    // above the blocks, and leaves the selection alone.
-    await page.locator('#view').click({ position: { x: box.width * 0.5, y: box.height * 0.15 }, modifiers: ['Alt'] });
+    // Alt-click focuses on the back wall (z = 559.2; the camera is at z = −800 looking along +z),
+    // seen above the tall block and below the ceiling, and leaves the selection alone.
+    await page.locator('#view').click({ position: { x: box.width * 0.5, y: box.height * 0.4 }, modifiers: ['Alt'] });
     await page.waitForFunction(() => window.lantern.lens !== undefined, undefined, { timeout: 10_000 });
     expect((await page.evaluate(() => window.lantern.lens))!.focusDistance).toBeCloseTo(1359.2, 0);
     expect(await page.evaluate(() => window.lantern.selection?.materialName)).toBe('red');
