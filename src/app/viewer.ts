@@ -300,19 +300,23 @@ export class Viewer {
 
   /** The pick under a canvas point (CSS pixels), in line with other changes; undefined before Play or off the image. */
   pickAt(x: number, y: number): Promise<PickResult | null | undefined> {
-    return this.enqueue(async () => {
-      const p = this.imagePoint(x, y);
-      if (!p || !this.renderer || !this.loaded) return undefined;
-      return this.renderer.pick(p[0], p[1]);
-    });
+    return this.enqueue(() => this.pickNow(x, y));
   }
 
-  /** Selects what lies under a canvas point (CSS pixels); empty space deselects. */
-  async select(x: number, y: number): Promise<PickResult | undefined> {
-    const pick = await this.pickAt(x, y);
-    if (pick === undefined) return undefined;
-    await this.enqueue(() => this.applySelection(pick ?? undefined));
-    return pick ?? undefined;
+  private async pickNow(x: number, y: number): Promise<PickResult | null | undefined> {
+    const p = this.imagePoint(x, y);
+    if (!p || !this.renderer || !this.loaded) return undefined;
+    return this.renderer.pick(p[0], p[1]);
+  }
+
+  /** Selects what lies under a canvas point (CSS pixels); empty space deselects. Pick and selection are one change, so no scene switch comes between. */
+  select(x: number, y: number): Promise<PickResult | undefined> {
+    return this.enqueue(async () => {
+      const pick = await this.pickNow(x, y);
+      if (pick === undefined) return undefined;
+      await this.applySelection(pick ?? undefined);
+      return pick ?? undefined;
+    });
   }
 
   deselect(): Promise<void> {
@@ -330,11 +334,13 @@ export class Viewer {
    * along forward (setFocusDistance: a pinhole gets a closed lens that keeps it for when the aperture
    * opens). Returns the depth, or undefined for empty space or before Play.
    */
-  async focusAt(x: number, y: number): Promise<number | undefined> {
-    const pick = await this.pickAt(x, y);
-    if (!pick || !this.controllerValue || !(pick.depth > 0)) return undefined;
-    this.setFocusDistance(pick.depth);
-    return pick.depth;
+  focusAt(x: number, y: number): Promise<number | undefined> {
+    return this.enqueue(async () => {
+      const pick = await this.pickNow(x, y);
+      if (!pick || !this.controllerValue || !(pick.depth > 0)) return undefined;
+      this.setFocusDistance(pick.depth);
+      return pick.depth;
+    });
   }
 
   /**
