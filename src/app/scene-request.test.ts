@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { squareRoomsWad } from '../loaders/doom/test-wad.ts';
+import { CAFFEINE_MOL } from '../loaders/molecule/caffeine.ts';
 import { SceneRequests, siblingResolver } from './scene-request.ts';
 
 const bytes = (...values: number[]) => new Uint8Array(values);
@@ -12,6 +13,15 @@ describe('SceneRequests', () => {
     const loaded = await requests.load({ kind: 'part', part: 'MAP02' });
     expect(loaded.prepared.scene.name).toBe('MAP02');
     expect(loaded.prepared.triangles.count).toBeGreaterThan(0);
+  });
+
+  it('opens a molecule: its styles are the parts the page picks from', async () => {
+    const requests = new SceneRequests();
+    const summary = await requests.openFiles({ format: 'molfile', files: [{ name: 'caffeine.mol', bytes: new TextEncoder().encode(CAFFEINE_MOL) }], siblings: [] });
+    expect(summary.parts.map((p) => p.name)).toEqual(['ball-and-stick', 'space-filling']);
+    const loaded = await requests.load({ kind: 'part', part: 'space-filling' });
+    expect(loaded.prepared.scene.name).toBe('caffeine.mol#space-filling');
+    expect(loaded.prepared.scene.meshes[0]!.spheres!.radii).toHaveLength(24);
   });
 
   it('names the file that is not what its format expects, and loads nothing before a set is open', async () => {

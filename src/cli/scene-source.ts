@@ -95,10 +95,12 @@ export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'f
   const { format, files: ordered } = formatOfSet(files);
   if (argument.part && !format.part) throw new LanternError(`'${argument.paths.join('+')}#${argument.part}': ${format.description} hold one scene each, there is nothing to pick with '#'`);
   const opened = await format.open({ files: ordered, resolve: siblingsOf(ordered[0]!.path) });
-  if (argument.part && format.part && !opened.parts.some((p) => p.name === argument.part)) {
-    throw new LanternError(`${opened.description} has no ${format.part.noun} '${argument.part}'`, `Its ${format.part.noun}s are: ${opened.parts.map((p) => p.name).join(', ')}`);
+  // The listed name, so that what is loaded, printed and linked (`lantern view`) is the canonical one.
+  const part = argument.part && !opened.parts.some((p) => p.name === argument.part) ? (opened.partNamed?.(argument.part) ?? argument.part) : argument.part;
+  if (part && format.part && !opened.parts.some((p) => p.name === part)) {
+    throw new LanternError(`${opened.description} has no ${format.part.noun} '${part}'`, `Its ${format.part.noun}s are: ${opened.parts.map((p) => p.name).join(', ')}`);
   }
-  return { format, opened, files: ordered, ...(argument.part ? { part: argument.part } : {}) };
+  return { format, opened, files: ordered, ...(part ? { part } : {}) };
 }
 
 export async function loadSceneArgument(arg: string, options: SceneLoadOptions = {}): Promise<Scene> {

@@ -109,6 +109,11 @@ export interface OpenedScene {
   readonly description: string;
   /** The parts to choose from, in order; empty when the set is one scene. */
   readonly parts: readonly ScenePart[];
+  /**
+   * The listed part another spelling names (an SD file's record by its number or title), or undefined
+   * when none does. Without it, a part is named exactly as listed.
+   */
+  partNamed?(name: string): string | undefined;
   /** The scene of `part`, or of the first loadable part (or the only scene) when undefined. */
   scene(part?: string, options?: LoadOptions): Promise<Scene>;
   /** A listing of the parts with their counts, for `lantern info` (text lines and JSON). */

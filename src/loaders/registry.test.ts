@@ -54,8 +54,8 @@ describe('identifying formats', () => {
 
   it('offers every extension to the file picker and names every format in messages', () => {
     // A glTF's siblings (.bin, textures) are offered too: a user picks the .gltf with its files.
-    expect(acceptedExtensions().split(',').sort()).toEqual(['.bin', '.glb', '.gltf', '.gz', '.jpeg', '.jpg', '.ktx2', '.ply', '.png', '.wad', '.webp']);
-    expect(describeFormats()).toBe('Doom WADs (.wad), glTF 2.0 scenes (.glb, .gltf) and PLY meshes (.ply.gz, .ply)');
+    expect(acceptedExtensions().split(',').sort()).toEqual(['.bin', '.glb', '.gltf', '.gz', '.jpeg', '.jpg', '.ktx2', '.mol', '.ply', '.png', '.sd', '.sdf', '.wad', '.webp']);
+    expect(describeFormats()).toBe('Doom WADs (.wad), glTF 2.0 scenes (.glb, .gltf), PLY meshes (.ply.gz, .ply) and MDL molecules (.mol, .sdf, .sd)');
   });
 });
 
@@ -140,8 +140,9 @@ describe('help', () => {
   it('names the built-ins, the aliases and every format with its extensions', async () => {
     const { describeSceneArguments } = await import('./registry.ts');
     const help = describeSceneArguments(['dragon']);
-    expect(help).toMatch(/^a built-in scene \(cornell, furnace, bvh-teaching, materials\), 'dragon', or a file: /);
+    expect(help).toMatch(/^a built-in scene \(cornell, furnace, bvh-teaching, materials, spheres, rtiow, orb, golden-grid, hex-grid, caffeine\), 'dragon', or a file: /);
     for (const f of FORMATS) for (const e of f.extensions) expect(help).toContain(e);
     expect(help).toContain("Doom WADs (.wad, '+' joins files, '#map' picks one: iwad.wad+pwad.wad#MAP01)");
+    expect(help).toContain("MDL molecules (.mol, .sdf, .sd, '#model' picks one: caffeine.mol#space-filling)");
   });
 });

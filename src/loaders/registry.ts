@@ -11,13 +11,14 @@ import { builtinSceneNames } from './builtin/index.ts';
 import { WAD_FORMAT } from './doom/format.ts';
 import type { FileFormat, FileHead, SceneFormat, SceneReference } from './format.ts';
 import { GLTF_FORMAT } from './gltf/format.ts';
+import { MOLECULE_FORMAT } from './molecule/format.ts';
 import { PLY_FORMAT } from './ply/format.ts';
 
 export type * from './format.ts';
 export { NO_SIBLINGS, SNIFF_BYTES } from './format.ts';
 
 /** Every format, in the order help texts name them. Environment maps join as `kind: 'environment'` entries. */
-export const FORMATS: readonly SceneFormat[] = [WAD_FORMAT, GLTF_FORMAT, PLY_FORMAT];
+export const FORMATS: readonly SceneFormat[] = [WAD_FORMAT, GLTF_FORMAT, PLY_FORMAT, MOLECULE_FORMAT];
 
 export function formatById(id: string): SceneFormat | undefined {
   return FORMATS.find((f) => f.id === id);

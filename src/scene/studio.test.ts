@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { LanternError } from '../errors.ts';
 import { boundsOfPositions, type Aabb } from '../math/aabb.ts';
 import { add, cross, dot, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
-import { studioScene } from './studio.ts';
+import { meshBounds, studioScene } from './studio.ts';
 import type { Material, Mesh, Scene } from './types.ts';
 import { baseColorOf } from './types.ts';
 import { validateScene } from './validate.ts';
@@ -124,6 +124,27 @@ describe('studioScene', () => {
     expect(scene.meshes[1]!.materialIds[0]).toBe(1);
     expect(scene.meshes[2]!.materialIds[0]).toBe(2); // floor comes right after the caller's materials
     for (const c of corners({ min: [0, 0, 0], max: [6, 3, 1] })) expect(inView(scene, c, 1)).toBe(true);
+  });
+
+  it('frames spheres and capsules by their surfaces, not their centres', () => {
+    // No triangles: two spheres and a capsule whose ends stick out beyond both.
+    const mesh: Mesh = {
+      name: 'primitives',
+      positions: new Float32Array(0),
+      indices: new Uint32Array(0),
+      materialIds: new Uint32Array(0),
+      spheres: { centers: new Float32Array([0, 0, 0, 4, 1, 0]), radii: new Float32Array([1, 0.5]), materialIds: new Uint32Array(2) },
+      capsules: { endpoints: new Float32Array([-3, 2, 0, 1, 2, 2]), radii: new Float32Array([0.25]), materialIds: new Uint32Array(1) },
+    };
+    const bounds = meshBounds(mesh);
+    expect(bounds).toEqual({ min: [-3.25, -1, -1], max: [4.5, 2.25, 2.25] });
+    const scene = studioScene('primitives', [mesh], [white]);
+    const floor = scene.meshes[1]!;
+    expect(floor.positions[1]).toBeLessThan(-1);
+    expect(floor.positions[1]).toBeGreaterThan(-1.01);
+    for (const c of corners(bounds)) expect(inView(scene, c, 1)).toBe(true);
+    // Triangles and primitives of one mesh together.
+    expect(meshBounds({ ...box([10, 10, 10], [11, 11, 11]), spheres: mesh.spheres! })).toEqual({ min: [-1, -1, -1], max: [11, 11, 11] });
   });
 
   it('handles a single point and rejects empty geometry', () => {

@@ -1,5 +1,5 @@
 /**
- * A simple photo studio for formats that carry only geometry (PLY): a floor, a key and a fill area
+ * A simple photo studio for formats that carry only geometry (PLY, molecules): a floor, a key and a fill area
  * light and a three-quarter camera, all sized from the meshes' bounds so any model, millimetres or
  * kilometres, comes out framed and exposed the same way.
  */
@@ -45,7 +45,7 @@ const FLOOR_HALF_SIZE = 20;
 const MARGIN = 1.1;
 
 export function studioScene(name: string, meshes: readonly Mesh[], materials: readonly Material[]): Scene {
-  const bounds = meshes.map((m) => boundsOfPositions(m.positions)).reduce(unionAabb, EMPTY);
+  const bounds = meshes.map(meshBounds).reduce(unionAabb, EMPTY);
   if (isEmptyAabb(bounds)) throw new LanternError(`${name}: there is no geometry to put in the studio`);
   const centre = scale(add(bounds.min, bounds.max), 0.5);
   // A flat or point-like model still needs a non-zero scale for the studio around it.
@@ -81,6 +81,31 @@ export function studioScene(name: string, meshes: readonly Mesh[], materials: re
 }
 
 const EMPTY: Aabb = { min: [Infinity, Infinity, Infinity], max: [-Infinity, -Infinity, -Infinity] };
+
+/**
+ * The object-space bounds of everything a mesh draws: its triangles' vertices, each sphere (centre ±
+ * radius) and each capsule (both end points ± radius: a capsule is the union of the spheres along its
+ * segment, so the box of its two end spheres holds it). Empty for a mesh with nothing.
+ */
+export function meshBounds(mesh: Mesh): Aabb {
+  let bounds = boundsOfPositions(mesh.positions);
+  const around = (x: number, y: number, z: number, r: number) => {
+    bounds = unionAabb(bounds, { min: [x - r, y - r, z - r], max: [x + r, y + r, z + r] });
+  };
+  const spheres = mesh.spheres;
+  if (spheres) {
+    for (let i = 0; i < spheres.radii.length; i++) around(spheres.centers[3 * i]!, spheres.centers[3 * i + 1]!, spheres.centers[3 * i + 2]!, spheres.radii[i]!);
+  }
+  const capsules = mesh.capsules;
+  if (capsules) {
+    for (let i = 0; i < capsules.radii.length; i++) {
+      const e = capsules.endpoints, r = capsules.radii[i]!;
+      around(e[6 * i]!, e[6 * i + 1]!, e[6 * i + 2]!, r);
+      around(e[6 * i + 3]!, e[6 * i + 4]!, e[6 * i + 5]!, r);
+    }
+  }
+  return bounds;
+}
 
 function direction(azimuthDegrees: number, elevationDegrees: number): Vec3 {
   const a = (azimuthDegrees * Math.PI) / 180, e = (elevationDegrees * Math.PI) / 180;

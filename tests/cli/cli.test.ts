@@ -295,6 +295,39 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
   });
 });
 
+describe('molecules from the command line', () => {
+  const CAFFEINE = 'tests/fixtures/caffeine.mol';
+
+  it('info lists the molecule: formula, atoms, bonds', () => {
+    const r = lantern(['info', CAFFEINE]);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(r.stdout).toMatch(/caffeine\s+C8H10N4O2\s+24 atoms\s+25 bonds \(21 single, 4 double\)/);
+    const json = JSON.parse(lantern(['info', CAFFEINE, '--json']).stdout);
+    expect(json.molecules[0]).toMatchObject({ name: 'caffeine', formula: 'C8H10N4O2', atoms: 24, bonds: 25 });
+  });
+
+  it("'#' picks a style; an SD file's record by number, reported by its name", () => {
+    const info = JSON.parse(lantern(['info', `${CAFFEINE}#space-filling`, '--json']).stdout);
+    expect(info.scene).toBe('caffeine.mol#space-filling');
+    const sdf = join(dir, 'two.sdf');
+    writeFileSync(sdf, `${readFileSync(CAFFEINE, 'utf8')}$$$$\nwater\n\n\n  1  0  0     0  0  0  0  0  0999 V2000\n    0.0000    0.0000    0.0000 O   0  0\nM  END\n$$$$\n`);
+    const r = lantern(['info', `${sdf}#2:space-filling`, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(JSON.parse(r.stdout).scene).toBe('two.sdf#water:space-filling');
+  });
+
+  it('a bad molfile: one line naming the file and the line', () => {
+    const bad = join(dir, 'bad.mol');
+    writeFileSync(bad, readFileSync(CAFFEINE, 'utf8').replace('O   0  0  0  0  0  0  0  0  0  0  0  0', 'Zz  0  0  0  0  0  0  0  0  0  0  0  0'));
+    const r = lantern(['info', bad]);
+    expect(r.code).toBe(1);
+    expect(r.stderr).toMatch(/bad\.mol line 5: unknown element 'Zz'/);
+    expect(r.stderr.trim().split('\n')).toHaveLength(1);
+    const unknown = lantern(['info', `${CAFFEINE}#sticks`]);
+    expect(unknown.stderr).toMatch(/has no model 'sticks'.*ball-and-stick, space-filling/);
+  });
+});
+
 describe('lantern view', () => {
   /** Starts `lantern view`, waits for the address it prints, and returns it with a stop function. */
   async function startView(args: string[]): Promise<{ link: string; stop: () => void }> {
