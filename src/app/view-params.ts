@@ -15,6 +15,8 @@
  *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
  *   layout, heat-max=<n>|auto, depth, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited,
  *   denoise-view; parsed, checked and written from their schema entries.
+ *   mat=1:<index>:<name>:c=r,g,b;r=…   a material edit (one parameter per material; material-link.ts),
+ *                                      applied once the scene has loaded
  *   sky=elevation,azimuth[,turbidity]  env-intensity=x
  *                                      the Hosek–Wilkie sky instead of the scene's own environment
  *                                      (as the CLI's --sky and --env-intensity); an HDR map opened
@@ -25,6 +27,7 @@ import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '
 import { formatSceneLocation, parseSceneLocation, type SceneLocation } from '../loaders/scene-link.ts';
 import { formatLensLink, parseLensLink } from '../renderer/lens-link.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
+import { formatMaterialOverride, MATERIAL_LINK_PARAM, parseMaterialOverride, type MaterialOverride } from './material-link.ts';
 
 export type { SceneLocation };
 
@@ -48,6 +51,8 @@ export type ViewParams = RenderSettingsPatch & {
   readonly sky?: SkyParams;
   /** Multiplies the sky's radiance. */
   readonly envIntensity?: number;
+  /** Material edits, applied after the scene loads. */
+  readonly materials?: readonly MaterialOverride[];
 };
 
 export interface SkyParams {
@@ -137,6 +142,15 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   const envIntensity = ranged('env-intensity', LIMITS.envIntensity);
   if (envIntensity !== undefined) view.envIntensity = envIntensity;
 
+  const materials: MaterialOverride[] = [];
+  for (const raw of params.getAll(MATERIAL_LINK_PARAM)) {
+    const parsed = parseMaterialOverride(raw);
+    if (!parsed.ok) problems.push(parsed.problem);
+    else if (materials.some((m) => m.index === parsed.value.index)) problems.push(`${MATERIAL_LINK_PARAM}=${raw}: material ${parsed.value.index} is edited twice`);
+    else materials.push(parsed.value);
+  }
+  if (materials.length > 0) view.materials = materials;
+
   for (const { path, spec } of LINKED_SETTINGS) {
     const name = spec.link!;
     const raw = params.get(name);
@@ -160,6 +174,7 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
   if (view.sky) p.set('sky', [view.sky.elevation, view.sky.azimuth, view.sky.turbidity].map(round).join(','));
   if (view.envIntensity !== undefined) p.set('env-intensity', String(round(view.envIntensity)));
+  for (const m of view.materials ?? []) p.append(MATERIAL_LINK_PARAM, formatMaterialOverride(m));
   for (const { path, spec } of LINKED_SETTINGS) {
     const value = getAt(view, path);
     if (value !== undefined) p.set(spec.link!, formatSettingText(spec, value));
