@@ -1,6 +1,7 @@
 /**
- * The settings panel (Tweakpane): render settings, camera (field of view, movement, lens), torch, the environment (scene's own, sky,
- * HDR map, none), what the GPU is doing, and output.
+ * The settings panel (Tweakpane): render settings, camera (field of view, movement, lens), torch, the
+ * environment (scene's own, sky, HDR map, none), the selected material (material-panel.ts), what
+ * the GPU is doing, and output.
  * Every change goes through the Viewer, which restarts accumulation when the change invalidates the
  * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
  * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
@@ -16,6 +17,7 @@ import { fNumberForAperture, focalLengthForFov } from '../scene/lens.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
+import { MaterialPanel } from './material-panel.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
 import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, type EnvironmentChoice, type EnvironmentChoiceKind } from './environment-choice.ts';
 
@@ -62,6 +64,7 @@ export class SettingsPanel {
   /** The bindings shown only for one kind of environment. */
   private readonly environmentControls: Partial<Record<EnvironmentChoiceKind, BladeApi[]>> = {};
   private openMapButton?: ButtonApi;
+  private readonly materialPanel: MaterialPanel;
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
 
@@ -96,6 +99,7 @@ export class SettingsPanel {
     this.addLensBindings(camera);
 
     this.addEnvironmentFolder(container, actions);
+    this.materialPanel = new MaterialPanel(this.pane, viewer, actions.report);
 
     const folders: Record<PanelFolder, FolderApi> = {
       render,
@@ -401,6 +405,7 @@ export class SettingsPanel {
 
   /** Refreshes the numbers (called on every frame; Tweakpane redraws monitors on its own interval). */
   showStats(): void {
+    this.materialPanel.update();
     const s = this.viewer.stats;
     const m = this.monitor;
     m.fps = s.framesPerSecond;

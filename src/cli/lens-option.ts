@@ -28,12 +28,15 @@ function boundedNumber(name: string, min: number, open: boolean, meaning: string
   };
 }
 
+/** The parser of --aperture (≥ 0) or --focus-distance (> 0), for commands that take only those (`view`). */
+export const lensNumber = (name: '--aperture' | '--focus-distance', allowZero: boolean) => boundedNumber(name, 0, !allowZero, allowZero ? 'a radius in scene units' : 'scene units');
+
 export function withLensOptions(command: Command): Command {
   return command
-    .option('--aperture <radius>', 'depth of field: the lens aperture radius in scene units (0: a pinhole)', boundedNumber('--aperture', 0, false, 'a radius in scene units'))
+    .option('--aperture <radius>', 'depth of field: the lens aperture radius in scene units (0: a pinhole)', lensNumber('--aperture', true))
     .option('--f-number <N>', 'depth of field: the aperture as an f-number (needs a scene that knows its unit size)', boundedNumber('--f-number', 0, true, 'focal length over aperture diameter'))
     .option('--focal-length <mm>', 'with --f-number: 35 mm-equivalent focal length (default: the one that gives the field of view on a 24 mm-high sensor)', boundedNumber('--focal-length', 0, true, 'millimetres'))
-    .option('--focus-distance <d>', 'depth of field: distance to the plane in focus along the view (default: the --camera target, the scene\'s own, or what lies at the image centre)', boundedNumber('--focus-distance', 0, true, 'scene units'));
+    .option('--focus-distance <d>', 'depth of field: distance to the plane in focus along the view (default: the --camera target, the scene\'s own, or what lies at the image centre)', lensNumber('--focus-distance', false));
 }
 
 export interface LensContext {
@@ -49,8 +52,7 @@ export interface LensContext {
  * the camera as it is (the scene's own lens, if any). `--aperture 0`: a pinhole.
  */
 export function cameraWithLens(camera: Camera, o: LensOptions, context: LensContext): Camera {
-  if (o.aperture !== undefined && o.fNumber !== undefined) throw new LanternError('--aperture and --f-number both give the aperture', 'Give one of them');
-  if (o.focalLength !== undefined && o.fNumber === undefined) throw new LanternError('--focal-length sets the aperture only with --f-number', 'Add --f-number <N>, or give the radius with --aperture');
+  checkLensOptions(o);
   const radius = apertureRadius(camera, o, context.scene);
   if (radius === undefined) {
     if (o.focusDistance === undefined) return camera;
@@ -63,6 +65,12 @@ export function cameraWithLens(camera: Camera, o: LensOptions, context: LensCont
   }
   const lens: ThinLens = { apertureRadius: radius, focusDistance: o.focusDistance ?? defaultFocusDistance(camera, context) };
   return { ...camera, lens };
+}
+
+/** Refuses lens options that contradict each other; needs no scene, so commands call it before opening one. */
+export function checkLensOptions(o: LensOptions): void {
+  if (o.aperture !== undefined && o.fNumber !== undefined) throw new LanternError('--aperture and --f-number both give the aperture', 'Give one of them');
+  if (o.focalLength !== undefined && o.fNumber === undefined) throw new LanternError('--focal-length sets the aperture only with --f-number', 'Add --f-number <N>, or give the radius with --aperture');
 }
 
 /** The aperture radius in scene units the options give, or undefined when they give none. */

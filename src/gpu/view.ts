@@ -30,6 +30,19 @@ export function cameraBasis(camera: Camera, aspect: number): CameraBasis {
   return { position: camera.position, forward, right: scale(right, tanHalf * aspect), up: scale(up, tanHalf) };
 }
 
+/**
+ * The primary ray through the image point (x, y) in pixels ((0, 0) the top-left corner, pixel
+ * centres at +0.5) of a width × height image: the pinhole ray, which for a thin lens is the ray
+ * through the lens centre (it meets the plane in focus where every ray of that pixel does). The
+ * same arithmetic as view/bindings.wgsl camera_ray; unit direction.
+ */
+export function primaryRay(camera: Camera, width: number, height: number, x: number, y: number): { origin: Vec3; direction: Vec3 } {
+  const b = cameraBasis(camera, width / height);
+  const nx = (2 * x) / width - 1, ny = (2 * y) / height - 1;
+  const d: Vec3 = [0, 1, 2].map((k) => b.forward[k]! + nx * b.right[k]! - ny * b.up[k]!) as unknown as Vec3;
+  return { origin: b.position, direction: normalize(d) };
+}
+
 /** The WGSL Camera struct's values (view/bindings.wgsl): the pinhole basis and the lens (aperture 0: a pinhole). */
 export type CameraUniform = {
   readonly position: Vec3;

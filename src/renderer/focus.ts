@@ -1,7 +1,7 @@
 /**
  * Where a lens focuses when nobody says: the depth (along the camera's forward axis) of the first
  * surface the chief ray through the image centre meets, found on the CPU with the BVH oracle
- * (bvh/traverse.ts) over the prepared scene's world-space triangles. One ray: cheap on any scene.
+ * (bvh/traverse.ts) over the prepared scene's world-space primitives (triangles, spheres, capsules). One ray: cheap on any scene.
  * Pure (no GPU), so the CLI and the page share it.
  */
 import { traverseClosest } from '../bvh/traverse.ts';
@@ -12,7 +12,8 @@ import type { PreparedScene } from './prepare.ts';
 /** Depth along forward of the surface at the image centre, or undefined when the centre ray leaves the scene. */
 export function centreFocusDistance(prepared: PreparedScene, camera: Camera): number | undefined {
   const direction = normalize(camera.forward);
-  const hit = traverseClosest(prepared.bvh, prepared.triangles.positions, { origin: camera.position, direction });
+  const { positions, kinds } = prepared.triangles;
+  const hit = traverseClosest(prepared.bvh, positions, { origin: camera.position, direction }, kinds);
   // The centre ray runs along the unit forward axis, so its distance is the depth.
   return hit?.t;
 }

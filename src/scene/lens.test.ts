@@ -1,6 +1,9 @@
 import { describe, expect, it } from 'vitest';
 import { apertureRadiusForFNumber, blurDiameterPixels, fNumberForAperture, focalLengthForFov, lensProblem } from './lens.ts';
+import { expectLanternError } from '../expect-lantern-error.ts';
+import { builtinScene } from '../loaders/builtin/index.ts';
 import type { Camera } from './types.ts';
+import { validateScene } from './validate.ts';
 
 const camera: Camera = { position: [0, 0, 0], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 60 };
 
@@ -12,6 +15,12 @@ describe('thin lens arithmetic', () => {
     expect(lensProblem({ apertureRadius: Number.NaN, focusDistance: 1 })).toMatch(/aperture radius NaN/);
     expect(lensProblem({ apertureRadius: 0.1, focusDistance: 0 })).toMatch(/focus distance 0/);
     expect(lensProblem({ apertureRadius: 0.1, focusDistance: Infinity })).toMatch(/focus distance Infinity/);
+  });
+
+  it('is checked with the scene: a bad lens makes the scene invalid', () => {
+    const cornell = builtinScene('cornell');
+    validateScene({ ...cornell, camera: { ...cornell.camera, lens: { apertureRadius: 10, focusDistance: 800 } } });
+    expectLanternError(() => validateScene({ ...cornell, camera: { ...cornell.camera, lens: { apertureRadius: 10, focusDistance: -1 } } }), /scene 'cornell' is invalid: the lens focus distance -1/);
   });
 
   it('gives the full-frame focal length of a field of view and the pupil of an f-number', () => {

@@ -6,6 +6,7 @@
  * keep the chief ray through the lens centre.
  */
 import { beforeAll, describe, expect, it } from 'vitest';
+import { expectLanternError } from '../../src/expect-lantern-error.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { renderProgressive } from '../../src/renderer/progressive.ts';
@@ -130,6 +131,9 @@ describe('aperture 0', () => {
     // The test can fail: an open aperture changes the image (and draws more random numbers).
     const open = await progressive({ ...camera, lens: { apertureRadius: 20, focusDistance: 800 } });
     expect(open).not.toEqual(a);
+    // setCamera refuses a lens that cannot be (the viewer's click-to-focus goes through it).
+    expectLanternError(() => renderer.setCamera({ ...camera, lens: { apertureRadius: -1, focusDistance: 800 } }), /aperture radius -1/);
+    expectLanternError(() => renderer.setCamera({ ...camera, lens: { apertureRadius: 1, focusDistance: 0 } }), /focus distance 0/);
   });
 });
 
@@ -159,6 +163,7 @@ describe('defocus', () => {
       expect(expected).toBeGreaterThan(6);
       const profile = await columnProfile(halfPlane(depth, edgeX), camera, 64);
       const fit = fitDiameter(profile, x0, 2 * expected);
+      console.log(`edge at depth ${depth}, focus ${F}, aperture radius ${A}: blur diameter ${fit.diameter.toFixed(2)} px fitted, ${expected.toFixed(2)} px analytic; worst residual ${fit.residual.toFixed(3)}`);
       expect(fit.diameter).toBeGreaterThan(expected * 0.95);
       expect(fit.diameter).toBeLessThan(expected * 1.05);
       expect(fit.residual).toBeLessThan(0.06);

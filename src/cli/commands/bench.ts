@@ -12,7 +12,7 @@ import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
-import { cameraWithLens, withLensOptions, type LensOptions } from '../lens-option.ts';
+import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { openSession } from '../session.ts';
 
 interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
@@ -45,6 +45,7 @@ export function registerBench(program: Command, context: CliContext): void {
 }
 
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
+  checkLensOptions(o);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);

@@ -5,7 +5,7 @@ import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraFromOptions } from '../camera-option.ts';
-import { cameraWithLens, withLensOptions, type LensOptions } from '../lens-option.ts';
+import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { integerOption, numberListOption, numberOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
 import type { KernelKind } from '../../renderer/renderer.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
@@ -55,6 +55,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   // A sequence of frames writes only what was asked for.
   const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
+  checkLensOptions(o);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
