@@ -301,6 +301,11 @@ describe('the renderer’s switch between generic and specialised kernels', () =
       expect(renderer.specialisationError).toBeUndefined();
       renderer.accumulate(1);
       await renderer.finish();
+
+      // A material edit is an edit too.
+      renderer.setIdleSpecialisation(undefined);
+      renderer.updateMaterials(new Map([[0, { color: [0.4, 0.4, 0.4] }]]));
+      expect(renderer.kernel).toBe('generic');
     } finally {
       renderer.destroy();
     }
