@@ -119,6 +119,9 @@ describe('the page', () => {
     expect(await page.locator('#view').getAttribute('data-state')).toBe('idle');
 
     await playUntil(page, 8);
+    // The renderer's idle specialisation is off on SwiftShader (its compile would take minutes of the page's CPU).
+    await page.waitForTimeout(1200);
+    expect(await page.evaluate(() => window.lantern.kernel)).toBe('generic');
     await page.click('#play'); // pause, so the screenshot sees a settled frame
     await expect.poll(() => page.evaluate(() => window.lantern.state)).toBe('paused');
 
