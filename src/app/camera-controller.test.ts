@@ -23,6 +23,17 @@ function room(step = 16): WalkMap {
 }
 
 describe('camera controller', () => {
+  it("carries the scene camera's lens, and the lens it is given, through moves", () => {
+    const lens = { apertureRadius: 0.1, focusDistance: 3 };
+    const c = new CameraController({ ...camera, lens }, 1);
+    c.update(1, { ...NO_INPUT, forward: 1 });
+    expect(c.camera().lens).toEqual(lens);
+    c.lens = undefined;
+    expect('lens' in c.camera()).toBe(false);
+    c.lens = { apertureRadius: 0, focusDistance: 5 };
+    expect(c.camera().lens).toEqual({ apertureRadius: 0, focusDistance: 5 });
+  });
+
   it('round-trips yaw and pitch through the forward vector', () => {
     for (const [yaw, pitch] of [[0, 0], [1, 0.3], [-2.5, -0.7], [3, 1.2]] as const) {
       const pose = poseFromCamera({ ...camera, forward: forwardOf(yaw, pitch) });

@@ -8,7 +8,7 @@
  * upward. forward = (sin yaw · cos pitch, sin pitch, −cos yaw · cos pitch).
  */
 import type { Vec3 } from '../math/vec3.ts';
-import type { Camera } from '../scene/types.ts';
+import type { Camera, ThinLens } from '../scene/types.ts';
 import { eyeLevel, moveWalker, NO_SECTOR, sectorAt, type WalkMap, type WalkPosition } from '../scene/walk-map.ts';
 
 export type MoveMode = 'fly' | 'walk';
@@ -58,6 +58,8 @@ export class CameraController {
   yaw: number;
   pitch: number;
   vfovDegrees: number;
+  /** The thin lens (depth of field), the scene camera's to begin with; undefined: a pinhole. */
+  lens: ThinLens | undefined;
   private walker?: WalkPosition;
 
   constructor(
@@ -71,6 +73,7 @@ export class CameraController {
     this.yaw = pose.yaw;
     this.pitch = pose.pitch;
     this.vfovDegrees = base.vfovDegrees;
+    this.lens = base.lens;
   }
 
   get mode(): MoveMode {
@@ -142,7 +145,8 @@ export class CameraController {
   }
 
   camera(): Camera {
-    return { ...this.base, position: [this.x, this.y, this.z], forward: forwardOf(this.yaw, this.pitch), up: [0, 1, 0], vfovDegrees: this.vfovDegrees };
+    const { lens: _, ...base } = this.base;
+    return { ...base, position: [this.x, this.y, this.z], forward: forwardOf(this.yaw, this.pitch), up: [0, 1, 0], vfovDegrees: this.vfovDegrees, ...(this.lens ? { lens: this.lens } : {}) };
   }
 }
 

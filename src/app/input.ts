@@ -1,7 +1,9 @@
 /**
  * Keyboard and mouse for the viewer: held keys become MoveInput axes, mouse movement under pointer
- * lock (click the canvas; Esc releases) becomes look deltas. Keys: WASD move, Q/E turn, Space or R
- * up, C or F down, Shift run. Keys typed into form fields (the settings panel) are not movement.
+ * lock (drag on the canvas to start it; Esc releases) becomes look deltas. Keys: WASD move, Q/E
+ * turn, Space or R up, C or F down, Shift run. Keys typed into form fields (the settings panel) are
+ * not movement. A click that is not the end of a drag, outside pointer lock, is reported (select;
+ * with Alt, focus); Esc outside pointer lock is reported too (deselect).
  */
 import type { MoveInput } from './camera-controller.ts';
 
@@ -22,19 +24,44 @@ const AXES: Record<string, [keyof Omit<MoveInput, 'run'>, number]> = {
   KeyF: ['up', -1],
 };
 
+/** A click on the canvas: where (CSS pixels from its top-left corner) and whether Alt was held. */
+export interface CanvasClick {
+  readonly x: number;
+  readonly y: number;
+  readonly alt: boolean;
+}
+
+export interface InputHandlers {
+  onClick?(click: CanvasClick): void;
+  onEscape?(): void;
+}
+
+/** A press that moves this far (CSS pixels) before release is a drag (mouse look), not a click. */
+const DRAG_THRESHOLD = 4;
+
 export class Input {
   private readonly held = new Set<string>();
   private lookX = 0;
   private lookY = 0;
   private readonly cleanup: (() => void)[] = [];
 
-  constructor(private readonly canvas: HTMLCanvasElement) {
+  /** Where the primary button went down on the canvas, while it is held. */
+  private press?: { x: number; y: number };
+  /** Whether the current or last press became a drag (its click is not a selection). */
+  private dragged = false;
+
+  constructor(
+    private readonly canvas: HTMLCanvasElement,
+    handlers: InputHandlers = {},
+  ) {
     const isTyping = (e: Event) => {
       const t = e.target as HTMLElement | null;
       return !!t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA' || t.isContentEditable);
     };
+    const locked = () => document.pointerLockElement === canvas;
     this.listen(window, 'keydown', (e) => {
       const k = e as KeyboardEvent;
+      if (k.code === 'Escape' && !locked() && !isTyping(k)) handlers.onEscape?.();
       if (isTyping(k) || k.ctrlKey || k.metaKey || k.altKey) return;
       if (k.code in AXES || k.code.startsWith('Shift')) {
         this.held.add(k.code);
@@ -44,11 +71,27 @@ export class Input {
     this.listen(window, 'keyup', (e) => this.held.delete((e as KeyboardEvent).code));
     // Keys released while the window had no focus never send keyup.
     this.listen(window, 'blur', () => this.held.clear());
-    this.listen(canvas, 'click', () => {
-      if (document.pointerLockElement !== canvas) canvas.requestPointerLock?.()?.catch?.(() => {});
+    this.listen(canvas, 'mousedown', (e) => {
+      const m = e as MouseEvent;
+      if (m.button !== 0 || locked()) return;
+      this.press = { x: m.clientX, y: m.clientY };
+      this.dragged = false;
+    });
+    this.listen(window, 'mouseup', () => (this.press = undefined));
+    this.listen(canvas, 'click', (e) => {
+      const m = e as MouseEvent;
+      if (this.dragged || locked()) return;
+      handlers.onClick?.({ x: m.offsetX, y: m.offsetY, alt: m.altKey });
     });
     this.listen(document, 'mousemove', (e) => {
-      if (document.pointerLockElement !== canvas) return;
+      const m = e as MouseEvent;
+      // A drag from the canvas starts mouse look (the press is the user gesture pointer lock needs).
+      if (this.press && !locked() && Math.hypot(m.clientX - this.press.x, m.clientY - this.press.y) > DRAG_THRESHOLD) {
+        this.dragged = true;
+        this.press = undefined;
+        canvas.requestPointerLock?.()?.catch?.(() => {});
+      }
+      if (!locked()) return;
       this.lookX += (e as MouseEvent).movementX;
       this.lookY += (e as MouseEvent).movementY;
     });

@@ -5,8 +5,12 @@
  * touches the GPU before Play. URL parameters (view-params.ts) choose the scene, camera and
  * settings, so a copied link restores a view.
  *
- * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera and live GPU
- * resources, and the canvas carries data-state and data-samples, so scripts can wait for frames.
+ * Clicks on the canvas select (Esc or empty space deselects) and Alt-clicks focus the lens
+ * (input.ts); the panel's Material folder edits what is selected, and links carry the edits.
+ *
+ * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera, lens,
+ * selection and live GPU resources, and reads the estimate with its sample count; the canvas
+ * carries data-state and data-samples, so scripts can wait for frames.
  */
 import { LanternError } from '../errors.ts';
 import { BUILTIN_SCENES, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
@@ -21,6 +25,7 @@ import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
 import { describeError, Viewer } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
+import type { ThinLens } from '../scene/types.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
@@ -126,13 +131,17 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
       showViewer(viewer);
     });
     if (token !== loadToken) return;
-    await viewer.setScene(loaded, { ...(view.pose ? { pose: view.pose } : {}), ...(view.mode ? { mode: view.mode } : {}), ...(view.fovDegrees !== undefined ? { fovDegrees: view.fovDegrees } : {}) });
+    const { pose, mode, fovDegrees, apertureRadius, focusDistance } = view;
+    await viewer.setScene(loaded, { pose, mode, fovDegrees, apertureRadius, focusDistance });
     if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
     current = where;
+    // The link's problems again (this warning replaces the line that named them), with the material
+    // edits that do not fit the scene.
+    const ignored = [...(view === linked ? problems : []), ...(view.materials ? await viewer.applyMaterialOverrides(view.materials) : [])];
     sceneLoads++;
     panel?.readFromViewer();
     // Each warning once (a texture missing from ten materials is one problem), one per line.
-    const warnings = [...new Set(loaded.warnings)];
+    const warnings = [...new Set([...loaded.warnings, ...ignored.map((p) => `ignored in the link: ${p}`)])];
     if (warnings.length > 0) showMessage([`${loaded.prepared.scene.name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`}`, ...warnings.map((w) => `· ${w}`)].join('\n'), 'warning');
   } catch (e) {
     if (token === loadToken) showMessage(describeError(e), 'error');
@@ -277,7 +286,22 @@ new ResizeObserver((entries) => {
   viewer.resizeCanvas(Math.max(1, Math.min(8192, w)), Math.max(1, Math.min(8192, h))).catch((e) => viewer.fail(e));
 }).observe(canvas);
 
-viewer.input = new Input(canvas);
+viewer.input = new Input(canvas, {
+  onClick: ({ x, y, alt }) => {
+    if (alt) {
+      viewer
+        .focusAt(x, y)
+        .then((depth) => {
+          if (depth === undefined) return;
+          // The Camera folder shows the new focus distance.
+          panel?.readFromViewer();
+          showMessage(`In focus at ${depth.toPrecision(4)} scene units (the lens's focus distance; the aperture radius sets the blur).`, 'info');
+        })
+        .catch((e) => showMessage(describeError(e), 'error'));
+    } else viewer.select(x, y).catch((e) => showMessage(describeError(e), 'error'));
+  },
+  onEscape: () => void viewer.deselect().catch((e) => showMessage(describeError(e), 'error')),
+});
 
 playButton.addEventListener('click', () => {
   if (viewer.state === 'playing') viewer.pause();
@@ -388,8 +412,14 @@ declare global {
       /** The environment that lights the image now (after an environment change has been uploaded), without map pixels. */
       readonly environment: Record<string, unknown> | undefined;
       readonly camera: Pose | undefined;
+      /** The camera's thin lens (undefined: a pinhole). */
+      readonly lens: ThinLens | undefined;
       readonly gpuResources: ResourceCount;
       readonly link: string;
+      /** What a click selected: material index and name, instance index. */
+      readonly selection: { material: number; materialName: string; instanceIndex: number } | undefined;
+      /** The tone-mapped estimate (RGBA8, without the selection outline) and the samples it holds, read at one moment. */
+      readImage(): Promise<{ samples: number; width: number; height: number; rgba: number[] }>;
       simulateDeviceLoss(): void;
     };
   }
@@ -418,11 +448,19 @@ window.lantern = {
   get camera() {
     return viewer.controller?.pose;
   },
+  get lens() {
+    return viewer.lens;
+  },
   get gpuResources() {
     return viewer.stats.gpuResources;
   },
   get link() {
     return viewLink();
   },
+  get selection() {
+    const s = viewer.selection;
+    return s && { material: s.material, materialName: viewer.scene?.prepared.scene.materials[s.material]?.name ?? '', instanceIndex: s.instanceIndex };
+  },
+  readImage: () => viewer.readImage(),
   simulateDeviceLoss: () => viewer.simulateDeviceLoss(),
 };

@@ -1,6 +1,7 @@
 /**
- * The settings panel (Tweakpane): render settings, camera, torch, the environment (scene's own, sky,
- * HDR map, none), what the GPU is doing, and output.
+ * The settings panel (Tweakpane): render settings, camera (field of view, movement, lens), torch, the
+ * environment (scene's own, sky, HDR map, none), the selected material (material-panel.ts), what
+ * the GPU is doing, and output.
  * Every change goes through the Viewer, which restarts accumulation when the change invalidates the
  * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
  * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
@@ -12,9 +13,11 @@ import { Pane, type BladeApi, type ButtonApi, type FolderApi, type SliderInputBi
 import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry, type SettingsPatch } from '../renderer/settings-schema.ts';
 import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
 import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
+import { fNumberForAperture, focalLengthForFov } from '../scene/lens.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
 import type { Viewer } from './viewer.ts';
+import { MaterialPanel } from './material-panel.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
 import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, type EnvironmentChoice, type EnvironmentChoiceKind } from './environment-choice.ts';
 
@@ -43,7 +46,14 @@ export class SettingsPanel {
     accumulate: true,
     fov: 60,
     mode: 'fly' as MoveMode,
+    // The thin lens: aperture radius and focus distance in scene units (aperture 0: a pinhole).
+    aperture: 0,
+    focus: 1,
   };
+  /** The lens's f-number where the scene knows its unit size (a read-out). */
+  private readonly lensMonitor = { fNumber: '' };
+  private apertureBinding?: SliderInputBindingApi;
+  private focusBinding?: SliderInputBindingApi;
   /** The render settings' panel values by setting id (a colour as {r, g, b}; 'auto' as 0). */
   private readonly settingParams: Record<string, unknown> = {};
   private depthBinding?: SliderInputBindingApi;
@@ -54,6 +64,7 @@ export class SettingsPanel {
   /** The bindings shown only for one kind of environment. */
   private readonly environmentControls: Partial<Record<EnvironmentChoiceKind, BladeApi[]>> = {};
   private openMapButton?: ButtonApi;
+  private readonly materialPanel: MaterialPanel;
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
 
@@ -71,7 +82,12 @@ export class SettingsPanel {
     render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value }));
 
     const camera = this.pane.addFolder({ title: 'Camera and torch' });
-    camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => this.syncing || viewer.setFieldOfView(e.value));
+    camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => {
+      if (this.syncing) return;
+      viewer.setFieldOfView(e.value);
+      // The same aperture is another f-number at another focal length.
+      this.showFNumber();
+    });
     camera.addBinding(p, 'mode', { label: 'movement', options: { 'walk (Doom maps)': 'walk', fly: 'fly' } }).on('change', (e) => {
       if (this.syncing) return;
       if (!viewer.setMoveMode(e.value)) {
@@ -80,7 +96,10 @@ export class SettingsPanel {
       }
     });
 
+    this.addLensBindings(camera);
+
     this.addEnvironmentFolder(container, actions);
+    this.materialPanel = new MaterialPanel(this.pane, viewer, actions.report);
 
     const folders: Record<PanelFolder, FolderApi> = {
       render,
@@ -106,6 +125,59 @@ export class SettingsPanel {
     output.addButton({ title: 'Screenshot (PNG)' }).on('click', () => actions.screenshot());
     output.addButton({ title: 'Radiance (EXR)' }).on('click', () => actions.exportExr());
     output.addButton({ title: 'Copy link to this view' }).on('click', () => actions.copyLink());
+  }
+
+  /**
+   * Depth of field in the Camera folder: aperture radius and focus distance (scene units, sliders
+   * spanning the scene's size), the f-number they make where the scene knows its unit, and a button
+   * that focuses on what lies at the image centre. Each change restarts the image (Viewer.setLens).
+   */
+  private addLensBindings(folder: FolderApi): void {
+    const p = this.params;
+    const apply = () => {
+      if (this.syncing) return;
+      try {
+        this.viewer.setLens({ apertureRadius: p.aperture, focusDistance: p.focus });
+      } catch {
+        // A value the lens refuses (a focus distance of 0 typed in): back to the viewer's.
+        this.readFromViewer();
+        return;
+      }
+      this.showFNumber();
+    };
+    // The limits accept any lens (typed values too); the sliders' spans are fitted to the scene (fitLensSliders).
+    const aperture = folder.addBinding(p, 'aperture', { label: 'aperture radius', min: 0, max: 1e9, step: 1e-4 });
+    aperture.element.title = 'Radius of the thin lens in scene units: 0 is a pinhole (everything sharp); larger blurs what lies off the focus distance more.';
+    aperture.on('change', apply);
+    const focus = folder.addBinding(p, 'focus', { label: 'focus distance', min: 1e-4, max: 1e12, step: 1e-4 });
+    focus.element.title = 'Distance along the view to the plane in focus, scene units.';
+    focus.on('change', apply);
+    this.apertureBinding = aperture as unknown as SliderInputBindingApi;
+    this.focusBinding = focus as unknown as SliderInputBindingApi;
+    folder.addBinding(this.lensMonitor, 'fNumber', { label: 'f-number', readonly: true });
+    folder.addButton({ title: 'Focus on the image centre' }).on('click', () => {
+      const depth = this.viewer.defaultFocusDistance();
+      if (depth === undefined) return;
+      this.viewer.setFocusDistance(depth);
+      this.readFromViewer();
+    });
+    this.fitLensSliders();
+  }
+
+  /** Lens sliders sized to the scene: apertures up to a twentieth of its diagonal, focus up to twice the diagonal (and the current values). */
+  private fitLensSliders(): void {
+    const scene = this.viewer.scene?.prepared;
+    const size = scene ? Math.max(boundsDiagonal(scene.bvh), 1e-3) : 1;
+    const p = this.params;
+    if (this.apertureBinding) [this.apertureBinding.min, this.apertureBinding.max] = [0, Math.max(size / 20, p.aperture)];
+    if (this.focusBinding) [this.focusBinding.min, this.focusBinding.max] = [Math.min(size / 1000, p.focus), Math.max(2 * size, p.focus)];
+    this.showFNumber();
+  }
+
+  private showFNumber(): void {
+    const metersPerUnit = this.viewer.scene?.prepared.scene.metersPerUnit;
+    const p = this.params;
+    this.lensMonitor.fNumber = p.aperture <= 0 ? 'pinhole' : metersPerUnit ? `f/${fNumberForAperture(p.aperture, metersPerUnit, p.fov).toPrecision(3)} (full-frame ${focalLengthForFov(p.fov).toFixed(0)} mm)` : '– (scene size unknown)';
   }
 
   /**
@@ -201,8 +273,9 @@ export class SettingsPanel {
     this.syncing = true;
     try {
       this.read();
-      // The depth slider spans the scene's BVH depth.
+      // The depth slider spans the scene's BVH depth; the lens sliders its size.
       this.fitDepthSlider();
+      this.fitLensSliders();
       this.showEnvironmentControls();
       this.pane?.refresh();
     } finally {
@@ -222,6 +295,9 @@ export class SettingsPanel {
     if (c) {
       p.fov = c.vfovDegrees;
       p.mode = c.mode;
+      p.aperture = c.lens?.apertureRadius ?? 0;
+      // A pinhole shows where a lens would focus: what lies at the image centre.
+      p.focus = c.lens?.focusDistance ?? this.viewer.defaultFocusDistance() ?? p.focus;
     }
     for (const entry of PANEL_SETTINGS) {
       const value = this.shownValue(entry);
@@ -328,6 +404,7 @@ export class SettingsPanel {
 
   /** Refreshes the numbers (called on every frame; Tweakpane redraws monitors on its own interval). */
   showStats(): void {
+    this.materialPanel.update();
     const s = this.viewer.stats;
     const m = this.monitor;
     m.fps = s.framesPerSecond;

@@ -9,6 +9,8 @@ describe('view parameters', () => {
       scene: { kind: 'files', format: 'doom-wad', urls: ['files/0/freedoom1.wad', 'files/1/my.wad'], part: 'E1M2' },
       pose: { position: [1024.5, 41, -3200.25], yaw: 1.5708, pitch: -0.1 },
       fovDegrees: 73.74,
+      apertureRadius: 0.00625,
+      focusDistance: 1234.5,
       mode: 'walk',
       samplesPerFrame: 4,
       maxBounces: 3,
@@ -50,6 +52,14 @@ describe('view parameters', () => {
     expect(problems).toHaveLength(9);
     expect(problems.join('\n')).toMatch(/cam=1,2,3 is not 5 numbers/);
     expect(problems.join('\n')).toMatch(/spf=0 is outside 1–64/);
+  });
+
+  it('reads a lens: aperture 0 is a pinhole, a focus distance must be positive', () => {
+    expect(parseViewParams(new URLSearchParams('aperture=0&focus=3.5')).view).toEqual({ apertureRadius: 0, focusDistance: 3.5 });
+    const { view, problems } = parseViewParams(new URLSearchParams('aperture=-1&focus=0'));
+    expect(view).toEqual({});
+    expect(problems).toEqual(['aperture=-1 is not ≥ 0', 'focus=0 is not > 0']);
+    expect(parseViewParams(new URLSearchParams('focus=far')).problems).toEqual(['focus=far is not 1 number']);
   });
 });
 

@@ -7,10 +7,16 @@
  *   ply=<url>                          a PLY mesh the server offers
  *                                      (the scene parameters: loaders/scene-link.ts, from the registry)
  *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1
+ *   aperture=<radius>  focus=<distance>  the camera's thin lens, scene units (aperture 0: a pinhole;
+ *                                      a link with only one of them takes the other from the scene's
+ *                                      lens, or focuses on what lies at the image centre;
+ *                                      renderer/lens-link.ts, which `lantern view` writes too)
  *   and every render setting with a `link` name in RENDER_SETTINGS (renderer/settings.ts): bounces,
  *   tonemap, exposure, torch=on|off, torch-color=r,g,b, torch-intensity, torch-range, debug,
  *   layout, heat-max=<n>|auto, depth, temporal=0|1, denoise=0|1, clamp-k, history-cap=<n>|unlimited,
  *   denoise-view; parsed, checked and written from their schema entries.
+ *   mat=1:<index>:<name>:c=r,g,b;r=…   a material edit (one parameter per material; material-link.ts),
+ *                                      applied once the scene has loaded
  *   sky=elevation,azimuth[,turbidity]  env-intensity=x
  *                                      the Hosek–Wilkie sky instead of the scene's own environment
  *                                      (as the CLI's --sky and --env-intensity); an HDR map opened
@@ -19,7 +25,9 @@
 import { formatSettingText, getAt, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
 import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
 import { formatSceneLocation, parseSceneLocation, type SceneLocation } from '../loaders/scene-link.ts';
+import { formatLensLink, parseLensLink } from '../renderer/lens-link.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
+import { formatMaterialOverride, MATERIAL_LINK_PARAM, parseMaterialOverride, type MaterialOverride } from './material-link.ts';
 
 export type { SceneLocation };
 
@@ -31,6 +39,10 @@ export type ViewParams = RenderSettingsPatch & {
   readonly scene?: SceneLocation;
   readonly pose?: Pose;
   readonly fovDegrees?: number;
+  /** The thin lens's aperture radius (scene units, ≥ 0). */
+  readonly apertureRadius?: number;
+  /** The thin lens's focus distance (scene units, > 0). */
+  readonly focusDistance?: number;
   readonly mode?: MoveMode;
   readonly samplesPerFrame?: number;
   readonly scale?: number;
@@ -39,6 +51,8 @@ export type ViewParams = RenderSettingsPatch & {
   readonly sky?: SkyParams;
   /** Multiplies the sky's radiance. */
   readonly envIntensity?: number;
+  /** Material edits, applied after the scene loads. */
+  readonly materials?: readonly MaterialOverride[];
 };
 
 export interface SkyParams {
@@ -102,6 +116,7 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   if (cam) view.pose = { position: [cam[0]!, cam[1]!, cam[2]!], yaw: cam[3]!, pitch: cam[4]! };
   const fov = ranged('fov', LIMITS.fovDegrees);
   if (fov !== undefined) view.fovDegrees = fov;
+  Object.assign(view, parseLensLink(params, problems));
   const mode = params.get('mode');
   if (mode !== null) {
     if ((MOVE_MODES as readonly string[]).includes(mode)) view.mode = mode as MoveMode;
@@ -127,6 +142,15 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   const envIntensity = ranged('env-intensity', LIMITS.envIntensity);
   if (envIntensity !== undefined) view.envIntensity = envIntensity;
 
+  const materials: MaterialOverride[] = [];
+  for (const raw of params.getAll(MATERIAL_LINK_PARAM)) {
+    const parsed = parseMaterialOverride(raw);
+    if (!parsed.ok) problems.push(parsed.problem);
+    else if (materials.some((m) => m.index === parsed.value.index)) problems.push(`${MATERIAL_LINK_PARAM}=${raw}: material ${parsed.value.index} is edited twice`);
+    else materials.push(parsed.value);
+  }
+  if (materials.length > 0) view.materials = materials;
+
   for (const { path, spec } of LINKED_SETTINGS) {
     const name = spec.link!;
     const raw = params.get(name);
@@ -143,12 +167,14 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.scene) formatSceneLocation(view.scene, p);
   if (view.pose) p.set('cam', [...view.pose.position, view.pose.yaw, view.pose.pitch].map(round).join(','));
   if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
+  formatLensLink(view, p);
   if (view.mode) p.set('mode', view.mode);
   if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
   if (view.sky) p.set('sky', [view.sky.elevation, view.sky.azimuth, view.sky.turbidity].map(round).join(','));
   if (view.envIntensity !== undefined) p.set('env-intensity', String(round(view.envIntensity)));
+  for (const m of view.materials ?? []) p.append(MATERIAL_LINK_PARAM, formatMaterialOverride(m));
   for (const { path, spec } of LINKED_SETTINGS) {
     const value = getAt(view, path);
     if (value !== undefined) p.set(spec.link!, formatSettingText(spec, value));

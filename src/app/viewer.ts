@@ -8,6 +8,11 @@
  * It owns everything the page must survive: a canvas resize, a tab in the background (no frames
  * while hidden), a lost GPU device (a new device, the scene uploaded again, the view restored), and
  * scene switches (the Renderer destroys what the old scene held; the GPU resource count shows it).
+ *
+ * Live editing: select(x, y) picks the object under a canvas point (one primary ray, Renderer.pick)
+ * and outlines it; editMaterial(index, edit) changes a material in place, applied before the next
+ * frame (edits arriving faster than frames are merged); focusAt(x, y) sets the lens's focus
+ * distance to the picked depth. The edits are kept for links (viewParams) and survive a lost device.
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
@@ -16,7 +21,10 @@ import type { ResourceCount } from '../gpu/resource-count.ts';
 import { GpuTimer } from '../gpu/timestamps.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
-import { Renderer } from '../renderer/renderer.ts';
+import { Renderer, type PickResult } from '../renderer/renderer.ts';
+import { editMaterials } from '../renderer/prepare.ts';
+import { materialEditProblem, mergeMaterialEdits, type MaterialEdit } from '../scene/material-edit.ts';
+import type { MaterialOverride } from './material-link.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
@@ -24,7 +32,9 @@ import { linkOfEnvironment } from './environment-choice.ts';
 import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
-import type { Camera } from '../scene/types.ts';
+import { lensProblem } from '../scene/lens.ts';
+import type { Camera, ThinLens } from '../scene/types.ts';
+import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
 
 /** A scene without an environment has this one (black), one object so that it compares equal to itself. */
@@ -120,6 +130,12 @@ export class Viewer {
   private legendAt = 0;
   private expectingLoss = false;
   private disposed = false;
+  /** What a click selected (the part of an instance of one material), until Esc, an empty click or another scene. */
+  private selectionValue?: PickResult;
+  /** Every material edit since the scene loaded, merged per material (what links carry). */
+  private materialEdits = new Map<number, MaterialEdit>();
+  /** Edits not yet applied (a slider sends many: they are merged and applied once, in order). */
+  private pendingEdits = new Map<number, MaterialEdit>();
 
   constructor(
     private readonly canvas: HTMLCanvasElement,
@@ -190,13 +206,13 @@ export class Viewer {
    * Shows a loaded scene; before the first Play only remembers it (no GPU work). The torch keeps
    * only on/off: its other settings belong to the previous scene.
    */
-  setScene(loaded: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number } = {}): Promise<void> {
+  setScene(loaded: LoadedScene, view: SceneView = {}): Promise<void> {
     // In line with settings and environment changes, so that an environment upload still under way
     // cannot land on top of the new scene.
     return this.enqueue(() => this.applyScene(loaded, view));
   }
 
-  private async applyScene(given: LoadedScene, view: { pose?: Pose; mode?: MoveMode; fovDegrees?: number }): Promise<void> {
+  private async applyScene(given: LoadedScene, view: SceneView): Promise<void> {
     this.sceneEnvironment = given.prepared.scene.environment;
     const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
     const { scene, bvh } = loaded.prepared;
@@ -204,6 +220,11 @@ export class Viewer {
     if (view.pose) controller.setPose(view.pose);
     if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
     controller.setMode(view.mode ?? (controller.canWalk ? 'walk' : 'fly'));
+    if (view.apertureRadius !== undefined || view.focusDistance !== undefined) {
+      // What the link leaves out comes from the scene's lens; a focus distance from neither, from the image centre.
+      const focusDistance = view.focusDistance ?? controller.lens?.focusDistance ?? defaultFocus(loaded.prepared, controller.camera());
+      controller.lens = { apertureRadius: view.apertureRadius ?? controller.lens?.apertureRadius ?? 0, focusDistance };
+    }
     // Torch colour, intensity and range set for the last scene mean nothing in this one's units:
     // only on/off carries over.
     this.settings = { ...this.settings, render: { ...this.settings.render, torch: { enabled: this.settings.render.torch.enabled } } };
@@ -217,6 +238,9 @@ export class Viewer {
     this.realTimeFrames = 0;
     this.loaded = loaded;
     this.controllerValue = controller;
+    this.selectionValue = undefined;
+    this.materialEdits = new Map();
+    this.pendingEdits = new Map();
     this.frames = [];
     this.hooks.onChange(this);
   }
@@ -257,10 +281,125 @@ export class Viewer {
     this.hooks.onChange(this);
   }
 
+  /** What is selected (a pick: instance, material, primitive, hit point), if anything. */
+  get selection(): PickResult | undefined {
+    return this.selectionValue;
+  }
+
+  /**
+   * The render-image pixel under a canvas point given in CSS pixels from the canvas's top-left
+   * corner (present() stretches the image over the canvas).
+   */
+  private imagePoint(x: number, y: number): [number, number] | undefined {
+    const r = this.renderer;
+    const w = this.canvas.clientWidth || this.canvas.width, h = this.canvas.clientHeight || this.canvas.height;
+    if (!r || r.width === 0 || w === 0 || h === 0) return undefined;
+    const px = Math.floor((x / w) * r.width), py = Math.floor((y / h) * r.height);
+    return px >= 0 && px < r.width && py >= 0 && py < r.height ? [px, py] : undefined;
+  }
+
+  /** The pick under a canvas point (CSS pixels), in line with other changes; undefined before Play or off the image. */
+  pickAt(x: number, y: number): Promise<PickResult | null | undefined> {
+    return this.enqueue(() => this.pickNow(x, y));
+  }
+
+  private async pickNow(x: number, y: number): Promise<PickResult | null | undefined> {
+    const p = this.imagePoint(x, y);
+    if (!p || !this.renderer || !this.loaded) return undefined;
+    return this.renderer.pick(p[0], p[1]);
+  }
+
+  /** Selects what lies under a canvas point (CSS pixels); empty space deselects. Pick and selection are one change, so no scene switch comes between. */
+  select(x: number, y: number): Promise<PickResult | undefined> {
+    return this.enqueue(async () => {
+      const pick = await this.pickNow(x, y);
+      if (pick === undefined) return undefined;
+      await this.applySelection(pick ?? undefined);
+      return pick ?? undefined;
+    });
+  }
+
+  deselect(): Promise<void> {
+    return this.enqueue(() => this.applySelection(undefined));
+  }
+
+  private async applySelection(pick: PickResult | undefined): Promise<void> {
+    this.selectionValue = pick;
+    await this.renderer?.setSelection(pick ? { instanceIndex: pick.instanceIndex, material: pick.material } : undefined);
+    this.hooks.onChange(this);
+  }
+
+  /**
+   * Focuses the lens on what lies under a canvas point: the focus distance becomes the picked depth
+   * along forward (setFocusDistance: a pinhole gets a closed lens that keeps it for when the aperture
+   * opens). Returns the depth, or undefined for empty space or before Play.
+   */
+  focusAt(x: number, y: number): Promise<number | undefined> {
+    return this.enqueue(async () => {
+      const pick = await this.pickNow(x, y);
+      if (!pick || !this.controllerValue || !(pick.depth > 0)) return undefined;
+      this.setFocusDistance(pick.depth);
+      return pick.depth;
+    });
+  }
+
+  /**
+   * Edits a material (by index into the scene's materials) in place: applied before the next frame
+   * with a buffer write (Renderer.updateMaterials), restarting the image. Edits arriving faster are
+   * merged. A field the material's kind lacks or a value out of range is a LanternError.
+   */
+  editMaterial(index: number, edit: MaterialEdit): Promise<void> {
+    const material = this.loaded?.prepared.scene.materials[index];
+    if (!material) return Promise.reject(new LanternError(`the scene has no material ${index}`));
+    const problem = materialEditProblem(material.kind, edit);
+    if (problem) return Promise.reject(new LanternError(`cannot edit material '${material.name}': ${problem}`));
+    this.pendingEdits.set(index, mergeMaterialEdits(this.pendingEdits.get(index) ?? {}, edit));
+    this.materialEdits.set(index, mergeMaterialEdits(this.materialEdits.get(index) ?? {}, edit));
+    return this.enqueue(() => this.applyPendingEdits());
+  }
+
+  /**
+   * Applies the material edits a link carries (after its scene has loaded); returns what could not
+   * be applied, in words (a material index the scene lacks, another name at that index, a field the
+   * kind lacks), for the page's warning line.
+   */
+  async applyMaterialOverrides(overrides: readonly MaterialOverride[]): Promise<string[]> {
+    const problems: string[] = [];
+    const materials = this.loaded?.prepared.scene.materials ?? [];
+    for (const o of overrides) {
+      const m = materials[o.index];
+      const problem = !m ? `the scene has no material ${o.index}` : m.name !== o.name ? `material ${o.index} is '${m.name}', not '${o.name}'` : materialEditProblem(m.kind, o.edit);
+      if (problem) problems.push(`material edit ${o.index} (${o.name}): ${problem}`);
+      else await this.editMaterial(o.index, o.edit);
+    }
+    return problems;
+  }
+
+  /** The material edits made since the scene loaded, for links. */
+  get materialOverrides(): MaterialOverride[] {
+    const materials = this.loaded?.prepared.scene.materials ?? [];
+    return [...this.materialEdits].filter(([i]) => materials[i]).map(([index, edit]) => ({ index, name: materials[index]!.name, edit }));
+  }
+
+  private async applyPendingEdits(): Promise<void> {
+    const loaded = this.loaded;
+    if (!loaded || this.pendingEdits.size === 0) return;
+    const edits = this.pendingEdits;
+    this.pendingEdits = new Map();
+    const prepared = this.renderer ? this.renderer.updateMaterials(edits) : editMaterials(loaded.prepared, edits).prepared;
+    this.loaded = { ...loaded, prepared };
+    this.realTimeFrames = 0;
+    this.renderer?.resetHistory();
+    this.hooks.onChange(this);
+  }
+
   /** One change at a time, in order: a change may wait for pipelines to compile or a scene to upload. */
-  private enqueue(change: () => Promise<void>): Promise<void> {
+  private enqueue<T>(change: () => Promise<T>): Promise<T> {
     const next = this.settingsQueue.then(change);
-    this.settingsQueue = next.catch(() => {});
+    this.settingsQueue = next.then(
+      () => {},
+      () => {},
+    );
     return next;
   }
 
@@ -290,6 +429,45 @@ export class Viewer {
     this.hooks.onChange(this);
   }
 
+  /** The camera's thin lens (undefined: a pinhole). */
+  get lens(): ThinLens | undefined {
+    return this.controllerValue?.lens;
+  }
+
+  /**
+   * Sets the camera's thin lens (undefined: a pinhole; an aperture of 0 is a pinhole that keeps its
+   * focus distance). The image restarts, the real-time history too (a refocus changes every pixel).
+   * Throws a LanternError for a negative aperture or a focus distance ≤ 0.
+   */
+  setLens(lens: ThinLens | undefined): void {
+    const c = this.controllerValue;
+    if (!c) return;
+    const problem = lens && lensProblem(lens);
+    if (problem) throw new LanternError(problem);
+    c.lens = lens;
+    this.realTimeFrames = 0;
+    if (this.renderer) {
+      this.renderer.setCamera(this.cameraOf(c));
+      this.renderer.resetHistory();
+    }
+    this.hooks.onChange(this);
+  }
+
+  /**
+   * Focuses at `depth` scene units along the viewing direction, keeping the aperture (a pinhole
+   * gets a closed lens that remembers the distance for when the aperture opens). Click-to-focus:
+   * `viewer.setFocusDistance(pick.depth)` with the picked point's depth along forward.
+   */
+  setFocusDistance(depth: number): void {
+    this.setLens({ apertureRadius: this.lens?.apertureRadius ?? 0, focusDistance: depth });
+  }
+
+  /** Where a lens opened without a focus distance focuses: the depth at the image centre (CPU BVH), else half the scene's size. */
+  defaultFocusDistance(): number | undefined {
+    const c = this.controllerValue;
+    return this.loaded && c ? defaultFocus(this.loaded.prepared, c.camera()) : undefined;
+  }
+
   setFieldOfView(degrees: number): void {
     if (!this.controllerValue) return;
     this.controllerValue.vfovDegrees = degrees;
@@ -316,6 +494,14 @@ export class Viewer {
     return encodePng(renderer.width, renderer.height, await renderer.readImage());
   }
 
+  /** The tone-mapped image (RGBA8, what a screenshot holds) with the sample count at the moment it was read (the test hook). */
+  async readImage(): Promise<{ samples: number; width: number; height: number; rgba: number[] }> {
+    const renderer = this.requireRenderer();
+    const samples = this.stats.samples;
+    const rgba = await renderer.readImage();
+    return { samples, width: renderer.width, height: renderer.height, rgba: Array.from(rgba) };
+  }
+
   /** The linear radiance (the estimate, or the denoised frame) as EXR bytes: float32 RGB, before exposure and tone mapping. */
   async radianceExr(): Promise<Uint8Array> {
     const renderer = this.requireRenderer();
@@ -330,11 +516,13 @@ export class Viewer {
     const t = s.render.torch;
     return {
       ...(c ? { pose: c.pose, fovDegrees: c.vfovDegrees, mode: c.mode } : {}),
+      ...(c?.lens ? { apertureRadius: c.lens.apertureRadius, focusDistance: c.lens.focusDistance } : {}),
       samplesPerFrame: s.samplesPerFrame,
       scale: s.scale,
       accumulate: s.accumulate,
       ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
       ...linkOfEnvironment(this.environmentOverride),
+      ...(this.materialEdits.size > 0 ? { materials: this.materialOverrides } : {}),
       torch: { enabled: t.enabled, ...(t.color ? { color: [t.color[0], t.color[1], t.color[2]] } : {}), ...(t.intensity !== undefined ? { intensity: t.intensity } : {}), ...(t.range !== undefined ? { range: t.range } : {}) },
     };
   }
@@ -379,6 +567,8 @@ export class Viewer {
     await this.resizeRenderer();
     if (this.loaded) await renderer.setScene(this.loaded.prepared);
     if (this.controllerValue) renderer.setCamera(this.cameraOf(this.controllerValue));
+    const selected = this.selectionValue;
+    if (selected) await renderer.setSelection({ instanceIndex: selected.instanceIndex, material: selected.material });
     void gpu.lost.then((info) => this.onDeviceLost(gpu, info));
   }
 
@@ -496,6 +686,14 @@ export class Viewer {
     this.frames.push({ at: performance.now(), rays });
     if (this.frames.length > STATS_WINDOW) this.frames.shift();
   }
+}
+
+/** What a link may say about the view of the scene it opens. */
+export type SceneView = Pick<ViewParams, 'pose' | 'mode' | 'fovDegrees' | 'apertureRadius' | 'focusDistance'>;
+
+/** The depth at the image centre, or half the scene's size when the centre ray meets nothing. */
+function defaultFocus(prepared: LoadedScene['prepared'], camera: Camera): number {
+  return centreFocusDistance(prepared, camera) ?? Math.max(boundsDiagonal(prepared.bvh) / 2, 1e-3);
 }
 
 /** Whether the device reports itself lost within a moment (frames fail before `lost` resolves). */

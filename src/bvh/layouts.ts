@@ -14,7 +14,8 @@ export interface BvhLayout {
   readonly nodeBytes: number;
   /** The SAH costs its statistics use. */
   readonly options: BvhBuildOptions;
-  readonly build: (positions: Float32Array) => Bvh;
+  /** Over primitives of `kinds` (scene/triangles.ts), or triangles only without. */
+  readonly build: (positions: Float32Array, kinds?: Uint8Array) => Bvh;
 }
 
 const o = DEFAULT_BVH_BUILD_OPTIONS;
@@ -22,9 +23,9 @@ const o = DEFAULT_BVH_BUILD_OPTIONS;
 export const BVH_LAYOUTS: readonly BvhLayout[] = [
   {
     name: 'binary-sah',
-    description: `binary BVH, binned SAH build (${o.bins} bins per axis, leaves of at most ${o.maxLeafSize} triangles), ${BVH_NODE_BYTES}-byte nodes, sibling pairs in 64-byte blocks; what the GPU traverses`,
+    description: `binary BVH, binned SAH build (${o.bins} bins per axis, leaves of at most ${o.maxLeafSize} primitives), ${BVH_NODE_BYTES}-byte nodes, sibling pairs in 64-byte blocks; what the GPU traverses`,
     nodeBytes: BVH_NODE_BYTES,
     options: o,
-    build: (positions) => buildBvh(positions, o),
+    build: (positions, kinds) => buildBvh(positions, o, kinds),
   },
 ];

@@ -6,7 +6,7 @@
  * No infinities anywhere: WGSL may assume none occur at run time, so "missed" is the finite
  * sentinel T_MISS and near-zero direction components are clamped before inversion.
  */
-import type { Vec3 } from '../math/vec3.ts';
+import { orthonormalFrame, type Vec3 } from '../math/vec3.ts';
 import { PRIMITIVE_KIND } from '../scene/triangles.ts';
 
 /** "No hit yet" / "box missed": beyond any scene distance, and finite (lib/constants.wgsl). */
@@ -162,7 +162,7 @@ export function sphereUv(x: number, y: number, z: number, out: Barycentrics): vo
  * spheres at both ends, each kept only where it is the capsule's boundary (the cylinder's roots with
  * their axial coordinate y in [0, L], sphere a's with y <= 0, sphere b's with y >= L). The nearest
  * root in (tMin, tBest) wins, so rays from inside find the exit. The cylinder's quadratic uses the
- * same stable form as the sphere's. uv: u around the axis (in the frame orthonormalBasis(axis)), v
+ * same stable form as the sphere's. uv: u around the axis (in the frame math/vec3.ts orthonormalFrame(axis)), v
  * = y / L clamped to [0, 1].
  */
 export function intersectCapsule(positions: ArrayLike<number>, prim: number, ray: PreparedRay, tMin: number, tBest: number, out: Barycentrics): number {
@@ -212,7 +212,7 @@ export function intersectCapsule(positions: ArrayLike<number>, prim: number, ray
     consider(q / a, lo, hi);
   }
   if (!(best < tBest)) return T_MISS;
-  const [t1, t2] = orthonormalBasis(wx, wy, wz);
+  const [t1, t2] = orthonormalFrame([wx, wy, wz]);
   const hx = fx + best * dx, hy = fy + best * dy, hz = fz + best * dz;
   const u = Math.atan2(hx * t2[0] + hy * t2[1] + hz * t2[2], hx * t1[0] + hy * t1[1] + hz * t1[2]) / (2 * Math.PI);
   out.u = u < 0 ? u + 1 : u;
@@ -220,16 +220,6 @@ export function intersectCapsule(positions: ArrayLike<number>, prim: number, ray
   return best;
 }
 
-/** Two unit vectors completing the unit n to a right-handed frame (Duff et al. 2017, as lib/sampling.wgsl's orthonormal_basis). */
-export function orthonormalBasis(nx: number, ny: number, nz: number): [Vec3, Vec3] {
-  const sign = nz >= 0 ? 1 : -1;
-  const a = -1 / (sign + nz);
-  const b = nx * ny * a;
-  return [
-    [1 + sign * nx * nx * a, sign * b, -sign * nx],
-    [b, sign + ny * ny * a, -ny],
-  ];
-}
 
 /**
  * The test for primitive `prim` of kind kinds[prim] (every primitive a triangle without `kinds`), as

@@ -111,6 +111,29 @@ describe('GLB export', () => {
     expect(report.issues.messages.filter((m) => m.severity <= 1)).toEqual([]);
   });
 
+  it('exports spheres and capsules tessellated, valid, beside the mesh\'s own triangles', async () => {
+    const withShapes: Scene = {
+      ...showcase,
+      meshes: showcase.meshes.map((m, i) =>
+        i === 0
+          ? {
+              ...m,
+              spheres: { centers: new Float32Array([0, 1, 0]), radii: new Float32Array([0.5]), materialIds: new Uint32Array([0]) },
+              capsules: { endpoints: new Float32Array([0, 0, 0, 1, 0, 0]), radii: new Float32Array([0.1]), materialIds: new Uint32Array([0]) },
+            }
+          : m,
+      ),
+    };
+    const glb = await sceneToGlb(withShapes);
+    const report = await validate(glb);
+    expect(report.issues.messages.filter((m) => m.severity <= 1)).toEqual([]);
+    const back = await reload(glb);
+    const triangles = back.meshes.reduce((n, m) => n + m.indices.length / 3, 0);
+    const before = showcase.meshes.reduce((n, m) => n + m.indices.length / 3, 0);
+    // A 48-segment sphere and capsule add thousands of triangles.
+    expect(triangles - before).toBeGreaterThan(2000);
+  });
+
   it('round-trips meshes and instances to the same world-space triangles', async () => {
     const back = await reload(await sceneToGlb(showcase));
     expect(back.instances).toHaveLength(2);

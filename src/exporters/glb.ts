@@ -31,7 +31,8 @@ import {
 } from '@gltf-transform/extensions';
 import { encodePng } from '../image/png.ts';
 import { cross, normalize, type Vec3 } from '../math/vec3.ts';
-import type { Material, PunctualLight, Scene, TextureRef } from '../scene/types.ts';
+import type { Material, Mesh, PunctualLight, Scene, TextureRef } from '../scene/types.ts';
+import { tessellateAnalytic } from '../scene/tessellate.ts';
 
 /** glTF sampler constants (WebGL enums). */
 const NEAREST = 9728;
@@ -135,9 +136,9 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
   const gltfScene = doc.createScene(scene.name).addChild(root);
   doc.getRoot().setDefaultScene(gltfScene);
 
-  const gltfMeshes = scene.meshes.map((mesh) => {
+  // One primitive per material used by a mesh, all sharing the mesh's vertex accessors.
+  const addPrimitives = (gltfMesh: ReturnType<typeof doc.createMesh>, mesh: Mesh) => {
     const triangleCount = mesh.indices.length / 3;
-    // One primitive per material used by this mesh, all sharing the mesh's vertex accessors.
     const byMaterial = new Map<number, number[]>();
     for (let t = 0; t < triangleCount; t++) {
       const m = mesh.materialIds[t]!;
@@ -154,7 +155,6 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
       TEXCOORD_1: accessor('uvs1', 'VEC2', mesh.uvs1),
       TANGENT: accessor('tangents', 'VEC4', mesh.tangents),
     };
-    const gltfMesh = doc.createMesh(mesh.name);
     for (const [m, tris] of byMaterial) {
       const indices = new Uint32Array(tris.length * 3);
       tris.forEach((t, i) => indices.set(mesh.indices.subarray(t * 3, t * 3 + 3), i * 3));
@@ -162,6 +162,14 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
       for (const [semantic, a] of Object.entries(attributes)) if (a) primitive.setAttribute(semantic, a);
       gltfMesh.addPrimitive(primitive);
     }
+  };
+
+  const gltfMeshes = scene.meshes.map((mesh) => {
+    const gltfMesh = doc.createMesh(mesh.name);
+    if (mesh.indices.length > 0) addPrimitives(gltfMesh, mesh);
+    // glTF has no spheres: analytic spheres and capsules go out tessellated, with their own accessors.
+    const tessellated = tessellateAnalytic(mesh);
+    if (tessellated) addPrimitives(gltfMesh, tessellated);
     return gltfMesh;
   });
 

@@ -83,6 +83,36 @@ export class SceneResources {
     return new SceneResources(buffers, atlas, linearAtlas, environment, bsdfTables, triangleAttributes, packed.counts, packed.features, byteSize + bsdfTables.width * bsdfTables.height * 4 + attributes.data.byteLength);
   }
 
+  /**
+   * Writes new contents into one of the group-0 buffers (materials, the light table after an edit).
+   * Where they no longer fit, that buffer alone is made anew (the old one destroyed) and a new
+   * SceneResources sharing everything else is returned, so bind groups cached per SceneResources are
+   * made again; otherwise `this`.
+   */
+  rewriteBuffer(device: GPUDevice, name: BufferName, data: ArrayBuffer): SceneResources {
+    const old = this.buffers[name];
+    if (data.byteLength <= old.size) {
+      device.queue.writeBuffer(old, 0, data);
+      return this;
+    }
+    if ((STORAGE_NAMES as readonly string[]).includes(name) && data.byteLength > device.limits.maxStorageBufferBindingSize) {
+      throw new LanternError(`${name} needs ${(data.byteLength / 2 ** 20).toFixed(1)} MiB, more than one storage buffer may hold on this GPU`);
+    }
+    const buffer = createBufferWithData(device, old.label, data, old.usage);
+    old.destroy();
+    return new SceneResources(
+      { ...this.buffers, [name]: buffer },
+      this.atlas,
+      this.linearAtlas,
+      this.environment,
+      this.bsdfTables,
+      this.triangleAttributes,
+      this.counts,
+      this.features,
+      this.byteSize - old.size + buffer.size,
+    );
+  }
+
   destroy(): void {
     for (const b of Object.values(this.buffers)) b.destroy();
     this.atlas.destroy();

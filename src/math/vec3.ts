@@ -23,3 +23,18 @@ export const isFiniteVec3 = (a: Vec3): boolean => a.every(Number.isFinite);
 
 /** Rec. 709 / sRGB luminance of a linear RGB triple. The WGSL twin is `luminance` in lib/color.wgsl. */
 export const luminance = (c: Vec3): number => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+
+/**
+ * Two unit vectors completing the unit n to a right-handed frame (t, b, n) (Duff et al. 2017,
+ * "Building an Orthonormal Basis, Revisited"), exactly as shaders/lib/sampling.wgsl orthonormal_basis.
+ */
+export function orthonormalFrame(n: readonly [number, number, number]): [Vec3, Vec3] {
+  const [nx, ny, nz] = n;
+  const sign = nz >= 0 ? 1 : -1;
+  const a = -1 / (sign + nz);
+  const b = nx * ny * a;
+  return [
+    [1 + sign * nx * nx * a, sign * b, -sign * nx],
+    [b, sign + ny * ny * a, -ny],
+  ];
+}

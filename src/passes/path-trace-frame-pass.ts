@@ -6,7 +6,7 @@
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { cameraBasis, type ViewUniform } from '../gpu/view.ts';
+import { cameraUniform, type ViewUniform } from '../gpu/view.ts';
 import type { Camera } from '../scene/types.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
@@ -53,8 +53,7 @@ export class PathTraceFramePass {
     timer?: GpuTimer,
   ): void {
     this.params.write(pathTraceParams(d));
-    const b = cameraBasis(previousCamera, view.width / view.height);
-    this.frame.write({ previous_camera: { position: b.position, right: b.right, up: b.up, forward: b.forward } });
+    this.frame.write({ previous_camera: cameraUniform(previousCamera, view.width / view.height) });
     const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer, guide: target.guide, ray_counters: target.rayCounters });
     this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.gbuffer, targets, d.tile, timer);
   }

@@ -7,6 +7,8 @@ import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule, structLayout } from '../gpu/wgsl/reflect.ts';
+import { StructArray } from '../gpu/pack/struct-array.ts';
+import type { Vec3 } from '../math/vec3.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/trace-rays';
@@ -16,6 +18,43 @@ const WORKGROUP = 64;
 export function rayBufferStrides(): { ray: number; hit: number } {
   const { defs } = reflectModule(MODULE);
   return { ray: structLayout(defs, 'Ray').stride, hit: structLayout(defs, 'HitRecord').stride };
+}
+
+/** A ray of the ray buffer: hits count at t_min < t < t_max, in units of |direction|. */
+export interface TraceRay {
+  readonly origin: Vec3;
+  readonly direction: Vec3;
+  readonly tMin?: number;
+  readonly tMax?: number;
+}
+
+/** One HitRecord: distance, source triangle (NO_TRIANGLE: a miss) and the barycentrics of v1 and v2. */
+export interface TraceHit {
+  readonly t: number;
+  readonly triangle: number;
+  readonly u: number;
+  readonly v: number;
+}
+
+/** The WGSL Ray array for `rays` (as f32: what the GPU traces). */
+export function packRays(rays: readonly TraceRay[]): ArrayBuffer {
+  const out = new StructArray(structLayout(reflectModule(MODULE).defs, 'Ray'), rays.length);
+  const origin = out.vec3('origin'), direction = out.vec3('direction'), tMin = out.f32Field('t_min'), tMax = out.f32Field('t_max');
+  rays.forEach((r, i) => {
+    origin(i, ...r.origin);
+    direction(i, ...r.direction);
+    tMin(i, r.tMin ?? 0);
+    tMax(i, r.tMax ?? 3e38);
+  });
+  return out.bytes;
+}
+
+/** The first `count` HitRecords of a hit buffer read back. */
+export function unpackHits(raw: ArrayBuffer, count: number): TraceHit[] {
+  const layout = structLayout(reflectModule(MODULE).defs, 'HitRecord');
+  const f32 = new Float32Array(raw), u32 = new Uint32Array(raw);
+  const s = layout.strideWords, t = layout.word('t'), tri = layout.word('triangle'), u = layout.word('u'), v = layout.word('v');
+  return Array.from({ length: count }, (_, i) => ({ t: f32[i * s + t]!, triangle: u32[i * s + tri]!, u: f32[i * s + u]!, v: f32[i * s + v]! }));
 }
 
 /** Workgroup grid for `count` invocations of WORKGROUP threads, as rows within the dispatch limit. */

@@ -194,6 +194,9 @@ export class Denoiser {
   }
 }
 
+/** Whether two cameras see the same image: pose, field of view and lens (a refocus is a change: the history is clamped, not trusted). */
 function sameCamera(a: Camera, b: Camera): boolean {
-  return a === b || (a.vfovDegrees === b.vfovDegrees && [0, 1, 2].every((i) => a.position[i] === b.position[i] && a.forward[i] === b.forward[i] && a.up[i] === b.up[i]));
+  const aperture = (c: Camera) => c.lens?.apertureRadius ?? 0;
+  const sameLens = aperture(a) === aperture(b) && (aperture(a) === 0 || a.lens?.focusDistance === b.lens?.focusDistance);
+  return a === b || (a.vfovDegrees === b.vfovDegrees && sameLens && [0, 1, 2].every((i) => a.position[i] === b.position[i] && a.forward[i] === b.forward[i] && a.up[i] === b.up[i]));
 }

@@ -8,7 +8,9 @@ import { refitBvh } from '../bvh/refit.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import type { Bvh } from '../bvh/types.ts';
 import { packEnvironment } from '../gpu/pack/environment-pack.ts';
-import { packGeometry, packScene, type PackedScene } from '../gpu/pack/scene-pack.ts';
+import { repackMaterialRecords } from '../gpu/pack/material-pack.ts';
+import { packGeometry, packScene, sceneLayouts, type PackedScene } from '../gpu/pack/scene-pack.ts';
+import { applyMaterialEdit, editChangesEmission, type MaterialEdit } from '../scene/material-edit.ts';
 import { withEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
 import { flattenTriangles, writeInstanceTriangles, type TriangleList } from '../scene/triangles.ts';
@@ -84,4 +86,38 @@ export function withPreparedEnvironment(prepared: PreparedScene, environment: En
   const scene = withEnvironment(prepared.scene, environment);
   const packed = packGeometry(scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, packEnvironment(environment));
   return { ...prepared, scene, packed };
+}
+
+/** The group-0 buffers an emission edit rewrites besides `materials` (the light table and its normaliser in scene_info). */
+export const LIGHT_BUFFERS = ['scene_info', 'light_slots', 'punctual_lights'] as const;
+
+export interface EditedMaterials {
+  readonly prepared: PreparedScene;
+  /** Whether an emission changed: the light table (LIGHT_BUFFERS) was packed again and must be written too. */
+  readonly lightsChanged: boolean;
+}
+
+/**
+ * Material edits by material index (scene/material-edit.ts): only the edited records are packed
+ * again, around the texture references and atlases already packed. An emission edit changes light
+ * powers, so then the light table is packed again too; that walks every triangle (packGeometry, the
+ * same CPU cost as moveInstances: a few ms for a Doom map, a few hundred for a million triangles),
+ * while a colour or roughness edit costs one record. BVH, triangles and textures never change.
+ */
+export function editMaterials(prepared: PreparedScene, edits: ReadonlyMap<number, MaterialEdit>): EditedMaterials {
+  const { scene } = prepared;
+  const materials = [...scene.materials];
+  let lightsChanged = false;
+  for (const [index, edit] of edits) {
+    const m = materials[index];
+    if (!m) throw new LanternError(`scene '${scene.name}' has no material ${index} (it has ${materials.length})`);
+    lightsChanged ||= editChangesEmission(m, edit);
+    materials[index] = applyMaterialEdit(m, edit);
+  }
+  const edited: Scene = { ...scene, materials };
+  const packedMaterials = repackMaterialRecords(materials, prepared.packed.packedMaterials, sceneLayouts().material, edits.keys());
+  const packed: PackedScene = lightsChanged
+    ? packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment)
+    : { ...prepared.packed, materials: packedMaterials.materials, packedMaterials };
+  return { prepared: { ...prepared, scene: edited, packed }, lightsChanged };
 }

@@ -11,26 +11,35 @@
  *
  * Real time (after enableRealTime): renderFrame(spp) runs the denoiser's frame recipe (renderer/
  * denoiser.ts) instead; present and readImage then show its output until the next accumulate().
+ *
+ * Live editing: pick(x, y) traces one primary ray through a pixel (the scene's own traversal);
+ * setSelection(instance) outlines an object in what present() draws (never in the estimate);
+ * updateMaterials(edits) rewrites material records (and the light table for emission) in place.
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
 import { withErrorScope } from '../gpu/device.ts';
-import { readBuffer, readTexture4x8 } from '../gpu/readback.ts';
+import { createBufferWithData, readBuffer, readTexture4x8 } from '../gpu/readback.ts';
 import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
+import { SelectionOutlinePass, type SelectedRange } from '../passes/selection-outline-pass.ts';
+import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes/trace-rays-pass.ts';
+import { dot, type Vec3 } from '../math/vec3.ts';
+import type { MaterialEdit } from '../scene/material-edit.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
+import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
-import { moveInstances, MOVED_BUFFERS, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import { editMaterials, LIGHT_BUFFERS, moveInstances, MOVED_BUFFERS, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
-import { ViewUniform } from '../gpu/view.ts';
+import { primaryRay, ViewUniform } from '../gpu/view.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;
@@ -60,6 +69,23 @@ export interface LinearImage {
   readonly radiance: Float32Array;
 }
 
+/** What one primary ray through a pixel hit (Renderer.pick). */
+export interface PickResult {
+  /** Distance from the camera along the ray (scene units). */
+  readonly distance: number;
+  /** Distance along the camera's forward axis: what a thin lens's focusDistance measures. */
+  readonly depth: number;
+  /** World-space hit point. */
+  readonly position: Vec3;
+  /** Index into Scene.instances, and that instance's id. */
+  readonly instanceIndex: number;
+  readonly instanceId: number;
+  /** Index into Scene.materials. */
+  readonly material: number;
+  /** Source primitive index (scene/triangles.ts order). */
+  readonly primitive: number;
+}
+
 interface ImageTargets {
   readonly width: number;
   readonly height: number;
@@ -79,6 +105,18 @@ export class Renderer {
   private denoiser?: Denoiser;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
+  private tracePass?: Promise<TraceRaysPass>;
+  private selectionPass?: SelectionOutlinePass;
+  /** The selected instance's source triangles, outlined by present(). */
+  private selectionRange?: SelectedRange;
+  /** Whether the selection mask must be traced again (view, size, scene or selection changed). */
+  private selectionStale = true;
+  /**
+   * Hook for kernel specialisation (branch `specialise`): called after materials are edited, when a
+   * kernel specialised to the scene's materials must give way to the generic one. Unset: every
+   * kernel already reads materials from the buffer.
+   */
+  invalidateSpecialisation?: () => void;
 
   private constructor(
     readonly gpu: GpuContext,
@@ -125,6 +163,7 @@ export class Renderer {
   async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
     const prepared = 'packed' in scene ? scene : prepareScene(scene);
     await this.upload(prepared);
+    void this.setSelection(undefined);
     this.setCamera(prepared.scene.camera);
     return prepared;
   }
@@ -149,11 +188,12 @@ export class Renderer {
   /** Compiles what the scene needs, then uploads it and frees the previous one (a failure leaves the old scene). */
   private async upload(prepared: PreparedScene): Promise<void> {
     const features = prepared.packed.features;
-    await Promise.all([this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features)]);
+    await Promise.all([this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features)]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
     this.resources?.destroy();
     this.resources = resources;
     this.prepared = prepared;
+    this.selectionStale = true;
   }
 
   /**
@@ -168,11 +208,118 @@ export class Renderer {
     for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
     writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
     this.prepared = prepared;
+    this.selectionStale = true;
     this.resetAccumulation();
     return prepared;
   }
 
+  /**
+   * Edits materials by index (scene/material-edit.ts: colour, roughness, metallic, IOR, transmission,
+   * emission) without rebuilding anything: the edited records are packed again and the materials
+   * buffer rewritten; an emission edit also packs the light table again (renderer/prepare.ts
+   * editMaterials) and rewrites it, reallocating the light-slot buffer alone where it grew (an
+   * emitter appeared). No texture upload, no BVH build, no pipeline compile. Restarts accumulation;
+   * returns the edited scene (keep it to upload again after a lost device).
+   */
+  updateMaterials(edits: ReadonlyMap<number, MaterialEdit>): PreparedScene {
+    let resources = this.resources;
+    if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateMaterials()');
+    const { prepared, lightsChanged } = editMaterials(this.prepared, edits);
+    resources = resources.rewriteBuffer(this.device, 'materials', prepared.packed.materials);
+    if (lightsChanged) for (const name of LIGHT_BUFFERS) resources = resources.rewriteBuffer(this.device, name, prepared.packed[name]);
+    this.resources = resources;
+    this.prepared = prepared;
+    this.invalidateSpecialisation?.();
+    this.resetAccumulation();
+    return prepared;
+  }
+
+  /**
+   * What the primary ray through pixel (x, y) of the image hits (its centre; the lens centre's ray for
+   * a thin lens), traced on the GPU by the scene's own traversal (alpha tests included), or null for
+   * a miss. Pixels count from the top-left corner of the rendered image.
+   */
+  async pick(x: number, y: number): Promise<PickResult | null> {
+    const { resources, targets } = this.ready();
+    const camera = this.cameraValue;
+    const prepared = this.prepared!;
+    if (!camera) throw new Error('Renderer: setCamera() before pick()');
+    if (!(x >= 0 && x < targets.width && y >= 0 && y < targets.height)) throw new LanternError(`pixel (${x}, ${y}) is outside the ${targets.width}×${targets.height} image`);
+    const ray = primaryRay(camera, targets.width, targets.height, Math.floor(x) + 0.5, Math.floor(y) + 0.5);
+    this.tracePass ??= TraceRaysPass.create(this.device);
+    const pass = await this.tracePass;
+    const device = this.device;
+    const rays = createBufferWithData(device, 'pick ray', packRays([ray]), GPUBufferUsage.STORAGE);
+    const hits = device.createBuffer({ label: 'pick hit', size: unpackHitsSize(), usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
+    try {
+      const encoder = device.createCommandEncoder({ label: 'pick' });
+      pass.encode(encoder, await pass.bind(resources, rays, hits, 1), undefined, 'pick');
+      device.queue.submit([encoder.finish()]);
+      const hit = unpackHits(await readBuffer(device, hits), 1)[0]!;
+      if (hit.triangle === NO_PRIMITIVE || hit.triangle >= prepared.triangles.count) return null;
+      const instanceIndex = prepared.triangles.instanceIds[hit.triangle]!;
+      const { origin, direction } = ray;
+      return {
+        distance: hit.t,
+        depth: hit.t * dot(direction, cameraForward(camera)),
+        position: [origin[0] + hit.t * direction[0], origin[1] + hit.t * direction[1], origin[2] + hit.t * direction[2]],
+        instanceIndex,
+        instanceId: prepared.scene.instances[instanceIndex]!.id,
+        material: prepared.triangles.materialIds[hit.triangle]!,
+        primitive: hit.triangle,
+      };
+    } finally {
+      rays.destroy();
+      hits.destroy();
+    }
+  }
+
+  /**
+   * Outlines the part of an instance (index into Scene.instances) made of one material (what a pick
+   * returns; the part a material edit there changes) in what present() draws, or nothing
+   * (undefined). The estimate and readImage() are untouched. Compiles the outline's pipelines on
+   * first use.
+   */
+  async setSelection(selected: { readonly instanceIndex: number; readonly material: number } | undefined): Promise<void> {
+    if (selected === undefined) {
+      this.selectionRange = undefined;
+      this.selectionPass?.destroyTargets();
+      return;
+    }
+    const prepared = this.prepared;
+    if (!prepared) throw new Error('Renderer: setScene() before setSelection()');
+    const triangles = prepared.triangles;
+    const { instanceIndex, material } = selected;
+    if (!(material >= 0 && material < prepared.scene.materials.length)) throw new LanternError(`scene '${prepared.scene.name}' has no material ${material}`);
+    if (!Number.isInteger(instanceIndex) || instanceIndex < 0 || instanceIndex >= triangles.instanceFirstTriangle.length) {
+      throw new LanternError(`scene '${prepared.scene.name}' has no instance ${instanceIndex}`);
+    }
+    if (!this.selectionPass) {
+      const pass = await SelectionOutlinePass.create(this.device);
+      this.selectionPass ??= pass;
+    }
+    await this.selectionPass.prepare(prepared.packed.features);
+    // The instance's triangles are contiguous in the flattened list (scene/triangles.ts).
+    const first = triangles.instanceFirstTriangle[instanceIndex]!;
+    const end = triangles.instanceFirstTriangle[instanceIndex + 1] ?? triangles.count;
+    this.selectionRange = { first, end, material };
+    this.selectionStale = true;
+  }
+
+  /** The selection (source triangle range and material), if any. */
+  get selection(): SelectedRange | undefined {
+    return this.selectionRange;
+  }
+
+  /**
+   * Sets the camera (restarts accumulation; the real-time history is reprojected). `camera.lens` gives
+   * depth of field: `setCamera({ ...renderer.camera, lens: { apertureRadius, focusDistance } })`;
+   * no lens, or an aperture of 0, is a pinhole. A lens with a negative aperture or a focus distance
+   * ≤ 0 is refused (LanternError).
+   */
   setCamera(camera: Camera): void {
+    const problem = camera.lens && lensProblem(camera.lens);
+    if (problem) throw new LanternError(problem, 'Give an aperture radius ≥ 0 and a focus distance > 0 (scene units)');
     this.cameraValue = camera;
     this.updateView();
   }
@@ -311,7 +458,12 @@ export class Renderer {
     if (!this.presentPass) throw new Error('call enablePresentation() before present()');
     const encoder = this.device.createCommandEncoder({ label: 'present' });
     this.encodeTonemap(encoder, targets, timer);
-    this.presentPass.encode(encoder, this.encodeDebugView(encoder, targets), target, timer);
+    let shown = this.encodeDebugView(encoder, targets);
+    if (this.selectionRange && this.selectionPass && this.resources) {
+      shown = this.selectionPass.encode(encoder, { scene: this.resources, view: this.view, selection: this.selectionRange, image: shown, traceMask: this.selectionStale });
+      this.selectionStale = false;
+    }
+    this.presentPass.encode(encoder, shown, target, timer);
     timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
   }
@@ -406,6 +558,8 @@ export class Renderer {
     this.pathTrace.destroy();
     this.tonemap.destroy();
     this.debugViews?.destroy();
+    this.selectionPass?.destroy();
+    void this.tracePass?.then((p) => p.destroy());
   }
 
   /** For passes outside the facade (benchmarks, tests): the scene's GPU resources and the view. */
@@ -472,6 +626,7 @@ export class Renderer {
 
   private updateView(): void {
     if (this.cameraValue && this.targets) this.view.update(this.cameraValue, this.targets.width, this.targets.height);
+    this.selectionStale = true;
     this.resetAccumulation();
   }
 
@@ -498,4 +653,15 @@ export function checkImageSize(width: number, height: number, limits: GPUSupport
     const maxPixels = Math.floor(Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize) / ACCUMULATION_BYTES_PER_PIXEL);
     throw new LanternError(`image ${width}×${height} is too large for this GPU: at most ${maxPixels} pixels fit one accumulation buffer`);
   }
+}
+
+/** A miss in a HitRecord (shaders/scene/types.wgsl NO_TRIANGLE). */
+const NO_PRIMITIVE = 0xffffffff;
+
+const unpackHitsSize = () => rayBufferStrides().hit;
+
+function cameraForward(camera: Camera): Vec3 {
+  const [x, y, z] = camera.forward;
+  const len = Math.hypot(x, y, z);
+  return [x / len, y / len, z / len];
 }

@@ -62,6 +62,14 @@ export function sceneTriangleCount(scene: Scene): number {
   return scene.instances.reduce((n, inst) => n + (scene.meshes[inst.mesh] ? meshTriangleCount(scene.meshes[inst.mesh]!) : 0), 0);
 }
 
+/** "1,200 primitives (1,000 triangles, 150 spheres, 50 capsules)", or "1,000 triangles" when there are only triangles. */
+export function describePrimitives(list: Pick<TriangleList, 'count' | 'kindCounts'>): string {
+  const n = (x: number) => x.toLocaleString('en-US');
+  const { triangle, sphere, capsule } = list.kindCounts;
+  if (sphere + capsule === 0) return `${n(triangle)} triangles`;
+  return `${n(list.count)} primitives (${n(triangle)} triangles, ${n(sphere)} spheres, ${n(capsule)} capsules)`;
+}
+
 export function flattenTriangles(scene: Scene): TriangleList {
   const count = scenePrimitiveCount(scene);
   const kindCounts = { triangle: 0, sphere: 0, capsule: 0 };

@@ -368,7 +368,11 @@ export interface Instance {
  * stays sharp. Scene units.
  */
 export interface ThinLens {
-  /** Radius of the aperture disk (> 0; a pinhole has no lens). Ray Tracing in One Weekend's `aperture` is the diameter. */
+  /**
+   * Radius of the aperture disk (≥ 0; 0 renders as a pinhole but keeps its focus distance, as the
+   * panel's slider at 0 does; a scene without depth of field simply has no lens). Ray Tracing in One
+   * Weekend's `aperture` is the diameter. scene/lens.ts converts f-numbers.
+   */
   readonly apertureRadius: number;
   /** Distance from the lens to the plane in focus, measured along forward (> 0). */
   readonly focusDistance: number;

@@ -4,6 +4,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
+import { lensProblem } from './lens.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
 export function validateScene(scene: Scene): void {
@@ -107,6 +108,8 @@ export function validateScene(scene: Scene): void {
   if (!(length(side) > 1e-9 * length(c.forward) * length(c.up))) fail('the camera up vector is zero or parallel to forward');
   if (!(c.vfovDegrees > 0 && c.vfovDegrees < 180)) fail(`the camera field of view ${c.vfovDegrees}° is outside (0, 180)`);
   if (c.exposureStops !== undefined && !(Math.abs(c.exposureStops) <= 64)) fail(`the camera exposure ${c.exposureStops} stops is outside ±64`);
+  const lens = c.lens && lensProblem(c.lens);
+  if (lens) fail(lens);
 }
 
 /** Whether the linear part of m is a rotation (or reflection) times a uniform scale, to 1e-4 relative. */

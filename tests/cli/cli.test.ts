@@ -62,6 +62,15 @@ describe('lantern render', () => {
     expect(Object.keys(radiance.channels).sort()).toEqual(['B', 'G', 'R']);
   });
 
+  it('renders with depth of field: an f-number becomes an aperture in the scene\'s millimetres, focused at the --camera target', () => {
+    const png = join(dir, 'dof.png');
+    const r = lantern(['render', 'cornell', '-W', '16', '-H', '16', '-s', '2', '--f-number', '2', '--focal-length', '50', '--camera', '278,273,-800,278,273,0', '--out', png, '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    // 50 mm at f/2: a 25 mm pupil, radius 12.5 mm (the Cornell box's unit); the target is 800 mm ahead.
+    expect(JSON.parse(r.stdout).lens).toEqual({ apertureRadius: 12.5, focusDistance: 800 });
+    expect(existsSync(png)).toBe(true);
+  });
+
   it('is deterministic for a fixed seed', () => {
     const a = join(dir, 'a.exr'), b = join(dir, 'b.exr');
     expect(lantern(['render', 'furnace', '-W', '8', '-H', '8', '-s', '2', '--seed', '5', '--exr', a]).code).toBe(0);
@@ -166,6 +175,10 @@ describe('bad input', () => {
     [['render', 'cornell', '--sky', '30'], /--sky/],
     [['render', 'cornell', '--env', 'nowhere.hdr'], /--env: cannot read 'nowhere\.hdr'/],
     [['render', 'cornell', '--sky', '30,0', '--env', 'x.hdr'], /--sky and --env both give the environment/],
+    [['render', 'cornell', '--aperture', '-1'], /--aperture must be a number ≥ 0/],
+    [['render', 'cornell', '--focus-distance', '0', '--aperture', '1'], /--focus-distance must be a number > 0/],
+    [['render', 'cornell', '--aperture', '1', '--f-number', '2'], /--aperture and --f-number both give the aperture/],
+    [['render', 'cornell', '--focus-distance', '500'], /--focus-distance needs a lens, and the camera of 'cornell' is a pinhole/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);
@@ -374,6 +387,11 @@ describe('lantern view', () => {
     const builtin = await startView(['furnace', '--app', app]);
     builtin.stop();
     expect(new URL(builtin.link).searchParams.get('scene')).toBe('furnace');
+    // A lens on the command line is a lens in the link, as the page reads it (aperture=, focus=).
+    const lensed = await startView(['cornell', '--app', app, '--aperture', '12.5', '--focus-distance', '800']);
+    lensed.stop();
+    const params = new URL(lensed.link).searchParams;
+    expect([params.get('scene'), params.get('aperture'), params.get('focus')]).toEqual(['cornell', '12.5', '800']);
   });
 
   it('refuses unknown scenes, missing maps and a page that was not built, before serving', () => {

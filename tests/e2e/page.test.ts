@@ -463,6 +463,27 @@ describe('the page', () => {
     await page.close();
   });
 
+  it('opens with the lens a link gives, changes it from the panel (the image changes, the link follows)', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.05&aperture=30&focus=150');
+    expect(await page.evaluate(() => window.lantern.lens)).toEqual({ apertureRadius: 30, focusDistance: 150 });
+    const aperture = page.locator('.tp-lblv', { hasText: 'aperture radius' }).locator('input');
+    expect(Number(await aperture.inputValue())).toBe(30);
+    expect(await page.locator('.tp-lblv', { hasText: 'f-number' }).locator('input, textarea').first().inputValue()).toMatch(/^f\/0\.5\d/);
+    // Focused 150 mm in front of the camera, far before the box: every edge is smeared.
+    const blurred = await settledImage(page, 4);
+    await aperture.fill('0');
+    await aperture.press('Enter');
+    await expect.poll(() => page.evaluate(() => window.lantern.lens)).toEqual({ apertureRadius: 0, focusDistance: 150 });
+    const sharp = await settledImage(page, 4);
+    expect(imageDifference(blurred, sharp)).toBeGreaterThan(2);
+    // The button focuses on what lies at the image centre: the back wall, beyond the box's opening 800 mm away.
+    await page.getByRole('button', { name: 'Focus on the image centre' }).click();
+    await expect.poll(() => page.evaluate(() => window.lantern.lens?.focusDistance ?? 0)).toBeGreaterThan(800);
+    expect(await page.evaluate(() => window.lantern.link)).toMatch(/aperture=0&focus=1\d{3}/);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
   it('lights the scene with an HDR map opened from the panel', async () => {
     // A flat (uncompressed) Radiance file, 4 × 2, every pixel RGBE (128, 0, 0, 130): radiance (2, 0, 0).
     const header = Buffer.from('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n', 'latin1');

@@ -55,6 +55,7 @@ const STRUCTS: [string, string][] = [
   ['passes/path-trace', 'PathTraceParams'],
   ['passes/tonemap', 'TonemapParams'],
   ['passes/diffuse-rays', 'DiffuseRaysParams'],
+  ['passes/selection-outline', 'SelectionParams'],
   ['scene/bindings', 'TextureRef'],
   ['scene/bindings', 'PunctualLight'],
 ];

@@ -8,9 +8,11 @@ import { integerOption, withImageOptions, withSceneOptions } from '../options.ts
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { sceneHelp } from '../scene-source.ts';
+import { centreFocusDistance } from '../../renderer/focus.ts';
+import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { openSession } from '../session.ts';
 
-interface BenchOptions extends EnvironmentOptions, Readonly<Record<string, unknown>> {
+interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   repeats: number;
@@ -26,16 +28,20 @@ export function registerBench(program: Command, context: CliContext): void {
     .command('bench')
     .description('measure BVH build time, ray throughput (primary and diffuse rays) and path-tracing speed')
     .argument('<scene>', sceneHelp());
-  withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting)
+  withLensOptions(withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 1920, height: 1080 }))), benchSetting))
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
 }
 
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
+  checkLensOptions(o);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
+  // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.
+  const camera = cameraWithLens(prepared.scene.camera, o, { scene: prepared.scene, centreDistance: (c) => centreFocusDistance(prepared, c) });
+  renderer.setCamera(camera);
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const s = prepared.bvh.stats;
   const report = {
@@ -43,6 +49,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     triangles: prepared.triangles.count,
     lights: prepared.packed.counts.lights,
     loadMs,
+    ...(camera.lens ? { lens: camera.lens } : {}),
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
     ...result,
   };
@@ -56,6 +63,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   context.print(
     [
       `Lantern bench: ${report.scene} at ${o.width}×${o.height} on ${result.adapter} (${result.timing === 'gpu-timestamps' ? 'GPU timestamps' : 'wall clock'}, median of ${o.repeats})`,
+      ...(camera.lens ? [`  lens            aperture radius ${camera.lens.apertureRadius.toPrecision(3)}, focus distance ${camera.lens.focusDistance.toPrecision(4)} (scene units)`] : []),
       `  triangles       ${report.triangles.toLocaleString('en-US')} (${report.lights} emissive)`,
       `  BVH build       ${f(s.buildMs)} ms: ${s.nodeCount.toLocaleString('en-US')} nodes, depth ${s.maxDepth}, SAH cost ${f(s.sahCost, 2)}`,
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,

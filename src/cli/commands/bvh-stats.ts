@@ -3,13 +3,13 @@ import type { Command } from 'commander';
 import { BVH_LAYOUTS } from '../../bvh/layouts.ts';
 import { bvhStats, formatBvhStats } from '../../bvh/stats.ts';
 import { reflectModule, structLayout } from '../../gpu/wgsl/reflect.ts';
-import { flattenTriangles } from '../../scene/triangles.ts';
+import { describePrimitives, flattenTriangles } from '../../scene/triangles.ts';
 import { validateScene } from '../../scene/validate.ts';
 import type { CliContext } from '../context.ts';
 import { withSceneOptions } from '../options.ts';
 import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
 
-/** GPU bytes of one triangle: its hot (traversal) and cold (shading) records, from the WGSL structs. */
+/** GPU bytes of one primitive: its hot (traversal) and cold (shading) records, from the WGSL structs. */
 function triangleBytes(): number {
   const { defs } = reflectModule('scene/bindings');
   return structLayout(defs, 'TriangleHot').stride + structLayout(defs, 'TriangleShading').stride;
@@ -25,19 +25,20 @@ export function registerBvhStats(program: Command, context: CliContext): void {
     context.run(async () => {
       const scene = await loadSceneArgument(sceneArg, { onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) });
       validateScene(scene);
-      const { positions, count } = flattenTriangles(scene);
+      const list = flattenTriangles(scene);
+      const { positions, count, kinds } = list;
       const perTriangle = triangleBytes();
       const layouts = BVH_LAYOUTS.map((layout) => {
-        const bvh = layout.build(positions);
+        const bvh = layout.build(positions, kinds);
         const statOptions = { triangleBytes: perTriangle, nodeBytes: layout.nodeBytes, traversalCost: layout.options.traversalCost, intersectionCost: layout.options.intersectionCost };
         const s = bvhStats(bvh, statOptions);
         return { layout, bvh, statOptions, stats: { name: layout.name, description: layout.description, ...s, nodeBytesPerTriangle: s.nodeBytes / count } };
       });
       if (options.json) {
-        context.print(JSON.stringify({ scene: scene.name, triangles: count, triangleBytes: perTriangle, layouts: layouts.map((l) => l.stats) }, null, 2));
+        context.print(JSON.stringify({ scene: scene.name, triangles: list.kindCounts.triangle, spheres: list.kindCounts.sphere, capsules: list.kindCounts.capsule, primitives: count, triangleBytes: perTriangle, layouts: layouts.map((l) => l.stats) }, null, 2));
         return;
       }
-      const lines = [`${scene.name}: ${count.toLocaleString('en-US')} triangles (${perTriangle} GPU bytes each)`];
+      const lines = [`${scene.name}: ${describePrimitives(list)} (${perTriangle} GPU bytes each)`];
       for (const { layout, bvh, statOptions, stats } of layouts) {
         lines.push(`${layout.name}: ${layout.description}`, formatBvhStats(bvh, statOptions).replace(/^/gm, '  '), `  nodes alone: ${stats.nodeBytesPerTriangle.toFixed(1)} bytes/triangle`);
       }

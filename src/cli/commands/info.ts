@@ -6,6 +6,7 @@ import type { CliContext } from '../context.ts';
 import { withSceneOptions } from '../options.ts';
 import { builtinScene } from '../../loaders/builtin/index.ts';
 import type { Scene } from '../../scene/types.ts';
+import { describePrimitives } from '../../scene/triangles.ts';
 import { loadOptions, openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 
 export function registerInfo(program: Command, context: CliContext): void {
@@ -36,15 +37,16 @@ export function registerInfo(program: Command, context: CliContext): void {
         const { scene, triangles, bvh, packed } = prepared;
         const summary = sceneSummary(prepared);
         if (options.json) {
-          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.count, ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [] }, null, 2));
+          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.kindCounts.triangle, spheres: triangles.kindCounts.sphere, capsules: triangles.kindCounts.capsule, primitives: triangles.count, ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [] }, null, 2));
           return;
         }
         const kinds = Object.entries(summary.materialKinds).map(([k, n]) => `${n} ${k}`).join(', ');
-        const lights = [`${packed.counts.emissiveTriangles.toLocaleString('en-US')} emissive triangles`, `${packed.counts.punctualLights} punctual lights`, `environment: ${summary.environment}`].join(', ');
+        const emitters = packed.counts.emissiveSpheres > 0 ? `${(packed.counts.emissiveTriangles - packed.counts.emissiveSpheres).toLocaleString('en-US')} emissive triangles, ${packed.counts.emissiveSpheres} emissive spheres` : `${packed.counts.emissiveTriangles.toLocaleString('en-US')} emissive triangles`;
+        const lights = [emitters, `${packed.counts.punctualLights} punctual lights`, `environment: ${summary.environment}`].join(', ');
         const mib = (b: number) => `${(b / 2 ** 20).toFixed(1)} MiB`;
         context.print(
           [
-            `${scene.name}: ${triangles.count.toLocaleString('en-US')} triangles in ${scene.meshes.length} mesh(es) placed by ${scene.instances.length} instance(s) (loaded and prepared in ${loadMs.toFixed(1)} ms)`,
+            `${scene.name}: ${describePrimitives(triangles)} in ${scene.meshes.length} mesh(es) placed by ${scene.instances.length} instance(s) (loaded and prepared in ${loadMs.toFixed(1)} ms)`,
             `materials: ${scene.materials.length} (${kinds})`,
             `lights: ${lights}`,
             `textures: ${packed.counts.textures}, on the GPU ${mib(summary.textureBytes)} (atlas pages with mip levels: ${packed.atlas.pages.length} sRGB + ${packed.linearAtlas.pages.length} linear)`,

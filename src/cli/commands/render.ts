@@ -3,7 +3,9 @@ import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
+import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraFromOptions } from '../camera-option.ts';
+import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { integerOption, numberListOption, numberOption, withImageOptions, withSceneOptions } from '../options.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
@@ -14,7 +16,7 @@ import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
-interface RenderOptions extends FrameModeOptions, EnvironmentOptions, Readonly<Record<string, unknown>> {
+interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
   spp: number;
@@ -31,7 +33,7 @@ export function registerRender(program: Command, context: CliContext): void {
     .command('render')
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
     .argument('<scene>', sceneHelp());
-  withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 }))))
+  withLensOptions(withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 })))))
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
     .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)')
@@ -47,9 +49,12 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   // A sequence of frames writes only what was asked for.
   const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
+  checkLensOptions(o);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
-  renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
+  const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
+  const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;
+  renderer.setCamera(cameraWithLens(camera, o, { scene: prepared.scene, ...(target ? { target } : {}), centreDistance: (c) => centreFocusDistance(prepared, c) }));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   const s = renderer.settings;
   const debug = s.debugView !== 'none';
@@ -83,6 +88,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     bounces: s.maxBounces,
     seed: s.seed,
     lightSampling: s.lightSampling,
+    ...(renderer.camera?.lens ? { lens: renderer.camera.lens } : {}),
     adapter: renderer.gpu.adapterName,
     triangles: prepared.triangles.count,
     loadSeconds: loadMs / 1000,

@@ -7,7 +7,9 @@ import { fileURLToPath } from 'node:url';
 import type { Command } from 'commander';
 import { formatSceneLocation, type SceneLocation } from '../../loaders/scene-link.ts';
 import type { CliContext } from '../context.ts';
+import { formatLensLink } from '../../renderer/lens-link.ts';
 import { integerOption } from '../options.ts';
+import { lensNumber } from '../lens-option.ts';
 import { openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 import { startViewServer, type OfferedFile } from '../view-server.ts';
 
@@ -15,6 +17,8 @@ interface ViewOptions {
   port: number;
   host: string;
   app?: string;
+  aperture?: number;
+  focusDistance?: number;
 }
 
 /** Where the built page is: dist/app beside the CLI bundle (dist/cli/lantern.mjs). */
@@ -30,6 +34,8 @@ export function registerView(program: Command, context: CliContext): void {
     .option('--port <n>', 'port to listen on (0: any free port)', integerOption('--port', 0, 65535), 8080)
     .option('--host <address>', 'address to listen on (127.0.0.1: this machine only)', '127.0.0.1')
     .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)')
+    .option('--aperture <radius>', 'open the page with a thin lens of this radius (scene units; 0: a pinhole)', lensNumber('--aperture', true))
+    .option('--focus-distance <d>', "the lens's focus distance (scene units; default: the scene's, or what lies at the image centre)", lensNumber('--focus-distance', false))
     .action((sceneArg: string, options: ViewOptions) => context.run(() => view(sceneArg, options, context)));
 }
 
@@ -49,7 +55,10 @@ async function sceneFiles(arg: string): Promise<{ files: OfferedFile[]; location
 async function view(sceneArg: string, o: ViewOptions, context: CliContext): Promise<void> {
   const { files, location } = await sceneFiles(sceneArg);
   const server = await startViewServer({ appDir: o.app ?? defaultAppDir(), files, host: o.host, port: o.port });
-  const link = `${server.url}?${formatSceneLocation(location(server.fileUrls))}`;
+  const params = formatSceneLocation(location(server.fileUrls));
+  // The page reads the lens from the link (renderer/lens-link.ts); it focuses where the link does not say.
+  formatLensLink({ ...(o.aperture !== undefined ? { apertureRadius: o.aperture } : {}), ...(o.focusDistance !== undefined ? { focusDistance: o.focusDistance } : {}) }, params);
+  const link = `${server.url}?${params}`;
   context.print(`Lantern viewer: ${link}`);
   context.note('open it in a browser with WebGPU (Chrome, Edge); Ctrl-C stops the server');
   await new Promise<void>((resolve) => {

@@ -149,23 +149,51 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
   const emissionMean = scene.materials.map((m) => (m.emissionTexture === undefined ? 1 : meanOf(m.emissionTexture.texture)));
 
   const out = new StructArray(layouts.material, scene.materials.length);
-  const u32 = (f: string) => out.u32Field(f), f32 = (f: string) => out.f32Field(f), v3 = (f: string) => out.vec3(f);
-  const kind = u32('kind'), flags = u32('flags'), cutoff = f32('alpha_cutoff'), opacity = f32('opacity');
-  const base = v3('base_color'), emission = v3('emission'), mean = f32('emission_texture_mean');
-  const metallic = f32('metallic'), roughness = f32('roughness'), ior = f32('ior'), transmission = f32('transmission'), specular = f32('specular');
-  const specularColor = v3('specular_color'), absorption = v3('absorption'), normalScale = f32('normal_scale');
-  const repeats = f32('panorama_repeats'), horizon = f32('panorama_horizon_v'), vPerRadian = f32('panorama_v_per_radian');
+  const writeRecord = materialRecordWriter(out);
   const textureFields = ['base_color_texture', 'emission_texture', 'metallic_roughness_texture', 'specular_texture', 'specular_color_texture', 'transmission_texture', 'normal_texture'];
-  const textureWriters = new Map(textureFields.map((f) => [f, u32(f)]));
+  const textureWriters = new Map(textureFields.map((f) => [f, out.u32Field(f)]));
+  const mean = out.f32Field('emission_texture_mean');
   const hasHitFilter: boolean[] = [];
   let general = false;
 
   scene.materials.forEach((m, i) => {
-    kind(i, MATERIAL_KINDS.indexOf(m.kind));
     for (const w of textureWriters.values()) w(i, NO_TEXTURE);
     for (const { field, index } of materialRefs[i]!) textureWriters.get(field)!(i, index);
-    emission(i, ...m.emission);
     mean(i, emissionMean[i]!);
+    hasHitFilter.push(writeRecord(i, m));
+    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture) general = true;
+  });
+
+  return {
+    materials: out.bytes,
+    textureRefs: textureRefs.bytes,
+    atlas,
+    linearAtlas,
+    emissionMean,
+    hasHitFilter,
+    general: general || refs.some((r) => r.ref.texCoord === 1),
+    needsVertexAttributes: scene.materials.some((m) => m.normalTexture !== undefined) || refs.some((r) => r.ref.texCoord === 1),
+    textureRefCount: refs.length,
+    warnings: [...new Set(warnings)],
+  };
+}
+
+/**
+ * A writer of every field of the WGSL Material record that comes from the material alone: kind,
+ * flags, coverage, emission and the kind's constant factors. Texture references and the emission
+ * texture's mean are left as they are (they come from the atlases). Returns whether the material
+ * filters hits (alpha mask or blend).
+ */
+function materialRecordWriter(out: StructArray): (i: number, m: Material) => boolean {
+  const u32 = (f: string) => out.u32Field(f), f32 = (f: string) => out.f32Field(f), v3 = (f: string) => out.vec3(f);
+  const kind = u32('kind'), flags = u32('flags'), cutoff = f32('alpha_cutoff'), opacity = f32('opacity');
+  const base = v3('base_color'), emission = v3('emission');
+  const metallic = f32('metallic'), roughness = f32('roughness'), ior = f32('ior'), transmission = f32('transmission'), specular = f32('specular');
+  const specularColor = v3('specular_color'), absorption = v3('absorption'), normalScale = f32('normal_scale');
+  const repeats = f32('panorama_repeats'), horizon = f32('panorama_horizon_v'), vPerRadian = f32('panorama_v_per_radian');
+  return (i, m) => {
+    kind(i, MATERIAL_KINDS.indexOf(m.kind));
+    emission(i, ...m.emission);
     const coverage = coverageOf(m);
     opacity(i, coverage.opacity);
     cutoff(i, m.alphaCutoff ?? 0.5);
@@ -174,7 +202,6 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     const alpha = m.alphaMode ?? 'opaque';
     const filter = alpha !== 'opaque' && (coverage.texture !== undefined || coverage.opacity < 1);
     if (filter) f |= alpha === 'mask' ? MATERIAL_ALPHA_MASK : MATERIAL_ALPHA_BLEND;
-    hasHitFilter.push(filter);
     const mapping = m.emissionMapping;
     if (mapping?.kind === 'panorama') {
       f |= MATERIAL_EMISSION_PANORAMA;
@@ -207,22 +234,27 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
       case 'emissive':
         break;
     }
-    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture) general = true;
     flags(i, f);
-  });
-
-  return {
-    materials: out.bytes,
-    textureRefs: textureRefs.bytes,
-    atlas,
-    linearAtlas,
-    emissionMean,
-    hasHitFilter,
-    general: general || refs.some((r) => r.ref.texCoord === 1),
-    needsVertexAttributes: scene.materials.some((m) => m.normalTexture !== undefined) || refs.some((r) => r.ref.texCoord === 1),
-    textureRefCount: refs.length,
-    warnings: [...new Set(warnings)],
+    return filter;
   };
+}
+
+/**
+ * The materials packed again after edits of their constant factors (scene/material-edit.ts): the
+ * records of `changed` are rewritten over a copy of the packed ones, so texture references, atlases
+ * and everything derived from textures are kept as they are (nothing is uploaded again but the
+ * records). Kinds, textures and coverage must be those the materials were packed with.
+ */
+export function repackMaterialRecords(materials: readonly Material[], packed: PackedMaterials, layout: StructLayout, changed: Iterable<number>): PackedMaterials {
+  const out = new StructArray(layout, materials.length);
+  new Uint8Array(out.bytes).set(new Uint8Array(packed.materials));
+  const writeRecord = materialRecordWriter(out);
+  for (const i of changed) {
+    const m = materials[i];
+    if (!m) throw new LanternError(`no material ${i} to repack (the scene has ${materials.length})`);
+    if (writeRecord(i, m) !== packed.hasHitFilter[i]) throw new LanternError(`material '${m.name}' changed its coverage: prepare the scene again`);
+  }
+  return { ...packed, materials: out.bytes };
 }
 
 /** A nearest-filtered texture halved (by dropping every other texel) until it fits a page. */

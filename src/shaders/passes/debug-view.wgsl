@@ -4,6 +4,8 @@
 // the CPU oracle bvh/traverse.ts counts. Writes one vec4f of raw values per pixel (the EXR of
 // `lantern render --debug`) and the image's maximum of the view's scalar; passes/debug-compose
 // colours them. Expects the scene (group 0) and view (group 1); its own inputs and outputs are group 2.
+// With a thin lens the rays are still the chief rays through the lens centre (view/bindings camera_ray):
+// debug views show the scene sharp, as the wireframe's pinhole projection does.
 //
 // debug_values per view (w = 1 where the ray hit a triangle, 0 where it missed):
 //   heat-nodes      (nodes visited, triangles tested, 0, hit)

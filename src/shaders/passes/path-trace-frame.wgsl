@@ -2,7 +2,10 @@
 // with CAPTURE_PRIMARY), written — not added — as the frame's demodulated radiance, plus the
 // G-buffer: the surface through the pixel centre (one extra primary ray, so that depth, normal and
 // id do not flicker with the jitter and the temporal tests stay stable while the camera is still),
-// reprojected into the previous camera. Each sample's emission seen at its first hit is kept apart
+// reprojected into the previous camera. With a thin lens the samples start on the aperture while the
+// G-buffer keeps the chief ray through the lens centre: motion vectors and the edge-stopping guide
+// stay those of one defined surface, and defocus is a spread of the samples that temporal
+// accumulation averages like any other noise (docs/denoise.md, "Depth of field"). Each sample's emission seen at its first hit is kept apart
 // (it needs no filtering) and the rest is divided by its first-hit albedo, so textures and lights are
 // not blurred by the spatial filter (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering", §4).
 // Expects the scene (group 0) and view (group 1); group 2 adds the previous camera and the outputs.
@@ -57,7 +60,8 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     var shadow_rays = 0u;
     for (var s = 0u; s < params.samples; s++) {
       primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
-      let path = trace_path(camera_ray(vec2f(pixel) + rng_next_2d(&rng)), &rng, path_settings());
+      let image_point = vec2f(pixel) + rng_next_2d(&rng);
+      let path = trace_path(camera_sample_ray(image_point, &rng), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
       illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);

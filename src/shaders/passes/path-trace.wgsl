@@ -89,7 +89,7 @@ fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocatio
       // how the dispatch planner batched its samples into submits.
       var rng = rng_seed(pixel_index, params.sample_index + s, params.seed);
       let jitter = rng_next_2d(&rng);
-      let path = trace_path(camera_ray(vec2f(pixel) + jitter), &rng, path_settings());
+      let path = trace_path(camera_sample_ray(vec2f(pixel) + jitter, &rng), &rng, path_settings());
       // A non-finite sample (a numerical accident) is dropped rather than poisoning the pixel forever.
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let l = luminance(radiance);

@@ -1,5 +1,6 @@
 // Coherent primary rays through pixel centres, for the traversal benchmark (as tinybvh's speed test
-// measures it). Expects the view (group 1); its output is group 2.
+// measures it); with a thin lens each pixel's ray leaves its own random point of the aperture (as
+// the path tracer's do), so they are less coherent. Expects the view (group 1); its output is group 2.
 
 #import view/bindings
 
@@ -10,5 +11,7 @@ fn generate_primary_rays(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;
   }
-  rays[id.y * view.image_size.x + id.x] = camera_ray(vec2f(id.xy) + 0.5);
+  let pixel_index = id.y * view.image_size.x + id.x;
+  var rng = rng_seed(pixel_index, 0u, 0u);
+  rays[pixel_index] = camera_sample_ray(vec2f(id.xy) + 0.5, &rng);
 }
