@@ -1,5 +1,5 @@
 /**
- * A square grid of gold spheres on a dark floor under a clear sky, shot low along a diagonal through
+ * A square grid of gold spheres on a pale stone floor under a clear sky, shot low along a diagonal through
  * a wide-open thin lens: the sphere in focus is sharp, the rows before and behind it melt, and every
  * sphere mirrors the sky and its neighbours. A depth-of-field study.
  */
@@ -29,7 +29,8 @@ export function goldenGridScene(): Scene {
     name: 'golden-grid',
     meshes,
     instances: placeEachOnce(meshes),
-    materials: [diffuse('floor', [0.12, 0.12, 0.13]), metallicRoughness('gold', { baseColor: GOLD, metallic: 1, roughness: 0.15 })],
+    // A pale floor: the spheres mirror it, and a dark one made the gold look olive (SwiftShader render).
+    materials: [diffuse('floor', [0.5, 0.47, 0.42]), metallicRoughness('gold', { baseColor: GOLD, metallic: 1, roughness: 0.15 })],
     // A wide aperture (radius 0.15 at a focus distance of about 5: f/2-like blur for a 35 mm-ish view).
     camera: lookAt([6.2, 1.6, 6.2], [-0.5, 0.1, -0.5], 32, { apertureRadius: 0.15, focusOn }, DAYLIGHT_EXPOSURE_STOPS),
     environment: { kind: 'sky', sunElevationDeg: 40, sunAzimuthDeg: 150, turbidity: 3, groundAlbedo: 0.3, intensity: 1 },

@@ -53,7 +53,8 @@ export function hexGridScene(): Scene {
     meshes,
     instances: placeEachOnce(meshes),
     materials,
-    camera: lookAt([0.8, 1.3, 9.5], [0, 0.2, 0], 30, { apertureRadius: 0.2, focusOn }),
+    // Looking down about 15°: the field fills the frame up to the horizon (a level view was half sky).
+    camera: lookAt([0.8, 2.6, 8.5], [0, 0, -1], 30, { apertureRadius: 0.2, focusOn }),
     environment: { kind: 'gradient', zenith: [0.45, 0.6, 0.95], horizon: [0.95, 0.95, 0.95], ground: [0.35, 0.33, 0.3] },
   };
 }

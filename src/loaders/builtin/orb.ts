@@ -1,7 +1,8 @@
 /**
  * A caustic study: a solid glass orb over a polished, checkered floor, lit by one small emissive
- * sphere up to the side in an almost dark room. The orb focuses the lamp into a bright spot on the
- * floor beyond it, the floor mirrors the orb, and the checks show the refraction through it. A path
+ * sphere high to the left in a dim room. The orb focuses the lamp into a bright spot on the floor to
+ * its right, inside its own shadow, where the camera sees it; the floor mirrors the orb, and the
+ * checks show the refraction through it. A path
  * tracer finds the caustic only by paths that leave the floor, pass through the glass and happen to
  * hit the lamp, so it is the slowest part of the image to converge: what the scene is for.
  */
@@ -11,11 +12,13 @@ import { metallicRoughness, type Material, type Scene, type Texture } from '../.
 import { lookAt, sphereMesh } from './sphere-mesh.ts';
 
 /**
- * The lamp: radius 0.3 at about 4.9 from the floor under the orb, so it subtends Ω ≈ π·0.3²/4.9²
- * ≈ 0.012 sr and gives E ≈ 120 · 0.012 ≈ 1.4 there; the floor's diffuse base (0.7) returns
- * Lo ≈ 0.7·1.4/π ≈ 0.3, mid-grey at exposure 0, and the caustic several times more.
+ * The lamp: radius 0.3 at about 4.9 from the floor under the orb, 45° up, so it subtends
+ * Ω ≈ π·0.3²/4.9² ≈ 0.012 sr and gives E ≈ 300 · 0.012 · cos 45° ≈ 2.5 there; the light tiles'
+ * diffuse base (0.7 × 0.72) returns Lo ≈ 0.5·2.5/π ≈ 0.4, mid-grey at exposure 0, and the caustic
+ * several times more. (A first version at 120, behind the orb, left the image dark: its shadow
+ * covered the foreground.)
  */
-export const ORB_LAMP_RADIANCE = 120;
+export const ORB_LAMP_RADIANCE = 300;
 const ORB_RADIUS = 1;
 
 /** Light and dark tiles, one texel each, sampled nearest. */
@@ -35,7 +38,7 @@ export function orbScene(): Scene {
     floorSquare('floor', 20, 20, 0),
     sphereMesh('orb and lamp', [
       { center: [0, ORB_RADIUS, 0], radius: ORB_RADIUS, material: 1 },
-      { center: [-2.5, 4, -1.5], radius: 0.3, material: 2 },
+      { center: [-3.5, 3.5, 0], radius: 0.3, material: 2 },
     ]),
   ];
   return {
@@ -44,8 +47,8 @@ export function orbScene(): Scene {
     instances: placeEachOnce(meshes),
     materials,
     textures: [checker()],
-    camera: lookAt([0.6, 1.9, 5.5], [0.2, 0.6, 0], 35),
+    camera: lookAt([0.4, 2.4, 5.5], [0.4, 0.6, 0], 35),
     // A faint fill so that what the lamp does not reach is dark grey, not black.
-    environment: { kind: 'constant', radiance: [0.02, 0.02, 0.025] },
+    environment: { kind: 'constant', radiance: [0.05, 0.05, 0.06] },
   };
 }

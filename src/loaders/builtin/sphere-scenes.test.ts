@@ -318,7 +318,8 @@ function expectFocusedOnASphere(scene: Scene, spheres: readonly WorldSphere[]): 
   const lens = scene.camera.lens!;
   expect(lens.apertureRadius).toBeGreaterThan(0);
   const f = normalize(scene.camera.forward);
-  const focused = spheres.filter((s) => Math.abs(dot(sub(s.center, scene.camera.position), f) - lens.focusDistance) < 1e-9);
+  // Centres are stored as float32: equal to 1e-5.
+  const focused = spheres.filter((s) => Math.abs(dot(sub(s.center, scene.camera.position), f) - lens.focusDistance) < 1e-5);
   expect(focused.length).toBeGreaterThan(0);
   expect(focused.some((s) => inView(scene, s.center))).toBe(true);
   // Shallow: the nearest and farthest spheres lie well off the plane in focus.
