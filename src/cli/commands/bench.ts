@@ -36,6 +36,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
+  if (renderer.settings.spectral) await renderer.enableSpectral();
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const s = prepared.bvh.stats;
   const report = {

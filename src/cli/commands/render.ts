@@ -52,6 +52,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   renderer.setCamera(cameraFromOptions(prepared.scene.camera, o.camera, o.fov));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   const s = renderer.settings;
+  if (s.spectral) await renderer.enableSpectral();
   const debug = s.debugView !== 'none';
   // A debug view that replaces the image needs no path tracing.
   const spp = debug && s.debugLayout === 'replace' ? 0 : o.spp;

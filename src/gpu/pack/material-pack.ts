@@ -7,6 +7,7 @@
  */
 import { LanternError } from '../../errors.ts';
 import { luminance, type Vec3 } from '../../math/vec3.ts';
+import { packDispersion, type Dispersion } from '../../scene/dispersion.ts';
 import { coverageOf, type Material, type MaterialKind, type Scene, type Texture, type TextureRef } from '../../scene/types.ts';
 import type { StructLayout } from '../wgsl/reflect.ts';
 import { StructArray } from './struct-array.ts';
@@ -20,6 +21,8 @@ export const MATERIAL_ALPHA_MASK = 1;
 export const MATERIAL_EMISSION_PANORAMA = 2;
 export const MATERIAL_ALPHA_BLEND = 4;
 export const MATERIAL_THIN_WALLED = 16;
+/** shaders/scene/types.wgsl DISPERSION_*, by position. */
+export const DISPERSION_LAWS = ['none', 'sellmeier', 'cauchy'] as const;
 export const TEXTURE_LINEAR = 1;
 export const TEXTURE_BILINEAR = 2;
 export const TEXTURE_UV1 = 4;
@@ -154,6 +157,15 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
   const base = v3('base_color'), emission = v3('emission'), mean = f32('emission_texture_mean');
   const metallic = f32('metallic'), roughness = f32('roughness'), ior = f32('ior'), transmission = f32('transmission'), specular = f32('specular');
   const specularColor = v3('specular_color'), absorption = v3('absorption'), normalScale = f32('normal_scale');
+  const dispersionLaw = u32('dispersion_law'), dispersionScale = f32('dispersion_scale'), dispersionB = v3('dispersion_b'), dispersionC = v3('dispersion_c');
+  const writeDispersion = (i: number, ior: number, d: Dispersion | undefined) => {
+    if (!d) return;
+    const p = packDispersion(ior, d);
+    dispersionLaw(i, DISPERSION_LAWS.indexOf(p.law));
+    dispersionScale(i, p.scale);
+    dispersionB(i, ...p.b);
+    dispersionC(i, ...p.c);
+  };
   const repeats = f32('panorama_repeats'), horizon = f32('panorama_horizon_v'), vPerRadian = f32('panorama_v_per_radian');
   const textureFields = ['base_color_texture', 'emission_texture', 'metallic_roughness_texture', 'specular_texture', 'specular_color_texture', 'transmission_texture', 'normal_texture'];
   const textureWriters = new Map(textureFields.map((f) => [f, u32(f)]));
@@ -196,11 +208,14 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
         specularColor(i, ...m.specularColor);
         absorption(i, ...absorptionOf(m.attenuationColor, m.attenuationDistance));
         if (!(m.thickness > 0)) f |= MATERIAL_THIN_WALLED;
+        // KHR_materials_dispersion acts on volumetric refraction only: without it there is nothing to disperse.
+        if (m.thickness > 0 && m.transmission > 0) writeDispersion(i, m.ior, m.dispersion);
         break;
       case 'dielectric':
         base(i, ...m.tint);
         roughness(i, m.roughness);
         ior(i, m.ior);
+        writeDispersion(i, m.ior, m.dispersion);
         transmission(i, 1);
         absorption(i, ...absorptionOf(m.attenuationColor, m.attenuationDistance));
         break;
