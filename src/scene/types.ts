@@ -121,6 +121,13 @@ export interface DiffuseMaterial extends MaterialBase {
   readonly albedo: Vec3;
   /** Multiplies albedo (sRGB; its alpha is the coverage for 'mask' and 'blend'). */
   readonly albedoTexture?: TextureRef;
+  /**
+   * A convergence aid for flat scenes (the prism): scatter only into directions perpendicular to this
+   * world-space unit vector (the normal of the scene's plane), cosine-weighted on that half circle,
+   * with albedo `albedo`. A delta lobe across the plane: lights are found by scattered rays alone.
+   * Not a physical material; a screen lit through glass converges where a Lambertian one would not.
+   */
+  readonly scatterPlaneNormal?: Vec3;
 }
 
 /**

@@ -24,6 +24,7 @@ export function validateScene(scene: Scene): void {
     switch (m.kind) {
       case 'diffuse':
         if (!unitVec(m.albedo)) fail(`${where} has albedo ${m.albedo.join(', ')} outside [0, 1]`);
+        if (m.scatterPlaneNormal && !(isFiniteVec3(m.scatterPlaneNormal) && Math.abs(length(m.scatterPlaneNormal) - 1) < 1e-4)) fail(`${where} has a scatter-plane normal that is not a unit vector`);
         break;
       case 'metallic-roughness':
         if (!unitVec(m.baseColor)) fail(`${where} has base colour ${m.baseColor.join(', ')} outside [0, 1]`);

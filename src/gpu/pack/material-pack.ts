@@ -21,6 +21,7 @@ export const MATERIAL_ALPHA_MASK = 1;
 export const MATERIAL_EMISSION_PANORAMA = 2;
 export const MATERIAL_ALPHA_BLEND = 4;
 export const MATERIAL_THIN_WALLED = 16;
+export const MATERIAL_SCATTER_IN_PLANE = 32;
 /** shaders/scene/types.wgsl DISPERSION_*, by position. */
 export const DISPERSION_LAWS = ['none', 'sellmeier', 'cauchy'] as const;
 export const TEXTURE_LINEAR = 1;
@@ -166,6 +167,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     dispersionB(i, ...p.b);
     dispersionC(i, ...p.c);
   };
+  const scatterPlane = v3('scatter_plane_normal');
   const repeats = f32('panorama_repeats'), horizon = f32('panorama_horizon_v'), vPerRadian = f32('panorama_v_per_radian');
   const textureFields = ['base_color_texture', 'emission_texture', 'metallic_roughness_texture', 'specular_texture', 'specular_color_texture', 'transmission_texture', 'normal_texture'];
   const textureWriters = new Map(textureFields.map((f) => [f, u32(f)]));
@@ -197,6 +199,10 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     switch (m.kind) {
       case 'diffuse':
         base(i, ...m.albedo);
+        if (m.scatterPlaneNormal) {
+          f |= MATERIAL_SCATTER_IN_PLANE;
+          scatterPlane(i, ...m.scatterPlaneNormal);
+        }
         break;
       case 'metallic-roughness':
         base(i, ...m.baseColor);
@@ -222,7 +228,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
       case 'emissive':
         break;
     }
-    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture) general = true;
+    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture || (m.kind === 'diffuse' && m.scatterPlaneNormal)) general = true;
     flags(i, f);
   });
 

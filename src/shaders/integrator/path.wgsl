@@ -192,6 +192,19 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       last_bsdf_pdf = cosine_hemisphere_pdf(dot(wi, ns));
       throughput *= lift(albedo);
       ray = Ray(origin, 0.0, wi, T_MISS);
+    } else if ((material.flags & MATERIAL_SCATTER_IN_PLANE) != 0u) {
+      // In-plane scattering (the prism's screen): f = albedo/2 per radian on the half circle of the
+      // plane ⟂ p facing the ray, sampled ∝ cos φ (pdf cos φ / 2), so the weight is the albedo. A delta
+      // across the plane: no light sampling, and emitters it finds count in full.
+      let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
+      let ng = facing * surface.geometric_normal;
+      let p = material.scatter_plane_normal;
+      let n_in = normalize(ng - dot(ng, p) * p);
+      let phi = asin(2.0 * rng_next_f32(rng) - 1.0);
+      let wi = cos(phi) * n_in + sin(phi) * cross(p, n_in);
+      throughput *= lift(material_albedo(material, surface.uv).rgb);
+      after_delta = true;
+      ray = Ray(offset_ray_origin(surface.position, ng), 0.0, wi, T_MISS);
     } else {
       var bsdf = material_bsdf(material, surface.uv);
       if (SPECTRAL && material_is_dispersive(material)) {

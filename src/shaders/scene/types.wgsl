@@ -94,6 +94,8 @@ struct Material {
   dispersion_b: vec3f,
   // Sellmeier C₁, C₂, C₃ in µm².
   dispersion_c: vec3f,
+  // MATERIAL_SCATTER_IN_PLANE: the world-space unit normal of the plane scattered light stays in.
+  scatter_plane_normal: vec3f,
 }
 
 // Material kinds, in the order of scene/types.ts MaterialKind (renderer/ mirrors them by name).
@@ -115,6 +117,8 @@ const MATERIAL_EMISSION_PANORAMA: u32 = 2u;
 const MATERIAL_ALPHA_BLEND: u32 = 4u;
 // Transmission does not bend rays (glTF transmission without a volume).
 const MATERIAL_THIN_WALLED: u32 = 16u;
+// Scatters only in the plane perpendicular to scatter_plane_normal (scene/types.ts DiffuseMaterial.scatterPlaneNormal).
+const MATERIAL_SCATTER_IN_PLANE: u32 = 32u;
 
 // A material's use of one texture: where the texture lies in its atlas, how it is stored, and the
 // uv transform (KHR_texture_transform) applied first.
