@@ -44,6 +44,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     triangles: prepared.triangles.count,
     lights: prepared.packed.counts.lights,
     loadMs,
+    spectral: renderer.settings.spectral,
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
     ...result,
   };
@@ -61,7 +62,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
       `  BVH build       ${f(s.buildMs)} ms: ${s.nodeCount.toLocaleString('en-US')} nodes, depth ${s.maxDepth}, SAH cost ${f(s.sahCost, 2)}`,
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,
       `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms)`,
-      `  path tracing    ${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`,
+      `  path tracing    ${report.spectral ? '(spectral) ' : ''}${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`,
     ].join('\n'),
   );
 }
