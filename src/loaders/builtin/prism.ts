@@ -1,24 +1,27 @@
 /**
- * The prism: Newton's experiment. A narrow beam of white light leaves a black collimator tube (an
- * emissive strip at its far end), crosses an equilateral prism of dense flint (Schott SF11, ior 1.7847)
- * at the minimum deviation of 589.3 nm, and falls on a screen 30 cm away, which the camera looks at
- * square-on. In spectral mode the screen shows a spectrum, red (bent least) on the image's right, blue
- * on its left; RGB mode, which ignores dispersion, shows one white band at the 589.3 nm position.
- * Units are centimetres; the scene is flat (the plane y = 0 holds every ray that matters) and extruded
- * ±5 cm in y.
+ * The prism: Newton's experiment. A narrow beam of white light leaves a black lamp box through a slit
+ * (an emissive strip at the box's back), crosses an equilateral prism of dense flint (Schott SF11,
+ * ior 1.7847 at 589.3 nm) at the minimum deviation of 589.3 nm, and falls on a screen 20 cm away, which
+ * the camera looks at square-on. In spectral mode the screen shows a spectrum, red (bent least) on the
+ * image's right, blue on its left, 400–700 nm over ~4 cm; RGB mode, which ignores dispersion, shows one
+ * white band where 589.3 nm lands. Units are centimetres; the scene is flat (the plane y = 0 holds
+ * every ray that matters) and extruded ±5 cm in y. The prism's base is blackened.
  *
  * Layout (top view, the xz plane; 2D points (u, v) are 3D (x = u, z = v)): prism base from (−3, 0) to
  * (3, 0), apex (0, 3√3); the beam enters the left face at its middle, travels parallel to the base
  * inside (minimum deviation for 589.3 nm) and leaves the right face toward the screen.
+ * screenPosition(λ) is where the beam's axis lands, from Snell's law and the Sellmeier law: the oracle
+ * of tests/gpu/spectral.test.ts.
  *
  * Convergence aid: the screen scatters only within the scene's plane (DiffuseMaterial.scatterPlaneNormal
  * = +y). A camera path reaches the light only by refraction (no light sample passes through glass), so
  * a Lambertian screen finds the beam only when its random direction falls, in two dimensions, into the
- * collimator's small acceptance; in-plane scattering makes that a one-dimensional target, and keeps
- * every ray in the plane, where the prism's deviation is the textbook one (rays tilted out of the plane
- * see a larger effective index and smear the spectrum). Measured (tests/gpu/spectral.test.ts, 64×32,
- * 64 spp, spectral): relative standard error of the spectrum's total brightness with the in-plane
- * screen vs a Lambertian one: see PRISM_CONVERGENCE_NOTE.
+ * slit's small acceptance; in-plane scattering makes that a one-dimensional target, and keeps every
+ * ray in the plane, where the prism's deviation is the textbook one (rays tilted out of the plane see
+ * a larger effective index and smear the spectrum). Measured (tests/gpu/spectral.test.ts, spectral mode,
+ * 48 × 4 pixels across the spectrum, seed 11): the relative standard error of the spectrum's total
+ * brightness at 1024 spp is 0.081 with the in-plane screen and 0.267 with a Lambertian one (its 256-spp
+ * error scaled to 1024): 3.3× less noise, i.e. the Lambertian screen needs ~11× the samples.
  */
 import type { Vec3 } from '../../math/vec3.ts';
 import { MeshBuilder } from '../../scene/builder.ts';
@@ -83,6 +86,25 @@ export function prismExit(n: number, offset = 0): { point: V2; direction: V2 } |
   return out && { point: exitPoint, direction: out };
 }
 
+/** Unpolarized Fresnel reflectance for incidence cosine cosI going from index n1 into n2. */
+function fresnel(cosI: number, n1: number, n2: number): number {
+  const sinT = (n1 / n2) * Math.sqrt(Math.max(0, 1 - cosI * cosI));
+  if (sinT >= 1) return 1;
+  const cosT = Math.sqrt(1 - sinT * sinT);
+  const rs = (n1 * cosI - n2 * cosT) / (n1 * cosI + n2 * cosT);
+  const rp = (n1 * cosT - n2 * cosI) / (n1 * cosT + n2 * cosI);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+/** The fraction of the beam's axis ray at index n that crosses both faces (Fresnel at each). */
+export function prismTransmittance(n: number): number {
+  const inside = refract(BEAM_DIRECTION, LEFT_NORMAL, 1 / n);
+  if (!inside) return 0;
+  const t1 = 1 - fresnel(Math.abs(dot(BEAM_DIRECTION, LEFT_NORMAL)), 1, n);
+  const t2 = 1 - fresnel(Math.abs(dot(inside, RIGHT_NORMAL)), n, 1);
+  return t1 * t2;
+}
+
 /** Deviation (radians) of the beam for index n: the angle from its incoming to its outgoing direction. */
 export function prismDeviation(n: number): number {
   const out = prismExit(n)!.direction;
@@ -90,8 +112,8 @@ export function prismDeviation(n: number): number {
 }
 
 const REFERENCE_EXIT = prismExit(PRISM_IOR)!;
-/** The screen: perpendicular to the 589.3 nm ray, 30 cm from where it leaves the prism; 16 × 8 cm. */
-export const SCREEN_DISTANCE = 30;
+/** The screen: perpendicular to the 589.3 nm ray, 20 cm from where it leaves the prism; 16 × 8 cm. */
+export const SCREEN_DISTANCE = 20;
 export const SCREEN_CENTER: V2 = add(REFERENCE_EXIT.point, scale(REFERENCE_EXIT.direction, SCREEN_DISTANCE));
 /** The screen's right as the camera sees it (camera right = forward × up; forward = the 589.3 nm ray). */
 export const SCREEN_RIGHT: V2 = perp(REFERENCE_EXIT.direction);
@@ -112,13 +134,19 @@ export function screenPosition(lambdaNm: number, offset = 0): number | undefined
 }
 
 /**
- * The collimator: a black tube 0.6 cm wide and 24 cm long whose far end emits, so the beam diverges
- * by at most 2 · 0.6/24 = 0.05 rad (its spot on the screen blurs by ~2 cm; 400–700 nm spread over ~5 cm).
+ * The lamp: a black box whose front is a slit 0.6 cm wide, 3 cm before the prism face, and whose back,
+ * 40 cm behind the slit, holds an emitting strip 1.6 cm wide. The beam through the slit diverges by
+ * (1.6 + 0.6)/40 = 0.055 rad at most: on the screen each wavelength's band is ~1.7 cm wide, and the
+ * spectrum from 400 to 700 nm spreads over ~5 cm. The strip is as wide as it can be without making the
+ * slit's acceptance, seen from the screen, any wider (0.6/23 rad): a camera path from the screen
+ * finds the light as often as this resolution allows.
  */
-export const COLLIMATOR_WIDTH = 0.6;
-export const COLLIMATOR_LENGTH = 24;
-/** Gap between the tube's mouth and the prism face, along the beam. */
-const COLLIMATOR_GAP = 4;
+export const SLIT_WIDTH = 0.6;
+export const LAMP_LENGTH = 40;
+export const EMITTER_WIDTH = 1.6;
+const LAMP_HALF_WIDTH = 1.2;
+/** Gap between the slit and the prism face, along the beam. */
+const SLIT_GAP = 3;
 /** Radiance of the emitting strip (equal-energy white). */
 export const PRISM_LIGHT_RADIANCE = 400;
 
@@ -149,26 +177,28 @@ export function prismScene(options: PrismOptions = {}): Scene {
   b.triangle(glassId, at(tri[0], h), at(tri[2], h), at(tri[1], h));
   for (let i = 0; i < 3; i++) {
     const p = tri[i]!, q = tri[(i + 1) % 3]!;
-    b.quad(glassId, at(p, -h), at(p, h), at(q, h), at(q, -h));
+    // The base (i = 0) is blackened, as in spectroscopes: light reflected inside leaves no ghost spectra.
+    b.quad(i === 0 ? black : glassId, at(p, -h), at(p, h), at(q, h), at(q, -h));
   }
 
-  // The collimator: the strip emits toward the prism from the tube's far end; two black walls.
+  // The lamp: the strip emits toward the slit from the back of a closed black box.
   const across = perp(BEAM_DIRECTION);
-  const mouth = sub(ENTRY, scale(BEAM_DIRECTION, COLLIMATOR_GAP));
-  const end = sub(mouth, scale(BEAM_DIRECTION, COLLIMATOR_LENGTH));
-  const w = COLLIMATOR_WIDTH / 2;
-  const endA = add(end, scale(across, -w)), endB = add(end, scale(across, w));
-  const mouthA = add(mouth, scale(across, -w)), mouthB = add(mouth, scale(across, w));
-  // Emitting side: (v1 − v0) × (v2 − v0) must point along the beam.
-  const emitter = [at(endB, -h), at(endA, -h), at(endA, h), at(endB, h)] as const;
+  const slit = sub(ENTRY, scale(BEAM_DIRECTION, SLIT_GAP));
+  const back = sub(slit, scale(BEAM_DIRECTION, LAMP_LENGTH));
+  const side = (p: V2, t: number): V2 => add(p, scale(across, t));
+  const wall = (a: V2, c: V2) => b.quad(black, at(a, -h), at(c, -h), at(c, h), at(a, h));
+  const H = LAMP_HALF_WIDTH;
+  wall(side(slit, SLIT_WIDTH / 2), side(slit, H));
+  wall(side(slit, -SLIT_WIDTH / 2), side(slit, -H));
+  wall(side(slit, H), side(back, H));
+  wall(side(slit, -H), side(back, -H));
+  wall(side(back, -H), side(back, H));
+  // The strip, just in front of the back wall; its emitting side, (v1 − v0) × (v2 − v0), along the beam.
+  const e = add(back, scale(BEAM_DIRECTION, 0.01));
+  const emitter = [at(side(e, EMITTER_WIDTH / 2), -h), at(side(e, -EMITTER_WIDTH / 2), -h), at(side(e, -EMITTER_WIDTH / 2), h), at(side(e, EMITTER_WIDTH / 2), h)] as const;
   const n = cross3(sub3(emitter[1], emitter[0]), sub3(emitter[2], emitter[0]));
   if (n[0] * BEAM_DIRECTION[0] + n[2] * BEAM_DIRECTION[1] > 0) b.quad(light, ...emitter);
   else b.quad(light, emitter[0], emitter[3], emitter[2], emitter[1]);
-  b.quad(black, at(endA, -h), at(mouthA, -h), at(mouthA, h), at(endA, h));
-  b.quad(black, at(endB, -h), at(mouthB, -h), at(mouthB, h), at(endB, h));
-  // The tube's back, behind the emitter, so nothing lights the room from there.
-  const back = sub(end, scale(BEAM_DIRECTION, 0.05));
-  b.quad(black, at(add(back, scale(across, -w)), -h), at(add(back, scale(across, w)), -h), at(add(back, scale(across, w)), h), at(add(back, scale(across, -w)), h));
 
   // The screen.
   const sw = SCREEN_HALF_WIDTH, sh = SCREEN_HALF_HEIGHT;
@@ -181,8 +211,8 @@ export function prismScene(options: PrismOptions = {}): Scene {
     meshes,
     instances: placeEachOnce(meshes),
     materials: b.materials,
-    // The spectrum's middle (≈ 530 nm) in the middle of a 2:1 image 14 cm across.
-    camera: prismCamera(screenPosition(530)!, 7, 2),
+    // The spectrum's middle (≈ 530 nm) in the middle of a 2:1 image 10 cm across.
+    camera: prismCamera(screenPosition(530)!, 5, 2),
   };
 }
 
