@@ -423,6 +423,7 @@ export class Viewer {
     // Compile what the new settings need before the frame loop sees them.
     if (this.renderer && render.debugView !== 'none') await this.renderer.enableDebugViews();
     if (this.renderer && isRealTime(render)) await this.renderer.enableRealTime();
+    if (this.renderer && render.spectral) await this.renderer.enableSpectral();
     this.settings = next;
     this.legendAt = 0;
     const restart = ESTIMATE_SETTINGS.some((k) => render[k] !== before.render[k]) || isRealTime(render) !== isRealTime(before.render);
@@ -567,6 +568,7 @@ export class Viewer {
     await renderer.enablePresentation();
     if (this.settings.render.debugView !== 'none') await renderer.enableDebugViews();
     if (isRealTime(this.settings.render)) await renderer.enableRealTime();
+    if (this.settings.render.spectral) await renderer.enableSpectral();
     this.realTimeFrames = 0;
     renderer.updateSettings(this.settings.render);
     this.gpu = gpu;

@@ -39,8 +39,8 @@ export class PathTraceFramePass {
     return new PathTraceFramePass(kernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
   }
 
-  prepare(features: SceneFeatures): Promise<void> {
-    return this.kernels.prepare(features);
+  prepare(features: SceneFeatures, spectral = false): Promise<void> {
+    return this.kernels.prepare(features, spectral);
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
@@ -56,7 +56,7 @@ export class PathTraceFramePass {
     this.params.write(pathTraceParams(d));
     this.frame.write({ previous_camera: cameraUniform(previousCamera, view.width / view.height) });
     const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer, guide: target.guide, ray_counters: target.rayCounters });
-    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.gbuffer, targets, d.tile, timer);
+    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.gbuffer, targets, d.tile, d.spectral ?? false, timer);
   }
 
   destroy(): void {

@@ -52,6 +52,8 @@ export interface PathTraceDispatch {
   readonly lightSampling: LightSampling;
   /** The torch at the camera, if any. */
   readonly torch?: Torch;
+  /** Trace four wavelengths per path (the SPECTRAL variant of lib/spectrum.wgsl; prepare it first). */
+  readonly spectral?: boolean;
 }
 
 /** The buffers the path tracer writes. */
@@ -66,8 +68,11 @@ export interface PathTraceTarget {
  * The scene variants of a tracing entry point (shaders/passes/path-trace or an entry point that
  * imports it) with their bind groups cached per kernel and resource: each pipeline has its own
  * layouts. Group 0 is the scene, 1 the view, 2 the pass's own, keyed by one of its buffers.
+ * Spectral mode is a second set of the same variants compiled with SPECTRAL (lib/spectrum.wgsl),
+ * made only once something prepares it, so RGB rendering neither compiles nor runs any of it.
  */
 export class TracingKernels {
+  private spectralKernels?: SceneKernels;
   private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
   private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
@@ -102,14 +107,21 @@ export class TracingKernels {
     return this.active?.scene === scene;
   }
 
-  /** Compiles the variant a scene with these features needs (Renderer.setScene awaits it). */
-  prepare(features: SceneFeatures): Promise<void> {
-    return this.kernels.prepare(features);
+  /** Compiles the variant a scene with these features needs (Renderer.setScene awaits it), in RGB or spectral mode. */
+  prepare(features: SceneFeatures, spectral = false): Promise<void> {
+    return this.variants(spectral).prepare(features);
+  }
+
+  private variants(spectral: boolean): SceneKernels {
+    if (!spectral) return this.kernels;
+    this.spectralKernels ??= new SceneKernels(this.device, this.base, TRACING_FEATURES, { ...this.extraConstants, SPECTRAL: 1 });
+    return this.spectralKernels;
   }
 
   /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
-  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, timer?: GpuTimer): void {
-    const kernel = this.active?.scene === scene ? this.active.kernel : this.kernels.get(scene.features);
+  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, spectral: boolean, timer?: GpuTimer): void {
+    // Specialised kernels are compiled in RGB: spectral dispatches use the generic spectral variants.
+    const kernel = !spectral && this.active?.scene === scene ? this.active.kernel : this.variants(spectral).get(scene.features);
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     kernel.dispatch(
       pass,
@@ -136,15 +148,15 @@ export class PathTracePass {
     return new PathTracePass(await TracingKernels.create(device, MODULE, 'path_trace'), new UniformParams(device, MODULE));
   }
 
-  prepare(features: SceneFeatures): Promise<void> {
-    return this.kernels.prepare(features);
+  prepare(features: SceneFeatures, spectral = false): Promise<void> {
+    return this.kernels.prepare(features, spectral);
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
   encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
     this.params.write(pathTraceParams(d));
     const targets = () => ({ params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters });
-    this.kernels.dispatch(encoder, 'path trace', scene, view, target.accumulation, targets, d.tile, timer);
+    this.kernels.dispatch(encoder, d.spectral ? 'path trace (spectral)' : 'path trace', scene, view, target.accumulation, targets, d.tile, d.spectral ?? false, timer);
   }
 
   destroy(): void {

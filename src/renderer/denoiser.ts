@@ -91,8 +91,8 @@ export class Denoiser {
   }
 
   /** Compiles the frame path tracer's variant for a scene with these features. */
-  prepare(features: SceneFeatures): Promise<void> {
-    return this.frame.prepare(features);
+  prepare(features: SceneFeatures, spectral = false): Promise<void> {
+    return this.frame.prepare(features, spectral);
   }
 
   /** The frame path tracer's kernels (the renderer specialises them with the progressive ones). */
@@ -119,7 +119,7 @@ export class Denoiser {
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
     const still = sameCamera(previousCamera, r.camera);
-    const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex: this.sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, ...(r.torch ? { torch: r.torch } : {}) };
+    const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex: this.sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
     const target = { frameRadiance: b.frameRadiance, gbuffer: b.gbuffers[this.parity]!, guide: b.guide, rayCounters: r.rayCounters };
     this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer);
 

@@ -120,6 +120,8 @@ export class Renderer {
   private samples = 0;
   private epoch = 0;
   private denoiser?: Denoiser;
+  /** Whether the spectral variants are compiled for each scene (enableSpectral). */
+  private spectralEnabled = false;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
   /** Specialisation (see requestSpecialisation): bumped by every edit, so a compile that an edit overtook is dropped. */
@@ -207,7 +209,10 @@ export class Renderer {
   /** Compiles what the scene needs, then uploads it and frees the previous one (a failure leaves the old scene). */
   private async upload(prepared: PreparedScene): Promise<void> {
     const features = prepared.packed.features;
-    await Promise.all([this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features)]);
+    await Promise.all([
+      this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
+      ...(this.spectralEnabled ? [this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)] : []),
+    ]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
     this.invalidateSpecialisation();
     this.resources?.destroy();
@@ -498,10 +503,11 @@ export class Renderer {
     const { resources, targets } = this.ready();
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
     const s = this.settingsValue;
+    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, torch };
+      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, torch, spectral: s.spectral };
       this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
@@ -510,11 +516,22 @@ export class Renderer {
     this.shown = 'accumulation';
   }
 
+  /**
+   * Compiles the spectral variants of the path tracers (settings.spectral) for this and every later
+   * scene. RGB rendering never compiles them; call this before rendering with `spectral` on.
+   */
+  async enableSpectral(): Promise<void> {
+    this.spectralEnabled = true;
+    if (!this.prepared) return;
+    const features = this.prepared.packed.features;
+    await Promise.all([this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)]);
+  }
+
   /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output). */
   async enableRealTime(): Promise<void> {
     const created = !this.denoiser;
     this.denoiser ??= await Denoiser.create(this.device);
-    if (this.prepared) await this.denoiser.prepare(this.prepared.packed.features);
+    if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
     // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
     // frame kernel): specialise again with it.
     if (created) this.invalidateSpecialisation();
@@ -531,6 +548,7 @@ export class Renderer {
     if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
     const s = this.settingsValue;
+    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     const encoder = this.device.createCommandEncoder({ label: 'real-time frame' });
     this.denoiser.encodeFrame(encoder, {

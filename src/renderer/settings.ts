@@ -49,6 +49,10 @@ export const RENDER_SETTINGS = {
     cli: { flag: '--exposure', argument: '<stops>' }, link: 'exposure', restarts: false,
     panel: { folder: 'render', label: 'exposure (stops)', step: 0.1, slider: [-8, 8] },
   }),
+  spectral: boolean({
+    name: 'spectral', description: 'spectral rendering: four wavelengths per path (hero wavelength), RGB lifted to spectra, glass disperses (docs/spectral.md)', words: ['0', '1'], default: false,
+    cli: { flag: '--spectral', switch: true }, link: 'spectral', restarts: true, panel: { folder: 'render', label: 'spectral' },
+  }),
   seed: integer({
     name: 'seed', description: 'seed of every random stream (same seed, scene and settings: same image)', min: 0, max: 0xffffffff, default: 1,
     cli: { flag: '--seed', argument: '<n>' }, restarts: true,

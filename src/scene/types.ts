@@ -11,10 +11,12 @@
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
+import type { Dispersion } from './dispersion.ts';
 import type { Environment } from './environment.ts';
 import type { WalkMap } from './walk-map.ts';
 
 export type { Environment, EnvironmentImage } from './environment.ts';
+export type { Dispersion } from './dispersion.ts';
 
 /**
  * How a texture's colour channels are stored: 'srgb' for colour (base colour, emission: decoded to
@@ -119,6 +121,13 @@ export interface DiffuseMaterial extends MaterialBase {
   readonly albedo: Vec3;
   /** Multiplies albedo (sRGB; its alpha is the coverage for 'mask' and 'blend'). */
   readonly albedoTexture?: TextureRef;
+  /**
+   * A convergence aid for flat scenes (the prism): scatter only into directions perpendicular to this
+   * world-space unit vector (the normal of the scene's plane), cosine-weighted on that half circle,
+   * with albedo `albedo`. A delta lobe across the plane: lights are found by scattered rays alone.
+   * Not a physical material; a screen lit through glass converges where a Lambertian one would not.
+   */
+  readonly scatterPlaneNormal?: Vec3;
 }
 
 /**
@@ -139,8 +148,13 @@ export interface MetallicRoughnessMaterial extends MaterialBase {
   readonly roughness: number;
   /** Linear; G multiplies roughness, B multiplies metallic. */
   readonly metallicRoughnessTexture?: TextureRef;
-  /** Default 1.5. */
+  /** Default 1.5. The index at 589.3 nm when `dispersion` is given. */
   readonly ior: number;
+  /**
+   * KHR_materials_dispersion: how the index varies with wavelength (scene/dispersion.ts), for volumetric
+   * transmission (thickness > 0). Only spectral rendering sees it; RGB rendering uses `ior`.
+   */
+  readonly dispersion?: Dispersion;
   /** KHR_materials_specular: strength of the dielectric specular layer (default 1). */
   readonly specular: number;
   /** Linear; A multiplies specular. */
@@ -166,7 +180,10 @@ export interface MetallicRoughnessMaterial extends MaterialBase {
 /** Glass: Fresnel reflection and refraction at a smooth (roughness 0) or rough interface. */
 export interface DielectricMaterial extends MaterialBase {
   readonly kind: 'dielectric';
+  /** Index of refraction (at 589.3 nm when `dispersion` is given). */
   readonly ior: number;
+  /** How the index varies with wavelength (scene/dispersion.ts; GLASSES names catalogue glasses). Spectral rendering only. */
+  readonly dispersion?: Dispersion;
   /** Perceptual roughness in [0, 1] (0: a perfect, delta interface). */
   readonly roughness: number;
   /** Transmission tint at the interface, linear RGB (1, 1, 1: clear). */

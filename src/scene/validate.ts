@@ -4,6 +4,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
+import { validateDispersion } from './dispersion.ts';
 import { lensProblem } from './lens.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
@@ -24,6 +25,7 @@ export function validateScene(scene: Scene): void {
     switch (m.kind) {
       case 'diffuse':
         if (!unitVec(m.albedo)) fail(`${where} has albedo ${m.albedo.join(', ')} outside [0, 1]`);
+        if (m.scatterPlaneNormal && !(isFiniteVec3(m.scatterPlaneNormal) && Math.abs(length(m.scatterPlaneNormal) - 1) < 1e-4)) fail(`${where} has a scatter-plane normal that is not a unit vector`);
         break;
       case 'metallic-roughness':
         if (!unitVec(m.baseColor)) fail(`${where} has base colour ${m.baseColor.join(', ')} outside [0, 1]`);
@@ -31,11 +33,13 @@ export function validateScene(scene: Scene): void {
           if (!unit(v)) fail(`${where} has ${name} ${v} outside [0, 1]`);
         }
         if (!(m.ior >= 1 && m.ior < 10)) fail(`${where} has an index of refraction ${m.ior} outside [1, 10)`);
+        if (m.dispersion) validateDispersion(where, m.ior, m.dispersion);
         if (!isFiniteVec3(m.specularColor) || m.specularColor.some((c) => c < 0)) fail(`${where} has a negative or non-finite specular colour`);
         if (!unitVec(m.attenuationColor) || !(m.attenuationDistance > 0)) fail(`${where} has an invalid volume attenuation`);
         break;
       case 'dielectric':
         if (!(m.ior >= 1 && m.ior < 10)) fail(`${where} has an index of refraction ${m.ior} outside [1, 10)`);
+        if (m.dispersion) validateDispersion(where, m.ior, m.dispersion);
         if (!unit(m.roughness)) fail(`${where} has roughness ${m.roughness} outside [0, 1]`);
         if (!unitVec(m.tint)) fail(`${where} has tint ${m.tint.join(', ')} outside [0, 1]`);
         if (!unitVec(m.attenuationColor) || !(m.attenuationDistance > 0)) fail(`${where} has an invalid volume attenuation`);

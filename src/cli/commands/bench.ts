@@ -50,6 +50,8 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
+  if (renderer.settings.spectral) await renderer.enableSpectral();
+  if (renderer.settings.spectral && o.kernel === 'specialised') throw new LanternError('--kernel specialised compiles RGB kernels: spectral mode runs the generic ones', 'Drop --spectral or --kernel specialised');
   // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.
   const camera = cameraWithLens(prepared.scene.camera, o, { scene: prepared.scene, centreDistance: (c) => centreFocusDistance(prepared, c) });
   renderer.setCamera(camera);
@@ -63,6 +65,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     lights: prepared.packed.counts.lights,
     loadMs,
     ...(camera.lens ? { lens: camera.lens } : {}),
+    spectral: renderer.settings.spectral,
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
     kernel: { kind: o.kernel, ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, unrolled: specialisation.unrolled } : {}) },
     ...result,
@@ -83,7 +86,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,
       `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms)`,
       `  kernel          ${specialisation ? `specialised (${specialisation.description}), compiled in ${f(specialisation.compileMs, 0)} ms` : 'generic'}`,
-      `  path tracing    ${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`,
+      `  path tracing    ${report.spectral ? '(spectral) ' : ''}${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`,
     ].join('\n'),
   );
 }

@@ -63,6 +63,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   renderer.setCamera(cameraWithLens(camera, o, { scene: prepared.scene, ...(target ? { target } : {}), centreDistance: (c) => centreFocusDistance(prepared, c) }));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   const s = renderer.settings;
+  if (s.spectral) await renderer.enableSpectral();
   const debug = s.debugView !== 'none';
   // A debug view that replaces the image needs no path tracing.
   const spp = debug && s.debugLayout === 'replace' ? 0 : o.spp;

@@ -7,6 +7,7 @@
  */
 import { LanternError } from '../../errors.ts';
 import { luminance, type Vec3 } from '../../math/vec3.ts';
+import { packDispersion, type Dispersion } from '../../scene/dispersion.ts';
 import { coverageOf, type Material, type MaterialKind, type Scene, type Texture, type TextureRef } from '../../scene/types.ts';
 import type { StructLayout } from '../wgsl/reflect.ts';
 import { StructArray } from './struct-array.ts';
@@ -20,6 +21,9 @@ export const MATERIAL_ALPHA_MASK = 1;
 export const MATERIAL_EMISSION_PANORAMA = 2;
 export const MATERIAL_ALPHA_BLEND = 4;
 export const MATERIAL_THIN_WALLED = 16;
+export const MATERIAL_SCATTER_IN_PLANE = 32;
+/** shaders/scene/types.wgsl DISPERSION_*, by position. */
+export const DISPERSION_LAWS = ['none', 'sellmeier', 'cauchy'] as const;
 export const TEXTURE_LINEAR = 1;
 export const TEXTURE_BILINEAR = 2;
 export const TEXTURE_UV1 = 4;
@@ -161,7 +165,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     for (const { field, index } of materialRefs[i]!) textureWriters.get(field)!(i, index);
     mean(i, emissionMean[i]!);
     hasHitFilter.push(writeRecord(i, m));
-    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture) general = true;
+    if (m.kind === 'metallic-roughness' || m.kind === 'dielectric' || m.normalTexture || (m.kind === 'diffuse' && m.scatterPlaneNormal)) general = true;
   });
 
   return {
@@ -190,6 +194,16 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
   const base = v3('base_color'), emission = v3('emission');
   const metallic = f32('metallic'), roughness = f32('roughness'), ior = f32('ior'), transmission = f32('transmission'), specular = f32('specular');
   const specularColor = v3('specular_color'), absorption = v3('absorption'), normalScale = f32('normal_scale');
+  const dispersionLaw = u32('dispersion_law'), dispersionScale = f32('dispersion_scale'), dispersionB = v3('dispersion_b'), dispersionC = v3('dispersion_c');
+  const writeDispersion = (i: number, ior: number, d: Dispersion | undefined) => {
+    if (!d) return;
+    const p = packDispersion(ior, d);
+    dispersionLaw(i, DISPERSION_LAWS.indexOf(p.law));
+    dispersionScale(i, p.scale);
+    dispersionB(i, ...p.b);
+    dispersionC(i, ...p.c);
+  };
+  const scatterPlane = v3('scatter_plane_normal');
   const repeats = f32('panorama_repeats'), horizon = f32('panorama_horizon_v'), vPerRadian = f32('panorama_v_per_radian');
   return (i, m) => {
     kind(i, MATERIAL_KINDS.indexOf(m.kind));
@@ -212,6 +226,10 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
     switch (m.kind) {
       case 'diffuse':
         base(i, ...m.albedo);
+        if (m.scatterPlaneNormal) {
+          f |= MATERIAL_SCATTER_IN_PLANE;
+          scatterPlane(i, ...m.scatterPlaneNormal);
+        }
         break;
       case 'metallic-roughness':
         base(i, ...m.baseColor);
@@ -223,11 +241,14 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
         specularColor(i, ...m.specularColor);
         absorption(i, ...absorptionOf(m.attenuationColor, m.attenuationDistance));
         if (!(m.thickness > 0)) f |= MATERIAL_THIN_WALLED;
+        // KHR_materials_dispersion acts on volumetric refraction only: without it there is nothing to disperse.
+        if (m.thickness > 0 && m.transmission > 0) writeDispersion(i, m.ior, m.dispersion);
         break;
       case 'dielectric':
         base(i, ...m.tint);
         roughness(i, m.roughness);
         ior(i, m.ior);
+        writeDispersion(i, m.ior, m.dispersion);
         transmission(i, 1);
         absorption(i, ...absorptionOf(m.attenuationColor, m.attenuationDistance));
         break;

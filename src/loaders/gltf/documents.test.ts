@@ -3,7 +3,7 @@
  * with a known answer.
  */
 import { Document, WebIO, type Extension } from '@gltf-transform/core';
-import { EXTMeshGPUInstancing, EXTMeshoptCompression, KHRDracoMeshCompression, KHRLightsPunctual, KHRMaterialsEmissiveStrength, KHRMaterialsIOR, KHRMaterialsSpecular, KHRMaterialsTransmission, KHRMaterialsVolume, KHRMeshQuantization, KHRTextureTransform } from '@gltf-transform/extensions';
+import { EXTMeshGPUInstancing, EXTMeshoptCompression, KHRDracoMeshCompression, KHRLightsPunctual, KHRMaterialsDispersion, KHRMaterialsEmissiveStrength, KHRMaterialsIOR, KHRMaterialsSpecular, KHRMaterialsTransmission, KHRMaterialsVolume, KHRMeshQuantization, KHRTextureTransform } from '@gltf-transform/extensions';
 import { createEncoderModule } from 'draco3dgltf';
 import { MeshoptEncoder } from 'meshoptimizer/encoder';
 import { describe, expect, it } from 'vitest';
@@ -147,6 +147,16 @@ describe('glTF loader on built documents', () => {
     m.attenuationColor.forEach((c, i) => expect(c).toBeCloseTo([0.9, 0.5, 0.1][i]!, 6));
     // The material emits, so the model is lit and no sky is added.
     expect(s.environment).toBeUndefined();
+  });
+
+  it('reads KHR_materials_dispersion (20/V_d) as an Abbe number, and none when it is 0', async () => {
+    const { doc, prim } = oneMesh(QUAD, { indices: QUAD_INDICES });
+    const mat = doc.createMaterial('flint');
+    mat.setExtension('KHR_materials_dispersion', doc.createExtension(KHRMaterialsDispersion).createDispersion().setDispersion(0.5));
+    prim.setMaterial(mat);
+    expect(mr(await load(doc, [KHRMaterialsDispersion])).dispersion).toEqual({ kind: 'abbe', abbeNumber: 40 });
+    mat.setExtension('KHR_materials_dispersion', doc.createExtension(KHRMaterialsDispersion).createDispersion().setDispersion(0));
+    expect(mr(await load(doc, [KHRMaterialsDispersion])).dispersion).toBeUndefined();
   });
 
   it('gives a primitive without a material the spec’s default material', async () => {

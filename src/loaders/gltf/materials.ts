@@ -1,6 +1,6 @@
 /**
  * glTF materials → Lantern's 'metallic-roughness' kind, which was shaped after glTF's model
- * (glTF 2.0 Appendix B plus KHR_materials_ior, _specular, _transmission, _volume), so the mapping is
+ * (glTF 2.0 Appendix B plus KHR_materials_ior, _specular, _transmission, _volume, _dispersion), so the mapping is
  * one to one: factors as they are, textures as TextureRefs with their KHR_texture_transform.
  *
  * Left out on purpose: occlusionTexture (a path tracer computes occlusion), thickness textures
@@ -9,13 +9,14 @@
  * warning so a user knows why a model looks plainer than in a raster viewer.
  */
 import type { Material as GltfMaterial } from '@gltf-transform/core';
-import type { EmissiveStrength, IOR, Specular, Transmission, Volume } from '@gltf-transform/extensions';
+import type { Dispersion, EmissiveStrength, IOR, Specular, Transmission, Volume } from '@gltf-transform/extensions';
 import { metallicRoughness, type MetallicRoughnessMaterial, type NormalTextureRef } from '../../scene/types.ts';
 import type { TextureTable } from './textures.ts';
 import type { Warnings } from './warnings.ts';
 
 /** Extensions this file reads; any other material extension is reported as ignored. */
 const HANDLED = new Set([
+  'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_specular',
@@ -40,6 +41,8 @@ export function convertMaterial(m: GltfMaterial, index: number, textures: Textur
   const specular = m.getExtension<Specular>('KHR_materials_specular');
   const transmission = m.getExtension<Transmission>('KHR_materials_transmission');
   const volume = m.getExtension<Volume>('KHR_materials_volume');
+  // KHR_materials_dispersion stores 20/V_d (0: none); it acts on volumetric refraction only.
+  const dispersionFactor = m.getExtension<Dispersion>('KHR_materials_dispersion')?.getDispersion() ?? 0;
 
   for (const ext of m.listExtensions()) {
     const extName = ext.extensionName;
@@ -58,6 +61,7 @@ export function convertMaterial(m: GltfMaterial, index: number, textures: Textur
     specularTexture: specular ? textures.ref(specular.getSpecularTexture(), specular.getSpecularTextureInfo(), 'data', name) : undefined,
     specularColorTexture: specular ? textures.ref(specular.getSpecularColorTexture(), specular.getSpecularColorTextureInfo(), 'color', name) : undefined,
     transmissionTexture: transmission ? textures.ref(transmission.getTransmissionTexture(), transmission.getTransmissionTextureInfo(), 'data', name) : undefined,
+    dispersion: dispersionFactor > 0 ? { kind: 'abbe' as const, abbeNumber: 20 / dispersionFactor } : undefined,
   };
   const material: MetallicRoughnessMaterial = {
     kind: 'metallic-roughness',

@@ -1,7 +1,10 @@
 // The path integrator as a library: trace_path follows one camera path, adding emission met along the
 // way, next-event estimation on every light (scene/lights.wgsl) and on the torch, combined with
 // BSDF sampling (scene/bsdf.wgsl) by multiple importance sampling (power heuristic), with Russian
-// roulette from the fourth bounce on and Beer–Lambert absorption inside glass. The entry points
+// roulette from the fourth bounce on and Beer–Lambert absorption inside glass. A path's radiance and
+// throughput are four channels: RGB (and a spare 0) in RGB mode, four wavelengths in spectral mode
+// (lib/spectrum: hero wavelength + three companions; RGB values are lifted where they enter, and a
+// dispersive interface keeps only the hero). The entry points
 // (passes/path-trace, passes/path-trace-frame) call it; a new material kind is a case of the BSDF
 // module, not a change here. Follows Veach 1997, ch. 9, and pbrt-v4's PathIntegrator (§13.4).
 // Expects the scene (group 0); the caller passes the per-dispatch settings.
@@ -10,6 +13,7 @@
 #import lib/random
 #import lib/sampling
 #import lib/color
+#import lib/spectrum
 #import lib/ray-offset
 #import scene/bvh
 #import scene/surface
@@ -17,6 +21,7 @@
 #import scene/materials
 #import scene/environment
 #import scene/bsdf
+#import scene/dispersion
 #import scene/torch
 
 // The closed set of light-sampling strategies; the host's names live in renderer/settings.ts.
@@ -76,16 +81,27 @@ fn bsdf_hit_weight(bounce: u32, use_nee: bool, after_delta: bool, bsdf_pdf: f32,
   return power_heuristic(bsdf_pdf, light_pdf);
 }
 
+// The larger of the path's live channels (RGB mode: r, g, b; spectral: the four wavelengths).
+fn channels_max(c: vec4f) -> f32 {
+  let rgb = max(c.x, max(c.y, c.z));
+  return select(rgb, max(rgb, c.w), SPECTRAL);
+}
+
 fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathResult {
   var result = PathResult(vec3f(0.0), 0u, 0u);
+  if (SPECTRAL) {
+    spectrum_begin_path(rng_next_f32(rng));
+  }
+  // Radiance gathered so far, in the path's channels (channels_to_rgb turns it into RGB).
+  var radiance = vec4f(0.0);
   var ray = first_ray;
-  var throughput = vec3f(1.0);
+  var throughput = lift(vec3f(1.0));
   // Solid-angle density of the BSDF sample that produced `ray` (unused for the camera ray), and
   // whether it came from a delta lobe (then no light sample could have found what it hits).
   var last_bsdf_pdf = 0.0;
   var after_delta = false;
   // Absorption coefficient of the medium the ray travels in (inside glass with a volume).
-  var absorption = vec3f(0.0);
+  var absorption = vec4f(0.0);
   // The ray cone (texture level of detail): width at the ray's origin and spread angle.
   var cone_width = 0.0;
   var cone_spread = settings.pixel_spread;
@@ -98,16 +114,16 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
   for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
     let hit = trace_closest(ray);
     result.extension_rays += 1u;
-    if (SCENE_HAS_GENERAL_MATERIALS && any(absorption > vec3f(0.0))) {
+    if (SCENE_HAS_GENERAL_MATERIALS && any(absorption > vec4f(0.0))) {
       throughput *= exp(-absorption * min(hit.t, 1e30));
     }
     if (hit.triangle == NO_TRIANGLE) {
       if (SCENE_HAS_ENVIRONMENT) {
         var seen = environment_radiance(ray.direction) + sun_radiance(ray.direction);
         let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, environment_light_pdf(ray.direction));
-        result.radiance += throughput * seen * weight;
+        radiance += throughput * lift(seen) * weight;
         if (CAPTURE_PRIMARY && bounce == 0u) {
-          primary = PrimaryHit(vec3f(1.0), result.radiance);
+          primary = PrimaryHit(vec3f(1.0), channels_to_rgb(radiance));
         }
       }
       break;
@@ -126,10 +142,10 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
     let cos_emitter = -dot(surface.geometric_normal, ray.direction);
     if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
       let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
-      result.radiance += throughput * material_emission(material, surface.uv, ray.direction) * weight;
+      radiance += throughput * lift(material_emission(material, surface.uv, ray.direction)) * weight;
     }
     if (CAPTURE_PRIMARY && bounce == 0u) {
-      primary = PrimaryHit(material_albedo(material, surface.uv).rgb, result.radiance);
+      primary = PrimaryHit(material_albedo(material, surface.uv).rgb, channels_to_rgb(radiance));
     }
     if (bounce == settings.max_bounces || material.kind == MATERIAL_KIND_EMISSIVE) {
       break;
@@ -151,7 +167,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
           result.shadow_rays += 1u;
           if (!trace_any(Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
             let weight = select(power_heuristic(light.pdf, cosine_hemisphere_pdf(cos_surface)), 1.0, light.delta);
-            result.radiance += throughput * brdf * light.radiance * (cos_surface * weight / light.pdf);
+            radiance += throughput * lift(brdf) * lift(light.radiance) * (cos_surface * weight / light.pdf);
           }
         }
       }
@@ -163,7 +179,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
         if (cos_surface > 0.0 && dot(ng, torch.direction) > 0.0) {
           result.shadow_rays += 1u;
           if (!trace_any(Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-            result.radiance += throughput * brdf * torch.radiance * (cos_surface / torch.pdf);
+            radiance += throughput * lift(brdf) * lift(torch.radiance) * (cos_surface / torch.pdf);
           }
         }
       }
@@ -174,10 +190,29 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
         break;
       }
       last_bsdf_pdf = cosine_hemisphere_pdf(dot(wi, ns));
-      throughput *= albedo;
+      throughput *= lift(albedo);
       ray = Ray(origin, 0.0, wi, T_MISS);
+    } else if ((material.flags & MATERIAL_SCATTER_IN_PLANE) != 0u) {
+      // In-plane scattering (the prism's screen): f = albedo/2 per radian on the half circle of the
+      // plane ⟂ p facing the ray, sampled ∝ cos φ (pdf cos φ / 2), so the weight is the albedo. A delta
+      // across the plane: no light sampling, and emitters it finds count in full.
+      let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
+      let ng = facing * surface.geometric_normal;
+      let p = material.scatter_plane_normal;
+      let n_in = normalize(ng - dot(ng, p) * p);
+      let phi = asin(2.0 * rng_next_f32(rng) - 1.0);
+      let wi = cos(phi) * n_in + sin(phi) * cross(p, n_in);
+      throughput *= lift(material_albedo(material, surface.uv).rgb);
+      after_delta = true;
+      ray = Ray(spawn_point(surface, ng), 0.0, wi, T_MISS);
     } else {
-      let bsdf = material_bsdf(material, surface.uv);
+      var bsdf = material_bsdf(material, surface.uv);
+      if (SPECTRAL && material_is_dispersive(material)) {
+        // The interface bends each wavelength its own way: trace the hero's (before light sampling,
+        // which evaluates the BSDF too).
+        bsdf.ior = material_ior_at(material, path_wavelengths.lambda.x);
+        throughput = spectrum_terminate_secondary(throughput);
+      }
       let front = dot(surface.geometric_normal, ray.direction) < 0.0;
       var ng = surface.geometric_normal;
       var ns = normal_mapped(surface, hit, material);
@@ -206,7 +241,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
                 result.shadow_rays += 1u;
                 if (!trace_any(Ray(origin, 0.0, wi_world, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
                   let weight = select(power_heuristic(light.pdf, bsdf_pdf(bsdf, wo, wi)), 1.0, light.delta);
-                  result.radiance += throughput * f * light.radiance * (abs(wi.z) * weight / light.pdf);
+                  radiance += throughput * lift(f) * lift(light.radiance) * (abs(wi.z) * weight / light.pdf);
                 }
               }
             }
@@ -222,7 +257,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
               let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
               result.shadow_rays += 1u;
               if (!trace_any(Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-                result.radiance += throughput * f * torch.radiance * (abs(wi.z) / torch.pdf);
+                radiance += throughput * lift(f) * lift(torch.radiance) * (abs(wi.z) / torch.pdf);
               }
             }
           }
@@ -239,7 +274,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       if (side_g * s.wi.z <= 0.0) {
         break;
       }
-      throughput *= s.weight;
+      throughput *= lift(s.weight);
       last_bsdf_pdf = s.pdf;
       after_delta = s.delta;
       if (!s.delta) {
@@ -248,18 +283,19 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       }
       if (s.transmitted && (bsdf.thin_walled == 0u)) {
         // Crossing the interface: entering from the front puts the ray inside the volume.
-        absorption = select(vec3f(0.0), material.absorption, side_g < 0.0 && front);
+        absorption = select(vec4f(0.0), lift(material.absorption), side_g < 0.0 && front);
       }
       ray = Ray(spawn_point(surface, select(-ng, ng, side_g > 0.0)), 0.0, wi_world, T_MISS);
     }
 
     if (bounce + 1u >= ROULETTE_START_BOUNCE) {
-      let survive = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
+      let survive = min(channels_max(throughput), 0.95);
       if (rng_next_f32(rng) >= survive) {
         break;
       }
       throughput /= survive;
     }
   }
+  result.radiance = channels_to_rgb(radiance);
   return result;
 }

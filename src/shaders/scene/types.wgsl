@@ -93,6 +93,16 @@ struct Material {
   panorama_repeats: f32,
   panorama_horizon_v: f32,
   panorama_v_per_radian: f32,
+  // Dispersion (scene/dispersion.ts, shaders/scene/dispersion.wgsl): a DISPERSION_* law, and the scale
+  // of (n_law(λ) − 1) that puts n(589.3 nm) at `ior`. Read only by spectral mode.
+  dispersion_law: u32,
+  dispersion_scale: f32,
+  // Sellmeier B₁, B₂, B₃; Cauchy (A, B in µm², 0).
+  dispersion_b: vec3f,
+  // Sellmeier C₁, C₂, C₃ in µm².
+  dispersion_c: vec3f,
+  // MATERIAL_SCATTER_IN_PLANE: the world-space unit normal of the plane scattered light stays in.
+  scatter_plane_normal: vec3f,
 }
 
 // Material kinds, in the order of scene/types.ts MaterialKind (renderer/ mirrors them by name).
@@ -101,6 +111,12 @@ const MATERIAL_KIND_METALLIC_ROUGHNESS: u32 = 1u;
 const MATERIAL_KIND_DIELECTRIC: u32 = 2u;
 const MATERIAL_KIND_EMISSIVE: u32 = 3u;
 
+// Dispersion laws (gpu/pack/material-pack.ts DISPERSION_LAWS): none (n = ior at every wavelength),
+// Sellmeier n² = 1 + Σ Bᵢ λ²/(λ² − Cᵢ), Cauchy n = A + B/λ² (λ in µm).
+const DISPERSION_NONE: u32 = 0u;
+const DISPERSION_SELLMEIER: u32 = 1u;
+const DISPERSION_CAUCHY: u32 = 2u;
+
 const MATERIAL_ALPHA_MASK: u32 = 1u;
 // The emission texture is looked up by the viewing direction (a sky panorama), not by uv.
 const MATERIAL_EMISSION_PANORAMA: u32 = 2u;
@@ -108,6 +124,8 @@ const MATERIAL_EMISSION_PANORAMA: u32 = 2u;
 const MATERIAL_ALPHA_BLEND: u32 = 4u;
 // Transmission does not bend rays (glTF transmission without a volume).
 const MATERIAL_THIN_WALLED: u32 = 16u;
+// Scatters only in the plane perpendicular to scatter_plane_normal (scene/types.ts DiffuseMaterial.scatterPlaneNormal).
+const MATERIAL_SCATTER_IN_PLANE: u32 = 32u;
 
 // A material's use of one texture: where the texture lies in its atlas, how it is stored, and the
 // uv transform (KHR_texture_transform) applied first.
