@@ -3,7 +3,7 @@ import { expectLanternError } from '../expect-lantern-error.ts';
 import { builtinScene } from '../loaders/builtin/index.ts';
 import { prepareScene } from '../renderer/prepare.ts';
 import { PRIMITIVES_MODULE } from './pack/primitives-module.ts';
-import { declaredOverrides, materialKindsPresent, specialisedShader, specialiseScene, UNROLL_PRIMITIVE_LIMIT } from './specialisation.ts';
+import { declaredOverrides, materialKindsPresent, specialisedShader, specialiseScene, UNROLL_PRIMITIVE_LIMIT, unrollCost } from './specialisation.ts';
 
 const settings = { maxBounces: 5, lightSampling: 1 };
 
@@ -40,6 +40,12 @@ describe('SceneSpecialisation', () => {
     expect(specialiseScene(packed, 'c', settings, { unrollLimit: n - 1 }).unrolled).toBeUndefined();
     expect(specialiseScene(packed, 'c', settings, { unrollLimit: 0 }).unrolled).toBeUndefined();
     expect(specialiseScene(prepareScene(builtinScene('bvh-teaching')).packed, 'b', settings).unrolled).toBeUndefined();
+    // Capsules weigh more: caffeine's 59 primitives (29 capsules) stay in the BVH; the 5 spheres of 'spheres' unroll.
+    const caffeine = prepareScene(builtinScene('caffeine')).packed;
+    expect(caffeine.counts.triangles).toBeLessThanOrEqual(UNROLL_PRIMITIVE_LIMIT);
+    expect(unrollCost(caffeine.counts)).toBeGreaterThan(UNROLL_PRIMITIVE_LIMIT);
+    expect(specialiseScene(caffeine, 'caffeine', settings).unrolled).toBeUndefined();
+    expect(specialiseScene(prepareScene(builtinScene('spheres')).packed, 's', settings).unrolled).toBeDefined();
     expectLanternError(() => specialiseScene(packed, 'c', settings, { unrollLimit: -1 }), /unroll limit/);
     expectLanternError(() => specialiseScene(packed, 'c', { maxBounces: 1.5, lightSampling: 1 }), /max bounces/);
   });

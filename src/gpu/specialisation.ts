@@ -8,7 +8,7 @@
  *   (b) what uniforms hold but a frozen scene fixes: INLINED_MAX_BOUNCES, INLINED_LIGHT_SAMPLING
  *       (passes/path-trace.wgsl) and INLINED_LIGHT_COUNT (scene/lights.wgsl) become constants
  *       (a scene without lights loses light sampling altogether);
- *   (c) small scenes (at most `unrollLimit` primitives): scene/traversal-unrolled is linked in place
+ *   (c) small scenes (an unroll cost, UNROLL_COST per primitive kind, of at most `unrollLimit`): scene/traversal-unrolled is linked in place
  *       of scene/bvh, with the scene's primitives as constants in a generated module
  *       (gpu/pack/primitives-module.ts) and one intersection call per primitive: no BVH at all.
  *
@@ -30,6 +30,21 @@ import { SHADER_MODULES } from '../shaders/index.ts';
  * primitives. docs/perf.md records the measurements that place it.
  */
 export const UNROLL_PRIMITIVE_LIMIT = 64;
+
+/**
+ * What one primitive of each kind costs against the unroll limit: unrolled, every primitive is its
+ * own inlined intersection test, and a capsule's (a cylinder and two spheres) is several times a
+ * triangle's. Measured on an H200 (docs/perf.md): caffeine's 6 triangles, 24 spheres and 29
+ * capsules unrolled ran at 0.13× the BVH kernel after a 26 s compile, while 22 triangles (prism) or
+ * 5 spheres (spheres) ran 1.5–1.7× faster.
+ */
+export const UNROLL_COST = { triangle: 1, sphere: 2, capsule: 8 } as const;
+
+/** The unroll cost of a packed scene's primitives (UNROLL_COST). */
+export function unrollCost(counts: { readonly triangles: number; readonly spheres: number; readonly capsules: number }): number {
+  const triangles = counts.triangles - counts.spheres - counts.capsules;
+  return triangles * UNROLL_COST.triangle + counts.spheres * UNROLL_COST.sphere + counts.capsules * UNROLL_COST.capsule;
+}
 
 /** The module the unrolled traversal replaces, and its replacement. */
 const TRAVERSAL_MODULE = 'scene/bvh';
@@ -59,9 +74,18 @@ export interface SceneSpecialisation {
   readonly constants: Readonly<Record<string, number>>;
 }
 
+/** The independent parts of a specialisation, each of which can be left out (bench --specialise measures them one by one). */
+export const SPECIALISATION_PARTS = ['kinds', 'bounces', 'light-sampling', 'light-count', 'unroll'] as const;
+export type SpecialisationPart = (typeof SPECIALISATION_PARTS)[number];
+
+/** The parts applied unless told otherwise. */
+export const DEFAULT_SPECIALISATION_PARTS: readonly SpecialisationPart[] = SPECIALISATION_PARTS;
+
 export interface SpecialiseOptions {
-  /** Largest primitive count traced without a BVH (0: never). */
+  /** Largest unroll cost (unrollCost: triangles count 1, spheres and capsules more) traced without a BVH (0: never). */
   readonly unrollLimit?: number;
+  /** Which parts to apply (default: DEFAULT_SPECIALISATION_PARTS). */
+  readonly parts?: readonly SpecialisationPart[];
 }
 
 /** MATERIAL_KIND_* of shaders/scene/types.wgsl, in the order of scene/types.ts MaterialKind. */
@@ -86,14 +110,17 @@ export function specialiseScene(packed: PackedScene, sceneName: string, settings
   if (!Number.isInteger(settings.maxBounces) || settings.maxBounces < 0) throw new LanternError(`max bounces must be a whole number ≥ 0, not ${settings.maxBounces}`);
   const materialKinds = materialKindsPresent(packed);
   const primitiveCount = packed.counts.triangles;
+  const parts = new Set(options.parts ?? DEFAULT_SPECIALISATION_PARTS);
   const constants: Record<string, number> = {};
   for (const [name, constant] of Object.entries(FEATURE_CONSTANTS) as [keyof SceneFeatures, string][]) constants[constant] = packed.features[name] ? 1 : 0;
-  constants.SCENE_HAS_METALLIC_ROUGHNESS = materialKinds.metallicRoughness ? 1 : 0;
-  constants.SCENE_HAS_DIELECTRIC = materialKinds.dielectric ? 1 : 0;
-  constants.INLINED_MAX_BOUNCES = settings.maxBounces;
-  constants.INLINED_LIGHT_SAMPLING = settings.lightSampling;
-  constants.INLINED_LIGHT_COUNT = packed.counts.lights;
-  const unrolled = primitiveCount > 0 && primitiveCount <= limit ? primitivesModule(sceneLayouts().hot, packed.triangles_hot, primitiveCount, sceneName) : undefined;
+  if (parts.has('kinds')) {
+    constants.SCENE_HAS_METALLIC_ROUGHNESS = materialKinds.metallicRoughness ? 1 : 0;
+    constants.SCENE_HAS_DIELECTRIC = materialKinds.dielectric ? 1 : 0;
+  }
+  if (parts.has('bounces')) constants.INLINED_MAX_BOUNCES = settings.maxBounces;
+  if (parts.has('light-sampling')) constants.INLINED_LIGHT_SAMPLING = settings.lightSampling;
+  if (parts.has('light-count')) constants.INLINED_LIGHT_COUNT = packed.counts.lights;
+  const unrolled = parts.has('unroll') && primitiveCount > 0 && unrollCost(packed.counts) <= limit ? primitivesModule(sceneLayouts().hot, packed.triangles_hot, primitiveCount, sceneName) : undefined;
   return { sceneName, features: packed.features, materialKinds, settings, primitiveCount, ...(unrolled ? { unrolled } : {}), constants };
 }
 

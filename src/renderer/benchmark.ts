@@ -46,6 +46,9 @@ const median = (xs: number[]): number => {
   return s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2;
 };
 
+/** Wall time of path tracing run before any measurement, so the GPU is at its working clocks. */
+const WARM_UP_MS = 1000;
+
 /** Times `encode` `repeats` times (after a warm-up), one submit each; returns the median in ms. */
 async function timePasses(device: GPUDevice, timer: GpuTimer | undefined, repeats: number, encode: (encoder: GPUCommandEncoder, timer?: GpuTimer) => void): Promise<number> {
   const times: number[] = [];
@@ -78,6 +81,16 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
   const diffuseRays = buffer('diffuse rays', count * strides.ray);
   const diffuseHits = buffer('diffuse hits', count * strides.hit);
   try {
+    // A GPU lowers its clocks while it idles (a BVH build, a pipeline compile: the specialised
+    // kernel's takes seconds), and a few milliseconds of work do not bring them back: an H200
+    // measured 5.5× slower right after a compile. Keep it busy for a while before timing anything.
+    const warmUntil = performance.now() + WARM_UP_MS;
+    for (let i = 0; i < 1000 && performance.now() < warmUntil; i++) {
+      renderer.accumulate(1, [renderer.fullImage()]);
+      await renderer.finish();
+    }
+    renderer.resetAccumulation();
+
     let encoder = device.createCommandEncoder({ label: 'benchmark rays' });
     generate.encodePrimary(encoder, view, width, height, primaryRays);
     device.queue.submit([encoder.finish()]);

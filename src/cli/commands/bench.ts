@@ -6,7 +6,7 @@ import { mergeSettings } from '../../renderer/settings-schema.ts';
 import type { SettingEntry } from '../../renderer/settings-schema.ts';
 import { integerOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
 import type { KernelKind } from '../../renderer/renderer.ts';
-import { UNROLL_PRIMITIVE_LIMIT } from '../../gpu/specialisation.ts';
+import { SPECIALISATION_PARTS, UNROLL_PRIMITIVE_LIMIT, type SpecialisationPart } from '../../gpu/specialisation.ts';
 import { LanternError } from '../../errors.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
@@ -23,6 +23,7 @@ interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<
   json?: boolean;
   kernel: KernelKind;
   unrollLimit?: number;
+  specialise?: string;
 }
 
 /** The settings that change what path tracing costs: those that change the estimate. */
@@ -39,6 +40,7 @@ export function registerBench(program: Command, context: CliContext): void {
     'which path-tracing kernels to time; specialised reports their compile time too (the ray figures always use the BVH)',
   )
     .option('--unroll-limit <n>', `with --kernel specialised: trace scenes of at most n primitives without a BVH (default ${UNROLL_PRIMITIVE_LIMIT}; 0: never)`, integerOption('--unroll-limit', 0, 1_000_000))
+    .option('--specialise <parts>', `with --kernel specialised: the parts applied, comma-separated (${SPECIALISATION_PARTS.join(', ')}; default all)`)
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
@@ -55,7 +57,9 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.
   const camera = cameraWithLens(prepared.scene.camera, o, { scene: prepared.scene, centreDistance: (c) => centreFocusDistance(prepared, c) });
   renderer.setCamera(camera);
-  const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation(o.unrollLimit !== undefined ? { unrollLimit: o.unrollLimit } : {}) : undefined;
+  const parts = o.specialise?.split(',').map((p) => p.trim()).filter((p) => p !== '');
+  for (const p of parts ?? []) if (!(SPECIALISATION_PARTS as readonly string[]).includes(p)) throw new LanternError(`--specialise: unknown part '${p}'`, `Parts are: ${SPECIALISATION_PARTS.join(', ')}`);
+  const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation({ ...(o.unrollLimit !== undefined ? { unrollLimit: o.unrollLimit } : {}), ...(parts ? { parts: parts as SpecialisationPart[] } : {}) }) : undefined;
   if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const s = prepared.bvh.stats;
