@@ -28,7 +28,6 @@ export const BUILTIN_SCENES = {
   cornell: { description: 'the Cornell box, from the published measurements (mm)', make: cornellBox },
   furnace: { description: 'white furnace: every pixel converges to 5.0', make: whiteFurnace },
   'bvh-teaching': { description: 'BVH teaching room: separated cubes, a dense cluster and a diagonal slab', make: bvhTeaching },
-  prism: { description: 'a dense-flint prism splits a narrow beam of white light into a spectrum on a screen (render with --spectral)', make: () => prismScene() },
   materials: { description: 'a row of spheres under a sky: mirror to rough metal, gold, clear and frosted glass, plastic, diffuse', make: materialsScene },
   spheres: { description: 'the sphere tutorial scene: diffuse, glass and metal spheres on a ground sphere, a sphere lamp, a gradient sky', make: spheresScene },
   rtiow: { description: "Ray Tracing in One Weekend's final scene with depth of field ('rtiow:<seed>' for another random field)", parameter: 'seed', make: rtiowScene },
@@ -36,6 +35,7 @@ export const BUILTIN_SCENES = {
   'golden-grid': { description: 'a grid of gold spheres under a sky, shallow depth of field', make: goldenGridScene },
   'hex-grid': { description: 'a hexagonal grid of coloured spheres seen through a thin lens: focal blur', make: hexGridScene },
   caffeine: { description: 'the caffeine molecule (PubChem CID 2519), ball-and-stick, in the studio', make: caffeineScene },
+  prism: { description: 'a dense-flint prism splits a narrow beam of white light into a spectrum on a screen (render with --spectral)', make: () => prismScene() },
 } as const satisfies Record<string, BuiltinScene>;
 
 export type BuiltinSceneName = keyof typeof BUILTIN_SCENES;
