@@ -41,7 +41,11 @@ export function registerInfo(program: Command, context: CliContext): void {
           return;
         }
         const kinds = Object.entries(summary.materialKinds).map(([k, n]) => `${n} ${k}`).join(', ');
-        const emitters = packed.counts.emissiveSpheres > 0 ? `${(packed.counts.emissiveTriangles - packed.counts.emissiveSpheres).toLocaleString('en-US')} emissive triangles, ${packed.counts.emissiveSpheres} emissive spheres` : `${packed.counts.emissiveTriangles.toLocaleString('en-US')} emissive triangles`;
+        const emissiveTriangles = packed.counts.emissiveTriangles - packed.counts.emissiveSpheres;
+        const emitters = [
+          ...(emissiveTriangles > 0 || packed.counts.emissiveSpheres === 0 ? [`${emissiveTriangles.toLocaleString('en-US')} emissive triangles`] : []),
+          ...(packed.counts.emissiveSpheres > 0 ? [`${packed.counts.emissiveSpheres.toLocaleString('en-US')} emissive spheres`] : []),
+        ].join(', ');
         const lights = [emitters, `${packed.counts.punctualLights} punctual lights`, `environment: ${summary.environment}`].join(', ');
         const mib = (b: number) => `${(b / 2 ** 20).toFixed(1)} MiB`;
         context.print(

@@ -4,27 +4,7 @@
 // gpu/specialisation.ts links this module wherever scene/bvh is imported. Expects the scene bindings
 // (group 0) for shading and alpha tests. Hits are leaf-order indices, exactly as scene/bvh's.
 
-// As in scene/bvh: whether the scene has alpha-masked or alpha-blended triangles.
-override SCENE_HAS_ALPHA_MASKS: bool = true;
-
-// Identifies the ray being traced, so stochastic transparency draws a new number for every ray.
-var<private> alpha_salt: u32;
-
-// A candidate hit that survives the alpha test, if the triangle has one (scene/bvh's rule).
-fn accept_hit(tri: TriangleHot, triangle: u32, bary: vec2f) -> bool {
-  if (!SCENE_HAS_ALPHA_MASKS) {
-    return true;
-  }
-  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(triangle, bary, alpha_salt);
-}
-
-fn set_alpha_salt(ray: Ray) {
-  if (SCENE_HAS_ALPHA_MASKS) {
-    let d = bitcast<vec3u>(ray.direction);
-    alpha_salt = d.x ^ (d.y * 0x9e3779b9u) ^ (d.z * 0x85ebca6bu);
-  }
-}
-
+#import scene/hit-filter
 #import scene/bindings
 #import scene/intersect
 #import scene/materials
