@@ -13,32 +13,25 @@ export function refitBvh(bvh: Bvh, positions: Float32Array, kinds?: Uint8Array):
   const bounds = new Float32Array(bvh.bounds);
   const boxes = computeTriangleBoxes(positions, kinds);
   const { leftFirst, triCount, triIndices } = bvh;
-  for (let node = bvh.nodeCount - 1; node >= 0; node--) {
-    if (node === 1) continue; // the unused slot keeps its inverted box
+  // The union of the boxes at `entries` of `from` (6 floats each), written as node's box.
+  const fit = (node: number, from: Float32Array, entries: Iterable<number>) => {
     let minX = Infinity, minY = Infinity, minZ = Infinity, maxX = -Infinity, maxY = -Infinity, maxZ = -Infinity;
-    if (triCount[node]! > 0) {
-      const first = leftFirst[node]!, end = first + triCount[node]!;
-      for (let i = first; i < end; i++) {
-        const o = triIndices[i]! * 6;
-        minX = Math.min(minX, boxes[o]!);
-        minY = Math.min(minY, boxes[o + 1]!);
-        minZ = Math.min(minZ, boxes[o + 2]!);
-        maxX = Math.max(maxX, boxes[o + 3]!);
-        maxY = Math.max(maxY, boxes[o + 4]!);
-        maxZ = Math.max(maxZ, boxes[o + 5]!);
-      }
-    } else {
-      for (const child of [leftFirst[node]!, leftFirst[node]! + 1]) {
-        const b = child * 6;
-        minX = Math.min(minX, bounds[b]!);
-        minY = Math.min(minY, bounds[b + 1]!);
-        minZ = Math.min(minZ, bounds[b + 2]!);
-        maxX = Math.max(maxX, bounds[b + 3]!);
-        maxY = Math.max(maxY, bounds[b + 4]!);
-        maxZ = Math.max(maxZ, bounds[b + 5]!);
-      }
+    for (const e of entries) {
+      const o = e * 6;
+      minX = Math.min(minX, from[o]!);
+      minY = Math.min(minY, from[o + 1]!);
+      minZ = Math.min(minZ, from[o + 2]!);
+      maxX = Math.max(maxX, from[o + 3]!);
+      maxY = Math.max(maxY, from[o + 4]!);
+      maxZ = Math.max(maxZ, from[o + 5]!);
     }
     bounds.set([minX, minY, minZ, maxX, maxY, maxZ], node * 6);
+  };
+  for (let node = bvh.nodeCount - 1; node >= 0; node--) {
+    if (node === 1) continue; // the unused slot keeps its inverted box
+    const first = leftFirst[node]!;
+    if (triCount[node]! > 0) fit(node, boxes, triIndices.subarray(first, first + triCount[node]!));
+    else fit(node, bounds, [first, first + 1]);
   }
   return { ...bvh, bounds };
 }

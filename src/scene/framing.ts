@@ -50,3 +50,16 @@ export function frameBounds(bounds: Aabb, options: FramingOptions = {}): Camera 
   }
   return { position: add(centre, scale(toCamera, distance)), forward, up: [0, 1, 0], vfovDegrees: vfov };
 }
+
+/** Whether the point p lies inside the camera's view pyramid for an image of the given aspect (width / height). */
+export function inView(camera: Camera, p: Vec3, aspect: number): boolean {
+  const { position, forward, up, vfovDegrees } = camera;
+  const f = normalize(forward);
+  const r = normalize(cross(f, up));
+  const u = cross(r, f);
+  const q = sub(p, position);
+  const z = q[0] * f[0] + q[1] * f[1] + q[2] * f[2];
+  const t = Math.tan((vfovDegrees * Math.PI) / 360);
+  const along = (v: Vec3) => Math.abs(q[0] * v[0] + q[1] * v[1] + q[2] * v[2]);
+  return z > 0 && along(u) <= t * z && along(r) <= t * aspect * z;
+}

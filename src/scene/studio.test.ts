@@ -2,6 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { LanternError } from '../errors.ts';
 import { boundsOfPositions, type Aabb } from '../math/aabb.ts';
 import { add, cross, dot, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
+import { inView } from './framing.ts';
 import { meshBounds, studioScene } from './studio.ts';
 import type { Material, Mesh, Scene } from './types.ts';
 import { baseColorOf } from './types.ts';
@@ -34,17 +35,6 @@ const triangleNormals = (m: Mesh): Vec3[] =>
 const corners = (b: Aabb): Vec3[] =>
   Array.from({ length: 8 }, (_, i) => [i & 1 ? b.max[0] : b.min[0], i & 2 ? b.max[1] : b.min[1], i & 4 ? b.max[2] : b.min[2]] as Vec3);
 
-/** Whether p is inside the camera's view pyramid for an image of the given aspect (width / height). */
-function inView(scene: Scene, p: Vec3, aspect: number): boolean {
-  const { position, forward, up, vfovDegrees } = scene.camera;
-  const f = normalize(forward);
-  const r = normalize(cross(f, up));
-  const u = cross(r, f);
-  const q = sub(p, position);
-  const z = dot(q, f);
-  const t = Math.tan((vfovDegrees * Math.PI) / 360);
-  return z > 0 && Math.abs(dot(q, u)) <= t * z && Math.abs(dot(q, r)) <= t * aspect * z;
-}
 
 const CASES: [string, Mesh][] = [
   ['a unit cube at the origin', box([-0.5, -0.5, -0.5], [0.5, 0.5, 0.5])],
@@ -86,7 +76,7 @@ describe('studioScene', () => {
       const toCentre = normalize(sub(centre, centroid(light)));
       for (const n of triangleNormals(light)) expect(dot(n, toCentre)).toBeGreaterThan(0.999);
       // Out of shot, so the image shows the object lit rather than the lamp (checked for a wide 16:9 frame).
-      expect(inView(scene, centroid(light), 16 / 9)).toBe(false);
+      expect(inView(scene.camera, centroid(light), 16 / 9)).toBe(false);
     }
     // The key is in front: on the camera's side of the object.
     const toCamera = sub(scene.camera.position, centre);
@@ -99,7 +89,7 @@ describe('studioScene', () => {
     expect(cam.vfovDegrees).toBeGreaterThanOrEqual(35);
     expect(cam.vfovDegrees).toBeLessThanOrEqual(45);
     expect(dot(normalize(cam.forward), normalize(sub(centre, cam.position)))).toBeGreaterThan(0.99999);
-    for (const c of corners(bounds)) expect(inView(scene, c, 1)).toBe(true);
+    for (const c of corners(bounds)) expect(inView(scene.camera, c, 1)).toBe(true);
     expect(cam.position[1]).toBeGreaterThan(centre[1]);
     const view = normalize(sub(cam.position, centre));
     expect(Math.abs(view[0])).toBeGreaterThan(0.3); // three-quarter, not straight on
@@ -123,7 +113,7 @@ describe('studioScene', () => {
     expect(scene.materials.slice(0, 2)).toEqual([white, red]);
     expect(scene.meshes[1]!.materialIds[0]).toBe(1);
     expect(scene.meshes[2]!.materialIds[0]).toBe(2); // floor comes right after the caller's materials
-    for (const c of corners({ min: [0, 0, 0], max: [6, 3, 1] })) expect(inView(scene, c, 1)).toBe(true);
+    for (const c of corners({ min: [0, 0, 0], max: [6, 3, 1] })) expect(inView(scene.camera, c, 1)).toBe(true);
   });
 
   it('frames spheres and capsules by their surfaces, not their centres', () => {
@@ -142,7 +132,7 @@ describe('studioScene', () => {
     const floor = scene.meshes[1]!;
     expect(floor.positions[1]).toBeLessThan(-1);
     expect(floor.positions[1]).toBeGreaterThan(-1.01);
-    for (const c of corners(bounds)) expect(inView(scene, c, 1)).toBe(true);
+    for (const c of corners(bounds)) expect(inView(scene.camera, c, 1)).toBe(true);
     // Triangles and primitives of one mesh together.
     expect(meshBounds({ ...box([10, 10, 10], [11, 11, 11]), spheres: mesh.spheres! })).toEqual({ min: [-1, -1, -1], max: [11, 11, 11] });
   });

@@ -8,6 +8,7 @@ import { isIdentity } from '../../math/mat4.ts';
 import { seededRandom } from '../../math/seeded-random.ts';
 import { add, cross, dot, length, normalize, scale, sub, type Vec3 } from '../../math/vec3.ts';
 import type { Environment } from '../../scene/environment.ts';
+import { inView } from '../../scene/framing.ts';
 import type { Mesh, Scene } from '../../scene/types.ts';
 import { builtinScene, isBuiltinScene } from './index.ts';
 import { GOLD } from './materials.ts';
@@ -34,17 +35,6 @@ function spheresOf(scene: Scene): WorldSphere[] {
   });
 }
 
-/** Whether p is inside the camera's view for an image of the given aspect (width / height). */
-function inView(scene: Scene, p: Vec3, aspect = 16 / 9): boolean {
-  const { position, forward, up, vfovDegrees } = scene.camera;
-  const f = normalize(forward);
-  const r = normalize(cross(f, up));
-  const u = cross(r, f);
-  const q = sub(p, position);
-  const z = dot(q, f);
-  const t = Math.tan((vfovDegrees * Math.PI) / 360);
-  return z > 0 && Math.abs(dot(q, u)) <= t * z && Math.abs(dot(q, r)) <= t * aspect * z;
-}
 
 /** The gradient environment's radiance in direction y (scene/environment.ts: linear in y either side of the horizon). */
 function gradient(environment: Environment | undefined, y: number): Vec3 {
@@ -86,7 +76,7 @@ describe('sphere scenes: structure', () => {
     expect(drawnEmitter || envLit).toBe(true);
     // The camera looks at something: the first listed sphere that is not a ground sphere is in view.
     const subject = spheres.find((s) => s.radius < 50)!;
-    expect(inView(scene, subject.center)).toBe(true);
+    expect(inView(scene.camera, subject.center, 16 / 9)).toBe(true);
   });
 
   it.each(SPHERE_SCENES)('%s: seen from its camera (pinhole rays through the CPU oracle), its subject spans a good part of a 16:9 frame', (name) => {
@@ -253,7 +243,7 @@ describe('the other sphere scenes', () => {
     const kinds = spheresOf(scene).map((s) => scene.materials[s.material]!.kind);
     expect(kinds).toEqual(['diffuse', 'diffuse', 'dielectric', 'metallic-roughness', 'emissive']);
     expect(scene.environment?.kind).toBe('gradient');
-    for (const s of spheresOf(scene).slice(1, 4)) expect(inView(scene, s.center)).toBe(true);
+    for (const s of spheresOf(scene).slice(1, 4)) expect(inView(scene.camera, s.center, 16 / 9)).toBe(true);
   });
 
   it('orb: a glass orb resting on a polished floor, a lamp above to the side, the caustic spot in view', () => {
@@ -270,8 +260,8 @@ describe('the other sphere scenes', () => {
     const away = normalize(sub(orb.center, lamp.center));
     const t = -orb.center[1] / away[1];
     const spot = add(orb.center, scale(away, t));
-    expect(inView(scene, spot)).toBe(true);
-    expect(inView(scene, orb.center)).toBe(true);
+    expect(inView(scene.camera, spot, 16 / 9)).toBe(true);
+    expect(inView(scene.camera, orb.center, 16 / 9)).toBe(true);
   });
 
   it('golden-grid: a square grid of gold spheres on the floor, the lens focused on one of them', () => {
@@ -321,7 +311,7 @@ function expectFocusedOnASphere(scene: Scene, spheres: readonly WorldSphere[]): 
   // Centres are stored as float32: equal to 1e-5.
   const focused = spheres.filter((s) => Math.abs(dot(sub(s.center, scene.camera.position), f) - lens.focusDistance) < 1e-5);
   expect(focused.length).toBeGreaterThan(0);
-  expect(focused.some((s) => inView(scene, s.center))).toBe(true);
+  expect(focused.some((s) => inView(scene.camera, s.center, 16 / 9))).toBe(true);
   // Shallow: the nearest and farthest spheres lie well off the plane in focus.
   const depths = spheres.map((s) => dot(sub(s.center, scene.camera.position), f));
   expect(lens.focusDistance - Math.min(...depths)).toBeGreaterThan(2);
