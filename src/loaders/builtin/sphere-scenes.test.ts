@@ -6,7 +6,7 @@ import { PRIMITIVE_KIND } from '../../scene/triangles.ts';
 import { expectLanternError } from '../../expect-lantern-error.ts';
 import { isIdentity } from '../../math/mat4.ts';
 import { seededRandom } from '../../math/seeded-random.ts';
-import { add, cross, dot, length, normalize, scale, sub, type Vec3 } from '../../math/vec3.ts';
+import { add, dot, length, normalize, scale, sub, type Vec3 } from '../../math/vec3.ts';
 import type { Environment } from '../../scene/environment.ts';
 import { inView } from '../../scene/framing.ts';
 import type { Mesh, Scene } from '../../scene/types.ts';
