@@ -214,12 +214,12 @@ export class Renderer {
       ...(this.spectralEnabled ? [this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)] : []),
     ]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
-    this.invalidateSpecialisation();
     this.resources?.destroy();
     this.resources = resources;
     this.prepared = prepared;
     this.selectionStale = true;
-    this.scheduleSpecialisation();
+    // After the swap, so the idle timer it restarts sees the new scene.
+    this.invalidateSpecialisation();
   }
 
   /**
@@ -382,10 +382,13 @@ export class Renderer {
    * (gpu/specialisation.ts), asynchronously: frames keep rendering with the generic kernels until
    * the compile is ready, then the next one uses them. Accumulation continues, since both compute the
    * same estimator. Resolves with the report once switched, or undefined when an edit came first (the
-   * result is dropped). Calling it again while a compile runs waits for that one.
+   * result is dropped), and at once with undefined in spectral mode (specialised kernels are RGB).
+   * Calling it again while a compile runs waits for that one.
    */
   requestSpecialisation(options: SpecialiseOptions = {}): Promise<SpecialisationReport | undefined> {
     if (!this.prepared || !this.resources) throw new Error('Renderer: setScene() before requestSpecialisation()');
+    // Specialised kernels are compiled in RGB; spectral mode keeps the generic spectral variants.
+    if (this.settingsValue.spectral) return Promise.resolve(undefined);
     if (this.kernel === 'specialised') return Promise.resolve(this.specialisationValue);
     const epoch = this.specialisationEpoch;
     if (this.pendingSpecialisation?.epoch === epoch) return this.pendingSpecialisation.done;
