@@ -8,15 +8,13 @@ import { describe, expect, it } from 'vitest';
 import { makeRandom, randomSoup, uvSphere } from '../../src/bvh/test-scenes.ts';
 import { traverseClosest } from '../../src/bvh/traverse.ts';
 import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
-import { readBuffer } from '../../src/gpu/readback.ts';
+import { createBufferWithData, readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
 import { compileSpecialised, specialiseScene } from '../../src/gpu/specialisation.ts';
-import { StructArray } from '../../src/gpu/pack/struct-array.ts';
-import { reflectModule, structLayout } from '../../src/gpu/wgsl/reflect.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { IDENTITY, translation } from '../../src/math/mat4.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
-import { TraceRaysPass } from '../../src/passes/trace-rays-pass.ts';
+import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../../src/passes/trace-rays-pass.ts';
 import { UniformParams } from '../../src/passes/uniform-params.ts';
 import { prepareScene, type PreparedScene } from '../../src/renderer/prepare.ts';
 import { renderProgressive } from '../../src/renderer/progressive.ts';
@@ -65,21 +63,9 @@ interface GpuHits {
 /** Traces `rays` with passes/trace-rays: the generic (BVH) kernel, or the one specialised to the scene. */
 async function trace(device: GPUDevice, prepared: PreparedScene, rays: TestRay[], specialised: boolean): Promise<GpuHits> {
   const module = 'passes/trace-rays';
-  const { defs } = reflectModule(module);
-  const rayArray = new StructArray(structLayout(defs, 'Ray'), rays.length);
-  const origin = rayArray.vec3('origin'), direction = rayArray.vec3('direction');
-  const tMin = rayArray.f32Field('t_min'), tMax = rayArray.f32Field('t_max');
-  rays.forEach((r, i) => {
-    origin(i, ...r.origin);
-    direction(i, ...r.direction);
-    tMin(i, 0);
-    tMax(i, 3e38);
-  });
-  const hitLayout = structLayout(defs, 'HitRecord');
   const scene = await SceneResources.upload(device, prepared.packed, prepared.scene.name);
-  const rayBuffer = device.createBuffer({ size: rayArray.bytes.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
-  device.queue.writeBuffer(rayBuffer, 0, rayArray.bytes);
-  const hitBuffer = device.createBuffer({ size: hitLayout.stride * rays.length, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
+  const rayBuffer = createBufferWithData(device, 'test rays', packRays(rays), GPUBufferUsage.STORAGE);
+  const hitBuffer = device.createBuffer({ size: rayBufferStrides().hit * rays.length, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
   const encoder = device.createCommandEncoder();
   const params = new UniformParams<{ ray_count: number }>(device, module);
   params.write({ ray_count: rays.length });
@@ -96,14 +82,8 @@ async function trace(device: GPUDevice, prepared: PreparedScene, rays: TestRay[]
     generic.encode(encoder, await generic.bind(scene, rayBuffer, hitBuffer, rays.length));
   }
   device.queue.submit([encoder.finish()]);
-  const raw = await readBuffer(device, hitBuffer);
-  const f32 = new Float32Array(raw), u32 = new Uint32Array(raw);
-  const s = hitLayout.strideWords;
-  const out = { t: new Float32Array(rays.length), tri: new Uint32Array(rays.length) };
-  for (let i = 0; i < rays.length; i++) {
-    out.t[i] = f32[i * s + hitLayout.word('t')]!;
-    out.tri[i] = u32[i * s + hitLayout.word('triangle')]!;
-  }
+  const hits = unpackHits(await readBuffer(device, hitBuffer), rays.length);
+  const out = { t: Float32Array.from(hits, (h) => h.t), tri: Uint32Array.from(hits, (h) => h.triangle) };
   for (const buffer of [rayBuffer, hitBuffer]) buffer.destroy();
   params.destroy();
   generic?.destroy();

@@ -10,12 +10,10 @@ import { describe, expect, it } from 'vitest';
 import { traverseClosest } from '../../src/bvh/traverse.ts';
 import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
 import { quadGrid, randomSoup, uvSphere, makeRandom } from '../../src/bvh/test-scenes.ts';
-import { readBuffer } from '../../src/gpu/readback.ts';
+import { createBufferWithData, readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
-import { reflectModule, structLayout } from '../../src/gpu/wgsl/reflect.ts';
-import { StructArray } from '../../src/gpu/pack/struct-array.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
-import { TraceRaysPass } from '../../src/passes/trace-rays-pass.ts';
+import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../../src/passes/trace-rays-pass.ts';
 import { prepareScene, type PreparedScene } from '../../src/renderer/prepare.ts';
 import { cameraBasis } from '../../src/gpu/view.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
@@ -116,36 +114,15 @@ function makeRays(prepared: PreparedScene): TestRay[] {
 }
 
 async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: TestRay[]): Promise<{ t: Float32Array; tri: Uint32Array; u: Float32Array; v: Float32Array }> {
-  const { defs } = reflectModule('passes/trace-rays');
-  const rayArray = new StructArray(structLayout(defs, 'Ray'), rays.length);
-  const origin = rayArray.vec3('origin'), direction = rayArray.vec3('direction');
-  const tMin = rayArray.f32Field('t_min'), tMax = rayArray.f32Field('t_max');
-  rays.forEach((r, i) => {
-    origin(i, ...r.origin);
-    direction(i, ...r.direction);
-    tMin(i, 0);
-    tMax(i, 3e38);
-  });
-  const hitLayout = structLayout(defs, 'HitRecord');
   const scene = await SceneResources.upload(device, prepared.packed, prepared.scene.name);
-  const rayBuffer = device.createBuffer({ size: rayArray.bytes.byteLength, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST });
-  device.queue.writeBuffer(rayBuffer, 0, rayArray.bytes);
-  const hitBuffer = device.createBuffer({ size: hitLayout.stride * rays.length, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
+  const rayBuffer = createBufferWithData(device, 'test rays', packRays(rays), GPUBufferUsage.STORAGE);
+  const hitBuffer = device.createBuffer({ size: rayBufferStrides().hit * rays.length, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
   const pass = await TraceRaysPass.create(device);
   const encoder = device.createCommandEncoder();
   pass.encode(encoder, await pass.bind(scene, rayBuffer, hitBuffer, rays.length));
   device.queue.submit([encoder.finish()]);
-  const raw = await readBuffer(device, hitBuffer);
-  const f32 = new Float32Array(raw), u32 = new Uint32Array(raw);
-  const s = hitLayout.strideWords;
-  const at = (field: string) => hitLayout.word(field);
-  const out = { t: new Float32Array(rays.length), tri: new Uint32Array(rays.length), u: new Float32Array(rays.length), v: new Float32Array(rays.length) };
-  for (let i = 0; i < rays.length; i++) {
-    out.t[i] = f32[i * s + at('t')]!;
-    out.tri[i] = u32[i * s + at('triangle')]!;
-    out.u[i] = f32[i * s + at('u')]!;
-    out.v[i] = f32[i * s + at('v')]!;
-  }
+  const hits = unpackHits(await readBuffer(device, hitBuffer), rays.length);
+  const out = { t: Float32Array.from(hits, (h) => h.t), tri: Uint32Array.from(hits, (h) => h.triangle), u: Float32Array.from(hits, (h) => h.u), v: Float32Array.from(hits, (h) => h.v) };
   for (const b of [rayBuffer, hitBuffer]) b.destroy();
   scene.destroy();
   pass.destroy();
