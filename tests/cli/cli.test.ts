@@ -293,6 +293,14 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     expect(new TextDecoder().decode(readFileSync(glb).subarray(0, 4))).toBe('glTF');
   });
 
+  it('converts analytic spheres to glTF triangles and says so', () => {
+    const glb = join(dir, 'spheres.glb');
+    const r = lantern(['convert', 'spheres', '-o', glb]);
+    expect(r.code, r.rawStderr).toBe(0);
+    expect(r.stdout).toContain('0 triangles + 5 spheres and capsules (tessellated)');
+    expect(new TextDecoder().decode(readFileSync(glb).subarray(0, 4))).toBe('glTF');
+  });
+
   it('writes every texture and flat as PNG', () => {
     const out = join(dir, 'textures');
     const r = lantern(['textures', FREEDOOM1, '-o', out]);

@@ -23,7 +23,10 @@ export function registerConvert(program: Command, context: CliContext): void {
         const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });
         writeFile(o.out, glb);
         const triangles = scene.meshes.reduce((n, m) => n + m.indices.length / 3, 0);
-        context.print(`${scene.name}: ${triangles.toLocaleString('en-US')} triangles, ${scene.materials.length} materials, ${scene.textures?.length ?? 0} textures -> ${o.out} (${(glb.length / 2 ** 20).toFixed(1)} MiB)`);
+        const analytic = scene.meshes.reduce((n, m) => n + (m.spheres?.radii.length ?? 0) + (m.capsules?.radii.length ?? 0), 0);
+        // glTF has no spheres: say that they went out as triangles (exporters/glb.ts tessellates them).
+        const shapes = analytic > 0 ? ` + ${analytic.toLocaleString('en-US')} spheres and capsules (tessellated)` : '';
+        context.print(`${scene.name}: ${triangles.toLocaleString('en-US')} triangles${shapes}, ${scene.materials.length} materials, ${scene.textures?.length ?? 0} textures -> ${o.out} (${(glb.length / 2 ** 20).toFixed(1)} MiB)`);
       }),
     );
 }
