@@ -15,7 +15,9 @@ import { withEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
 import { flattenTriangles, writeInstanceTriangles, type TriangleList } from '../scene/triangles.ts';
 import { LanternError } from '../errors.ts';
-import type { Scene } from '../scene/types.ts';
+import type { InstancePose } from '../scene/dynamics.ts';
+import { morphMesh } from '../scene/morph.ts';
+import type { Mesh, Scene } from '../scene/types.ts';
 import { validateScene } from '../scene/validate.ts';
 
 export interface PreparedScene {
@@ -23,6 +25,8 @@ export interface PreparedScene {
   readonly triangles: TriangleList;
   readonly bvh: Bvh;
   readonly packed: PackedScene;
+  /** The meshes as loaded, of those morphed since (SceneUpdate.morphWeights apply to these). */
+  readonly restMeshes?: ReadonlyMap<number, Mesh>;
   /** Milliseconds spent in each CPU stage. */
   readonly timings: { readonly flattenMs: number; readonly bvhMs: number; readonly packMs: number };
 }
@@ -50,31 +54,46 @@ export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STA
 export const MOVED_BUFFERS = ['scene_info', 'bvh_nodes', 'triangles_hot', 'triangles_shading', 'light_slots', 'punctual_lights'] as const;
 
 /**
- * Instances moved (new world-from-object transforms by instance id): their triangles are written
- * again, the BVH is refitted rather than rebuilt, and the geometry and lights are packed again
- * around the materials and textures already packed. Cheap enough per frame for a door or a lift;
- * the tree's quality decays with large motions (then prepare again).
+ * Instances moved (new world-from-object transforms by instance id); see updateGeometry.
  */
 export function moveInstances(prepared: PreparedScene, moves: ReadonlyMap<number, Mat4>): PreparedScene {
+  return updateGeometry(prepared, new Map([...moves].map(([id, worldFromObject]) => [id, { worldFromObject }])), new Map());
+}
+
+/**
+ * Instances moved or changed material (InstancePose by instance id) and meshes morphed (weights by
+ * mesh index, Mesh.morphTargets): their primitives are written again, the BVH is refitted rather than
+ * rebuilt, and the geometry and lights are packed again around the materials and textures already
+ * packed. The mesh as loaded stays in `restMeshes`, so weights always apply to it.
+ */
+export function updateGeometry(prepared: PreparedScene, poses: ReadonlyMap<number, InstancePose>, morphWeights: ReadonlyMap<number, Float32Array>): PreparedScene {
   const { scene } = prepared;
-  const instances = scene.instances.map((inst) => {
-    const m = moves.get(inst.id);
-    return m ? { ...inst, worldFromObject: m } : inst;
-  });
-  for (const id of moves.keys()) {
+  for (const id of poses.keys()) {
     if (!scene.instances.some((inst) => inst.id === id)) throw new LanternError(`scene '${scene.name}' has no instance with id ${id}`);
   }
-  const moved: typeof scene = { ...scene, instances };
-  const triangles: TriangleList = { ...prepared.triangles, positions: new Float32Array(prepared.triangles.positions), swapped: new Uint8Array(prepared.triangles.swapped) };
+  const restMeshes = new Map(prepared.restMeshes);
+  const meshes = [...scene.meshes];
+  for (const [index, weights] of morphWeights) {
+    const rest = restMeshes.get(index) ?? scene.meshes[index];
+    if (!rest) throw new LanternError(`scene '${scene.name}' has no mesh ${index}`);
+    restMeshes.set(index, rest);
+    meshes[index] = morphMesh(rest, weights);
+  }
+  const instances = scene.instances.map((inst) => {
+    const pose = poses.get(inst.id);
+    return pose ? { ...inst, ...pose } : inst;
+  });
+  const moved: Scene = { ...scene, meshes, instances };
+  const triangles: TriangleList = { ...prepared.triangles, positions: new Float32Array(prepared.triangles.positions), swapped: new Uint8Array(prepared.triangles.swapped), materialIds: new Uint32Array(prepared.triangles.materialIds) };
   instances.forEach((inst, i) => {
-    if (moves.has(inst.id)) writeInstanceTriangles(moved, inst, i, triangles, triangles.instanceFirstTriangle[i]!);
+    if (poses.has(inst.id) || morphWeights.has(inst.mesh)) writeInstanceTriangles(moved, inst, i, triangles, triangles.instanceFirstTriangle[i]!);
   });
   const t0 = performance.now();
   const bvh = refitBvh(prepared.bvh, triangles.positions, triangles.kinds);
   const t1 = performance.now();
   const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment);
   const t2 = performance.now();
-  return { scene: moved, triangles, bvh, packed, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
+  return { scene: moved, triangles, bvh, packed, restMeshes, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
 }
 
 /**

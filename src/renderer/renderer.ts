@@ -28,6 +28,7 @@ import { PresentPass } from '../passes/present-pass.ts';
 import { SelectionOutlinePass, type SelectedRange } from '../passes/selection-outline-pass.ts';
 import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes/trace-rays-pass.ts';
 import { dot, type Vec3 } from '../math/vec3.ts';
+import { emptySceneUpdate, type SceneUpdate } from '../scene/dynamics.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
 import { lensProblem } from '../scene/lens.ts';
@@ -35,7 +36,7 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
-import { editMaterials, LIGHT_BUFFERS, moveInstances, MOVED_BUFFERS, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import { editMaterials, LIGHT_BUFFERS, MOVED_BUFFERS, updateGeometry, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
@@ -223,21 +224,34 @@ export class Renderer {
   }
 
   /**
-   * Moves instances (new world-from-object transforms by instance id) without rebuilding the scene:
-   * the BVH is refitted and the geometry buffers are rewritten in place (renderer/prepare.ts
-   * moveInstances). Restarts accumulation.
+   * Moves instances (new world-from-object transforms by instance id) without rebuilding the scene
+   * (see applySceneUpdate). Restarts accumulation.
    */
   updateInstances(moves: ReadonlyMap<number, Mat4>): PreparedScene {
+    return this.applySceneUpdate({ ...emptySceneUpdate(), instances: new Map([...moves].map(([id, worldFromObject]) => [id, { worldFromObject }])) });
+  }
+
+  /**
+   * One step of a moving world (scene/world.ts): instances moved or changed material, meshes morphed,
+   * materials animated. Nothing is rebuilt: geometry is refitted and its buffers rewritten in place
+   * (renderer/prepare.ts updateGeometry), materials repacked (updateMaterials). Restarts
+   * accumulation; returns the updated scene (keep it to upload again after a lost device).
+   * `walkHeights` is the viewer's business.
+   */
+  applySceneUpdate(update: SceneUpdate): PreparedScene {
     const resources = this.resources;
-    if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateInstances()');
-    const prepared = moveInstances(this.prepared, moves);
-    for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
-    writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
-    this.prepared = prepared;
-    this.selectionStale = true;
+    if (!resources || !this.prepared) throw new Error('Renderer: setScene() before applySceneUpdate()');
+    if (update.instances.size > 0 || update.morphWeights.size > 0) {
+      const prepared = updateGeometry(this.prepared, update.instances, update.morphWeights);
+      for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
+      writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
+      this.prepared = prepared;
+      this.selectionStale = true;
+    }
+    if (update.materials.size > 0) return this.updateMaterials(update.materials);
     this.invalidateSpecialisation();
     this.resetAccumulation();
-    return prepared;
+    return this.prepared;
   }
 
   /**

@@ -12,6 +12,7 @@
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
 import type { Dispersion } from './dispersion.ts';
+import type { SceneDynamics } from './dynamics.ts';
 import type { Environment } from './environment.ts';
 import type { WalkMap } from './walk-map.ts';
 
@@ -334,6 +335,21 @@ export interface Mesh {
    */
   readonly spheres?: SphereSet;
   readonly capsules?: CapsuleSet;
+  /**
+   * Morph targets (glTF 2.0 §3.7.2.2): per target, a displacement of every vertex (xyz), and of every
+   * uv where given; the mesh's vertices are base + Σ weightᵢ · targetᵢ. Weights start at 0 (the
+   * base mesh) and change through SceneUpdate.morphWeights (Doom's doors and lifts: a sector's floor
+   * and ceiling as two targets). Triangles only. A morphed mesh's BVH is refitted, not rebuilt.
+   */
+  readonly morphTargets?: readonly MorphTarget[];
+}
+
+/** One morph target of a Mesh: displacements per vertex. */
+export interface MorphTarget {
+  /** xyz per vertex. */
+  readonly positions: Float32Array;
+  /** uv per vertex (set 0), or absent (uvs do not move). */
+  readonly uvs?: Float32Array;
 }
 
 /**
@@ -428,6 +444,8 @@ export interface Scene {
   readonly metersPerUnit?: number;
   /** The floor plan a viewer can walk on (Doom maps), with the walker's dimensions. */
   readonly walkMap?: WalkMap;
+  /** What moves (scene/dynamics.ts; played by scene/world.ts). Absent: a frozen scene. */
+  readonly dynamics?: SceneDynamics;
   /** What the loader had to work around (a missing texture, no light so a default sky): shown once to the user. */
   readonly warnings?: readonly string[];
 }

@@ -6,6 +6,7 @@ import { LanternError } from '../errors.ts';
 import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
 import { validateDispersion } from './dispersion.ts';
 import { lensProblem } from './lens.ts';
+import { morphTargetProblem } from './morph.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
 export function validateScene(scene: Scene): void {
@@ -74,6 +75,8 @@ export function validateScene(scene: Scene): void {
     }
     if (mesh.normals && mesh.normals.length !== mesh.positions.length) fail(`${where} has ${mesh.normals.length / 3} normals for ${vertexCount} vertices`);
     if (mesh.uvs && mesh.uvs.length !== vertexCount * 2) fail(`${where} has ${mesh.uvs.length / 2} uvs for ${vertexCount} vertices`);
+    const morphProblem = morphTargetProblem(mesh);
+    if (morphProblem) fail(`${where}: ${morphProblem}`);
     for (let i = 0; i < mesh.positions.length; i++) {
       if (!Number.isFinite(mesh.positions[i]!)) fail(`${where} has a non-finite position at vertex ${Math.floor(i / 3)}`);
     }
