@@ -46,9 +46,17 @@ export function numberListOption(name: string, counts: readonly number[]): (valu
   };
 }
 
-/** --light-table, for every command that builds a scene. */
+/** --light-table and --skill, for every command that builds a scene. */
 export function withSceneOptions(command: Command): Command {
-  return command.option('--light-table <file.json>', 'Doom maps: JSON overrides of which textures and flats emit, and how strongly (see the README)');
+  return command
+    .option('--light-table <file.json>', 'Doom maps: JSON overrides of which textures, flats and things emit, and how strongly (see the README)')
+    .option('--skill <1-5>', "Doom maps: the skill level whose things appear (1: I'm too young to die ... 5: Nightmare!; default 3)", integerOption('--skill', 1, 5));
+}
+
+/** The values withSceneOptions parses. */
+export interface SceneOptionValues {
+  readonly lightTable?: string;
+  readonly skill?: number;
 }
 
 /** --kernel: the generic tracing kernels, or those specialised to the scene (renderer.ts requestSpecialisation). */

@@ -45,6 +45,13 @@ export interface SceneLoadOptions {
   readonly onWarning?: (message: string) => void;
   /** A JSON file of Doom light table overrides (src/loaders/doom/light-table.ts). */
   readonly lightTablePath?: string;
+  /** Doom maps: the skill level whose things appear (1–5). */
+  readonly skill?: number;
+}
+
+/** The load options of withSceneOptions' values (--light-table, --skill). */
+export function sceneLoadOptions(values: { readonly lightTable?: string; readonly skill?: number }, onWarning?: (message: string) => void): SceneLoadOptions {
+  return { ...(onWarning ? { onWarning } : {}), ...(values.lightTable ? { lightTablePath: values.lightTable } : {}), ...(values.skill !== undefined ? { skill: values.skill } : {}) };
 }
 
 /** What a scene argument names, before anything is read: a built-in, or files on disk. */
@@ -113,7 +120,7 @@ export async function loadSceneArgument(arg: string, options: SceneLoadOptions =
 /** The loaders' options from the CLI's (the light table is read from its file here). */
 export function loadOptions(options: SceneLoadOptions): LoadOptions {
   const lightTable = options.lightTablePath ? readLightTable(options.lightTablePath) : undefined;
-  return { ...(options.onWarning ? { onWarning: options.onWarning } : {}), ...(lightTable ? { lightTable } : {}) };
+  return { ...(options.onWarning ? { onWarning: options.onWarning } : {}), ...(lightTable ? { lightTable } : {}), ...(options.skill !== undefined ? { skill: options.skill } : {}) };
 }
 
 function readLightTable(path: string): Partial<LightTable> {

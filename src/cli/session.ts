@@ -7,7 +7,8 @@ import { withEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
 import { Renderer } from '../renderer/renderer.ts';
 import { acquireNodeGpu } from './dawn.ts';
-import { loadSceneArgument } from './scene-source.ts';
+import type { SceneOptionValues } from './options.ts';
+import { loadSceneArgument, sceneLoadOptions } from './scene-source.ts';
 
 export interface Session {
   readonly renderer: Renderer;
@@ -15,9 +16,9 @@ export interface Session {
   readonly loadMs: number;
 }
 
-export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string, environment?: Environment): Promise<Session> {
+export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment): Promise<Session> {
   const t0 = performance.now();
-  const loaded = await loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
+  const loaded = await loadSceneArgument(sceneArg, sceneLoadOptions(sceneOptions, note));
   const scene = environment ? withEnvironment(loaded, environment) : loaded;
   const prepared = prepareScene(scene);
   const loadMs = performance.now() - t0;

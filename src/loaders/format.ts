@@ -33,6 +33,8 @@ export interface LoadOptions {
   readonly onWarning?: (message: string) => void;
   /** Doom only: light table overrides (doom/light-table.ts). */
   readonly lightTable?: Partial<LightTable>;
+  /** Doom only: the skill level (1–5, default 3) whose things appear (doom/thing-types.ts). */
+  readonly skill?: number;
 }
 
 /** A file named for recognition: its name and its first bytes (SNIFF_BYTES of them suffice). */
@@ -116,6 +118,6 @@ export interface OpenedScene {
   partNamed?(name: string): string | undefined;
   /** The scene of `part`, or of the first loadable part (or the only scene) when undefined. */
   scene(part?: string, options?: LoadOptions): Promise<Scene>;
-  /** A listing of the parts with their counts, for `lantern info` (text lines and JSON). */
-  inventory?(): { readonly lines: readonly string[]; readonly json: unknown };
+  /** A listing of the parts with their counts, for `lantern info` (text lines and JSON); `options.skill` for Doom's things. */
+  inventory?(options?: LoadOptions): { readonly lines: readonly string[]; readonly json: unknown };
 }

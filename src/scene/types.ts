@@ -96,6 +96,11 @@ interface MaterialBase {
   /** Default uv. */
   readonly emissionMapping?: EmissionMapping;
   /**
+   * Both faces emit (default: only the front face, the side the triangle's counter-clockwise winding
+   * faces). For thin emitters seen from either side: Doom's light-giving sprites.
+   */
+  readonly twoSidedEmission?: boolean;
+  /**
    * Coverage, from the alpha of the colour texture (albedo / base colour) times any constant opacity:
    * - 'opaque' (default): alpha is ignored;
    * - 'mask': where alpha is below `alphaCutoff` the surface is not there for any ray, shadow rays

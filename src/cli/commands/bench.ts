@@ -20,6 +20,7 @@ interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<
   height: number;
   repeats: number;
   lightTable?: string;
+  skill?: number;
   json?: boolean;
   kernel: KernelKind;
   unrollLimit?: number;
@@ -49,7 +50,7 @@ export function registerBench(program: Command, context: CliContext): void {
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
   checkLensOptions(o);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   if (renderer.settings.spectral) await renderer.enableSpectral();

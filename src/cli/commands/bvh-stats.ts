@@ -6,8 +6,8 @@ import { reflectModule, structLayout } from '../../gpu/wgsl/reflect.ts';
 import { describePrimitives, flattenTriangles } from '../../scene/triangles.ts';
 import { validateScene } from '../../scene/validate.ts';
 import type { CliContext } from '../context.ts';
-import { withSceneOptions } from '../options.ts';
-import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
+import { withSceneOptions, type SceneOptionValues } from '../options.ts';
+import { loadSceneArgument, sceneHelp, sceneLoadOptions } from '../scene-source.ts';
 
 /** GPU bytes of one primitive: its hot (traversal) and cold (shading) records, from the WGSL structs. */
 function triangleBytes(): number {
@@ -21,9 +21,9 @@ export function registerBvhStats(program: Command, context: CliContext): void {
     .description('build every BVH layout Lantern has for a scene and print its statistics: nodes, leaves, depth, leaf sizes, SAH cost, memory, build time')
     .argument('<scene>', sceneHelp())
     .option('--json', 'print as JSON');
-  withSceneOptions(command).action((sceneArg: string, options: { json?: boolean; lightTable?: string }) =>
+  withSceneOptions(command).action((sceneArg: string, options: { json?: boolean } & SceneOptionValues) =>
     context.run(async () => {
-      const scene = await loadSceneArgument(sceneArg, { onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) });
+      const scene = await loadSceneArgument(sceneArg, sceneLoadOptions(options, context.note));
       validateScene(scene);
       const list = flattenTriangles(scene);
       const { positions, count, kinds } = list;

@@ -4,9 +4,9 @@ import { LanternError } from '../../errors.ts';
 import { sceneToGlb } from '../../exporters/glb.ts';
 import { validateScene } from '../../scene/validate.ts';
 import type { CliContext } from '../context.ts';
-import { numberOption, withSceneOptions } from '../options.ts';
+import { numberOption, withSceneOptions, type SceneOptionValues } from '../options.ts';
 import { writeFile } from '../output-files.ts';
-import { loadSceneArgument, sceneHelp } from '../scene-source.ts';
+import { loadSceneArgument, sceneHelp, sceneLoadOptions } from '../scene-source.ts';
 
 export function registerConvert(program: Command, context: CliContext): void {
   const command = program
@@ -15,10 +15,10 @@ export function registerConvert(program: Command, context: CliContext): void {
     .argument('<scene>', sceneHelp())
     .requiredOption('-o, --out <file.glb>', 'where to write the .glb')
     .option('--meters-per-unit <m>', "scale of one scene unit in metres (default: the scene's own, e.g. 1/32 for Doom maps)", numberOption('--meters-per-unit', 1e-9, 1e9));
-  withSceneOptions(command).action((sceneArg: string, o: { out: string; metersPerUnit?: number; lightTable?: string }) =>
+  withSceneOptions(command).action((sceneArg: string, o: { out: string; metersPerUnit?: number } & SceneOptionValues) =>
       context.run(async () => {
         if (!o.out.toLowerCase().endsWith('.glb')) throw new LanternError(`--out must name a .glb file, not '${o.out}'`);
-        const scene = await loadSceneArgument(sceneArg, { onWarning: context.note, ...(o.lightTable ? { lightTablePath: o.lightTable } : {}) });
+        const scene = await loadSceneArgument(sceneArg, sceneLoadOptions(o, context.note));
         validateScene(scene);
         const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });
         writeFile(o.out, glb);

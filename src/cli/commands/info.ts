@@ -3,11 +3,11 @@ import type { Command } from 'commander';
 import { formatBvhStats } from '../../bvh/stats.ts';
 import { prepareScene, type PreparedScene } from '../../renderer/prepare.ts';
 import type { CliContext } from '../context.ts';
-import { withSceneOptions } from '../options.ts';
+import { withSceneOptions, type SceneOptionValues } from '../options.ts';
 import { builtinScene } from '../../loaders/builtin/index.ts';
 import type { Scene } from '../../scene/types.ts';
 import { describePrimitives } from '../../scene/triangles.ts';
-import { loadOptions, openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
+import { loadOptions, openSceneFiles, parseSceneArgument, sceneHelp, sceneLoadOptions } from '../scene-source.ts';
 
 export function registerInfo(program: Command, context: CliContext): void {
   const command = program
@@ -15,17 +15,17 @@ export function registerInfo(program: Command, context: CliContext): void {
     .description('print what a scene holds and its BVH statistics, or the maps of a WAD (no GPU needed)')
     .argument('<scene>', `${sceneHelp()}; a WAD without #map lists its maps`)
     .option('--json', 'print as JSON');
-  withSceneOptions(command).action((sceneArg: string, options: { json?: boolean; lightTable?: string }) =>
+  withSceneOptions(command).action((sceneArg: string, options: { json?: boolean } & SceneOptionValues) =>
       context.run(async () => {
         const t0 = performance.now();
         const argument = parseSceneArgument(sceneArg);
-        const sceneOptions = loadOptions({ onWarning: context.note, ...(options.lightTable ? { lightTablePath: options.lightTable } : {}) });
+        const sceneOptions = loadOptions(sceneLoadOptions(options, context.note));
         let loaded: Scene;
         if (argument.kind === 'builtin') loaded = builtinScene(argument.name);
         else {
           const { format, opened, part } = await openSceneFiles(argument);
           // A file of several scenes named without one: list them rather than pick the first.
-          const inventory = format.part && part === undefined ? opened.inventory?.() : undefined;
+          const inventory = format.part && part === undefined ? opened.inventory?.(sceneOptions) : undefined;
           if (inventory) {
             context.print(options.json ? JSON.stringify(inventory.json, null, 2) : inventory.lines.join('\n'));
             return;

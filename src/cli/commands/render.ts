@@ -26,6 +26,7 @@ interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOption
   camera?: number[];
   fov?: number;
   lightTable?: string;
+  skill?: number;
   json?: boolean;
   kernel: KernelKind;
 }
@@ -56,7 +57,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   checkLensOptions(o);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o.lightTable, environmentFromOptions(o));
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o));
   await renderer.resize(o.width, o.height);
   const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
   const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;

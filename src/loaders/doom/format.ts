@@ -5,7 +5,9 @@
 import { LanternError } from '../../errors.ts';
 import type { FileHead, OpenedScene, SceneFormat } from '../format.ts';
 import { loadDoomMap, summarizeMaps } from './load.ts';
+import { SpriteSet } from './sprites.ts';
 import { DoomGraphics } from './textures.ts';
+import { DEFAULT_SKILL } from './thing-types.ts';
 import { isDoomUri, parseDoomUri } from './uri.ts';
 import { readWad, WadStack } from './wad.ts';
 
@@ -41,30 +43,34 @@ function openStack(stack: WadStack): OpenedScene {
   if (maps.length === 0) throw new LanternError(`${stack.describe()} has no maps`, 'Open an IWAD (such as freedoom1.wad) or a PWAD that contains maps');
   // Composed once per stack and reused by every map: most textures are shared between maps.
   let graphics: DoomGraphics | undefined;
+  let sprites: SpriteSet | undefined;
   return {
     description: stack.describe(),
     parts: maps.map((m) => ({ name: m.name, loadable: m.format === 'doom', ...(m.format === 'doom' ? {} : { note: `${m.format} format: not supported` }) })),
     async scene(part, options = {}) {
       const onWarning = options.onWarning;
       graphics ??= new DoomGraphics(stack, onWarning ? { onWarning } : {});
+      sprites ??= new SpriteSet(stack, graphics.palette, onWarning);
       // Without a part: the first map Lantern can build, not a Hexen map that happens to come first.
       const map = part ?? maps.find((m) => m.format === 'doom')?.name;
-      const loaded = loadDoomMap(stack, map, { graphics, ...(onWarning ? { onWarning } : {}), ...(options.lightTable ? { lightTable: options.lightTable } : {}) });
+      const things = options.skill !== undefined ? { things: { skill: options.skill } } : {};
+      const loaded = loadDoomMap(stack, map, { graphics, sprites, ...things, ...(onWarning ? { onWarning } : {}), ...(options.lightTable ? { lightTable: options.lightTable } : {}) });
       if (loaded.failures.length > 0) onWarning?.(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated: ${loaded.failures.map((f) => `#${f.sector}`).join(', ')}`);
       return loaded.scene;
     },
-    inventory() {
-      const summaries = summarizeMaps(stack);
+    inventory(options = {}) {
+      const skill = options.skill ?? DEFAULT_SKILL;
+      const summaries = summarizeMaps(stack, { skill });
       const n = (x: number | undefined) => (x ?? 0).toLocaleString('en-US').padStart(7);
-      const lines = [`${stack.describe()}: ${summaries.length} maps`, '  map        things  lines  sectors  triangles  textures'];
+      const lines = [`${stack.describe()}: ${summaries.length} maps (sprites drawn and emitting at skill ${skill})`, '  map        things  lines  sectors  triangles  textures  sprites  emitting'];
       for (const m of summaries) {
         if (m.error) lines.push(`  ${m.name.padEnd(8)}  ${m.error}`);
         else {
           const failed = m.failures && m.failures.length > 0 ? `  (${m.failures.length} sectors not triangulated)` : '';
-          lines.push(`  ${m.name.padEnd(8)} ${n(m.things)}${n(m.linedefs)}  ${n(m.sectors)}  ${n(m.triangles).padStart(9)}  ${n(m.textures).padStart(8)}${failed}`);
+          lines.push(`  ${m.name.padEnd(8)} ${n(m.things)}${n(m.linedefs)}  ${n(m.sectors)}  ${n(m.triangles).padStart(9)}  ${n(m.textures).padStart(8)}  ${n(m.sprites)}  ${n(m.emittingSprites).padStart(8)}${failed}`);
         }
       }
-      return { lines, json: { wads: stack.files.map((f) => f.name), maps: summaries } };
+      return { lines, json: { wads: stack.files.map((f) => f.name), skill, maps: summaries } };
     },
   };
 }

@@ -45,6 +45,7 @@
 import { LanternError } from '../../errors.ts';
 import { luminance, type Vec3 } from '../../math/vec3.ts';
 import type { Texture, Torch } from '../../scene/types.ts';
+import { lightGivingSprites } from './thing-types.ts';
 
 export interface LightSource {
   /** Emitted radiance = strength × colour × texture colour (linear), at sector light 255. */
@@ -64,6 +65,12 @@ export interface LightTable {
   readonly textures: Readonly<Record<string, LightSource>>;
   /** Flats, for floors and ceilings. */
   readonly flats: Readonly<Record<string, LightSource>>;
+  /**
+   * Things, by sprite name (CBRA, TLMP, ...: every frame and rotation of the sprite). Their emission
+   * ignores the sector's light level (Doom draws these frames full bright), and both faces of the
+   * sprite emit.
+   */
+  readonly things: Readonly<Record<string, LightSource>>;
 }
 
 /**
@@ -75,6 +82,13 @@ export const LAMP_GLOW = 0.6;
 export const LAVA_STRENGTH = 8;
 export const NUKAGE_STRENGTH = 6;
 export const SKY_STRENGTH = 5;
+/**
+ * Flames on things (torches, candles, the burning barrel): only their bright texels emit (the
+ * yellow-white of the flame, FIRE_GLOW of the brightest), at a third of a lamp's strength: a flame's
+ * sprite is mostly flame, so more of it glows than of a lamp texture. Electric floor lamps are lamps.
+ */
+export const FIRE_THING_STRENGTH = 16;
+export const FIRE_GLOW = 0.5;
 
 const range = (prefix: string, from: number, to: number, digits = 1): string[] =>
   Array.from({ length: to - from + 1 }, (_, i) => `${prefix}${String(from + i).padStart(digits, '0')}`);
@@ -105,9 +119,13 @@ const NUKAGE_TEXTURES = range('SFALL', 1, 4);
 const entries = (names: readonly string[], source: LightSource) => Object.fromEntries(names.map((n) => [n, source]));
 const lamp: LightSource = { strength: LAMP_STRENGTH, glow: LAMP_GLOW };
 
+const flame: LightSource = { strength: FIRE_THING_STRENGTH, glow: FIRE_GLOW };
+
 export const DEFAULT_LIGHT_TABLE: LightTable = {
   textures: { ...entries(LAMP_TEXTURES, lamp), ...entries(FIRE_TEXTURES, { strength: LAVA_STRENGTH }), ...entries(NUKAGE_TEXTURES, { strength: NUKAGE_STRENGTH }) },
   flats: { ...entries(LAMP_FLATS, lamp), ...entries(LAVA_FLATS, { strength: LAVA_STRENGTH }), ...entries(NUKAGE_FLATS, { strength: NUKAGE_STRENGTH }) },
+  // The light-giving things of thing-types.ts.
+  things: Object.fromEntries([...lightGivingSprites()].map(([sprite, kind]) => [sprite, kind === 'lamp' ? lamp : flame])),
 };
 
 /**
@@ -140,22 +158,23 @@ export function mergeLightTables(base: LightTable, overrides: Partial<LightTable
   return {
     textures: { ...base.textures, ...upper(overrides.textures) },
     flats: { ...base.flats, ...upper(overrides.flats) },
+    things: { ...base.things, ...upper(overrides.things) },
   };
 }
 
 /**
  * A user's light table overrides from parsed JSON, checked: `{ "textures": { "NAME": { "strength": 48,
- * "color": [1, 0.9, 0.8], "glow": 0.6 } }, "flats": { ... } }`. Throws a LanternError naming the
- * first bad entry.
+ * "color": [1, 0.9, 0.8], "glow": 0.6 } }, "flats": { ... }, "things": { "SPRITE": { ... } } }` (things
+ * by their four-letter sprite name). Throws a LanternError naming the first bad entry.
  */
 export function parseLightTable(json: unknown, source = 'light table'): Partial<LightTable> {
   const fail = (what: string): never => {
-    throw new LanternError(`${source}: ${what}`, 'Expected { "textures": { "NAME": { "strength": 16, "color": [1, 1, 1], "glow": 0.6 } }, "flats": { ... } }');
+    throw new LanternError(`${source}: ${what}`, 'Expected { "textures": { "NAME": { "strength": 16, "color": [1, 1, 1], "glow": 0.6 } }, "flats": { ... }, "things": { "SPRITE": { ... } } }');
   };
   if (typeof json !== 'object' || json === null || Array.isArray(json)) fail('not a JSON object');
-  const out: { textures?: Record<string, LightSource>; flats?: Record<string, LightSource> } = {};
+  const out: { textures?: Record<string, LightSource>; flats?: Record<string, LightSource>; things?: Record<string, LightSource> } = {};
   for (const [key, value] of Object.entries(json as Record<string, unknown>)) {
-    if (key !== 'textures' && key !== 'flats') fail(`unknown key '${key}' (use "textures" and "flats")`);
+    if (key !== 'textures' && key !== 'flats' && key !== 'things') fail(`unknown key '${key}' (use "textures", "flats" and "things")`);
     if (typeof value !== 'object' || value === null || Array.isArray(value)) fail(`"${key}" must be an object of names`);
     const entries: Record<string, LightSource> = {};
     for (const [name, entry] of Object.entries(value as Record<string, unknown>)) {
@@ -173,7 +192,7 @@ export function parseLightTable(json: unknown, source = 'light table'): Partial<
         ...(e.glow !== undefined ? { glow: e.glow as number } : {}),
       };
     }
-    out[key as 'textures' | 'flats'] = entries;
+    out[key as 'textures' | 'flats' | 'things'] = entries;
   }
   return out;
 }

@@ -7,7 +7,9 @@ import { LanternError } from '../../errors.ts';
 import type { LightTable } from './light-table.ts';
 import { readMap } from './map-lumps.ts';
 import type { SectorFailure } from './sectors.ts';
+import { SpriteSet } from './sprites.ts';
 import { DoomGraphics } from './textures.ts';
+import type { ThingOptions } from './things.ts';
 import { doomMapToScene, type DoomScene } from './to-scene.ts';
 import type { MapInfo, WadStack } from './wad.ts';
 
@@ -16,6 +18,10 @@ export interface DoomLoadOptions {
   readonly onWarning?: (message: string) => void;
   /** Reuse graphics across maps of the same stack (textures are composed once). */
   readonly graphics?: DoomGraphics;
+  /** Reuse the sprite index and pictures across maps of the same stack. */
+  readonly sprites?: SpriteSet;
+  /** Which things appear: skill 1–5 (default 3), single player unless `multiplayer`. */
+  readonly things?: ThingOptions;
 }
 
 export interface DoomLoad extends DoomScene {
@@ -35,7 +41,10 @@ export function loadDoomMap(stack: WadStack, mapName: string | undefined, option
   const map = readMap(stack, info.name, options.onWarning ? { onWarning: options.onWarning } : {});
   const graphics = options.graphics ?? new DoomGraphics(stack, options.onWarning ? { onWarning: options.onWarning } : {});
   const sky = graphics.sky(info.name);
+  const sprites = options.sprites ?? new SpriteSet(stack, graphics.palette, options.onWarning);
   const built = doomMapToScene(map, graphics, {
+    sprites,
+    ...(options.things ? { things: options.things } : {}),
     ...(sky ? { sky } : {}),
     ...(options.lightTable ? { lightTable: options.lightTable } : {}),
     ...(options.onWarning ? { onWarning: options.onWarning } : {}),
@@ -51,17 +60,24 @@ export interface MapSummary {
   readonly sectors?: number;
   readonly triangles?: number;
   readonly textures?: number;
+  /** Things drawn (at the skill summarised), and those of them that give light. */
+  readonly sprites?: number;
+  readonly emittingSprites?: number;
   readonly failures?: readonly SectorFailure[];
   /** Why the map was not built (Hexen or UDMF format, a broken lump). */
   readonly error?: string;
 }
 
-/** Every map of a stack with its counts; maps that cannot be built say why instead of stopping the list. */
-export function summarizeMaps(stack: WadStack): MapSummary[] {
+/**
+ * Every map of a stack with its counts (things drawn at `things`' skill, 3 by default); maps that
+ * cannot be built say why instead of stopping the list.
+ */
+export function summarizeMaps(stack: WadStack, things: ThingOptions = {}): MapSummary[] {
   const graphics = new DoomGraphics(stack);
+  const sprites = new SpriteSet(stack, graphics.palette);
   return stack.maps().map((info) => {
     try {
-      const m = loadDoomMap(stack, info.name, { graphics });
+      const m = loadDoomMap(stack, info.name, { graphics, sprites, things });
       return {
         name: info.name,
         format: info.format,
@@ -70,6 +86,8 @@ export function summarizeMaps(stack: WadStack): MapSummary[] {
         sectors: m.stats.sectors,
         triangles: m.stats.triangles,
         textures: m.stats.textures,
+        sprites: m.stats.sprites,
+        emittingSprites: m.stats.emittingSprites,
         failures: m.failures,
       };
     } catch (e) {

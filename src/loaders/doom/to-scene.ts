@@ -1,17 +1,20 @@
 /**
  * A Lantern scene from a Doom map: floors and ceilings (sectors.ts), walls (walls.ts), materials
- * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the player's
- * view and torch. Coordinates go through coordinates.ts.
+ * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the things as
+ * sprites turned toward the viewer (things.ts, scene/billboards.ts), the player's view and torch. Coordinates go through coordinates.ts.
  */
 import { doomWalkMap } from './walk-map.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import { placeEachOnce } from '../../scene/instances.ts';
 import { diffuse, type Camera, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
-import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
+import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightSource, type LightTable } from './light-table.ts';
 import { EYE_HEIGHT, PLAYER1_START, type DoomImageSource, type DoomMap } from './map-types.ts';
 import { buildSectorShapes, sectorAt, type SectorFailure, type SectorShapes } from './sectors.ts';
+import type { SpriteSource } from './sprites.ts';
+import { buildThings, type ThingOptions } from './things.ts';
 import { buildWalls, isSky, type WallQuad } from './walls.ts';
+import { billboardPoses, billboardQuad, type Billboard } from '../../scene/billboards.ts';
 
 export interface DoomSceneOptions {
   /** The sky texture (SKY1, ...). Without one the sky glows a plain grey. */
@@ -21,6 +24,10 @@ export interface DoomSceneOptions {
   readonly onWarning?: (message: string) => void;
   /** Scene name; the map's name by default. */
   readonly name?: string;
+  /** The WADs' sprites: with them, the map's things are drawn (things.ts); without, none are. */
+  readonly sprites?: SpriteSource;
+  /** Which things appear (skill, multiplayer). */
+  readonly things?: ThingOptions;
 }
 
 export interface DoomSceneStats {
@@ -32,6 +39,9 @@ export interface DoomSceneStats {
   readonly materials: number;
   readonly emissiveMaterials: number;
   readonly textures: number;
+  /** Things drawn as sprites, and how many of them give light. */
+  readonly sprites: number;
+  readonly emittingSprites: number;
 }
 
 export interface DoomScene {
@@ -111,15 +121,28 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   }
 
   for (const quad of walls) addWall(out, quad, map.sectors[quad.sector]!.lightLevel);
+  const things = options.sprites && buildThings(map, shapes, options.sprites, table, (lump, picture, light) => out.sprite(lump, picture, light), options.things, warn);
 
   const { meshes, materials, textures } = out.finish();
+  const camera = playerCamera(map, shapes, warn);
+  const instances = placeEachOnce(meshes);
+  let billboards: Billboard[] = [];
+  if (things && things.billboards.length > 0) {
+    // One quad for every thing, each an instance posed toward the player's view (and after that by
+    // the world's billboard animator).
+    const quad = meshes.push(billboardQuad(things.billboards[0]!.images[0]!.material, 'sprite quad')) - 1;
+    billboards = things.billboards.map((b) => ({ ...b, instance: instances.length + b.instance }));
+    const poses = billboardPoses(billboards, { position: camera.position, forward: camera.forward });
+    billboards.forEach((b, i) => instances.push({ id: b.instance, name: things.names[i]!, mesh: quad, moves: true, ...poses.get(b.instance)! }));
+  }
   const scene: Scene = {
     name: options.name ?? map.name,
     meshes,
-    instances: placeEachOnce(meshes),
+    instances,
     materials,
     textures,
-    camera: playerCamera(map, shapes, warn),
+    ...(billboards.length > 0 ? { dynamics: { billboards } } : {}),
+    camera,
     torch: DOOM_TORCH,
     metersPerUnit: DOOM_METERS_PER_UNIT,
     walkMap: doomWalkMap(map),
@@ -135,6 +158,8 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
       materials: materials.length,
       emissiveMaterials: materials.filter((m) => m.emission.some((c) => c > 0)).length,
       textures: textures.length,
+      sprites: billboards.length,
+      emittingSprites: things?.emitting ?? 0,
     },
   };
 }
@@ -255,6 +280,24 @@ class SceneParts {
         albedoTexture: { texture },
         ...(emission && { emissionTexture: { texture: glow } }),
         ...(masked && { alphaMode: 'mask' as const }),
+      });
+    });
+  }
+
+  /**
+   * A sprite lump's picture: masked like Doom's sprites, nearest. Light-giving things emit from their
+   * bright texels on both faces, at full strength whatever the sector's light (Doom draws them full bright).
+   */
+  sprite(lump: string, picture: Texture, light: LightSource | undefined): number {
+    const emission = emissionOf(light, 255);
+    const key = `sprite:${lump}:${emission?.join(',') ?? ''}`;
+    return this.add(key, () => {
+      const texture = this.texture(picture);
+      const glow = emission && light?.glow ? this.glow(picture, light.glow) : texture;
+      return diffuse(emission ? `${lump} (glowing ${+emission[0].toFixed(3)})` : lump, [1, 1, 1], emission ?? [0, 0, 0], {
+        albedoTexture: { texture },
+        alphaMode: 'mask',
+        ...(emission && { emissionTexture: { texture: glow }, twoSidedEmission: true }),
       });
     });
   }

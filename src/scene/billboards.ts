@@ -1,0 +1,176 @@
+/**
+ * Billboards: quads that stand at a point, turn toward the viewer and show one of several images
+ * chosen by the angle between the object's facing and the direction it is seen from (Doom's
+ * sprites, R_ProjectSprite). The data (`Billboard`) lives in Scene.dynamics.billboards; the
+ * animator made by `billboardAnimator` poses each billboard's instance every step. Pure.
+ *
+ * The instance's mesh is a unit quad in object space (BILLBOARD_QUAD): x and y from 0 to 1, z = 0,
+ * its front face toward +z, uv (0, 0) at the image's top-left corner. A pose maps it onto the
+ * image's rectangle, in the plane that faces the viewer: Doom draws sprites parallel to the view
+ * plane, so every quad's normal points against the viewer's forward direction projected onto the
+ * horizontal plane, whatever the viewer's position. Only the chosen rotation depends on where the
+ * viewer stands.
+ */
+import type { Mat4 } from '../math/mat4.ts';
+import type { Vec3 } from '../math/vec3.ts';
+import type { Mesh } from './types.ts';
+import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
+
+/** One image of a billboard: what it shows and where it sits relative to the billboard's anchor. */
+export interface BillboardImage {
+  /** Index into Scene.materials (the instance's material override while this image shows). */
+  readonly material: number;
+  /** Size in scene units. */
+  readonly width: number;
+  readonly height: number;
+  /**
+   * Where the anchor lies in the image, from its top-left corner, in scene units, x to the right and
+   * y down (Doom's left and top offsets: the image's top edge is `top` above the anchor).
+   */
+  readonly left: number;
+  readonly top: number;
+  /** Shown mirrored left to right, over the same extent (Doom's flipped rotations). */
+  readonly mirrored: boolean;
+}
+
+export interface Billboard {
+  /** The Instance.id this billboard poses (an instance of BILLBOARD_QUAD created with `moves: true`). */
+  readonly instance: number;
+  /** World position of the anchor (Doom: the thing's feet, or its top less its height when it hangs). */
+  readonly position: Vec3;
+  /**
+   * The way the object faces, in radians about +y: 0 along +x, π/2 along −z (so that Doom's map
+   * angles, counter-clockwise from east, are these angles: coordinates.ts maps north to −z).
+   */
+  readonly facing: number;
+  /**
+   * One image for every angle (Doom's rotation 0), or eight, Doom's rotations 1–8: image k shows the
+   * object seen from 45°·k counter-clockwise (from above) of the way it faces, so image 0 is the
+   * object facing the viewer, image 2 its left side, image 4 its back.
+   */
+  readonly images: readonly BillboardImage[];
+}
+
+/** The unit quad every billboard instance places (one shared mesh; the instance's material replaces `material`). */
+export function billboardQuad(material: number, name = 'billboard quad'): Mesh {
+  return {
+    name,
+    positions: new Float32Array([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]),
+    // Image row 0 is the top: v = 1 − y.
+    uvs: new Float32Array([0, 1, 1, 1, 1, 0, 0, 0]),
+    // Counter-clockwise seen from +z: the front face looks along +z.
+    indices: new Uint32Array([0, 1, 2, 0, 2, 3]),
+    materialIds: new Uint32Array([material, material]),
+  };
+}
+
+const TURN = 2 * Math.PI;
+const EIGHTH = TURN / 8;
+
+/**
+ * Which of eight rotations shows when the object, facing `facing`, is seen from `viewer` (both in
+ * the horizontal plane, angles as Billboard.facing). Doom's rule (R_ProjectSprite):
+ * rot = (ang − thing.angle + ANG45/2·9) >> 29, where ang is the direction from the viewer to the
+ * thing: eight 45° sectors, each centred on its rotation, rotation 1 (index 0) when the object faces
+ * the viewer. Returns the index 0–7 (rotation number − 1).
+ */
+export function rotationIndex(facing: number, viewer: Vec3, position: Vec3): number {
+  // Direction from the viewer to the object, as an angle of the same kind as `facing`.
+  const ang = Math.atan2(-(position[2] - viewer[2]), position[0] - viewer[0]);
+  let a = (ang - facing + 9 * (EIGHTH / 2)) % TURN;
+  if (a < 0) a += TURN;
+  // A hair's breadth below a boundary can round to 8 · EIGHTH; it belongs to sector 7's neighbour 0.
+  return Math.floor(a / EIGHTH) % 8;
+}
+
+/** The image shown for a rotation index (a one-image billboard shows its image at every angle). */
+export function imageAt(b: Billboard, rotation: number): BillboardImage {
+  return b.images.length === 1 ? b.images[0]! : b.images[rotation]!;
+}
+
+/**
+ * The yaw (radians about +y) of a quad facing a viewer who looks along `forward`: the quad's normal
+ * (object +z) is −forward projected onto the horizontal plane. Undefined when the viewer looks
+ * straight up or down (no horizontal direction to face).
+ */
+export function facingYaw(forward: Vec3): number | undefined {
+  const [fx, fz] = [forward[0], forward[2]];
+  if (Math.hypot(fx, fz) < 1e-9) return undefined;
+  // Object +z goes to n = −f (horizontal); object +x to r = (−fz, 0, fx) / |f|, the viewer's right.
+  return Math.atan2(-fx, -fz);
+}
+
+/**
+ * The world-from-object transform of BILLBOARD_QUAD showing `image` at `position`, turned to `yaw`
+ * (facingYaw): the quad spans [−left, width − left] along the viewer's right and
+ * [top − height, top] above the anchor; mirrored images scale x by −width over the same span.
+ */
+export function billboardPose(position: Vec3, image: BillboardImage, yaw: number): Mat4 {
+  // Rotation about +y by yaw: object +z -> (sin yaw, 0, cos yaw) = n, object +x -> (cos yaw, 0, −sin yaw) = r.
+  const c = Math.cos(yaw);
+  const s = Math.sin(yaw);
+  const r: Vec3 = [c, 0, -s];
+  const n: Vec3 = [s, 0, c];
+  const sx = image.mirrored ? -image.width : image.width;
+  const x0 = image.mirrored ? image.width - image.left : -image.left;
+  const y0 = image.top - image.height;
+  return [
+    r[0] * sx, r[1] * sx, r[2] * sx, 0,
+    0, image.height, 0, 0,
+    n[0], n[1], n[2], 0,
+    position[0] + r[0] * x0, position[1] + y0, position[2] + r[2] * x0, 1,
+  ];
+}
+
+interface Shown {
+  rotation: number;
+  yaw: number;
+}
+
+/**
+ * Poses billboards: each step, every billboard whose rotation or yaw changed gets a new transform
+ * and material; the others write nothing (a viewer who moves without turning changes only the
+ * rotations that cross a sector boundary).
+ */
+export class BillboardAnimator implements Animator {
+  private readonly shown: (Shown | undefined)[];
+  /** The yaw used while the viewer looks straight up or down (the last horizontal one). */
+  private yaw = 0;
+
+  constructor(private readonly billboards: readonly Billboard[]) {
+    this.shown = billboards.map(() => undefined);
+  }
+
+  step(_t: number, _dt: number, view: Viewpoint, out: UpdateBuilder): void {
+    this.yaw = facingYaw(view.forward) ?? this.yaw;
+    const yaw = this.yaw;
+    this.billboards.forEach((b, i) => {
+      const rotation = b.images.length === 1 ? 0 : rotationIndex(b.facing, view.position, b.position);
+      const before = this.shown[i];
+      if (before && before.rotation === rotation && before.yaw === yaw) return;
+      this.shown[i] = { rotation, yaw };
+      const image = imageAt(b, rotation);
+      const previous = before && imageAt(b, before.rotation);
+      out.pose(b.instance, {
+        worldFromObject: billboardPose(b.position, image, yaw),
+        ...(previous?.material !== image.material ? { material: image.material } : {}),
+      });
+    });
+  }
+}
+
+export const billboardAnimator: AnimatorFactory = (scene) => {
+  const billboards = scene.dynamics?.billboards;
+  return billboards && billboards.length > 0 ? new BillboardAnimator(billboards) : undefined;
+};
+
+/** The poses of every billboard seen from `view`, as one update (what a loader uses for the scene's first frame). */
+export function billboardPoses(billboards: readonly Billboard[], view: Viewpoint): Map<number, { worldFromObject: Mat4; material: number }> {
+  const poses = new Map<number, { worldFromObject: Mat4; material: number }>();
+  const yaw = facingYaw(view.forward) ?? 0;
+  for (const b of billboards) {
+    const image = imageAt(b, b.images.length === 1 ? 0 : rotationIndex(b.facing, view.position, b.position));
+    poses.set(b.instance, { worldFromObject: billboardPose(b.position, image, yaw), material: image.material });
+  }
+  return poses;
+}
