@@ -4,6 +4,7 @@
  */
 import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
+import { loadDoomMap } from './load.ts';
 import { readMap } from './map-lumps.ts';
 import { DoomGraphics } from './textures.ts';
 import { readWad, WadStack } from './wad.ts';
@@ -51,5 +52,35 @@ describe.each(IWADS)('$file', ({ file, maps, first, last }) => {
     expect(flats).toBe(g.flatNames().length);
     expect(g.sky(first)).toBeDefined();
     expect(g.flat('F_SKY1')).toBeDefined();
+  });
+});
+
+/**
+ * Things drawn and light-giving things per map, counted by hand from the THINGS lumps (each thing's
+ * flags against the skill bits and the multiplayer bit, player starts left out): Freedoom's E1M1 has
+ * 238 things, 31 of them multiplayer-only, and 7 floor lamps (2028) at every skill; MAP01 has 162,
+ * 30 multiplayer-only, and 5 floor lamps.
+ */
+describe.each([
+  { file: 'freedoom1.wad', map: 'E1M1', drawn: { 1: 171, 3: 169, 5: 185 }, emitting: 7 },
+  { file: 'freedoom2.wad', map: 'MAP01', drawn: { 1: 95, 3: 101, 5: 114 }, emitting: 5 },
+])('$file $map things', ({ file, map, drawn, emitting }) => {
+  const path = `${DIR}/${file}`;
+
+  it.skipIf(!existsSync(path))('draws every thing of the skill as a sprite, the lamps emitting', () => {
+    const stack = new WadStack([readWad(readFileSync(path), file)]);
+    const warnings: string[] = [];
+    for (const [skill, n] of Object.entries(drawn)) {
+      const loaded = loadDoomMap(stack, map, { things: { skill: Number(skill) }, onWarning: (w) => warnings.push(w) });
+      expect(loaded.stats.sprites).toBe(n);
+      expect(loaded.stats.emittingSprites).toBe(emitting);
+      expect(loaded.scene.instances.filter((i) => i.moves)).toHaveLength(n);
+      // Every floor lamp's material emits on both faces.
+      const lamps = loaded.scene.instances.filter((i) => i.name === 'Floor lamp');
+      expect(lamps).toHaveLength(emitting);
+      for (const lamp of lamps) expect(loaded.scene.materials[lamp.material!]!.twoSidedEmission).toBe(true);
+    }
+    // Every thing type is known and every sprite frame is complete: nothing is reported.
+    expect(warnings.filter((w) => /thing|sprite/.test(w))).toEqual([]);
   });
 });

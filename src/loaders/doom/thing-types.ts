@@ -178,13 +178,15 @@ export const THING_TYPES: ReadonlyMap<number, ThingType> = new Map(
 
 /**
  * Things that are markers, not pictures: player and deathmatch starts, teleport destinations, the
- * boss brain's spawn targets and spawner, and the dead lost soul (its spawn frame, SKUL K, is empty
- * in the games' own data).
+ * boss brain's spawn targets and spawner, the dead lost soul (its spawn frame, SKUL K, is drawn as
+ * nothing in the games), and an editor's camera marker.
  */
 export const INVISIBLE_THINGS: ReadonlyMap<number, string> = new Map([
   [1, 'Player 1 start'], [2, 'Player 2 start'], [3, 'Player 3 start'], [4, 'Player 4 start'],
   [11, 'Deathmatch start'], [14, 'Teleport destination'], [87, 'Boss spawn target'], [89, 'Boss spawn shooter'],
   [23, 'Dead lost soul'],
+  // Doom Builder's visual-mode camera, left in a few Freedoom maps; the games ignore it.
+  [32000, 'Doom Builder camera'],
 ]);
 
 /** Thing flags (https://doomwiki.org/wiki/Thing#Flags). */

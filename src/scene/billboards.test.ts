@@ -1,0 +1,163 @@
+import { describe, expect, it } from 'vitest';
+import { determinant3, transformPoint, type Mat4 } from '../math/mat4.ts';
+import { cross, dot, sub, type Vec3 } from '../math/vec3.ts';
+import { billboardPose, billboardQuad, facingYaw, rotationIndex, type Billboard, type BillboardImage } from './billboards.ts';
+import type { Scene } from './types.ts';
+import { diffuse } from './types.ts';
+import { World, type Viewpoint } from './world.ts';
+
+const DEG = Math.PI / 180;
+/** A viewer `d` units from `at` in the direction of map angle `deg` (0 east, 90 north = −z). */
+const around = (at: Vec3, deg: number, d = 100): Vec3 => [at[0] + d * Math.cos(deg * DEG), at[1], at[2] - d * Math.sin(deg * DEG)];
+
+describe('rotationIndex (R_ProjectSprite)', () => {
+  const thing: Vec3 = [10, 0, -20];
+
+  it.each([0, 1, 2, 3, 4, 5, 6, 7])('a thing facing east seen from %i × 45° counter-clockwise shows rotation %i + 1', (k) => {
+    expect(rotationIndex(0, around(thing, 45 * k), thing)).toBe(k);
+  });
+
+  it('turns with the thing: facing north, seen from the north is rotation 1, from the west rotation 3, from the south rotation 5', () => {
+    expect(rotationIndex(90 * DEG, around(thing, 90), thing)).toBe(0);
+    expect(rotationIndex(90 * DEG, around(thing, 180), thing)).toBe(2);
+    expect(rotationIndex(90 * DEG, around(thing, 270), thing)).toBe(4);
+    expect(rotationIndex(90 * DEG, around(thing, 0), thing)).toBe(6);
+  });
+
+  it('centres each 45° sector on its rotation: the boundaries lie at ±22.5°', () => {
+    expect(rotationIndex(0, around(thing, 22.4), thing)).toBe(0);
+    expect(rotationIndex(0, around(thing, 22.6), thing)).toBe(1);
+    expect(rotationIndex(0, around(thing, -22.4), thing)).toBe(0);
+    expect(rotationIndex(0, around(thing, -22.6), thing)).toBe(7);
+    expect(rotationIndex(0, around(thing, 157.4), thing)).toBe(3);
+    expect(rotationIndex(0, around(thing, 157.6), thing)).toBe(4);
+  });
+
+  it("agrees with Doom's binary-angle arithmetic, (ang − angle + ANG45/2·9) >> 29, over many positions and facings", () => {
+    const ANG45 = 0x20000000;
+    const bam = (radians: number) => Math.round((radians / (2 * Math.PI)) * 2 ** 32) >>> 0;
+    let seed = 7;
+    const next = () => ((seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32);
+    for (let i = 0; i < 2000; i++) {
+      const facingDeg = 45 * Math.floor(next() * 8); // map things face multiples of 45°
+      const viewer: Vec3 = [thing[0] + (next() - 0.5) * 2000, 41, thing[2] + (next() - 0.5) * 2000];
+      // R_PointToAngle(thing.x, thing.y): from the viewer to the thing, in map coordinates (y = −z).
+      const ang = Math.atan2(-(thing[2] - viewer[2]), thing[0] - viewer[0]);
+      const doom = ((bam(ang) - bam(facingDeg * DEG) + (ANG45 / 2) * 9) >>> 0) >>> 29;
+      expect(rotationIndex(facingDeg * DEG, viewer, thing)).toBe(doom);
+    }
+  });
+});
+
+/** The quad's two triangles in world space, with the winding a mirroring transform gets (scene/triangles.ts swaps v1 and v2). */
+function worldTriangles(m: Mat4): [Vec3, Vec3, Vec3][] {
+  const q = billboardQuad(0);
+  const p = (i: number): Vec3 => transformPoint(m, [q.positions[3 * i]!, q.positions[3 * i + 1]!, q.positions[3 * i + 2]!]);
+  const mirror = determinant3(m) < 0;
+  const out: [Vec3, Vec3, Vec3][] = [];
+  for (let t = 0; t < q.indices.length; t += 3) {
+    const [a, b, c] = [q.indices[t]!, q.indices[t + 1]!, q.indices[t + 2]!];
+    out.push(mirror ? [p(a), p(c), p(b)] : [p(a), p(b), p(c)]);
+  }
+  return out;
+}
+
+const image = (over: Partial<BillboardImage> = {}): BillboardImage => ({ material: 0, width: 40, height: 60, left: 15, top: 57, mirrored: false, ...over });
+
+describe('billboardPose', () => {
+  const foot: Vec3 = [300, 24, -500];
+
+  it.each([
+    ['north', [0, 0, -1]],
+    ['south-west, looking down', [-1, -0.7, 1]],
+    ['east', [1, 0, 0]],
+  ] as const)('faces a viewer looking %s, normal against the view, spanning the picture around its origin', (_, forward) => {
+    const viewer: Vec3 = sub(foot, [forward[0] * 200, -17, forward[2] * 200]);
+    for (const mirrored of [false, true]) {
+      const m = billboardPose(foot, image({ mirrored }), facingYaw(forward as Vec3)!);
+      for (const [a, b, c] of worldTriangles(m)) {
+        const n = cross(sub(b, a), sub(c, a));
+        expect(dot(n, sub(viewer, foot))).toBeGreaterThan(0);
+        // Parallel to the view plane: the normal is horizontal and along −forward.
+        expect(Math.abs(n[1])).toBeLessThan(1e-9);
+        expect(dot(n, [forward[0], 0, forward[2]])).toBeLessThan(0);
+      }
+      // The picture's top edge is `top` above the anchor, its bottom `height` below that; its left
+      // edge `left` to the viewer's left of it, whichever way the columns run.
+      const corners = [0, 1].flatMap((x) => [0, 1].map((y) => transformPoint(m, [x, y, 0])));
+      const ys = corners.map((p) => p[1]);
+      expect(Math.max(...ys)).toBeCloseTo(foot[1] + 57, 9);
+      expect(Math.min(...ys)).toBeCloseTo(foot[1] + 57 - 60, 9);
+      const right: Vec3 = [-forward[2], 0, forward[0]];
+      const len = Math.hypot(right[0], right[2]);
+      const along = corners.map((p) => dot(sub(p, foot), right) / len);
+      expect(Math.min(...along)).toBeCloseTo(-15, 9);
+      expect(Math.max(...along)).toBeCloseTo(25, 9);
+      // Texture column 0 (object x = 0) is the picture's left edge, or its right edge when mirrored.
+      expect(dot(sub(transformPoint(m, [0, 0, 0]), foot), right) / len).toBeCloseTo(mirrored ? 25 : -15, 9);
+      expect(determinant3(m) < 0).toBe(mirrored);
+    }
+  });
+
+  it('stands a picture whose top offset equals its height with its bottom row on the floor', () => {
+    const m = billboardPose(foot, image({ top: 60 }), 0);
+    expect(transformPoint(m, [0, 0, 0])[1]).toBe(foot[1]);
+    expect(transformPoint(m, [1, 1, 0])[1]).toBe(foot[1] + 60);
+  });
+
+  it('has no facing when the viewer looks straight down', () => {
+    expect(facingYaw([0, -1, 0])).toBeUndefined();
+  });
+});
+
+describe('the billboard animator', () => {
+  const eight = Array.from({ length: 8 }, (_, k) => image({ material: k, mirrored: k >= 5 }));
+  const billboards: Billboard[] = [
+    { instance: 10, position: [0, 0, 0], facing: 0, images: eight },
+    { instance: 11, position: [500, 0, 0], facing: 0, images: [image({ material: 9 })] },
+  ];
+  const scene: Scene = {
+    name: 'billboards',
+    meshes: [billboardQuad(0)],
+    instances: [],
+    materials: Array.from({ length: 10 }, (_, i) => diffuse(`m${i}`, [0.5, 0.5, 0.5])),
+    camera: { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 },
+    dynamics: { billboards },
+  };
+  // East of the first thing, looking west at it: it faces the viewer (rotation 1).
+  const view: Viewpoint = { position: [200, 41, 0], forward: [-1, 0, 0] };
+
+  it('poses every billboard on the first step, with the material of the rotation seen', () => {
+    const world = World.of(scene)!;
+    const u = world.advance(0, view)!;
+    expect([...u.instances.keys()].sort()).toEqual([10, 11]);
+    expect(u.instances.get(10)!.material).toBe(0);
+    expect(u.instances.get(11)!.material).toBe(9);
+  });
+
+  it('writes nothing when the view does not change a pose, and only what changed when it does', () => {
+    const world = World.of(scene)!;
+    world.advance(0, view);
+    expect(world.advance(1 / 35, view)).toBeUndefined();
+    // A small step sideways: no rotation boundary crossed, no turn.
+    expect(world.advance(1 / 35, { ...view, position: [200, 41, 0.5] })).toBeUndefined();
+    // Walking round to the thing's north-west (135°): its rotation changes to 4 (index 3); the
+    // second thing keeps its single image and its yaw.
+    const u = world.advance(1 / 35, { position: around([0, 41, 0], 135, 200), forward: [-1, 0, 0] })!;
+    expect([...u.instances.keys()]).toEqual([10]);
+    expect(u.instances.get(10)!.material).toBe(3);
+    // Behind and to the right of it (−135°): rotation 6 is rotation 4 mirrored (index 5, material 5).
+    const v = world.advance(1 / 35, { position: around([0, 41, 0], -135, 200), forward: [-1, 0, 0] })!;
+    expect(v.instances.get(10)!.material).toBe(5);
+    expect(determinant3(v.instances.get(10)!.worldFromObject!)).toBeLessThan(0);
+    // Turning the view turns every quad, but the materials stay.
+    const w = world.advance(1 / 35, { position: around([0, 41, 0], -135, 200), forward: [0, 0, -1] })!;
+    expect([...w.instances.keys()].sort()).toEqual([10, 11]);
+    expect(w.instances.get(10)!.material).toBeUndefined();
+    expect(w.instances.get(11)!.material).toBeUndefined();
+  });
+
+  it('makes no world for a scene without billboards', () => {
+    expect(World.of({ ...scene, dynamics: { billboards: [] } })).toBeUndefined();
+  });
+});
