@@ -136,12 +136,12 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
   const gltfScene = doc.createScene(scene.name).addChild(root);
   doc.getRoot().setDefaultScene(gltfScene);
 
-  // One primitive per material used by a mesh, all sharing the mesh's vertex accessors.
-  const addPrimitives = (gltfMesh: ReturnType<typeof doc.createMesh>, mesh: Mesh) => {
+  // One primitive per material used by a mesh (or all of them `override`'s), all sharing the mesh's vertex accessors.
+  const addPrimitives = (gltfMesh: ReturnType<typeof doc.createMesh>, mesh: Mesh, override?: number) => {
     const triangleCount = mesh.indices.length / 3;
     const byMaterial = new Map<number, number[]>();
     for (let t = 0; t < triangleCount; t++) {
-      const m = mesh.materialIds[t]!;
+      const m = override ?? mesh.materialIds[t]!;
       let list = byMaterial.get(m);
       if (!list) byMaterial.set(m, (list = []));
       list.push(t);
@@ -164,18 +164,26 @@ export async function sceneToGlb(scene: Scene, options: GlbOptions = {}): Promis
     }
   };
 
-  const gltfMeshes = scene.meshes.map((mesh) => {
-    const gltfMesh = doc.createMesh(mesh.name);
-    if (mesh.indices.length > 0) addPrimitives(gltfMesh, mesh);
+  // glTF materials belong to primitives, not nodes: an instance whose material replaces its mesh's
+  // (Instance.material: a Doom sprite's current rotation) gets a glTF mesh of its own per material.
+  const gltfMeshes = new Map<string, ReturnType<typeof doc.createMesh>>();
+  const gltfMeshOf = (index: number, override?: number) => {
+    const key = `${index}:${override ?? ''}`;
+    let gltfMesh = gltfMeshes.get(key);
+    if (gltfMesh) return gltfMesh;
+    const mesh = scene.meshes[index]!;
+    gltfMesh = doc.createMesh(override === undefined ? mesh.name : `${mesh.name} (${scene.materials[override]?.name ?? override})`);
+    if (mesh.indices.length > 0) addPrimitives(gltfMesh, mesh, override);
     // glTF has no spheres: analytic spheres and capsules go out tessellated, with their own accessors.
     const tessellated = tessellateAnalytic(mesh);
-    if (tessellated) addPrimitives(gltfMesh, tessellated);
+    if (tessellated) addPrimitives(gltfMesh, tessellated, override);
+    gltfMeshes.set(key, gltfMesh);
     return gltfMesh;
-  });
+  };
 
   for (const instance of scene.instances) {
     const node = doc.createNode(instance.name ?? `${scene.meshes[instance.mesh]?.name ?? 'mesh'} ${instance.id}`);
-    node.setMesh(gltfMeshes[instance.mesh]!).setMatrix([...instance.worldFromObject] as Parameters<typeof node.setMatrix>[0]);
+    node.setMesh(gltfMeshOf(instance.mesh, instance.material)).setMatrix([...instance.worldFromObject] as Parameters<typeof node.setMatrix>[0]);
     root.addChild(node);
   }
 

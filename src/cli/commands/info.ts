@@ -53,6 +53,7 @@ export function registerInfo(program: Command, context: CliContext): void {
             `${scene.name}: ${describePrimitives(triangles)} in ${scene.meshes.length} mesh(es) placed by ${scene.instances.length} instance(s) (loaded and prepared in ${loadMs.toFixed(1)} ms)`,
             `materials: ${scene.materials.length} (${kinds})`,
             `lights: ${lights}`,
+            ...(summary.sprites > 0 ? [`sprites: ${summary.sprites} (things drawn), ${summary.emittingSprites} of them emitting`] : []),
             `textures: ${packed.counts.textures}, on the GPU ${mib(summary.textureBytes)} (atlas pages with mip levels: ${packed.atlas.pages.length} sRGB + ${packed.linearAtlas.pages.length} linear)`,
             formatBvhStats(bvh),
           ].join('\n'),
@@ -74,5 +75,13 @@ function sceneSummary({ scene, packed }: PreparedScene) {
     emissiveTriangles: packed.counts.emissiveTriangles,
     punctualLights: packed.counts.punctualLights,
     environment: scene.environment?.kind ?? 'none',
+    ...spriteCounts(scene),
   };
+}
+
+/** Billboards (Doom's things drawn as sprites), and those whose images emit. */
+function spriteCounts(scene: Scene): { sprites: number; emittingSprites: number } {
+  const billboards = scene.dynamics?.billboards ?? [];
+  const emits = (material: number) => scene.materials[material]?.emission.some((c) => c > 0) ?? false;
+  return { sprites: billboards.length, emittingSprites: billboards.filter((b) => b.images.some((i) => emits(i.material))).length };
 }

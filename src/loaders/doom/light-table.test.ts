@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import type { Texture } from '../../scene/types.ts';
 import { LanternError } from '../../errors.ts';
-import { glowTexture, parseLightTable } from './light-table.ts';
+import { DEFAULT_LIGHT_TABLE, FIRE_GLOW, FIRE_THING_STRENGTH, glowTexture, LAMP_GLOW, LAMP_STRENGTH, mergeLightTables, parseLightTable } from './light-table.ts';
 
 describe('glowTexture', () => {
   it('keeps texels at least the threshold of the brightest luminance and blackens the rest', () => {
@@ -27,6 +27,17 @@ describe('parseLightTable', () => {
       textures: { LITE3: { strength: 0 } },
       flats: { NUKAGE1: { strength: 2, color: [0, 1, 0], glow: 0.5 } },
     });
+  });
+
+  it('accepts things by sprite name', () => {
+    expect(parseLightTable({ things: { colu: { strength: 0 }, TRED: { strength: 4, glow: 0.3 } } })).toEqual({ things: { COLU: { strength: 0 }, TRED: { strength: 4, glow: 0.3 } } });
+  });
+
+  it('lists the light-giving things by sprite in the default table, lamps as lamps and flames as flames', () => {
+    expect(DEFAULT_LIGHT_TABLE.things['COLU']).toEqual({ strength: LAMP_STRENGTH, glow: LAMP_GLOW });
+    expect(DEFAULT_LIGHT_TABLE.things['CBRA']).toEqual({ strength: FIRE_THING_STRENGTH, glow: FIRE_GLOW });
+    expect(DEFAULT_LIGHT_TABLE.things['TROO']).toBeUndefined();
+    expect(mergeLightTables(DEFAULT_LIGHT_TABLE, { things: { cbra: { strength: 0 } } }).things['CBRA']).toEqual({ strength: 0 });
   });
 
   it.each([
