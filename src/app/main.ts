@@ -63,7 +63,7 @@ let panel: SettingsPanel | undefined;
 let current: SceneLocation | undefined;
 let loading: string | undefined;
 /** Where the open file set was served from (links can name it), or undefined for local files. */
-let fileSource: { format: string; urls: readonly string[] } | undefined;
+let fileSource: { format: string; urls: readonly string[]; skill?: number } | undefined;
 let loadToken = 0;
 /** Scenes shown so far (the test hook: an environment change must not load the scene again). */
 let sceneLoads = 0;
@@ -177,7 +177,7 @@ function markFileScene(label: string): void {
  * WAD stack, IWAD first) and siblings (a glTF's buffers and textures); a set of several scenes
  * (a WAD's maps) gets a map picker, a set of one is shown at once.
  */
-async function openFiles(files: readonly PathedFile[], where?: { urls: readonly string[]; part?: string }, view: ViewParams = {}): Promise<void> {
+async function openFiles(files: readonly PathedFile[], where?: { urls: readonly string[]; part?: string; skill?: number }, view: ViewParams = {}): Promise<void> {
   try {
     const heads = await Promise.all(files.map(async ({ file, path }) => ({ file, path, name: file.name, head: new Uint8Array(await file.slice(0, SNIFF_BYTES).arrayBuffer()) })));
     const { format, main, siblings } = sortFiles(heads);
@@ -186,7 +186,7 @@ async function openFiles(files: readonly PathedFile[], where?: { urls: readonly 
     const mainPath = main[0]?.path ?? '';
     const beside = siblings.map((f) => ({ file: f.file, path: pathRelativeTo(mainPath, f.path) }));
     const summary = await loader.openFiles(format.id, main.map((f) => f.file), beside, baseUrl);
-    fileSource = where ? { format: format.id, urls: where.urls } : undefined;
+    fileSource = where ? { format: format.id, urls: where.urls, ...(where.skill !== undefined ? { skill: where.skill } : {}) } : undefined;
     markFileScene(summary.description);
     if (summary.parts.length === 0) {
       mapPicker.hidden = true;
@@ -218,7 +218,7 @@ async function openFiles(files: readonly PathedFile[], where?: { urls: readonly 
 /** A scene of the open file set: a map of a WAD, or (part undefined) the set's only scene. */
 function showPart(part: string | undefined, view: ViewParams = {}): Promise<void> {
   const where: SceneLocation | undefined = fileSource ? { kind: 'files', ...fileSource, ...(part ? { part } : {}) } : undefined;
-  return show({ kind: 'part', ...(part ? { part } : {}) }, where, view);
+  return show({ kind: 'part', ...(part ? { part } : {}), ...(fileSource?.skill !== undefined ? { skill: fileSource.skill } : {}) }, where, view);
 }
 
 /** Files the server offers (`lantern view` serves the files named on its command line). */
@@ -387,7 +387,7 @@ const scene = linked.scene;
 if (scene?.kind === 'files') {
   const urls = scene.urls;
   fetchFiles(urls)
-    .then((files) => openFiles(files.map((file) => ({ file, path: file.name })), { urls, ...(scene.part ? { part: scene.part } : {}) }, linked))
+    .then((files) => openFiles(files.map((file) => ({ file, path: file.name })), { urls, ...(scene.part ? { part: scene.part } : {}), ...(scene.skill !== undefined ? { skill: scene.skill } : {}) }, linked))
     .catch(async (e) => {
       showMessage(describeError(e), 'error');
       await showBuiltin('cornell');

@@ -13,6 +13,9 @@ describe('SceneRequests', () => {
     const loaded = await requests.load({ kind: 'part', part: 'MAP02' });
     expect(loaded.prepared.scene.name).toBe('MAP02');
     expect(loaded.prepared.triangles.count).toBeGreaterThan(0);
+    // The request's skill reaches the Doom loader (which checks it).
+    expect((await requests.load({ kind: 'part', part: 'MAP01', skill: 5 })).prepared.scene.name).toBe('MAP01');
+    await expect(requests.load({ kind: 'part', part: 'MAP01', skill: 6 })).rejects.toThrow(/skill 6 is not a Doom skill level/);
   });
 
   it('opens a molecule: its styles are the parts the page picks from', async () => {

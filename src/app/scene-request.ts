@@ -28,7 +28,7 @@ export interface OpenFilesRequest {
 export type SceneRequest =
   | { readonly kind: 'builtin'; readonly name: string }
   /** A scene of the file set last opened with `openFiles`: a map of a WAD, or the set's only scene. */
-  | { readonly kind: 'part'; readonly part?: string };
+  | { readonly kind: 'part'; readonly part?: string; readonly skill?: number };
 
 export interface FileSetSummary {
   readonly format: string;
@@ -94,7 +94,7 @@ export class SceneRequests {
         return Promise.resolve(builtinScene(request.name));
       case 'part':
         if (!this.opened) throw new LanternError('no file is open', 'Open a file first');
-        return this.opened.scene(request.part, { onWarning });
+        return this.opened.scene(request.part, { onWarning, ...(request.skill !== undefined ? { skill: request.skill } : {}) });
     }
   }
 }

@@ -46,6 +46,13 @@ describe('view parameters', () => {
     expect(parseViewParams(new URLSearchParams('')).view).toEqual({});
   });
 
+  it("reads and writes Doom's skill level with the files, ignoring one outside 1–5", () => {
+    const scene = { kind: 'files', format: 'doom-wad', urls: ['a.wad'], part: 'E1M1', skill: 4 } as const;
+    expect(parseViewParams(new URLSearchParams('wad=a.wad&map=e1m1&skill=4')).view.scene).toEqual(scene);
+    expect(parseViewParams(formatViewParams({ scene })).view.scene).toEqual(scene);
+    for (const bad of ['0', '6', '2.5', 'x']) expect(parseViewParams(new URLSearchParams(`wad=a.wad&skill=${bad}`)).view.scene).toEqual({ kind: 'files', format: 'doom-wad', urls: ['a.wad'] });
+  });
+
   it('names every parameter it refuses and keeps the rest', () => {
     const { view, problems } = parseViewParams(new URLSearchParams('cam=1,2,3&spf=0&bounces=2.5&scale=9&tonemap=filmic&mode=swim&torch-color=2,0,0&exposure=1&debug=rainbow&depth=-1&heat-max=40'));
     expect(view).toEqual({ exposureStops: 1, heatMax: 40 });

@@ -19,6 +19,7 @@ interface ViewOptions {
   app?: string;
   aperture?: number;
   focusDistance?: number;
+  skill?: number;
 }
 
 /** Where the built page is: dist/app beside the CLI bundle (dist/cli/lantern.mjs). */
@@ -35,6 +36,7 @@ export function registerView(program: Command, context: CliContext): void {
     .option('--host <address>', 'address to listen on (127.0.0.1: this machine only)', '127.0.0.1')
     .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)')
     .option('--aperture <radius>', 'open the page with a thin lens of this radius (scene units; 0: a pinhole)', lensNumber('--aperture', true))
+    .option('--skill <1-5>', "Doom maps: the skill level whose things appear (default 3)", integerOption('--skill', 1, 5))
     .option('--focus-distance <d>', "the lens's focus distance (scene units; default: the scene's, or what lies at the image centre)", lensNumber('--focus-distance', false))
     .action((sceneArg: string, options: ViewOptions) => context.run(() => view(sceneArg, options, context)));
 }
@@ -43,17 +45,17 @@ export function registerView(program: Command, context: CliContext): void {
  * The files to offer and where the scene is, checked now (the files read and opened, the map
  * found) so that a typo fails here, not in the browser.
  */
-async function sceneFiles(arg: string): Promise<{ files: OfferedFile[]; location: (urls: readonly string[]) => SceneLocation }> {
+async function sceneFiles(arg: string, skill?: number): Promise<{ files: OfferedFile[]; location: (urls: readonly string[]) => SceneLocation }> {
   const argument = parseSceneArgument(arg);
   if (argument.kind === 'builtin') return { files: [], location: () => ({ kind: 'builtin', name: argument.name }) };
   const { format, files: read, part } = await openSceneFiles(argument);
   // The first file is the main one; only it refers to siblings (a glTF's buffers and textures).
   const files = read.map((file, i) => ({ path: file.path, siblings: i === 0 && format.siblings ? format.siblings(file) : [] }));
-  return { files, location: (urls) => ({ kind: 'files', format: format.id, urls, ...(part ? { part } : {}) }) };
+  return { files, location: (urls) => ({ kind: 'files', format: format.id, urls, ...(part ? { part } : {}), ...(skill !== undefined ? { skill } : {}) }) };
 }
 
 async function view(sceneArg: string, o: ViewOptions, context: CliContext): Promise<void> {
-  const { files, location } = await sceneFiles(sceneArg);
+  const { files, location } = await sceneFiles(sceneArg, o.skill);
   const server = await startViewServer({ appDir: o.app ?? defaultAppDir(), files, host: o.host, port: o.port });
   const params = formatSceneLocation(location(server.fileUrls));
   // The page reads the lens from the link (renderer/lens-link.ts); it focuses where the link does not say.
