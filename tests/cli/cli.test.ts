@@ -276,6 +276,24 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     expect(maps).toHaveLength(36);
     expect(maps[0]).toMatchObject({ name: 'E1M1', format: 'doom', failures: [] });
     expect(maps[0].triangles).toBeGreaterThan(1000);
+    // Things drawn as sprites at the default skill (3), and the floor lamps among them that emit.
+    expect(maps[0]).toMatchObject({ sprites: 169, emittingSprites: 7 });
+  });
+
+  it('info counts the things of the skill asked for, in the listing and for one map', () => {
+    const listing = lantern(['info', FREEDOOM1, '--skill', '5']);
+    expect(listing.code, listing.rawStderr).toBe(0);
+    expect(listing.stdout).toContain('at skill 5');
+    expect(listing.stdout).toMatch(/^ {2}E1M1 .* 185 +7$/m);
+    const one = lantern(['info', `${FREEDOOM1}#E1M1`, '--skill', '1', '--json']);
+    expect(one.code, one.rawStderr).toBe(0);
+    expect(JSON.parse(one.stdout)).toMatchObject({ scene: 'E1M1', sprites: 171, emittingSprites: 7 });
+  });
+
+  it('refuses a skill outside 1 to 5', () => {
+    const r = lantern(['info', `${FREEDOOM1}#E1M1`, '--skill', '6']);
+    expect(r.code).toBe(1);
+    expect(r.stderr).toMatch(/--skill must be from 1 to 5, not 6/);
   });
 
   it('renders a map from the player start', () => {
