@@ -24,6 +24,10 @@
  *   gave their sector a high light level.
  * - Computer screens, switches, exit signs: nothing. Their lit parts are small, and emission
  *   follows the whole texture, so the metal around them would glow too.
+ * - Light-giving things (thing-types.ts: floor lamps, torches, candles, the burning barrel), by
+ *   sprite name: electric lamps as the lamp textures, flames at FIRE_THING_STRENGTH, bright texels
+ *   only. Doom draws their frames full bright, so the sector's light level does not scale them, and
+ *   both faces of the sprite emit.
  * - The sky: 5 (SKY_STRENGTH). An outdoor floor sees sky over roughly a third to two thirds of its
  *   hemisphere, so a sky of strength 5 lights it to about 0.5–1 of full light with a sky texture of
  *   daylight brightness (Freedoom's E1 sky averages 0.32 in linear terms): the sky itself reads
