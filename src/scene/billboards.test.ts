@@ -1,9 +1,11 @@
 import { describe, expect, it } from 'vitest';
-import { determinant3, transformPoint, type Mat4 } from '../math/mat4.ts';
+import { expectLanternError } from '../expect-lantern-error.ts';
+import { determinant3, IDENTITY, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { cross, dot, sub, type Vec3 } from '../math/vec3.ts';
 import { billboardPose, billboardQuad, facingYaw, rotationIndex, type Billboard, type BillboardImage } from './billboards.ts';
 import type { Scene } from './types.ts';
 import { diffuse } from './types.ts';
+import { validateScene } from './validate.ts';
 import { World, type Viewpoint } from './world.ts';
 
 const DEG = Math.PI / 180;
@@ -155,6 +157,14 @@ describe('the billboard animator', () => {
     expect([...w.instances.keys()].sort()).toEqual([10, 11]);
     expect(w.instances.get(10)!.material).toBeUndefined();
     expect(w.instances.get(11)!.material).toBeUndefined();
+  });
+
+  it('is checked by validateScene: an instance that does not move, or a material out of range, is refused', () => {
+    const placed: Scene = { ...scene, instances: [10, 11].map((id) => ({ id, mesh: 0, worldFromObject: IDENTITY, moves: true })) };
+    expect(() => validateScene(placed)).not.toThrow();
+    expectLanternError(() => validateScene({ ...placed, instances: placed.instances.map((i) => ({ ...i, moves: false })) }), /billboard 0 poses instance 10, which is not a moving instance/);
+    const bad = { ...placed, dynamics: { billboards: [{ ...billboards[1]!, images: [image({ material: 99 })] }] } };
+    expectLanternError(() => validateScene(bad), /billboard 0 shows material 99 of 10/);
   });
 
   it('makes no world for a scene without billboards', () => {

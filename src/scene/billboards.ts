@@ -13,7 +13,7 @@
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
-import type { Mesh } from './types.ts';
+import type { Mesh, Scene } from './types.ts';
 import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
 
 /** One image of a billboard: what it shows and where it sits relative to the billboard's anchor. */
@@ -49,6 +49,22 @@ export interface Billboard {
    * object facing the viewer, image 2 its left side, image 4 its back.
    */
   readonly images: readonly BillboardImage[];
+}
+
+/** What is wrong with a scene's billboards, or undefined (validate.ts reports it). */
+export function billboardProblem(scene: Scene): string | undefined {
+  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
+  for (const [k, b] of (scene.dynamics?.billboards ?? []).entries()) {
+    const where = `billboard ${k}`;
+    if (!moving.has(b.instance)) return `${where} poses instance ${b.instance}, which is not a moving instance of the scene`;
+    if (b.images.length !== 1 && b.images.length !== 8) return `${where} has ${b.images.length} images (1 or 8)`;
+    if (!b.position.every(Number.isFinite) || !Number.isFinite(b.facing)) return `${where} has a non-finite position or facing`;
+    for (const im of b.images) {
+      if (!(Number.isInteger(im.material) && im.material >= 0 && im.material < scene.materials.length)) return `${where} shows material ${im.material} of ${scene.materials.length}`;
+      if (!(im.width > 0 && im.height > 0) || !Number.isFinite(im.left) || !Number.isFinite(im.top)) return `${where} has an image of invalid size or offsets`;
+    }
+  }
+  return undefined;
 }
 
 /** The unit quad every billboard instance places (one shared mesh; the instance's material replaces `material`). */

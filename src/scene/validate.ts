@@ -6,6 +6,7 @@ import { LanternError } from '../errors.ts';
 import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
 import { validateDispersion } from './dispersion.ts';
 import { lensProblem } from './lens.ts';
+import { billboardProblem } from './billboards.ts';
 import { morphTargetProblem } from './morph.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
@@ -117,6 +118,8 @@ export function validateScene(scene: Scene): void {
   if (c.exposureStops !== undefined && !(Math.abs(c.exposureStops) <= 64)) fail(`the camera exposure ${c.exposureStops} stops is outside ±64`);
   const lens = c.lens && lensProblem(c.lens);
   if (lens) fail(lens);
+  const billboards = billboardProblem(scene);
+  if (billboards) fail(billboards);
 }
 
 /** Whether the linear part of m is a rotation (or reflection) times a uniform scale, to 1e-4 relative. */
