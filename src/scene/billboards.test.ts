@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { determinant3, IDENTITY, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { cross, dot, sub, type Vec3 } from '../math/vec3.ts';
-import { billboardPose, billboardQuad, facingYaw, rotationIndex, type Billboard, type BillboardImage } from './billboards.ts';
+import { billboardPose, billboardQuad, facingYaw, frameAt, rotationIndex, type Billboard, type BillboardImage } from './billboards.ts';
 import type { Scene } from './types.ts';
 import { diffuse } from './types.ts';
 import { validateScene } from './validate.ts';
@@ -15,7 +15,7 @@ const around = (at: Vec3, deg: number, d = 100): Vec3 => [at[0] + d * Math.cos(d
 describe('rotationIndex (R_ProjectSprite)', () => {
   const thing: Vec3 = [10, 0, -20];
 
-  it.each([0, 1, 2, 3, 4, 5, 6, 7])('a thing facing east seen from %i × 45° counter-clockwise shows rotation %i + 1', (k) => {
+  it.each([0, 1, 2, 3, 4, 5, 6, 7])('a thing facing east seen from %i × 45° counter-clockwise shows that rotation index', (k) => {
     expect(rotationIndex(0, around(thing, 45 * k), thing)).toBe(k);
   });
 
@@ -115,8 +115,8 @@ describe('billboardPose', () => {
 describe('the billboard animator', () => {
   const eight = Array.from({ length: 8 }, (_, k) => image({ material: k, mirrored: k >= 5 }));
   const billboards: Billboard[] = [
-    { instance: 10, position: [0, 0, 0], facing: 0, images: eight },
-    { instance: 11, position: [500, 0, 0], facing: 0, images: [image({ material: 9 })] },
+    { instance: 10, position: [0, 0, 0], facing: 0, frames: [{ duration: 0, images: eight }] },
+    { instance: 11, position: [500, 0, 0], facing: 0, frames: [{ duration: 0, images: [image({ material: 9 })] }] },
   ];
   const scene: Scene = {
     name: 'billboards',
@@ -163,8 +163,23 @@ describe('the billboard animator', () => {
     const placed: Scene = { ...scene, instances: [10, 11].map((id) => ({ id, mesh: 0, worldFromObject: IDENTITY, moves: true })) };
     expect(() => validateScene(placed)).not.toThrow();
     expectLanternError(() => validateScene({ ...placed, instances: placed.instances.map((i) => ({ ...i, moves: false })) }), /billboard 0 poses instance 10, which is not a moving instance/);
-    const bad = { ...placed, dynamics: { billboards: [{ ...billboards[1]!, images: [image({ material: 99 })] }] } };
+    const bad = { ...placed, dynamics: { billboards: [{ ...billboards[1]!, frames: [{ duration: 0, images: [image({ material: 99 })] }] }] } };
     expectLanternError(() => validateScene(bad), /billboard 0 shows material 99 of 10/);
+    const still = { ...placed, dynamics: { billboards: [{ ...billboards[1]!, frames: [{ duration: 0, images: [image()] }, { duration: 0, images: [image()] }] }] } };
+    expectLanternError(() => validateScene(still), /billboard 0 has a frame of no or infinite duration/);
+  });
+
+  it('plays a cycle of frames from the clock, from its phase, writing only when a frame changes', () => {
+    // A torch: frames A–D (materials 0–3) of 4 tics each, 2.5 tics into frame A at time 0.
+    const tic = 1 / 35;
+    const torch: Billboard = { instance: 10, position: [0, 0, 0], facing: 0, phase: 2.5 * tic, frames: [0, 1, 2, 3].map((m) => ({ duration: 4 * tic, images: [image({ material: m })] })) };
+    expect([0, 1, 2, 3, 4, 5, 6, 13, 14, 15, 16].map((t) => frameAt(torch, t * tic))).toEqual([0, 0, 1, 1, 1, 1, 2, 3, 0, 0, 0]);
+    const world = World.of({ ...scene, dynamics: { billboards: [torch] } })!;
+    const materials: (number | undefined)[] = [];
+    materials.push(world.advance(0, view)!.instances.get(10)!.material);
+    for (let i = 0; i < 16; i++) materials.push(world.advance(tic, view)?.instances.get(10)?.material);
+    // Frame B at tics 2..5, C at 6..9, D at 10..13, A again at 14.
+    expect(materials).toEqual([0, undefined, 1, undefined, undefined, undefined, 2, undefined, undefined, undefined, 3, undefined, undefined, undefined, 0, undefined, undefined]);
   });
 
   it('makes no world for a scene without billboards', () => {

@@ -9,7 +9,8 @@
  * image's rectangle, in the plane that faces the viewer: Doom draws sprites parallel to the view
  * plane, so every quad's normal points against the viewer's forward direction projected onto the
  * horizontal plane, whatever the viewer's position. Only the chosen rotation depends on where the
- * viewer stands.
+ * viewer stands. A billboard may animate: a cycle of frames, each with its own images, played in a
+ * loop from the world's clock (Doom's spawn states: torches flicker, monsters shuffle).
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
@@ -43,6 +44,15 @@ export interface Billboard {
    * angles, counter-clockwise from east, are these angles: coordinates.ts maps north to −z).
    */
   readonly facing: number;
+  /** The animation's frames, played in a loop (one frame: a still billboard). */
+  readonly frames: readonly BillboardFrame[];
+  /** Seconds into the cycle at time 0 (so that a room's torches do not flicker in step). Default 0. */
+  readonly phase?: number;
+}
+
+export interface BillboardFrame {
+  /** How long the frame shows, in seconds (> 0; ignored for a still billboard's one frame). */
+  readonly duration: number;
   /**
    * One image for every angle (Doom's rotation 0), or eight, Doom's rotations 1–8: image k shows the
    * object seen from 45°·k counter-clockwise (from above) of the way it faces, so image 0 is the
@@ -57,9 +67,11 @@ export function billboardProblem(scene: Scene): string | undefined {
   for (const [k, b] of (scene.dynamics?.billboards ?? []).entries()) {
     const where = `billboard ${k}`;
     if (!moving.has(b.instance)) return `${where} poses instance ${b.instance}, which is not a moving instance of the scene`;
-    if (b.images.length !== 1 && b.images.length !== 8) return `${where} has ${b.images.length} images (1 or 8)`;
-    if (!b.position.every(Number.isFinite) || !Number.isFinite(b.facing)) return `${where} has a non-finite position or facing`;
-    for (const im of b.images) {
+    if (b.frames.length === 0) return `${where} has no frames`;
+    if (!b.position.every(Number.isFinite) || !Number.isFinite(b.facing) || !Number.isFinite(b.phase ?? 0)) return `${where} has a non-finite position, facing or phase`;
+    if (b.frames.length > 1 && !b.frames.every((f) => f.duration > 0 && Number.isFinite(f.duration))) return `${where} has a frame of no or infinite duration`;
+    for (const f of b.frames) if (f.images.length !== 1 && f.images.length !== 8) return `${where} has a frame of ${f.images.length} images (1 or 8)`;
+    for (const im of b.frames.flatMap((f) => f.images)) {
       if (!(Number.isInteger(im.material) && im.material >= 0 && im.material < scene.materials.length)) return `${where} shows material ${im.material} of ${scene.materials.length}`;
       if (!(im.width > 0 && im.height > 0) || !Number.isFinite(im.left) || !Number.isFinite(im.top)) return `${where} has an image of invalid size or offsets`;
     }
@@ -99,9 +111,27 @@ export function rotationIndex(facing: number, viewer: Vec3, position: Vec3): num
   return Math.floor(a / EIGHTH) % 8;
 }
 
-/** The image shown for a rotation index (a one-image billboard shows its image at every angle). */
-export function imageAt(b: Billboard, rotation: number): BillboardImage {
-  return b.images.length === 1 ? b.images[0]! : b.images[rotation]!;
+/** The frame shown `t` seconds after the world started. */
+export function frameAt(b: Billboard, t: number): number {
+  if (b.frames.length === 1) return 0;
+  const cycle = b.frames.reduce((s, f) => s + f.duration, 0);
+  let at = ((t + (b.phase ?? 0)) % cycle + cycle) % cycle;
+  for (let i = 0; i < b.frames.length; i++) {
+    at -= b.frames[i]!.duration;
+    if (at < 0) return i;
+  }
+  return b.frames.length - 1;
+}
+
+/** The rotation index (0–7) a frame shows seen from `viewer` (0 for a frame of one image). */
+export function rotationOf(b: Billboard, frame: number, viewer: Vec3): number {
+  return b.frames[frame]!.images.length === 1 ? 0 : rotationIndex(b.facing, viewer, b.position);
+}
+
+/** The image shown of a frame at a rotation index (a one-image frame shows its image at every angle). */
+export function imageAt(b: Billboard, frame: number, rotation: number): BillboardImage {
+  const images = b.frames[frame]!.images;
+  return images.length === 1 ? images[0]! : images[rotation]!;
 }
 
 /**
@@ -139,14 +169,15 @@ export function billboardPose(position: Vec3, image: BillboardImage, yaw: number
 }
 
 interface Shown {
+  frame: number;
   rotation: number;
   yaw: number;
 }
 
 /**
- * Poses billboards: each step, every billboard whose rotation or yaw changed gets a new transform
- * and material; the others write nothing (a viewer who moves without turning changes only the
- * rotations that cross a sector boundary).
+ * Poses billboards: each step, every billboard whose frame, rotation or yaw changed gets a new
+ * transform and, if it changed, material; the others write nothing (a viewer who moves without
+ * turning changes only the rotations that cross a sector boundary, and the frames that ran out).
  */
 export class BillboardAnimator implements Animator {
   private readonly shown: (Shown | undefined)[];
@@ -157,16 +188,17 @@ export class BillboardAnimator implements Animator {
     this.shown = billboards.map(() => undefined);
   }
 
-  step(_t: number, _dt: number, view: Viewpoint, out: UpdateBuilder): void {
+  step(t: number, _dt: number, view: Viewpoint, out: UpdateBuilder): void {
     this.yaw = facingYaw(view.forward) ?? this.yaw;
     const yaw = this.yaw;
     this.billboards.forEach((b, i) => {
-      const rotation = b.images.length === 1 ? 0 : rotationIndex(b.facing, view.position, b.position);
+      const frame = frameAt(b, t);
+      const rotation = rotationOf(b, frame, view.position);
       const before = this.shown[i];
-      if (before && before.rotation === rotation && before.yaw === yaw) return;
-      this.shown[i] = { rotation, yaw };
-      const image = imageAt(b, rotation);
-      const previous = before && imageAt(b, before.rotation);
+      if (before && before.frame === frame && before.rotation === rotation && before.yaw === yaw) return;
+      this.shown[i] = { frame, rotation, yaw };
+      const image = imageAt(b, frame, rotation);
+      const previous = before && imageAt(b, before.frame, before.rotation);
       out.pose(b.instance, {
         worldFromObject: billboardPose(b.position, image, yaw),
         ...(previous?.material !== image.material ? { material: image.material } : {}),
@@ -180,12 +212,13 @@ export const billboardAnimator: AnimatorFactory = (scene) => {
   return billboards && billboards.length > 0 ? new BillboardAnimator(billboards) : undefined;
 };
 
-/** The poses of every billboard seen from `view`, as one update (what a loader uses for the scene's first frame). */
+/** The poses of every billboard seen from `view` at time 0 (what a loader uses for the scene as loaded). */
 export function billboardPoses(billboards: readonly Billboard[], view: Viewpoint): Map<number, { worldFromObject: Mat4; material: number }> {
   const poses = new Map<number, { worldFromObject: Mat4; material: number }>();
   const yaw = facingYaw(view.forward) ?? 0;
   for (const b of billboards) {
-    const image = imageAt(b, b.images.length === 1 ? 0 : rotationIndex(b.facing, view.position, b.position));
+    const frame = frameAt(b, 0);
+    const image = imageAt(b, frame, rotationOf(b, frame, view.position));
     poses.set(b.instance, { worldFromObject: billboardPose(b.position, image, yaw), material: image.material });
   }
   return poses;

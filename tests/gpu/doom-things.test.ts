@@ -27,6 +27,7 @@ function scene() {
     .lumps(encodeMap({ ...room, things: [...room.things, { type: 3001, x: 128, y: 200, angle: 270, flags: 7 }] }))
     .marker('S_START')
     .lump('TROOA0', imp)
+    .lump('TROOB0', imp) // the imp's second standing frame: the same picture
     .marker('S_END')
     .build('PWAD');
   const stack = new WadStack([readWad(squareRoomWad('MAP01'), 'room.wad'), readWad(pwad, 'imp.wad')]);

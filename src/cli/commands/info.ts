@@ -83,5 +83,5 @@ function sceneSummary({ scene, packed }: PreparedScene) {
 function spriteCounts(scene: Scene): { sprites: number; emittingSprites: number } {
   const billboards = scene.dynamics?.billboards ?? [];
   const emits = (material: number) => scene.materials[material]?.emission.some((c) => c > 0) ?? false;
-  return { sprites: billboards.length, emittingSprites: billboards.filter((b) => b.images.some((i) => emits(i.material))).length };
+  return { sprites: billboards.length, emittingSprites: billboards.filter((b) => b.frames.some((f) => f.images.some((i) => emits(i.material)))).length };
 }

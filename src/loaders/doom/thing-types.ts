@@ -5,7 +5,10 @@
  * has the same table for people. Also which things appear at a skill level (P_SpawnMapThing).
  *
  * - `frame` is the sprite frame of the thing's spawn state: 'A' for the living and the items, a late
- *   death frame for the corpses placed as decorations (a dead imp is TROO frame M).
+ *   death frame for the corpses placed as decorations (a dead imp is TROO frame M). `states` is the
+ *   cycle of spawn states a thing loops through while nothing happens to it (a monster waiting, a
+ *   torch's flames, a bonus's shimmer), each a frame and its duration in tics (1/35 s), from the
+ *   games' state table; absent for things that hold one frame.
  * - `hanging` things (MF_SPAWNCEILING) are placed with their top at the ceiling: Doom sets their z to
  *   the ceiling height less their `height` (P_SpawnMobj), and their sprites' top offsets are drawn to
  *   meet the ceiling from there.
@@ -18,6 +21,15 @@
  */
 
 export type ThingKind = 'monster' | 'item' | 'decoration';
+
+/** One state of a cycle: the sprite frame shown and for how many tics. */
+export interface ThingState {
+  readonly frame: string;
+  readonly tics: number;
+}
+
+/** Doom's game tics per second. */
+export const TICS_PER_SECOND = 35;
 export type ThingLight = 'lamp' | 'fire';
 
 export interface ThingType {
@@ -26,6 +38,8 @@ export interface ThingType {
   readonly sprite: string;
   /** Frame letter of the spawn state. */
   readonly frame: string;
+  /** The spawn states' cycle, when the thing animates: frames and their tics (1/35 s), in order. */
+  readonly states?: readonly ThingState[];
   readonly kind: ThingKind;
   /** Map units (mobjinfo radius and height). */
   readonly radius: number;
@@ -36,28 +50,29 @@ export interface ThingType {
   readonly doom2?: boolean;
 }
 
+/** number, sprite, the spawn frame or its states' cycle ('A10 B10': frame A for 10 tics, then B for 10), kind, radius, height, name, tags. */
 type Row = readonly [number, string, string, ThingKind, number, number, string, ...('hanging' | 'lamp' | 'fire' | 'doom2')[]];
 
 const ROWS: readonly Row[] = [
   // Monsters.
-  [3004, 'POSS', 'A', 'monster', 20, 56, 'Zombieman'],
-  [9, 'SPOS', 'A', 'monster', 20, 56, 'Shotgun guy'],
-  [65, 'CPOS', 'A', 'monster', 20, 56, 'Heavy weapon dude', 'doom2'],
-  [3001, 'TROO', 'A', 'monster', 20, 56, 'Imp'],
-  [3002, 'SARG', 'A', 'monster', 30, 56, 'Demon'],
-  [58, 'SARG', 'A', 'monster', 30, 56, 'Spectre'],
-  [3006, 'SKUL', 'A', 'monster', 16, 56, 'Lost soul'],
+  [3004, 'POSS', 'A10 B10', 'monster', 20, 56, 'Zombieman'],
+  [9, 'SPOS', 'A10 B10', 'monster', 20, 56, 'Shotgun guy'],
+  [65, 'CPOS', 'A10 B10', 'monster', 20, 56, 'Heavy weapon dude', 'doom2'],
+  [3001, 'TROO', 'A10 B10', 'monster', 20, 56, 'Imp'],
+  [3002, 'SARG', 'A10 B10', 'monster', 30, 56, 'Demon'],
+  [58, 'SARG', 'A10 B10', 'monster', 30, 56, 'Spectre'],
+  [3006, 'SKUL', 'A10 B10', 'monster', 16, 56, 'Lost soul'],
   [3005, 'HEAD', 'A', 'monster', 31, 56, 'Cacodemon'],
-  [69, 'BOS2', 'A', 'monster', 24, 64, 'Hell knight', 'doom2'],
-  [3003, 'BOSS', 'A', 'monster', 24, 64, 'Baron of Hell'],
-  [68, 'BSPI', 'A', 'monster', 64, 64, 'Arachnotron', 'doom2'],
+  [69, 'BOS2', 'A10 B10', 'monster', 24, 64, 'Hell knight', 'doom2'],
+  [3003, 'BOSS', 'A10 B10', 'monster', 24, 64, 'Baron of Hell'],
+  [68, 'BSPI', 'A10 B10', 'monster', 64, 64, 'Arachnotron', 'doom2'],
   [71, 'PAIN', 'A', 'monster', 31, 56, 'Pain elemental', 'doom2'],
-  [66, 'SKEL', 'A', 'monster', 20, 56, 'Revenant', 'doom2'],
-  [67, 'FATT', 'A', 'monster', 48, 64, 'Mancubus', 'doom2'],
-  [64, 'VILE', 'A', 'monster', 20, 56, 'Arch-vile', 'doom2'],
-  [7, 'SPID', 'A', 'monster', 128, 100, 'Spider Mastermind'],
-  [16, 'CYBR', 'A', 'monster', 40, 110, 'Cyberdemon'],
-  [84, 'SSWV', 'A', 'monster', 20, 56, 'Wolfenstein SS', 'doom2'],
+  [66, 'SKEL', 'A10 B10', 'monster', 20, 56, 'Revenant', 'doom2'],
+  [67, 'FATT', 'A15 B15', 'monster', 48, 64, 'Mancubus', 'doom2'],
+  [64, 'VILE', 'A10 B10', 'monster', 20, 56, 'Arch-vile', 'doom2'],
+  [7, 'SPID', 'A10 B10', 'monster', 128, 100, 'Spider Mastermind'],
+  [16, 'CYBR', 'A10 B10', 'monster', 40, 110, 'Cyberdemon'],
+  [84, 'SSWV', 'A10 B10', 'monster', 20, 56, 'Wolfenstein SS', 'doom2'],
   [72, 'KEEN', 'A', 'monster', 16, 72, 'Commander Keen', 'hanging', 'doom2'],
   [88, 'BBRN', 'A', 'monster', 16, 16, 'Boss brain', 'doom2'],
   // Weapons.
@@ -81,68 +96,68 @@ const ROWS: readonly Row[] = [
   // Health, armour, powerups.
   [2011, 'STIM', 'A', 'item', 20, 16, 'Stimpack'],
   [2012, 'MEDI', 'A', 'item', 20, 16, 'Medikit'],
-  [2014, 'BON1', 'A', 'item', 20, 16, 'Health bonus'],
-  [2015, 'BON2', 'A', 'item', 20, 16, 'Armor bonus'],
-  [2018, 'ARM1', 'A', 'item', 20, 16, 'Armor'],
-  [2019, 'ARM2', 'A', 'item', 20, 16, 'Megaarmor'],
-  [2013, 'SOUL', 'A', 'item', 20, 16, 'Soulsphere'],
-  [83, 'MEGA', 'A', 'item', 20, 16, 'Megasphere', 'doom2'],
-  [2022, 'PINV', 'A', 'item', 20, 16, 'Invulnerability'],
+  [2014, 'BON1', 'A6 B6 C6 D6 C6 B6', 'item', 20, 16, 'Health bonus'],
+  [2015, 'BON2', 'A6 B6 C6 D6 C6 B6', 'item', 20, 16, 'Armor bonus'],
+  [2018, 'ARM1', 'A6 B7', 'item', 20, 16, 'Armor'],
+  [2019, 'ARM2', 'A6 B6', 'item', 20, 16, 'Megaarmor'],
+  [2013, 'SOUL', 'A6 B6 C6 D6 C6 B6', 'item', 20, 16, 'Soulsphere'],
+  [83, 'MEGA', 'A6 B6 C6 D6', 'item', 20, 16, 'Megasphere', 'doom2'],
+  [2022, 'PINV', 'A6 B6 C6 D6', 'item', 20, 16, 'Invulnerability'],
   [2023, 'PSTR', 'A', 'item', 20, 16, 'Berserk'],
-  [2024, 'PINS', 'A', 'item', 20, 16, 'Partial invisibility'],
+  [2024, 'PINS', 'A6 B6 C6 D6', 'item', 20, 16, 'Partial invisibility'],
   [2025, 'SUIT', 'A', 'item', 20, 16, 'Radiation shielding suit'],
-  [2026, 'PMAP', 'A', 'item', 20, 16, 'Computer area map'],
-  [2045, 'PVIS', 'A', 'item', 20, 16, 'Light amplification visor'],
+  [2026, 'PMAP', 'A6 B6 C6 D6 C6 B6', 'item', 20, 16, 'Computer area map'],
+  [2045, 'PVIS', 'A6 B6', 'item', 20, 16, 'Light amplification visor'],
   // Keys.
-  [5, 'BKEY', 'A', 'item', 20, 16, 'Blue keycard'],
-  [40, 'BSKU', 'A', 'item', 20, 16, 'Blue skull key'],
-  [13, 'RKEY', 'A', 'item', 20, 16, 'Red keycard'],
-  [38, 'RSKU', 'A', 'item', 20, 16, 'Red skull key'],
-  [6, 'YKEY', 'A', 'item', 20, 16, 'Yellow keycard'],
-  [39, 'YSKU', 'A', 'item', 20, 16, 'Yellow skull key'],
+  [5, 'BKEY', 'A10 B10', 'item', 20, 16, 'Blue keycard'],
+  [40, 'BSKU', 'A10 B10', 'item', 20, 16, 'Blue skull key'],
+  [13, 'RKEY', 'A10 B10', 'item', 20, 16, 'Red keycard'],
+  [38, 'RSKU', 'A10 B10', 'item', 20, 16, 'Red skull key'],
+  [6, 'YKEY', 'A10 B10', 'item', 20, 16, 'Yellow keycard'],
+  [39, 'YSKU', 'A10 B10', 'item', 20, 16, 'Yellow skull key'],
   // Lights.
   [2028, 'COLU', 'A', 'decoration', 16, 16, 'Floor lamp', 'lamp'],
-  [85, 'TLMP', 'A', 'decoration', 16, 16, 'Tall techno floor lamp', 'lamp', 'doom2'],
-  [86, 'TLP2', 'A', 'decoration', 16, 16, 'Short techno floor lamp', 'lamp', 'doom2'],
+  [85, 'TLMP', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Tall techno floor lamp', 'lamp', 'doom2'],
+  [86, 'TLP2', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Short techno floor lamp', 'lamp', 'doom2'],
   [34, 'CAND', 'A', 'decoration', 20, 16, 'Candle', 'fire'],
   [35, 'CBRA', 'A', 'decoration', 16, 16, 'Candelabra', 'fire'],
-  [44, 'TBLU', 'A', 'decoration', 16, 16, 'Tall blue firestick', 'fire'],
-  [45, 'TGRN', 'A', 'decoration', 16, 16, 'Tall green firestick', 'fire'],
-  [46, 'TRED', 'A', 'decoration', 16, 16, 'Tall red firestick', 'fire'],
-  [55, 'SMBT', 'A', 'decoration', 16, 16, 'Short blue firestick', 'fire'],
-  [56, 'SMGT', 'A', 'decoration', 16, 16, 'Short green firestick', 'fire'],
-  [57, 'SMRT', 'A', 'decoration', 16, 16, 'Short red firestick', 'fire'],
-  [70, 'FCAN', 'A', 'decoration', 16, 16, 'Burning barrel', 'fire', 'doom2'],
-  [42, 'FSKU', 'A', 'decoration', 16, 16, 'Floating skull rock', 'fire'],
-  [41, 'CEYE', 'A', 'decoration', 16, 16, 'Evil eye', 'fire'],
+  [44, 'TBLU', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Tall blue firestick', 'fire'],
+  [45, 'TGRN', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Tall green firestick', 'fire'],
+  [46, 'TRED', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Tall red firestick', 'fire'],
+  [55, 'SMBT', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Short blue firestick', 'fire'],
+  [56, 'SMGT', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Short green firestick', 'fire'],
+  [57, 'SMRT', 'A4 B4 C4 D4', 'decoration', 16, 16, 'Short red firestick', 'fire'],
+  [70, 'FCAN', 'A4 B4 C4', 'decoration', 16, 16, 'Burning barrel', 'fire', 'doom2'],
+  [42, 'FSKU', 'A6 B6 C6', 'decoration', 16, 16, 'Floating skull rock', 'fire'],
+  [41, 'CEYE', 'A6 B6 C6 B6', 'decoration', 16, 16, 'Evil eye', 'fire'],
   // Obstacles and decorations.
-  [2035, 'BAR1', 'A', 'decoration', 10, 42, 'Exploding barrel'],
+  [2035, 'BAR1', 'A6 B6', 'decoration', 10, 42, 'Exploding barrel'],
   [48, 'ELEC', 'A', 'decoration', 16, 16, 'Tall techno column'],
   [30, 'COL1', 'A', 'decoration', 16, 16, 'Tall green pillar'],
   [31, 'COL2', 'A', 'decoration', 16, 16, 'Short green pillar'],
   [32, 'COL3', 'A', 'decoration', 16, 16, 'Tall red pillar'],
   [33, 'COL4', 'A', 'decoration', 16, 16, 'Short red pillar'],
-  [36, 'COL5', 'A', 'decoration', 16, 16, 'Short green pillar with beating heart'],
+  [36, 'COL5', 'A14 B14', 'decoration', 16, 16, 'Short green pillar with beating heart'],
   [37, 'COL6', 'A', 'decoration', 16, 16, 'Short red pillar with skull'],
   [43, 'TRE1', 'A', 'decoration', 16, 16, 'Burnt tree'],
   [54, 'TRE2', 'A', 'decoration', 32, 16, 'Large brown tree'],
   [47, 'SMIT', 'A', 'decoration', 16, 16, 'Brown stump'],
   [25, 'POL1', 'A', 'decoration', 16, 16, 'Impaled human'],
-  [26, 'POL6', 'A', 'decoration', 16, 16, 'Twitching impaled human'],
+  [26, 'POL6', 'A6 B8', 'decoration', 16, 16, 'Twitching impaled human'],
   [27, 'POL4', 'A', 'decoration', 16, 16, 'Skull on a pole'],
   [28, 'POL2', 'A', 'decoration', 16, 16, 'Five skulls "shish kebab"'],
-  [29, 'POL3', 'A', 'decoration', 16, 16, 'Pile of skulls and candles', 'fire'],
+  [29, 'POL3', 'A6 B6', 'decoration', 16, 16, 'Pile of skulls and candles', 'fire'],
   [24, 'POL5', 'A', 'decoration', 20, 16, 'Pool of blood and flesh'],
   [79, 'POB1', 'A', 'decoration', 20, 16, 'Pool of blood', 'doom2'],
   [80, 'POB2', 'A', 'decoration', 20, 16, 'Pool of blood', 'doom2'],
   [81, 'BRS1', 'A', 'decoration', 20, 16, 'Pool of brains', 'doom2'],
   // Hanging from the ceiling (49–53 block, 59–63 do not).
-  [49, 'GOR1', 'A', 'decoration', 16, 68, 'Hanging victim, twitching', 'hanging'],
+  [49, 'GOR1', 'A10 B15 C8 B6', 'decoration', 16, 68, 'Hanging victim, twitching', 'hanging'],
   [50, 'GOR2', 'A', 'decoration', 16, 84, 'Hanging victim, arms out', 'hanging'],
   [51, 'GOR3', 'A', 'decoration', 16, 84, 'Hanging victim, one-legged', 'hanging'],
   [52, 'GOR4', 'A', 'decoration', 16, 68, 'Hanging pair of legs', 'hanging'],
   [53, 'GOR5', 'A', 'decoration', 16, 52, 'Hanging leg', 'hanging'],
-  [63, 'GOR1', 'A', 'decoration', 20, 68, 'Hanging victim, twitching (non-blocking)', 'hanging'],
+  [63, 'GOR1', 'A10 B15 C8 B6', 'decoration', 20, 68, 'Hanging victim, twitching (non-blocking)', 'hanging'],
   [59, 'GOR2', 'A', 'decoration', 20, 84, 'Hanging victim, arms out (non-blocking)', 'hanging'],
   [61, 'GOR3', 'A', 'decoration', 20, 52, 'Hanging victim, one-legged (non-blocking)', 'hanging'],
   [60, 'GOR4', 'A', 'decoration', 20, 68, 'Hanging pair of legs (non-blocking)', 'hanging'],
@@ -165,15 +180,16 @@ const ROWS: readonly Row[] = [
 ];
 
 export const THING_TYPES: ReadonlyMap<number, ThingType> = new Map(
-  ROWS.map(([num, sprite, frame, kind, radius, height, name, ...tags]) => [
-    num,
-    {
-      name, sprite, frame, kind, radius, height,
+  ROWS.map(([num, sprite, cycle, kind, radius, height, name, ...tags]) => {
+    const states = cycle.split(' ').map((s) => ({ frame: s[0]!, tics: s.length > 1 ? Number(s.slice(1)) : -1 }));
+    return [num, {
+      name, sprite, frame: states[0]!.frame, kind, radius, height,
+      ...(states.length > 1 ? { states } : {}),
       ...(tags.includes('hanging') ? { hanging: true } : {}),
       ...(tags.includes('lamp') ? { light: 'lamp' as const } : tags.includes('fire') ? { light: 'fire' as const } : {}),
       ...(tags.includes('doom2') ? { doom2: true } : {}),
-    },
-  ]),
+    }] as const;
+  }),
 );
 
 /**

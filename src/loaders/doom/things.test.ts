@@ -60,8 +60,11 @@ function spritesWad(things: readonly Thing[], extra: (b: WadBuilder) => WadBuild
       .lump('TROOA3A7', IMP(12))
       .lump('TROOA4A6', IMP(13))
       .lump('TROOA5', IMP(14))
+      .lump('TROOB0', IMP(15)) // the imp's second standing frame, one picture for every angle
       .lump('COLUA0', LAMP)
       .lump('GOR1A0', HANGING)
+      .lump('GOR1B0', HANGING)
+      .lump('GOR1C0', HANGING)
       .lump('POSSA1', IMP(20)) // a zombieman with only one of its eight rotations
       .marker('S_END'),
   ).build('PWAD');
@@ -78,7 +81,7 @@ describe('SpriteSet', () => {
     expect(imp.views.map((v) => v.lump)).toEqual(['TROOA1', 'TROOA2A8', 'TROOA3A7', 'TROOA4A6', 'TROOA5', 'TROOA4A6', 'TROOA3A7', 'TROOA2A8']);
     expect(imp.views.map((v) => v.mirrored)).toEqual([false, false, false, false, false, true, true, true]);
     expect(sprites.frame('COLU', 'A')!.views).toEqual([{ lump: 'COLUA0', mirrored: false }]);
-    expect(sprites.frame('TROO', 'B')).toBeUndefined();
+    expect(sprites.frame('TROO', 'C')).toBeUndefined();
   });
 
   it('refuses a frame with missing rotations, saying which', () => {
@@ -170,6 +173,24 @@ describe('things in the scene', () => {
     // The first pose is the one the world's animator gives from the player's view.
     const view = { position: scene.camera.position, forward: scene.camera.forward };
     expect(sceneUpdateAt(scene, 0, view).instances.get(b!.instance)).toEqual({ worldFromObject: inst.worldFromObject, material: inst.material });
+  });
+
+  it("animates the imp through its standing states, A and B for 10 tics each, starting part-way into A", () => {
+    const { scene } = load([thing(3001, 128, 224, 7, 270), thing(3001, 64, 224, 7, 270), thing(3001, 192, 224, 7, 270)]);
+    const billboards = scene.dynamics!.billboards!;
+    for (const b of billboards) {
+      expect(b.frames.map((f) => [f.duration, f.images.length])).toEqual([[10 / 35, 8], [10 / 35, 1]]);
+      expect(b.frames[1]!.images[0]!.material).not.toBe(b.frames[0]!.images[0]!.material);
+      expect(scene.materials[b.frames[1]!.images[0]!.material]!.name).toBe('TROOB0');
+      // P_SpawnMapThing: the first state lasts 1..10 tics, so the cycle starts 0..9 tics in.
+      const phase = Math.round((b.phase ?? 0) * 35);
+      expect(phase).toBeGreaterThanOrEqual(0);
+      expect(phase).toBeLessThanOrEqual(9);
+      expect(b.phase ?? 0).toBeCloseTo(phase / 35, 12);
+    }
+    // Deterministic, and not all in step.
+    expect(new Set(billboards.map((b) => b.phase ?? 0)).size).toBeGreaterThan(1);
+    expect(load([thing(3001, 128, 224, 7, 270), thing(3001, 64, 224, 7, 270), thing(3001, 192, 224, 7, 270)]).scene.dynamics!.billboards!.map((b) => b.phase)).toEqual(billboards.map((b) => b.phase));
   });
 
   it('shows the imp from behind (rotation 5) when it faces away', () => {

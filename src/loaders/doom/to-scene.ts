@@ -130,7 +130,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   if (things && things.billboards.length > 0) {
     // One quad for every thing, each an instance posed toward the player's view (and after that by
     // the world's billboard animator).
-    const quad = meshes.push(billboardQuad(things.billboards[0]!.images[0]!.material, 'sprite quad')) - 1;
+    const quad = meshes.push(billboardQuad(things.billboards[0]!.frames[0]!.images[0]!.material, 'sprite quad')) - 1;
     billboards = things.billboards.map((b) => ({ ...b, instance: instances.length + b.instance }));
     const poses = billboardPoses(billboards, { position: camera.position, forward: camera.forward });
     billboards.forEach((b, i) => instances.push({ id: b.instance, name: things.names[i]!, mesh: quad, moves: true, ...poses.get(b.instance)! }));
