@@ -1,10 +1,12 @@
 /**
- * A Doom thing on the GPU: an imp's sprite standing in front of a wall, seen through the albedo debug
- * view (the primary hit's linear albedo, no noise). Its picture is transparent on its left half and
- * a flat colour on its right half, so where the sprite's quad projects, the opaque half must show the
- * sprite's colour (it hides the wall) and the transparent half must show the wall and floor behind.
- * The quad's projection is computed here from the camera: 64×48 pixels, 73.74° vertical field of view,
- * so 32 pixels of focal length.
+ * Doom's things on the GPU: two imps standing in front of a wall, seen through the albedo debug view
+ * (the primary hit's linear albedo, no noise). Their picture is transparent on its left half; its
+ * right half is one colour above and another below. One imp is seen from rotation 2, which shows the
+ * picture as it is; the other from rotation 8, which shows the same lump mirrored (TROOA2A8). Where a
+ * quad projects, the opaque half must show the picture's colours, the right way up, and hide the
+ * wall; the transparent half must show the wall and floor behind. The projection is computed here:
+ * 64×48 pixels, 73.74° vertical field of view, so 32 pixels of focal length; both quads face the view
+ * plane, 72 units in front of the eye.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { loadDoomMap } from '../../src/loaders/doom/load.ts';
@@ -12,37 +14,40 @@ import { encodeMap, encodePatch, squareRoom, squareRoomWad, testPaletteColor, Wa
 import { readWad, WadStack } from '../../src/loaders/doom/wad.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
+import type { Scene } from '../../src/scene/types.ts';
 import { testGpu } from './gpu-context.ts';
 
 const W = 64, H = 48;
 const FOCAL = H / 2 / 0.75; // tan(73.74° / 2) = 0.75
-const SPRITE_INDEX = 50;
+const [TOP, BOTTOM] = [50, 60];
 const [SW, SH] = [32, 48];
 
-/** The room of squareRoomWad (player at (128, 128), eye 41 above the floor, facing north) and an imp 72 units north of him, facing him. */
-function scene() {
+/**
+ * The room of squareRoomWad (player at (128, 128), eye 41 above the floor, facing north) with two
+ * imps 72 units north of him, 32 units to either side, facing south: the left one sees him 24°
+ * counter-clockwise of its facing (rotation 2), the right one 24° clockwise (rotation 8, mirrored).
+ */
+function scene(): Scene {
   const room = squareRoom('MAP01');
-  const imp = encodePatch(SW, SH, Array.from({ length: SW * SH }, (_, i) => (i % SW < SW / 2 ? -1 : SPRITE_INDEX)), { leftOffset: SW / 2, topOffset: SH });
-  const pwad = new WadBuilder()
-    .lumps(encodeMap({ ...room, things: [...room.things, { type: 3001, x: 128, y: 200, angle: 270, flags: 7 }] }))
-    .marker('S_START')
-    .lump('TROOA0', imp)
-    .lump('TROOB0', imp) // the imp's second standing frame: the same picture
-    .marker('S_END')
-    .build('PWAD');
-  const stack = new WadStack([readWad(squareRoomWad('MAP01'), 'room.wad'), readWad(pwad, 'imp.wad')]);
+  const index = (i: number) => (i % SW < SW / 2 ? -1 : Math.floor(i / SW) < SH / 2 ? TOP : BOTTOM);
+  const imp = encodePatch(SW, SH, Array.from({ length: SW * SH }, (_, i) => index(i)), { leftOffset: SW / 2, topOffset: SH });
+  const imps = [96, 160].map((x) => ({ type: 3001, x, y: 200, angle: 270, flags: 7 }));
+  const builder = new WadBuilder().lumps(encodeMap({ ...room, things: [...room.things, ...imps] })).marker('S_START');
+  for (const lump of ['TROOA1', 'TROOA2A8', 'TROOA3A7', 'TROOA4A6', 'TROOA5', 'TROOB0']) builder.lump(lump, imp);
+  const stack = new WadStack([readWad(squareRoomWad('MAP01'), 'room.wad'), readWad(builder.marker('S_END').build('PWAD'), 'imps.wad')]);
   return loadDoomMap(stack, 'MAP01').scene;
 }
 
 const linear = (c: number) => ((c / 255) <= 0.04045 ? c / 255 / 12.92 : ((c / 255 + 0.055) / 1.055) ** 2.4);
-const SPRITE_ALBEDO = testPaletteColor(SPRITE_INDEX).map(linear);
+const albedoOf = (index: number) => testPaletteColor(index).map(linear);
 
 let renderer: Renderer;
 let albedo: Float32Array;
+let shown: string[];
 
 beforeAll(async () => {
   const s = scene();
-  expect(s.instances.filter((i) => i.moves)).toHaveLength(1);
+  shown = s.instances.filter((i) => i.moves).map((i) => s.materials[i.material!]!.name);
   renderer = await Renderer.create(await testGpu());
   await renderer.setScene(prepareScene(s));
   await renderer.resize(W, H);
@@ -52,42 +57,58 @@ beforeAll(async () => {
 
 afterAll(() => renderer?.destroy());
 
-const isSprite = (i: number) => [0, 1, 2].every((k) => Math.abs(albedo[i * 4 + k]! - SPRITE_ALBEDO[k]!) < 2e-3);
+const is = (index: number) => {
+  const c = albedoOf(index);
+  return (i: number) => [0, 1, 2].every((k) => Math.abs(albedo[i * 4 + k]! - c[k]!) < 2e-3);
+};
+const isSprite = (i: number) => is(TOP)(i) || is(BOTTOM)(i);
 
-describe('a sprite in front of a wall', () => {
-  // World x of the quad: 128 ± 16 (left offset 16); y from 0 to 48 (top offset 48 = height), 72 units
-  // in front of the eye at y = 41. Pixel column = 32 + (x − 128)·FOCAL/72, row = 24 − (y − 41)·FOCAL/72.
-  const column = (x: number) => W / 2 + ((x - 128) * FOCAL) / 72;
-  const row = (y: number) => H / 2 - ((y - 41) * FOCAL) / 72;
-  const inside = (x0: number, x1: number, y0: number, y1: number) => {
-    const out: number[] = [];
-    // Pixels whose whole square lies inside the rectangle.
-    for (let py = Math.ceil(row(y1)); py + 1 <= Math.floor(row(y0)); py++) for (let px = Math.ceil(column(x0)); px + 1 <= Math.floor(column(x1)); px++) out.push(py * W + px);
-    return out;
-  };
+// Pixel column of world x on the quads' plane, and row of world height y.
+const column = (x: number) => W / 2 + ((x - 128) * FOCAL) / 72;
+const row = (y: number) => H / 2 - ((y - 41) * FOCAL) / 72;
+/** Pixels whose whole square lies inside the rectangle x0..x1, y0..y1. */
+function inside(x0: number, x1: number, y0: number, y1: number): number[] {
+  const out: number[] = [];
+  for (let py = Math.ceil(row(y1)); py + 1 <= Math.floor(row(y0)); py++) for (let px = Math.ceil(column(x0)); px + 1 <= Math.floor(column(x1)); px++) out.push(py * W + px);
+  return out;
+}
 
-  it('hides the wall where its texels are opaque', () => {
-    const opaque = inside(128, 144, 0, 48);
-    expect(opaque.length).toBeGreaterThan(100);
-    expect(opaque.filter((i) => !isSprite(i))).toEqual([]);
+describe('sprites in front of a wall', () => {
+  it('shows the rotations Doom shows: 2 as it is, 8 mirrored from the same lump', () => {
+    expect(shown).toEqual(['TROOA2A8', 'TROOA2A8']);
   });
 
-  it('shows the wall and floor through its transparent texels', () => {
-    const clear = inside(112, 128, 0, 48);
-    expect(clear.length).toBeGreaterThan(100);
+  // The left imp (x 96, its picture over x 80..112) shows the picture as it is: opaque on x 96..112.
+  // The right imp (x 160, over 144..176) mirrors it in place: opaque on x 144..160.
+  const opaque = [[96, 112], [144, 160]] as const;
+  const clear = [[80, 96], [160, 176]] as const;
+
+  it('hides the wall where the texels are opaque, with the picture the right way up', () => {
+    for (const [x0, x1] of opaque) {
+      const top = inside(x0, x1, 24, 48);
+      const bottom = inside(x0, x1, 0, 24);
+      expect(top.length).toBeGreaterThan(40);
+      expect(bottom.length).toBeGreaterThan(40);
+      expect(top.filter((i) => !is(TOP)(i))).toEqual([]);
+      expect(bottom.filter((i) => !is(BOTTOM)(i))).toEqual([]);
+    }
+  });
+
+  it('shows the wall and floor through the transparent texels', () => {
     // Not the sprite, nor its transparent texels' black: the wall (STARTAN3, palette 100–103) or the floor (10).
-    const behind = [100, 101, 102, 103, 10].map((i) => testPaletteColor(i).map(linear));
-    const isBehind = (i: number) => behind.some((c) => [0, 1, 2].every((k) => Math.abs(albedo[i * 4 + k]! - c[k]!) < 2e-3));
-    expect(clear.filter((i) => !isBehind(i))).toEqual([]);
-    expect(clear.filter(isSprite)).toEqual([]);
+    const behind = [100, 101, 102, 103, 10].map(is);
+    for (const [x0, x1] of clear) {
+      const pixels = inside(x0, x1, 0, 48);
+      expect(pixels.length).toBeGreaterThan(100);
+      expect(pixels.filter((i) => !behind.some((b) => b(i)))).toEqual([]);
+    }
   });
 
-  it('covers as many pixels as its opaque half projects to, and no others', () => {
+  it('covers as many pixels as the opaque halves project to, and no others', () => {
     let count = 0;
     for (let i = 0; i < W * H; i++) if (isSprite(i)) count++;
-    const area = (column(144) - column(128)) * (row(0) - row(48));
-    // Pixel centres sample the rectangle: the count differs from its area by at most its perimeter's worth.
-    const perimeter = 2 * (column(144) - column(128) + row(0) - row(48));
-    expect(Math.abs(count - area)).toBeLessThan(perimeter / 2);
+    const [w, h] = [column(112) - column(96), row(0) - row(48)];
+    // Pixel centres sample each rectangle: the count differs from the area by at most half the perimeter's worth.
+    expect(Math.abs(count - 2 * w * h)).toBeLessThan(2 * (w + h));
   });
 });
