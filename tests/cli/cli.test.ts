@@ -430,6 +430,10 @@ describe('lantern view', () => {
     lensed.stop();
     const params = new URL(lensed.link).searchParams;
     expect([params.get('scene'), params.get('aperture'), params.get('focus')]).toEqual(['cornell', '12.5', '800']);
+    // Doom's skill level goes into the link with the files (skill=), as the page reads it.
+    const skilled = await startView([`${wad}#MAP01`, '--app', app, '--skill', '4']);
+    skilled.stop();
+    expect([new URL(skilled.link).searchParams.get('map'), new URL(skilled.link).searchParams.get('skill')]).toEqual(['MAP01', '4']);
   });
 
   it('refuses unknown scenes, missing maps and a page that was not built, before serving', () => {
