@@ -70,6 +70,12 @@ export function buildThings(
       unknown.set(thing.type, (unknown.get(thing.type) ?? 0) + 1);
       continue;
     }
+    const sectorIndex = sectorAt(shapes, thing.x, thing.y);
+    const sector = sectorIndex === undefined ? undefined : map.sectors[sectorIndex];
+    if (!sector) {
+      outside++;
+      continue;
+    }
     const light = table.things[type.sprite];
     const states = type.states ?? [{ frame: type.frame, tics: -1 }];
     const frames: BillboardFrame[] = [];
@@ -83,12 +89,6 @@ export function buildThings(
       frames.push({ duration: Math.max(state.tics, 0) / TICS_PER_SECOND, images });
     }
     if (frames.length !== states.length) continue;
-    const sectorIndex = sectorAt(shapes, thing.x, thing.y);
-    const sector = sectorIndex === undefined ? undefined : map.sectors[sectorIndex];
-    if (!sector) {
-      outside++;
-      continue;
-    }
     // P_SpawnMobj: on the floor, or (MF_SPAWNCEILING) its height below the ceiling.
     const z = type.hanging ? sector.ceilingHeight - type.height : sector.floorHeight;
     const first = states[0]!.tics;

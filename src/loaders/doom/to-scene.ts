@@ -1,7 +1,8 @@
 /**
  * A Lantern scene from a Doom map: floors and ceilings (sectors.ts), walls (walls.ts), materials
  * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the things as
- * sprites turned toward the viewer (things.ts, scene/billboards.ts), the player's view and torch. Coordinates go through coordinates.ts.
+ * sprites turned toward the viewer (things.ts, scene/billboards.ts), the player's view and torch.
+ * Coordinates go through coordinates.ts.
  */
 import { doomWalkMap } from './walk-map.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
