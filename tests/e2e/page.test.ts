@@ -321,7 +321,7 @@ describe('the page', () => {
   });
 
   it('opens a served WAD map from a link, and a copied link restores the camera and settings', async () => {
-    const { page, errors } = await open(`wad=${served.fileUrls[0]}&map=MAP02&scale=0.05&bounces=3`);
+    const { page, errors } = await open(`wad=${served.fileUrls[0]}&map=MAP02&skill=4&scale=0.05&bounces=3`);
     expect(await page.evaluate(() => window.lantern.scene)).toBe('MAP02');
     await page.keyboard.down('KeyD');
     await page.waitForTimeout(300);
@@ -335,6 +335,8 @@ describe('the page', () => {
     const camera = await page.evaluate(() => window.lantern.camera!);
     const link = await page.evaluate(() => window.lantern.link);
     expect(link).toMatch(/bounces=3/);
+    // Doom's skill level stays with the files in the page's own link.
+    expect(link).toMatch(/[?&]skill=4(&|$)/);
     const second = await browser.newPage({ viewport: VIEWPORT });
     await second.goto(link);
     await waitLoaded(second, 'MAP02');
