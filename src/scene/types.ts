@@ -96,6 +96,11 @@ interface MaterialBase {
   /** Default uv. */
   readonly emissionMapping?: EmissionMapping;
   /**
+   * Both faces of a triangle emit `emission` (default false: only the front, see above). For thin
+   * emitters seen from both sides: Doom's torches and lamps, which are sprites turned toward the viewer.
+   */
+  readonly twoSidedEmission?: boolean;
+  /**
    * Coverage, from the alpha of the colour texture (albedo / base colour) times any constant opacity:
    * - 'opaque' (default): alpha is ignored;
    * - 'mask': where alpha is below `alphaCutoff` the surface is not there for any ray, shadow rays

@@ -22,6 +22,7 @@ export const MATERIAL_EMISSION_PANORAMA = 2;
 export const MATERIAL_ALPHA_BLEND = 4;
 export const MATERIAL_THIN_WALLED = 16;
 export const MATERIAL_SCATTER_IN_PLANE = 32;
+export const MATERIAL_TWO_SIDED_EMISSION = 64;
 /** shaders/scene/types.wgsl DISPERSION_*, by position. */
 export const DISPERSION_LAWS = ['none', 'sellmeier', 'cauchy'] as const;
 export const TEXTURE_LINEAR = 1;
@@ -216,6 +217,7 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
     const alpha = m.alphaMode ?? 'opaque';
     const filter = alpha !== 'opaque' && (coverage.texture !== undefined || coverage.opacity < 1);
     if (filter) f |= alpha === 'mask' ? MATERIAL_ALPHA_MASK : MATERIAL_ALPHA_BLEND;
+    if (m.twoSidedEmission) f |= MATERIAL_TWO_SIDED_EMISSION;
     const mapping = m.emissionMapping;
     if (mapping?.kind === 'panorama') {
       f |= MATERIAL_EMISSION_PANORAMA;

@@ -174,7 +174,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
           e2(leaf, r, 0, 0);
           area = 2 * Math.PI * r * Math.hypot(ax, ay, az) + 4 * Math.PI * r * r;
         }
-        const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * area;
+        const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * area * (mat.twoSidedEmission ? 2 : 1);
         if (power > 0 && kind === PRIMITIVE_KIND.sphere) {
           lightTriangles.push(leaf);
           lightPowers.push(power);
@@ -213,7 +213,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
       }
 
       // Power in the luminance sense, as lights.wgsl light_selection_pmf computes it.
-      const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * 0.5 * twiceArea;
+      const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * 0.5 * twiceArea * (mat.twoSidedEmission ? 2 : 1);
       if (power > 0) {
         lightTriangles.push(leaf);
         lightPowers.push(power);

@@ -138,8 +138,8 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       }
     }
 
-    // Emission, seen only from the side the geometric normal faces.
-    let cos_emitter = -dot(surface.geometric_normal, ray.direction);
+    // Emission, seen only from the side the geometric normal faces (both, for two-sided emitters).
+    let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
     if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
       let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
       radiance += throughput * lift(material_emission(material, surface.uv, ray.direction)) * weight;

@@ -43,7 +43,14 @@ struct LightSample {
 
 // Probability of choosing a triangle of this material and area, as the alias table does.
 fn light_selection_pmf(material: Material, area: f32) -> f32 {
-  return luminance(material.emission) * material.emission_texture_mean * area / scene_info.total_light_power;
+  let sides = select(1.0, 2.0, (material.flags & MATERIAL_TWO_SIDED_EMISSION) != 0u);
+  return luminance(material.emission) * material.emission_texture_mean * area * sides / scene_info.total_light_power;
+}
+
+// The cosine between an emitter's front normal and the direction toward the viewer, as emission sees
+// it: as is for one-sided emitters (≤ 0: nothing is emitted), its magnitude for two-sided ones.
+fn emitter_cosine(material: Material, cos_front: f32) -> f32 {
+  return select(cos_front, abs(cos_front), (material.flags & MATERIAL_TWO_SIDED_EMISSION) != 0u);
 }
 
 // Solid-angle density with which sample_light finds the emitter point `surface`, hit at distance t
@@ -102,8 +109,8 @@ fn sample_triangle_light(triangle: u32, p: vec3f, u: vec2f) -> LightSample {
   let distance2 = dot(to_light, to_light);
   let distance = sqrt(distance2);
   let wi = to_light / distance;
-  // Emission is one-sided: the light faces along e1 × e2.
-  let cos_light = -dot(cross_e, wi) / (2.0 * area);
+  // Emission is one-sided: the light faces along e1 × e2 (unless both faces emit).
+  let cos_light = emitter_cosine(material, -dot(cross_e, wi) / (2.0 * area));
   if (!(cos_light > 0.0) || !(distance > 0.0)) {
     return no_light();
   }

@@ -126,6 +126,8 @@ const MATERIAL_ALPHA_BLEND: u32 = 4u;
 const MATERIAL_THIN_WALLED: u32 = 16u;
 // Scatters only in the plane perpendicular to scatter_plane_normal (scene/types.ts DiffuseMaterial.scatterPlaneNormal).
 const MATERIAL_SCATTER_IN_PLANE: u32 = 32u;
+// Both faces emit (scene/types.ts MaterialBase.twoSidedEmission: Doom's lamps on sprites).
+const MATERIAL_TWO_SIDED_EMISSION: u32 = 64u;
 
 // A material's use of one texture: where the texture lies in its atlas, how it is stored, and the
 // uv transform (KHR_texture_transform) applied first.
