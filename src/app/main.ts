@@ -373,6 +373,7 @@ await viewer.updateSettings({
   ...(linked.samplesPerFrame !== undefined ? { samplesPerFrame: linked.samplesPerFrame } : {}),
   ...(linked.scale !== undefined ? { scale: linked.scale } : {}),
   ...(linked.accumulate !== undefined ? { accumulate: linked.accumulate } : {}),
+  ...(linked.animate !== undefined ? { animate: linked.animate } : {}),
   // The torch's other settings are the scene's business: they are applied once it is loaded.
   render: { ...linkedRenderSettings(linked), ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}) },
 });

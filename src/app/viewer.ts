@@ -34,6 +34,8 @@ import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import { lensProblem } from '../scene/lens.ts';
 import type { Camera, ThinLens } from '../scene/types.ts';
+import type { WalkMap } from '../scene/walk-map.ts';
+import { World } from '../scene/world.ts';
 import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
 
@@ -49,6 +51,12 @@ export interface ViewerSettings {
   readonly scale: number;
   /** Keep adding frames into one estimate while the view is still (off: every frame stands alone). */
   readonly accumulate: boolean;
+  /**
+   * Play the scene's clock (Doom's animated textures and flickering lights, the dungeon's phantom,
+   * doors in motion). Off, the world holds still and the image converges; billboards still turn
+   * toward the camera and the use key still works (its doors move when the clock runs again).
+   */
+  readonly animate: boolean;
   readonly render: RenderSettings;
 }
 
@@ -57,7 +65,7 @@ export interface ViewerSettings {
  * switches to the real-time frame chain (renderer/denoiser.ts), which holds about 320 bytes per
  * pixel of G-buffer and history, so it is the user's choice.
  */
-export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
+export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
 
 /** Whether these settings ask for the real-time frame chain (temporal and/or spatial denoising). */
 export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise'>) => s.temporal || s.denoise;
@@ -113,6 +121,10 @@ export class Viewer {
 
   private loaded?: LoadedScene;
   private controllerValue?: CameraController;
+  /** What moves in the loaded scene (scene/world.ts), or undefined for a frozen one. */
+  private world?: World;
+  /** The controller's copy of the scene's walk map, whose heights the world's doors and lifts change. */
+  private walkMap?: WalkMap;
   private gpu?: GpuContext;
   private renderer?: Renderer;
   private context?: GPUCanvasContext;
@@ -222,7 +234,9 @@ export class Viewer {
     this.sceneEnvironment = given.prepared.scene.environment;
     const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
     const { scene, bvh } = loaded.prepared;
-    const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, scene.walkMap), scene.walkMap);
+    // A copy: doors and lifts change its heights, and the scene as loaded must stay as it was.
+    const walkMap = scene.walkMap ? { ...scene.walkMap, floors: new Float32Array(scene.walkMap.floors), ceilings: new Float32Array(scene.walkMap.ceilings) } : undefined;
+    const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, walkMap), walkMap);
     if (view.pose) controller.setPose(view.pose);
     if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
     controller.setMode(view.mode ?? (controller.canWalk ? 'walk' : 'fly'));
@@ -244,6 +258,8 @@ export class Viewer {
     this.realTimeFrames = 0;
     this.loaded = loaded;
     this.controllerValue = controller;
+    this.world = World.of(scene);
+    this.walkMap = walkMap;
     this.selectionValue = undefined;
     this.materialEdits = new Map();
     this.pendingEdits = new Map();
@@ -527,6 +543,7 @@ export class Viewer {
       samplesPerFrame: s.samplesPerFrame,
       scale: s.scale,
       accumulate: s.accumulate,
+      ...(s.animate ? {} : { animate: false }),
       ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
       ...linkOfEnvironment(this.environmentOverride),
       ...(this.materialEdits.size > 0 ? { materials: this.materialOverrides } : {}),
@@ -661,12 +678,46 @@ export class Viewer {
     requestAnimationFrame(frame);
   }
 
+  /**
+   * The player pressed the use key: opens the door or lowers the lift in front of the camera (Doom);
+   * true when something answered.
+   */
+  use(): boolean {
+    const c = this.controllerValue;
+    if (!this.world || !c) return false;
+    return this.world.use(c.camera());
+  }
+
+  /** Whether the loaded scene has anything that moves (the panel shows the animate switch for it). */
+  get moving(): boolean {
+    return this.world !== undefined;
+  }
+
+  /** Advances the loaded scene's world by `dt` (0 while animation is off) and applies what changed. */
+  private stepWorld(renderer: Renderer, c: CameraController, dt: number): void {
+    const loaded = this.loaded;
+    if (!this.world || !loaded) return;
+    const update = this.world.advance(this.settings.animate ? dt : 0, c.camera());
+    if (!update) return;
+    this.loaded = { ...loaded, prepared: renderer.applySceneUpdate(update) };
+    if (this.walkMap) {
+      for (const [sector, [floor, ceiling]] of update.walkHeights) {
+        this.walkMap.floors[sector] = floor;
+        this.walkMap.ceilings[sector] = ceiling;
+      }
+    }
+  }
+
   private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
     const c = this.controllerValue;
     if (c) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
-      if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      const [x0, , z0] = c.pose.position;
+      const moved = c.update(dt, this.input.move);
+      if (moved && c.mode === 'walk') this.world?.walked(x0, z0, c.pose.position[0], c.pose.position[2]);
+      if (moved || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      this.stepWorld(renderer, c, dt);
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
     // The counters restart with the estimate (every camera move too): then the whole count is this frame's.
