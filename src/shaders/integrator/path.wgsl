@@ -134,7 +134,7 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       cone_width += cone_spread * hit.t;
       texture_lod = texture_lod_at(surface, hit.triangle, cone_width, ray.direction);
       if (textureDimensions(triangle_attributes).x > 1u) {
-        surface_uv1 = triangle_uv1(hit.triangle, vec2f(hit.u, hit.v));
+        surface_uv1 = triangle_uv1(hit.triangle, stored_bary(hit));
       }
     }
 

@@ -9,12 +9,12 @@
  * GPU instance 0 is the static world (identity transform); moving instance k of `dynamic` is GPU
  * instance k + 1. A scene where nothing moves has no levels: its one BVH is the static world. Pure.
  */
-import { buildBvh, type Bvh } from '../bvh/build.ts';
-import { refitBvh } from '../bvh/refit.ts';
-import { buildTlas, type Tlas } from '../bvh/tlas.ts';
-import { f32Down, f32Up } from '../bvh/triangle-boxes.ts';
-import { traceClosest, type Hit } from '../bvh/traverse.ts';
-import { intersectAabb, prepareRay, T_MISS, type Ray } from '../bvh/ray.ts';
+import { buildBvh, type Bvh } from './build.ts';
+import { refitBvh } from './refit.ts';
+import { buildTlas, type Tlas } from './tlas.ts';
+import { f32Down, f32Up } from './triangle-boxes.ts';
+import { traceClosest, type Hit } from './traverse.ts';
+import { intersectAabb, prepareRay, T_MISS, type Ray } from './ray.ts';
 import { IDENTITY, invertAffine, transformDirection, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { flattenTriangles, PRIMITIVE_FLOATS, type TriangleList } from '../scene/triangles.ts';
 import type { Mesh, Scene } from '../scene/types.ts';
