@@ -147,7 +147,7 @@ function animatedWad(options: { special?: number; withNukage3?: boolean; animate
 
 describe('a Doom map with animations', () => {
   it('has a texture cycle for its NUKAGE floor, a scroll for its special-48 wall and emission patterns for its strobing sector\'s emitters', () => {
-    const { scene, stats } = loadDoomMap(animatedWad());
+    const { scene, stats } = loadDoomMap(animatedWad(), undefined);
     const a = scene.dynamics!.materialAnimations!;
     const names = (ts: readonly number[]) => ts.map((t) => scene.textures![t]!.name);
     const material = (i: number) => scene.materials[i]!;
@@ -190,7 +190,7 @@ describe('a Doom map with animations', () => {
   });
 
   it('keeps a sector without a light special, and a cycle with a missing frame, still', () => {
-    const { scene, stats } = loadDoomMap(animatedWad({ special: 0, withNukage3: false }));
+    const { scene, stats } = loadDoomMap(animatedWad({ special: 0, withNukage3: false }), undefined);
     const a = scene.dynamics!.materialAnimations!;
     expect(a.cycles).toBeUndefined();
     expect(a.patterns).toBeUndefined();
@@ -200,7 +200,7 @@ describe('a Doom map with animations', () => {
 
   it('takes its cycles from an ANIMATED lump when the WAD has one', () => {
     const lump = new Uint8Array([...animatedRecord('flat', 'NUKAGE2', 'NUKAGE1', 4), 0xff]);
-    const cycles = loadDoomMap(animatedWad({ animated: lump })).scene.dynamics!.materialAnimations!.cycles!;
+    const cycles = loadDoomMap(animatedWad({ animated: lump }), undefined).scene.dynamics!.materialAnimations!.cycles!;
     expect(cycles).toHaveLength(1);
     expect(cycles[0]!.frames).toHaveLength(2);
     expect(cycles[0]!.secondsPerFrame).toBeCloseTo(4 * TIC, 15);
