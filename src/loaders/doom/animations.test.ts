@@ -11,7 +11,7 @@ import { DOOM_ANIMATIONS, readAnimatedLump, resolveCycles, sectorLightPattern, s
 import { DEFAULT_LIGHT_TABLE, emissionOf } from './light-table.ts';
 import { loadDoomMap } from './load.ts';
 import { LINEDEF_FLAGS } from './map-types.ts';
-import { ccw, cw, encodeFlat, encodeMap, encodePalette, encodePatch, encodePnames, encodeTextureLump, MapBuilder, WadBuilder } from './test-wad.ts';
+import { animatedRoomWad, ccw, cw, MapBuilder, type AnimatedRoomOptions } from './test-wad.ts';
 import { readWad, WadStack } from './wad.ts';
 
 const TIC = 1 / 35;
@@ -112,37 +112,8 @@ describe('sector light specials (P_SpawnSpecials)', () => {
   });
 });
 
-/**
- * A little IWAD: sector 0 (light 160, special `special`) floored with NUKAGE2 under a CEIL1_2 lamp,
- * around sector 1 (light 96, floor and ceiling CEIL3_5); its first wall scrolls (special 48). Flats in
- * WAD order NUKAGE1, NUKAGE2, FLOOR4_8, NUKAGE3, CEIL3_5, CEIL1_2 (FLOOR4_8, between NUKAGE1 and
- * NUKAGE3, joins the cycle, as in Doom; a surface showing it would animate too).
- */
-function animatedWad(options: { special?: number; withNukage3?: boolean; animated?: Uint8Array } = {}): WadStack {
-  const b = new MapBuilder();
-  const walls = { upper: 'STARTAN3', lower: 'STARTAN3', middle: 'STARTAN3' };
-  const s0 = b.sector({ lightLevel: 160, special: options.special ?? 12, floorFlat: 'NUKAGE2', ceilingFlat: 'CEIL1_2' });
-  const s1 = b.sector({ lightLevel: 96, floorHeight: 16, floorFlat: 'CEIL3_5' });
-  b.loop(cw(0, 0, 256), s0, undefined, walls);
-  b.loop(ccw(96, 96, 64), s0, s1, { ...walls, middle: '-' });
-  b.linedefs[0] = { ...b.linedefs[0]!, special: 48 };
-  b.player(32, 32, 0);
-  const wad = new WadBuilder()
-    .lump('PLAYPAL', encodePalette())
-    .lumps(encodeMap(b.build('MAP01')))
-    .lump('PNAMES', encodePnames(['WALLPAT']))
-    .lump('TEXTURE1', encodeTextureLump([{ name: 'STARTAN3', width: 64, height: 128, patches: [{ x: 0, y: 0, patch: 0 }] }]))
-    .marker('P_START')
-    .lump('WALLPAT', encodePatch(64, 128, new Array<number>(64 * 128).fill(100)))
-    .marker('P_END')
-    .marker('F_START')
-    .lump('NUKAGE1', encodeFlat(41))
-    .lump('NUKAGE2', encodeFlat(42))
-    .lump('FLOOR4_8', encodeFlat(10));
-  if (options.withNukage3 ?? true) wad.lump('NUKAGE3', encodeFlat(43));
-  wad.lump('CEIL3_5', encodeFlat(20)).lump('CEIL1_2', encodeFlat(250)).marker('F_END');
-  if (options.animated) wad.lump('ANIMATED', options.animated);
-  return new WadStack([readWad(wad.build('IWAD'), 'animated.wad')]);
+function animatedWad(options: AnimatedRoomOptions = {}): WadStack {
+  return new WadStack([readWad(animatedRoomWad(options), 'animated.wad')]);
 }
 
 describe('a Doom map with animations', () => {
