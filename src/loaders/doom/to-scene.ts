@@ -1,7 +1,8 @@
 /**
  * A Lantern scene from a Doom map: floors and ceilings (sectors.ts), walls (walls.ts), materials
  * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the player's
- * view and torch. Coordinates go through coordinates.ts.
+ * view and torch, and what animates (animations.ts: texture cycles, scrolling walls, sector light
+ * specials, as Scene.dynamics.materialAnimations). Coordinates go through coordinates.ts.
  */
 import { doomWalkMap } from './walk-map.ts';
 import type { EmissionPattern, LightPattern, MaterialAnimations, TextureCycle, UvScroll } from '../../scene/material-animation.ts';
