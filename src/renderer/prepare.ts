@@ -199,11 +199,18 @@ export interface EditedMaterials {
   readonly prepared: PreparedScene;
   /** Whether an emission changed: the light table (LIGHT_BUFFERS) was packed again and must be written too. */
   readonly lightsChanged: boolean;
+  /**
+   * Whether texture references changed (an animated material's uv offset, scene/material-animation.ts):
+   * `texture_refs` was packed again and must be written too.
+   */
+  readonly textureRefsChanged: boolean;
 }
 
 /**
  * Material edits by material index (scene/material-edit.ts): only the edited records are packed
- * again, around the texture references and atlases already packed. An emission edit changes light
+ * again, around the texture references and atlases already packed (an animated material's texture
+ * swap points its record at a reference packed ahead; its uv offset rewrites its own references, so
+ * then `texture_refs` is new too: textureRefsChanged). An emission edit changes light
  * powers, so then the light table is packed again too; that walks every triangle (packGeometry, the
  * same CPU cost as moveInstances: a few ms for a Doom map, a few hundred for a million triangles),
  * while a colour or roughness edit costs one record. BVH, triangles and textures never change.
@@ -219,9 +226,10 @@ export function editMaterials(prepared: PreparedScene, edits: ReadonlyMap<number
     materials[index] = applyMaterialEdit(m, edit);
   }
   const edited: Scene = { ...scene, materials };
-  const packedMaterials = repackMaterialRecords(materials, prepared.packed.packedMaterials, sceneLayouts().material, edits.keys());
+  const packedMaterials = repackMaterialRecords(materials, prepared.packed.packedMaterials, sceneLayouts(), edits.keys());
+  const textureRefsChanged = packedMaterials.textureRefs !== prepared.packed.packedMaterials.textureRefs;
   const packed: PackedScene = lightsChanged
     ? packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels)
-    : { ...prepared.packed, materials: packedMaterials.materials, packedMaterials };
-  return { prepared: { ...prepared, scene: edited, packed }, lightsChanged };
+    : { ...prepared.packed, materials: packedMaterials.materials, texture_refs: packedMaterials.textureRefs, packedMaterials };
+  return { prepared: { ...prepared, scene: edited, packed }, lightsChanged, textureRefsChanged };
 }

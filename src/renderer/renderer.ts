@@ -295,8 +295,10 @@ export class Renderer {
   updateMaterials(edits: ReadonlyMap<number, MaterialEdit>): PreparedScene {
     let resources = this.resources;
     if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateMaterials()');
-    const { prepared, lightsChanged } = editMaterials(this.prepared, edits);
+    const { prepared, lightsChanged, textureRefsChanged } = editMaterials(this.prepared, edits);
     resources = resources.rewriteBuffer(this.device, 'materials', prepared.packed.materials);
+    // Animated textures scroll by their texture references' transforms.
+    if (textureRefsChanged) resources = resources.rewriteBuffer(this.device, 'texture_refs', prepared.packed.texture_refs);
     if (lightsChanged) for (const name of LIGHT_BUFFERS) resources = resources.rewriteBuffer(this.device, name, prepared.packed[name]);
     this.resources = resources;
     this.prepared = prepared;

@@ -15,6 +15,7 @@
  * - paths (scene/paths.ts): instances carried along a closed path (the dungeon's phantom).
  */
 import type { Mat4 } from '../math/mat4.ts';
+import type { MaterialAnimations } from './material-animation.ts';
 import type { MaterialEdit } from './material-edit.ts';
 
 /**
@@ -23,8 +24,10 @@ import type { MaterialEdit } from './material-edit.ts';
  *   billboards (scene/billboards.ts), materialAnimations (scene/material-animation.ts),
  *   movers (scene/movers.ts), paths (scene/paths.ts).
  */
-// eslint-disable-next-line @typescript-eslint/no-empty-interface
-export interface SceneDynamics {}
+export interface SceneDynamics {
+  /** Texture cycles, uv scrolls and emission patterns (scene/material-animation.ts). */
+  readonly materialAnimations?: MaterialAnimations;
+}
 
 /** An instance's new state: a transform, a material override (Instance.material), or both. */
 export interface InstancePose {

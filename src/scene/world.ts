@@ -5,6 +5,7 @@
  * data; the World only keeps time and merges what they change. Pure: no DOM, no GPU.
  */
 import type { Vec3 } from '../math/vec3.ts';
+import { materialAnimator } from './material-animation.ts';
 import { emptySceneUpdate, isEmptyUpdate, type InstancePose, type SceneUpdate } from './dynamics.ts';
 import type { MaterialEdit } from './material-edit.ts';
 import type { Scene } from './types.ts';
@@ -56,7 +57,7 @@ export interface Animator {
 export type AnimatorFactory = (scene: Scene) => Animator | undefined;
 
 /** Every kind of motion (scene/dynamics.ts lists them), in the order their updates are merged. */
-const ANIMATORS: readonly AnimatorFactory[] = [];
+const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator];
 
 export class World {
   private time = 0;

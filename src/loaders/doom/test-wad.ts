@@ -383,3 +383,49 @@ export function squareRoomsWad(maps: readonly { name: string; size?: number }[],
     .marker('F_END')
     .build(kind);
 }
+
+export interface AnimatedRoomOptions {
+  /** Sector 0's special (default 12, a slow strobe in sync). */
+  readonly special?: number;
+  /** Whether the WAD has NUKAGE3, the last frame of the NUKAGE cycle (default true). */
+  readonly withNukage3?: boolean;
+  /** A BOOM ANIMATED lump to include. */
+  readonly animated?: Uint8Array;
+}
+
+/**
+ * A little IWAD for the animation tests (animations.ts): sector 0 (light 160, special `special`),
+ * 256 units square, floored with NUKAGE2 under a CEIL1_2 lamp, around sector 1 (64 units square,
+ * light 96, floor 16, floor and ceiling CEIL3_5). Its west wall (linedef 0, front side facing east)
+ * scrolls (special 48). STARTAN3 (64×128) has vertical stripes of palette index 100 + x % 4. The
+ * player stands at (224, 128) looking west. Flats in WAD order: NUKAGE1 (41), NUKAGE2 (42),
+ * FLOOR4_8 (10), NUKAGE3 (43), CEIL3_5 (20), CEIL1_2 (250): FLOOR4_8, between NUKAGE1 and NUKAGE3,
+ * joins the NUKAGE cycle, as it would in Doom.
+ */
+export function animatedRoomWad(options: AnimatedRoomOptions = {}): Uint8Array {
+  const b = new MapBuilder();
+  const walls = { upper: 'STARTAN3', lower: 'STARTAN3', middle: 'STARTAN3' };
+  const s0 = b.sector({ lightLevel: 160, special: options.special ?? 12, floorFlat: 'NUKAGE2', ceilingFlat: 'CEIL1_2' });
+  const s1 = b.sector({ lightLevel: 96, floorHeight: 16, floorFlat: 'CEIL3_5' });
+  b.loop(cw(0, 0, 256), s0, undefined, walls);
+  b.loop(ccw(96, 96, 64), s0, s1, { ...walls, middle: '-' });
+  b.linedefs[0] = { ...b.linedefs[0]!, special: 48 };
+  b.player(224, 128, 180);
+  const stripes = Array.from({ length: 64 * 128 }, (_, i) => 100 + ((i % 64) % 4));
+  const wad = new WadBuilder()
+    .lump('PLAYPAL', encodePalette())
+    .lumps(encodeMap(b.build('MAP01')))
+    .lump('PNAMES', encodePnames(['WALLPAT']))
+    .lump('TEXTURE1', encodeTextureLump([{ name: 'STARTAN3', width: 64, height: 128, patches: [{ x: 0, y: 0, patch: 0 }] }]))
+    .marker('P_START')
+    .lump('WALLPAT', encodePatch(64, 128, stripes))
+    .marker('P_END')
+    .marker('F_START')
+    .lump('NUKAGE1', encodeFlat(41))
+    .lump('NUKAGE2', encodeFlat(42))
+    .lump('FLOOR4_8', encodeFlat(10));
+  if (options.withNukage3 ?? true) wad.lump('NUKAGE3', encodeFlat(43));
+  wad.lump('CEIL3_5', encodeFlat(20)).lump('CEIL1_2', encodeFlat(250)).marker('F_END');
+  if (options.animated) wad.lump('ANIMATED', options.animated);
+  return wad.build('IWAD');
+}

@@ -1,14 +1,17 @@
 /**
  * A Lantern scene from a Doom map: floors and ceilings (sectors.ts), walls (walls.ts), materials
  * from the WAD's textures with the light table's emitters (light-table.ts), the sky, the player's
- * view and torch. Coordinates go through coordinates.ts.
+ * view and torch, and what animates (animations.ts: texture cycles, scrolling walls, sector light
+ * specials, as Scene.dynamics.materialAnimations). Coordinates go through coordinates.ts.
  */
 import { doomWalkMap } from './walk-map.ts';
+import type { EmissionPattern, LightPattern, MaterialAnimations, TextureCycle, UvScroll } from '../../scene/material-animation.ts';
+import { DoomCycles, SCROLL_LEFT_SPECIAL, sectorLightPattern, sectorNeighbours, TICS_PER_SECOND } from './animations.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import { placeEachOnce } from '../../scene/instances.ts';
 import { diffuse, type Camera, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
-import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
+import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightSource, type LightTable } from './light-table.ts';
 import { EYE_HEIGHT, PLAYER1_START, type DoomImageSource, type DoomMap } from './map-types.ts';
 import { buildSectorShapes, sectorAt, type SectorFailure, type SectorShapes } from './sectors.ts';
 import { buildWalls, isSky, type WallQuad } from './walls.ts';
@@ -21,6 +24,8 @@ export interface DoomSceneOptions {
   readonly onWarning?: (message: string) => void;
   /** Scene name; the map's name by default. */
   readonly name?: string;
+  /** The WAD's animated flats and textures (animations.ts resolveCycles); none without. */
+  readonly cycles?: DoomCycles;
 }
 
 export interface DoomSceneStats {
@@ -32,6 +37,14 @@ export interface DoomSceneStats {
   readonly materials: number;
   readonly emissiveMaterials: number;
   readonly textures: number;
+  /** Materials showing an animated flat or texture (texture cycles). */
+  readonly cycledMaterials: number;
+  /** Linedefs with the scrolling special (48) whose front side shows a texture. */
+  readonly scrollingLines: number;
+  /** Sectors with a light special (1, 2, 3, 4, 8, 12, 13, 17). */
+  readonly lightSpecialSectors: number;
+  /** Materials whose emission follows a sector's light special. */
+  readonly patternedMaterials: number;
 }
 
 export interface DoomScene {
@@ -80,7 +93,13 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   const table = mergeLightTables(DEFAULT_LIGHT_TABLE, options.lightTable);
   const shapes = buildSectorShapes(map, warn);
   const walls = buildWalls(map, (name) => images.texture(name), warn);
-  const out = new SceneParts(images, table, options.sky, warn);
+  const neighbours = sectorNeighbours(map);
+  const patterns = new Map<number, LightPattern>();
+  map.sectors.forEach((_, i) => {
+    const p = sectorLightPattern(map, i, neighbours, i);
+    if (p) patterns.set(i, p);
+  });
+  const out = new SceneParts(images, table, options.sky, warn, options.cycles, patterns);
 
   let triangulatedSectors = 0;
   for (const shape of shapes.shapes) {
@@ -97,7 +116,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
       originV = Math.min(originV, Math.floor(w));
     }
     for (const [height, flat, up] of [[sector.floorHeight, sector.floorFlat, true], [sector.ceilingHeight, sector.ceilingFlat, false]] as const) {
-      const mesh = out.meshFor(isSky(flat) ? out.sky() : out.material('flat', flat, sector.lightLevel, false));
+      const mesh = out.meshFor(isSky(flat) ? out.sky() : out.material('flat', flat, sector.lightLevel, false, { sector: shape.sector }));
       const base = mesh.vertexCount();
       for (let i = 0; i < v.length; i += 2) mesh.vertex(toWorld(v[i]!, v[i + 1]!, height), flatUv(v[i]!, v[i + 1]!, originU, originV));
       // The shape's triangles are counter-clockwise seen from above: as they are, they face up
@@ -110,9 +129,14 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
     }
   }
 
-  for (const quad of walls) addWall(out, quad, map.sectors[quad.sector]!.lightLevel);
+  const scrollingLines = new Set<number>();
+  for (const quad of walls) {
+    const scroll = quad.side === 'front' && map.linedefs[quad.line]!.special === SCROLL_LEFT_SPECIAL && quad.surface.kind === 'texture';
+    if (scroll) scrollingLines.add(quad.line);
+    addWall(out, quad, map.sectors[quad.sector]!.lightLevel, scroll);
+  }
 
-  const { meshes, materials, textures } = out.finish();
+  const { meshes, materials, textures, animations } = out.finish();
   const scene: Scene = {
     name: options.name ?? map.name,
     meshes,
@@ -123,6 +147,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
     torch: DOOM_TORCH,
     metersPerUnit: DOOM_METERS_PER_UNIT,
     walkMap: doomWalkMap(map),
+    ...(animations && { dynamics: { materialAnimations: animations } }),
   };
   return {
     scene,
@@ -135,13 +160,17 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
       materials: materials.length,
       emissiveMaterials: materials.filter((m) => m.emission.some((c) => c > 0)).length,
       textures: textures.length,
+      cycledMaterials: animations?.cycles?.length ?? 0,
+      scrollingLines: scrollingLines.size,
+      lightSpecialSectors: patterns.size,
+      patternedMaterials: animations?.patterns?.length ?? 0,
     },
   };
 }
 
-function addWall(out: SceneParts, q: WallQuad, lightLevel: number): void {
+function addWall(out: SceneParts, q: WallQuad, lightLevel: number, scroll: boolean): void {
   const s = q.surface;
-  const material = s.kind === 'sky' ? out.sky() : s.kind === 'missing' ? out.missing() : out.material('texture', s.name, lightLevel, q.section === 'masked');
+  const material = s.kind === 'sky' ? out.sky() : s.kind === 'missing' ? out.missing() : out.material('texture', s.name, lightLevel, q.section === 'masked', { sector: q.sector, scroll });
   const mesh = out.meshFor(material);
   const base = mesh.vertexCount();
   // Counter-clockwise seen from the quad's sector (walls.ts), so the geometric normal faces it.
@@ -214,9 +243,31 @@ class MeshParts {
   }
 }
 
+/** Where a surface is, for the animations that depend on it. */
+interface SurfacePlace {
+  /** The sector whose light the surface takes (its light special makes an emitting material its own). */
+  readonly sector?: number;
+  /** A scrolling wall (linedef special 48, front side): its material is its own, shared by scrolling walls alone. */
+  readonly scroll?: boolean;
+}
+
+/** What an animated material was made from (SceneParts.finish turns it into material animations). */
+interface AnimatedMaterial {
+  readonly kind: 'texture' | 'flat';
+  readonly image: Texture;
+  readonly source: LightSource | undefined;
+  readonly emits: boolean;
+  readonly cycle?: { readonly names: readonly string[]; readonly frame: number; readonly ticsPerFrame: number };
+  readonly scroll: boolean;
+  readonly pattern?: LightPattern;
+}
+
 /**
  * Materials, textures and meshes as they are needed: one material per (image, emission, alpha mode),
- * each image stored once, one mesh per material.
+ * each image stored once, one mesh per material. Animated surfaces get materials of their own where
+ * their animation is not everyone's: a scrolling wall's texture is not the same material as the
+ * still one, and an emitting surface in a sector with a light special has its sector's material
+ * (cycles need nothing extra: every surface showing a frame animates alike, in Doom too).
  */
 class SceneParts {
   private readonly materials: Material[] = [];
@@ -232,10 +283,14 @@ class SceneParts {
     private readonly table: LightTable,
     private readonly skyTexture: Texture | undefined,
     private readonly warn: (m: string) => void,
+    private readonly cycles: DoomCycles | undefined,
+    private readonly patterns: ReadonlyMap<number, LightPattern>,
   ) {}
 
+  private readonly animated = new Map<number, AnimatedMaterial>();
+
   /** A wall texture or flat in a sector at `lightLevel`; the plain material when the WAD lacks it. */
-  material(kind: 'texture' | 'flat', name: string, lightLevel: number, masked: boolean): number {
+  material(kind: 'texture' | 'flat', name: string, lightLevel: number, masked: boolean, place: SurfacePlace = {}): number {
     const image = kind === 'texture' ? this.images.texture(name) : this.images.flat(name);
     if (!image) {
       // Missing wall textures were reported by buildWalls; missing flats are reported here.
@@ -247,8 +302,11 @@ class SceneParts {
     }
     const source = (kind === 'texture' ? this.table.textures : this.table.flats)[name];
     const emission = emissionOf(source, lightLevel);
-    const key = `${kind}:${name}:${emission?.join(',') ?? ''}:${masked}`;
-    return this.add(key, () => {
+    const pattern = emission && place.sector !== undefined ? this.patterns.get(place.sector) : undefined;
+    const scroll = place.scroll === true;
+    const key = `${kind}:${name}:${emission?.join(',') ?? ''}:${masked}${pattern ? `:sector ${place.sector}` : ''}${scroll ? ':scroll' : ''}`;
+    const before = this.materials.length;
+    const index = this.add(key, () => {
       const texture = this.texture(image);
       const glow = source?.glow ? this.glow(image, source.glow) : texture;
       return diffuse(emission ? `${name} (glowing ${+emission[0].toFixed(3)})` : name, [1, 1, 1], emission ?? [0, 0, 0], {
@@ -257,6 +315,45 @@ class SceneParts {
         ...(masked && { alphaMode: 'mask' as const }),
       });
     });
+    if (this.materials.length > before) {
+      const member = this.cycles?.of(kind, name);
+      const cycle = member && { names: member.cycle.names, frame: member.frame, ticsPerFrame: member.cycle.ticsPerFrame };
+      if (cycle || scroll || pattern) this.animated.set(index, { kind, image, source, emits: emission !== undefined, scroll, ...(cycle && { cycle }), ...(pattern && { pattern }) });
+    }
+    return index;
+  }
+
+  /** The material animations of the animated materials made so far, or undefined when there are none. */
+  private animations(): MaterialAnimations | undefined {
+    const cycles: TextureCycle[] = [];
+    const scrolls: UvScroll[] = [];
+    const patterns: EmissionPattern[] = [];
+    for (const [material, a] of this.animated) {
+      if (a.cycle) {
+        const images = a.cycle.names.map((n) => (a.kind === 'texture' ? this.images.texture(n) : this.images.flat(n)));
+        const missing = a.cycle.names.filter((_, i) => !images[i]);
+        if (missing.length > 0) this.warn(`animated ${a.kind} ${a.cycle.names[0]}–${a.cycle.names.at(-1)}: ${missing.join(', ')} cannot be read; not animated`);
+        else {
+          const frames = images.map((im) => this.texture(im!));
+          const glow = a.source?.glow;
+          cycles.push({
+            material,
+            frames,
+            ...(a.emits && { emissionFrames: glow ? images.map((im) => this.glow(im!, glow)) : frames }),
+            secondsPerFrame: a.cycle.ticsPerFrame / TICS_PER_SECOND,
+            firstFrame: a.cycle.frame,
+          });
+        }
+      }
+      // One texture unit per tic, leftward: u grows (walls.ts: u = offset + distance along the line).
+      if (a.scroll) scrolls.push({ material, velocity: [TICS_PER_SECOND / a.image.width, 0], stepSeconds: 1 / TICS_PER_SECOND });
+      if (a.pattern) {
+        const full = emissionOf(a.source, 255);
+        if (full) patterns.push({ material, emission: full, fullLevel: 255, exponent: 2, ticsPerSecond: TICS_PER_SECOND, pattern: a.pattern });
+      }
+    }
+    if (cycles.length + scrolls.length + patterns.length === 0) return undefined;
+    return { ...(cycles.length && { cycles }), ...(scrolls.length && { scrolls }), ...(patterns.length && { patterns }) };
   }
 
   /** Emits the sky picture by viewing direction, as Doom draws it behind F_SKY1; reflects nothing. */
@@ -290,13 +387,14 @@ class SceneParts {
     return mesh;
   }
 
-  finish(): { meshes: Mesh[]; materials: Material[]; textures: Texture[] } {
+  finish(): { meshes: Mesh[]; materials: Material[]; textures: Texture[]; animations: MaterialAnimations | undefined } {
+    const animations = this.animations();
     const meshes: Mesh[] = [];
     for (const [material, parts] of this.meshes) {
       const mesh = parts.build(this.materials[material]!.name, material);
       if (mesh) meshes.push(mesh);
     }
-    return { meshes, materials: this.materials, textures: this.textures };
+    return { meshes, materials: this.materials, textures: this.textures, animations };
   }
 
   private add(key: string, make: () => Material): number {
