@@ -33,6 +33,7 @@ import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import { lensProblem } from '../scene/lens.ts';
+import { World } from '../scene/world.ts';
 import type { Camera, ThinLens } from '../scene/types.ts';
 import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
@@ -113,6 +114,8 @@ export class Viewer {
 
   private loaded?: LoadedScene;
   private controllerValue?: CameraController;
+  /** What moves in the scene (doors, lifts, ...), or undefined for a frozen scene. */
+  private world?: World;
   private gpu?: GpuContext;
   private renderer?: Renderer;
   private context?: GPUCanvasContext;
@@ -155,6 +158,17 @@ export class Viewer {
 
   get controller(): CameraController | undefined {
     return this.controllerValue;
+  }
+
+  /**
+   * The use key (E, or Space when walking): opens the door or starts the lift in front of the
+   * camera (scene/movers.ts). True when something answered; it moves in the following frames.
+   */
+  use(): boolean {
+    const c = this.controllerValue;
+    if (!c || !this.world) return false;
+    const camera = c.camera();
+    return this.world.use({ position: camera.position, forward: camera.forward });
   }
 
   get scene(): LoadedScene | undefined {
@@ -244,6 +258,7 @@ export class Viewer {
     this.realTimeFrames = 0;
     this.loaded = loaded;
     this.controllerValue = controller;
+    this.world = World.of(scene);
     this.selectionValue = undefined;
     this.materialEdits = new Map();
     this.pendingEdits = new Map();

@@ -2,9 +2,9 @@ import { describe, expect, it } from 'vitest';
 import { morphMesh } from '../../scene/morph.ts';
 import type { Mesh, Scene, Texture } from '../../scene/types.ts';
 import { validateScene } from '../../scene/validate.ts';
-import { LINEDEF_FLAGS, type DoomImageSource, type DoomMap, type Sector } from './map-types.ts';
+import type { DoomImageSource, DoomMap, Sector } from './map-types.ts';
 import { findMovers } from './mover-sectors.ts';
-import { MapBuilder, type MapPoint } from './test-wad.ts';
+import { twoRooms } from './test-wad.ts';
 import { doomMapToScene } from './to-scene.ts';
 
 const solid = (name: string, width: number, height: number): Texture => ({ name, width, height, rgba: new Uint8Array(width * height * 4).fill(128) });
@@ -17,37 +17,6 @@ function convert(map: DoomMap): Scene {
   const { scene } = doomMapToScene(map, IMAGES);
   validateScene(scene);
   return scene;
-}
-
-/**
- * Two rooms (x 0..128 and 144..272, y 0..128) joined by a 16-unit sector between them (x 128..144):
- * a door (manual special 1 on both faces) or a lift (walk-over 88 on room A's edge, tag 1).
- * The door faces are upper-unpegged on one side, offset on the other; the jambs lower-unpegged.
- */
-function twoRooms(middle: Partial<Sector>, kind: 'door' | 'lift', roomB: Partial<Sector> = {}): DoomMap {
-  const m = new MapBuilder();
-  const a = m.sector();
-  const door = m.sector({ floorHeight: 0, ceilingHeight: 0, ...middle });
-  const b = m.sector(roomB);
-  const line = (p: MapPoint, q: MapPoint, front: number, back?: number, sides = {}, flags = 0) => m.line(p, q, front, back, sides, flags);
-  line([0, 0], [0, 128], a);
-  line([0, 128], [128, 128], a);
-  line([128, 0], [0, 0], a);
-  line([128, 128], [128, 0], a, door, { upper: 'DOOR', yOffset: 5 });
-  line([128, 128], [144, 128], door, undefined, { middle: 'JAMB' }, LINEDEF_FLAGS.LOWER_UNPEGGED);
-  line([144, 0], [128, 0], door, undefined, { middle: 'JAMB' }, LINEDEF_FLAGS.LOWER_UNPEGGED);
-  line([144, 0], [144, 128], b, door, { upper: 'DOOR', lower: 'WALL' }, LINEDEF_FLAGS.UPPER_UNPEGGED);
-  line([144, 128], [272, 128], b);
-  line([272, 128], [272, 0], b);
-  line([272, 0], [144, 0], b);
-  if (kind === 'door') {
-    for (const i of [3, 6]) m.linedefs[i] = { ...m.linedefs[i]!, special: 1 };
-  } else {
-    m.sectors[door] = { ...m.sectors[door]!, tag: 1 };
-    m.linedefs[3] = { ...m.linedefs[3]!, special: 88, tag: 1 };
-  }
-  m.player(64, 64, 0);
-  return m.build();
 }
 
 const withSector = (map: DoomMap, index: number, change: Partial<Sector>): DoomMap => ({
@@ -98,7 +67,7 @@ describe('moving sectors', () => {
     // Closed, the door's faces and jambs are there with no height: the triangle count never changes.
     const heights = (m: Mesh) => new Set(Array.from({ length: m.positions.length / 3 }, (_, i) => m.positions[3 * i + 1]));
     expect([...heights(mesh)]).toEqual([0, 128]);
-    expect([...heights(morphMesh(mesh, [0, 124]))].sort((x, y) => x - y)).toEqual([0, 124, 128]);
+    expect([...heights(morphMesh(mesh, [0, 124]))].sort((x, y) => x! - y!)).toEqual([0, 124, 128]);
   });
 
   it('morphs the lift floor: at weights (f, 0) it is the mesh the loader builds with the floor at rest + f', () => {
