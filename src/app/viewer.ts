@@ -676,12 +676,29 @@ export class Viewer {
     requestAnimationFrame(frame);
   }
 
+  /**
+   * STOPGAP until the lead's World wiring lands (it replaces this): walk-over lines hear the walker's
+   * moves, the world advances by the frame's time, the renderer and the walk map take its update.
+   */
+  private playWorld(renderer: Renderer, c: CameraController, dt: number): void {
+    const world = this.world;
+    if (!world || !this.loaded) return;
+    for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
+    const camera = c.camera();
+    const update = world.advance(dt, { position: camera.position, forward: camera.forward });
+    if (!update) return;
+    c.setSectorHeights(update.walkHeights);
+    // Kept, so that a lost device is refilled with the scene as it is now.
+    this.loaded = { ...this.loaded, prepared: renderer.applySceneUpdate(update) };
+  }
+
   private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
     const c = this.controllerValue;
     if (c) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
       if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      this.playWorld(renderer, c, dt);
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
     // The counters restart with the estimate (every camera move too): then the whole count is this frame's.
