@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { MoverAnimator, type Mover, type MoverSet, type MoverTrigger } from './movers.ts';
+import type { WalkMap } from './walk-map.ts';
 import { UpdateBuilder, type Viewpoint } from './world.ts';
 
 /**
@@ -129,6 +130,21 @@ describe('MoverAnimator', () => {
       const behind = animator([doorUse(), liftSwitch(120, true)]);
       expect(behind.use(at(100, -64), 0)).toBe(false);
       expect([behind.active(0), behind.active(1)]).toEqual([false, false]);
+    });
+
+    it('is stopped by a wall or a shut door between the player and the line, not by an open one', () => {
+      // A walk map with one line across the way at x = 110, between sectors 0 and 1 (or a wall).
+      const across = (back: number, floors = [0, 0], ceilings = [128, 128]): WalkMap => ({
+        lines: new Float32Array([110, -128, 110, 0]), lineSectors: new Int32Array([0, back]), lineBlocks: new Uint8Array([0]),
+        floors: new Float32Array([...floors, 0, 0]), ceilings: new Float32Array([...ceilings, 0, 0]), eyeHeight: 41, stepHeight: 24, bodyHeight: 56, radius: 16,
+      });
+      const use = (map: WalkMap) => new MoverAnimator({ movers: [DOOR, LIFT], triggers: [doorUse()], useRange: 64, body: { radius: 16, height: 56 } }, map).use(at(100, -64), 0);
+      expect(use(across(1))).toBe(true); // an opening
+      expect(use(across(-1))).toBe(false); // a wall
+      expect(use(across(1, [0, 64], [128, 64]))).toBe(false); // shut: no room between floor and ceiling
+      // The door's own face is a shut opening too (sector 2, the closed door), but it is what the key uses.
+      const withDoorFace: WalkMap = { ...across(1), lines: new Float32Array([110, -128, 110, 0, 128, -128, 128, 0]), lineSectors: new Int32Array([0, 1, 0, 2]), lineBlocks: new Uint8Array([0, 0]) };
+      expect(use(withDoorFace)).toBe(true);
     });
 
     it('sends a manual door back: a waiting door closes, a closing door reopens', () => {

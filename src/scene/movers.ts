@@ -7,6 +7,7 @@
  * door and platform thinkers (p_doors.c T_VerticalDoor, EV_VerticalDoor; p_plats.c T_PlatRaise),
  * in seconds instead of tics. Pure.
  */
+import { NO_SECTOR, type WalkMap } from './walk-map.ts';
 import type { AnimatorFactory, Animator, UpdateBuilder, Viewpoint } from './world.ts';
 
 /**
@@ -94,10 +95,14 @@ export class MoverAnimator implements Animator {
   private readonly spent = new Set<number>();
   private readonly dirty = new Set<number>();
   private view?: Viewpoint;
+  /** Mover index by walk-map sector. */
+  private readonly moverOfSector: Map<number, number>;
 
-  constructor(readonly set: MoverSet) {
+  /** With a walk map, walls and shut openings between the player and a use line stop the use key. */
+  constructor(readonly set: MoverSet, private readonly walkMap?: WalkMap) {
     this.floors = set.movers.map((m) => m.restFloor);
     this.ceilings = set.movers.map((m) => m.restCeiling);
+    this.moverOfSector = new Map(set.movers.map((m, i) => [m.sector, i]));
   }
 
   /** Whether mover `i` is moving or waiting. */
@@ -135,11 +140,35 @@ export class MoverAnimator implements Animator {
       const s = crossing(px, pz, px + ex, pz + ez, trigger.line);
       if (s !== undefined && s < best) [nearest, best] = [k, s];
     });
-    if (nearest < 0) return false;
+    if (nearest < 0 || this.blockedBefore(px, pz, px + ex, pz + ez, best)) return false;
     const trigger = this.set.triggers[nearest]!;
     const [x0, z0, x1, z1] = trigger.line;
     if (!((x1 - x0) * (pz - z0) - (z1 - z0) * (px - x0) > 0)) return false;
     return this.fire(nearest, t);
+  }
+
+  /**
+   * Whether a wall or a shut opening (no room between the higher floor and the lower ceiling: a
+   * closed door) crosses the segment before the fraction `before` (PTR_UseTraverse's "noway").
+   */
+  private blockedBefore(ax: number, az: number, bx: number, bz: number, before: number): boolean {
+    const map = this.walkMap;
+    if (!map) return false;
+    const L = map.lines;
+    const height = (sector: number, floor: boolean) => {
+      const i = this.moverOfSector.get(sector);
+      if (i !== undefined) return floor ? this.floors[i]! : this.ceilings[i]!;
+      return floor ? map.floors[sector]! : map.ceilings[sector]!;
+    };
+    for (let i = 0; i < L.length; i += 4) {
+      const s = crossing(ax, az, bx, bz, [L[i]!, L[i + 1]!, L[i + 2]!, L[i + 3]!]);
+      // The use line itself (a door's face is a shut opening too) lies at `before`, not before it.
+      if (s === undefined || s >= before - 1e-9) continue;
+      const a = map.lineSectors[i / 2]!, b = map.lineSectors[i / 2 + 1]!;
+      if (a === NO_SECTOR || b === NO_SECTOR) return true;
+      if (Math.min(height(a, false), height(b, false)) - Math.max(height(a, true), height(b, true)) <= 0) return true;
+    }
+    return false;
   }
 
   /** The player's centre moved from (x0, z0) to (x1, z1): walk-over lines it crossed fire. */
@@ -236,7 +265,7 @@ export class MoverAnimator implements Animator {
 
 export const moverAnimator: AnimatorFactory = (scene) => {
   const set = scene.dynamics?.movers;
-  return set && set.movers.length > 0 ? new MoverAnimator(set) : undefined;
+  return set && set.movers.length > 0 ? new MoverAnimator(set, scene.walkMap) : undefined;
 };
 
 /**
