@@ -1,3 +1,4 @@
+import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { morphMesh } from '../../scene/morph.ts';
 import type { Mesh, Scene, Texture } from '../../scene/types.ts';
@@ -5,7 +6,10 @@ import { validateScene } from '../../scene/validate.ts';
 import type { DoomImageSource, DoomMap, Sector } from './map-types.ts';
 import { findMovers } from './mover-sectors.ts';
 import { twoRooms } from './test-wad.ts';
+import { readMap } from './map-lumps.ts';
+import { DoomGraphics } from './textures.ts';
 import { doomMapToScene } from './to-scene.ts';
+import { readWad, WadStack } from './wad.ts';
 
 const solid = (name: string, width: number, height: number): Texture => ({ name, width, height, rgba: new Uint8Array(width * height * 4).fill(128) });
 const IMAGES: DoomImageSource = {
@@ -85,6 +89,25 @@ describe('moving sectors', () => {
     expect(plainScene.meshes.some((m) => m.morphTargets)).toBe(false);
     expect(plainScene.instances.some((i) => i.moves)).toBe(false);
     expect(triangleSet(convert(map))).toEqual(triangleSet(plainScene));
+  });
+});
+
+const FREEDOOM1 = '/usr/share/games/doom/freedoom1.wad';
+
+describe.skipIf(!existsSync(FREEDOOM1))('moving sectors of Freedoom E1M1', () => {
+  it('open, every closed door is the mesh the loader builds with that door open (the real pegging of a real map)', () => {
+    const stack = new WadStack([readWad(readFileSync(FREEDOOM1), 'freedoom1.wad')]);
+    const graphics = new DoomGraphics(stack);
+    const map = readMap(stack, 'E1M1');
+    const { scene } = doomMapToScene(map, graphics);
+    const movers = scene.dynamics!.movers!.movers;
+    const doors = movers.filter((m) => m.kinds.includes('door') && m.restCeiling === m.restFloor);
+    expect(doors.length).toBeGreaterThanOrEqual(10);
+    for (const door of doors) {
+      const open = doomMapToScene(withSector(map, door.sector, { ceilingHeight: door.doorTop }), graphics).scene;
+      const mesh = scene.meshes[door.mesh]!;
+      expectSameMesh(morphMesh(mesh, [0, door.doorTop - door.restCeiling]), open.meshes[door.mesh]!);
+    }
   });
 });
 
