@@ -7,7 +7,7 @@ import { doomWalkMap, PLAYER_HEIGHT, PLAYER_RADIUS } from './walk-map.ts';
 import { IDENTITY } from '../../math/mat4.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import { placeEachOnce } from '../../scene/instances.ts';
-import type { MoverSet } from '../../scene/movers.ts';
+import type { Mover, MoverSet } from '../../scene/movers.ts';
 import { diffuse, type Camera, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
 import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightTable } from './light-table.ts';
@@ -130,7 +130,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   const moverMeshIndex = new Map<number, number>();
   for (const [sector, parts] of moverMeshes) {
     const name = `sector ${sector} (${movers.sectors.find((m) => m.sector === sector)!.kinds.join(' and ')})`;
-    const mesh = parts.build(name, 0);
+    const mesh = parts.build(name, 0); // a moving sector's triangles carry their own materials
     if (!mesh) continue;
     moverMeshIndex.set(sector, meshes.push(mesh) - 1);
     instances.push({ id: instances.length, name, mesh: meshes.length - 1, worldFromObject: IDENTITY, moves: true });
@@ -185,7 +185,7 @@ function addWall(out: SceneParts, q: WallQuad, lightLevel: number, moverMesh?: M
 /** Scene.dynamics.movers from the map's moving sectors and the meshes they got. */
 function moverSetOf(map: DoomMap, found: MapMovers, meshOf: ReadonlyMap<number, number>): MoverSet | undefined {
   const index = new Map<number, number>();
-  const movers: MoverSet['movers'][number][] = [];
+  const movers: Mover[] = [];
   for (const m of found.sectors) {
     const mesh = meshOf.get(m.sector);
     if (mesh === undefined) continue;
