@@ -301,6 +301,10 @@ viewer.input = new Input(canvas, {
     } else viewer.select(x, y).catch((e) => showMessage(describeError(e), 'error'));
   },
   onEscape: () => void viewer.deselect().catch((e) => showMessage(describeError(e), 'error')),
+  // E is the use key everywhere; Space only while walking (flying, it rises).
+  onUse: (key) => {
+    if (key === 'KeyE' || viewer.controller?.mode === 'walk') viewer.use();
+  },
 });
 
 playButton.addEventListener('click', () => {

@@ -33,9 +33,8 @@ import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import { lensProblem } from '../scene/lens.ts';
-import type { Camera, ThinLens } from '../scene/types.ts';
-import type { WalkMap } from '../scene/walk-map.ts';
 import { World } from '../scene/world.ts';
+import type { Camera, ThinLens } from '../scene/types.ts';
 import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
 
@@ -121,10 +120,8 @@ export class Viewer {
 
   private loaded?: LoadedScene;
   private controllerValue?: CameraController;
-  /** What moves in the loaded scene (scene/world.ts), or undefined for a frozen one. */
+  /** What moves in the scene (doors, lifts, ...), or undefined for a frozen scene. */
   private world?: World;
-  /** The controller's copy of the scene's walk map, whose heights the world's doors and lifts change. */
-  private walkMap?: WalkMap;
   private gpu?: GpuContext;
   private renderer?: Renderer;
   private context?: GPUCanvasContext;
@@ -167,6 +164,17 @@ export class Viewer {
 
   get controller(): CameraController | undefined {
     return this.controllerValue;
+  }
+
+  /**
+   * The use key (E, or Space when walking): opens the door or starts the lift in front of the
+   * camera (scene/movers.ts). True when something answered; it moves in the following frames.
+   */
+  use(): boolean {
+    const c = this.controllerValue;
+    if (!c || !this.world) return false;
+    const camera = c.camera();
+    return this.world.use({ position: camera.position, forward: camera.forward });
   }
 
   get scene(): LoadedScene | undefined {
@@ -234,9 +242,8 @@ export class Viewer {
     this.sceneEnvironment = given.prepared.scene.environment;
     const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
     const { scene, bvh } = loaded.prepared;
-    // A copy: doors and lifts change its heights, and the scene as loaded must stay as it was.
-    const walkMap = scene.walkMap ? { ...scene.walkMap, floors: new Float32Array(scene.walkMap.floors), ceilings: new Float32Array(scene.walkMap.ceilings) } : undefined;
-    const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, walkMap), walkMap);
+    // The controller keeps its own heights of the walk map (doors and lifts change them).
+    const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, scene.walkMap), scene.walkMap);
     if (view.pose) controller.setPose(view.pose);
     if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
     controller.setMode(view.mode ?? (controller.canWalk ? 'walk' : 'fly'));
@@ -259,7 +266,6 @@ export class Viewer {
     this.loaded = loaded;
     this.controllerValue = controller;
     this.world = World.of(scene);
-    this.walkMap = walkMap;
     this.selectionValue = undefined;
     this.materialEdits = new Map();
     this.pendingEdits = new Map();
@@ -678,34 +684,25 @@ export class Viewer {
     requestAnimationFrame(frame);
   }
 
-  /**
-   * The player pressed the use key: opens the door or lowers the lift in front of the camera (Doom);
-   * true when something answered.
-   */
-  use(): boolean {
-    const c = this.controllerValue;
-    if (!this.world || !c) return false;
-    return this.world.use(c.camera());
-  }
-
   /** Whether the loaded scene has anything that moves (the panel shows the animate switch for it). */
   get moving(): boolean {
     return this.world !== undefined;
   }
 
-  /** Advances the loaded scene's world by `dt` (0 while animation is off) and applies what changed. */
+  /**
+   * Advances the loaded scene's world by `dt` (0 while animation is off: billboards still turn, the
+   * use key still answers) and applies what changed: walk-over lines hear the walker's moves, the
+   * renderer and the walker's heights take the update.
+   */
   private stepWorld(renderer: Renderer, c: CameraController, dt: number): void {
-    const loaded = this.loaded;
-    if (!this.world || !loaded) return;
-    const update = this.world.advance(this.settings.animate ? dt : 0, c.camera());
+    const world = this.world;
+    if (!world || !this.loaded) return;
+    for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
+    const update = world.advance(this.settings.animate ? dt : 0, c.camera());
     if (!update) return;
-    this.loaded = { ...loaded, prepared: renderer.applySceneUpdate(update) };
-    if (this.walkMap) {
-      for (const [sector, [floor, ceiling]] of update.walkHeights) {
-        this.walkMap.floors[sector] = floor;
-        this.walkMap.ceilings[sector] = ceiling;
-      }
-    }
+    c.setSectorHeights(update.walkHeights);
+    // Kept, so that a lost device is refilled with the scene as it is now.
+    this.loaded = { ...this.loaded, prepared: renderer.applySceneUpdate(update) };
   }
 
   private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
@@ -713,10 +710,7 @@ export class Viewer {
     if (c) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
-      const [x0, , z0] = c.pose.position;
-      const moved = c.update(dt, this.input.move);
-      if (moved && c.mode === 'walk') this.world?.walked(x0, z0, c.pose.position[0], c.pose.position[2]);
-      if (moved || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
       this.stepWorld(renderer, c, dt);
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();

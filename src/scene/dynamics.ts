@@ -17,6 +17,7 @@
 import type { Mat4 } from '../math/mat4.ts';
 import type { MaterialAnimations } from './material-animation.ts';
 import type { MaterialEdit } from './material-edit.ts';
+import type { MoverSet } from './movers.ts';
 
 /**
  * The dynamic parts of a scene. Every field is optional; a scene without `dynamics` is frozen. Each
@@ -27,6 +28,8 @@ import type { MaterialEdit } from './material-edit.ts';
 export interface SceneDynamics {
   /** Texture cycles, uv scrolls and emission patterns (scene/material-animation.ts). */
   readonly materialAnimations?: MaterialAnimations;
+  /** Doors and lifts. */
+  readonly movers?: MoverSet;
 }
 
 /** An instance's new state: a transform, a material override (Instance.material), or both. */

@@ -210,6 +210,38 @@ export const cw = (x: number, y: number, w: number, h = w): MapPoint[] => [[x, y
 export const ccw = (x: number, y: number, w: number, h = w): MapPoint[] => cw(x, y, w, h).reverse();
 
 /**
+ * Two rooms (x 0..128 and 144..272, y 0..128) joined by a 16-unit sector between them (x 128..144):
+ * a door (manual special 1 on both faces) or a lift (walk-over 88 on room A's edge, tag 1).
+ * The door faces are upper-unpegged on one side, offset on the other; the jambs lower-unpegged.
+ * Player start in room A, facing east (toward the door).
+ */
+export function twoRooms(middle: Partial<Sector>, kind: 'door' | 'lift', roomB: Partial<Sector> = {}): DoomMap {
+  const m = new MapBuilder();
+  const a = m.sector();
+  const door = m.sector({ floorHeight: 0, ceilingHeight: 0, ...middle });
+  const b = m.sector(roomB);
+  const line = (p: MapPoint, q: MapPoint, front: number, back?: number, sides = {}, flags = 0) => m.line(p, q, front, back, sides, flags);
+  line([0, 0], [0, 128], a);
+  line([0, 128], [128, 128], a);
+  line([128, 0], [0, 0], a);
+  line([128, 128], [128, 0], a, door, { upper: 'DOOR', yOffset: 5 });
+  line([128, 128], [144, 128], door, undefined, { middle: 'JAMB' }, LINEDEF_FLAGS.LOWER_UNPEGGED);
+  line([144, 0], [128, 0], door, undefined, { middle: 'JAMB' }, LINEDEF_FLAGS.LOWER_UNPEGGED);
+  line([144, 0], [144, 128], b, door, { upper: 'DOOR', lower: 'WALL' }, LINEDEF_FLAGS.UPPER_UNPEGGED);
+  line([144, 128], [272, 128], b);
+  line([272, 128], [272, 0], b);
+  line([272, 0], [144, 0], b);
+  if (kind === 'door') {
+    for (const i of [3, 6]) m.linedefs[i] = { ...m.linedefs[i]!, special: 1 };
+  } else {
+    m.sectors[door] = { ...m.sectors[door]!, tag: 1 };
+    m.linedefs[3] = { ...m.linedefs[3]!, special: 88, tag: 1 };
+  }
+  m.player(64, 64, 0);
+  return m.build();
+}
+
+/**
  * A one-sector square room, `size` units on a side, with the player 1 start in the middle: the
  * smallest map the geometry builders can turn into a scene. Walls use STARTAN3, floor FLOOR4_8,
  * ceiling CEIL3_5 (Doom names; provide them in the WAD if a test composes images).

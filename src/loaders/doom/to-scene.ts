@@ -4,17 +4,20 @@
  * view and torch, and what animates (animations.ts: texture cycles, scrolling walls, sector light
  * specials, as Scene.dynamics.materialAnimations). Coordinates go through coordinates.ts.
  */
-import { doomWalkMap } from './walk-map.ts';
+import { doomWalkMap, PLAYER_HEIGHT, PLAYER_RADIUS } from './walk-map.ts';
+import { IDENTITY } from '../../math/mat4.ts';
 import type { EmissionPattern, LightPattern, MaterialAnimations, TextureCycle, UvScroll } from '../../scene/material-animation.ts';
 import { DoomCycles, SCROLL_LEFT_SPECIAL, sectorLightPattern, sectorNeighbours, TICS_PER_SECOND } from './animations.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import { placeEachOnce } from '../../scene/instances.ts';
+import type { Mover, MoverSet } from '../../scene/movers.ts';
 import { diffuse, type Camera, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
 import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightSource, type LightTable } from './light-table.ts';
 import { EYE_HEIGHT, PLAYER1_START, type DoomImageSource, type DoomMap } from './map-types.ts';
 import { buildSectorShapes, sectorAt, type SectorFailure, type SectorShapes } from './sectors.ts';
 import { buildWalls, isSky, type WallQuad } from './walls.ts';
+import { findMovers, type MapMovers } from './mover-sectors.ts';
 
 export interface DoomSceneOptions {
   /** The sky texture (SKY1, ...). Without one the sky glows a plain grey. */
@@ -34,6 +37,8 @@ export interface DoomSceneStats {
   readonly triangulatedSectors: number;
   readonly wallQuads: number;
   readonly triangles: number;
+  /** Doors and lifts: sectors with a mesh of their own that moves. */
+  readonly movers: number;
   readonly materials: number;
   readonly emissiveMaterials: number;
   readonly textures: number;
@@ -92,7 +97,9 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   const warn = options.onWarning ?? (() => {});
   const table = mergeLightTables(DEFAULT_LIGHT_TABLE, options.lightTable);
   const shapes = buildSectorShapes(map, warn);
-  const walls = buildWalls(map, (name) => images.texture(name), warn);
+  const movers = findMovers(map, warn);
+  const ranges = new Map(movers.sectors.map((m) => [m.sector, m.range]));
+  const walls = buildWalls(map, (name) => images.texture(name), warn, ranges);
   const neighbours = sectorNeighbours(map);
   const patterns = new Map<number, LightPattern>();
   map.sectors.forEach((_, i) => {
@@ -100,14 +107,17 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
     if (p) patterns.set(i, p);
   });
   const out = new SceneParts(images, table, options.sky, warn, options.cycles, patterns);
+  // Each door or lift sector is one mesh whose two morph targets move its floor and its ceiling.
+  const moverMeshes = new Map(movers.sectors.map((m) => [m.sector, new MeshParts(true)]));
 
   let triangulatedSectors = 0;
   for (const shape of shapes.shapes) {
     const sector = map.sectors[shape.sector]!;
     if (shape.indices.length === 0) continue;
     triangulatedSectors++;
-    // A closed door or lift (ceiling at or below the floor) shows neither plane.
-    if (sector.ceilingHeight <= sector.floorHeight) continue;
+    const moverMesh = moverMeshes.get(shape.sector);
+    // A closed door (ceiling at or below the floor) shows neither plane, unless it can open.
+    if (sector.ceilingHeight <= sector.floorHeight && !moverMesh) continue;
     const v = shape.vertices;
     let [originU, originV] = [Infinity, Infinity];
     for (let i = 0; i < v.length; i += 2) {
@@ -116,15 +126,17 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
       originV = Math.min(originV, Math.floor(w));
     }
     for (const [height, flat, up] of [[sector.floorHeight, sector.floorFlat, true], [sector.ceilingHeight, sector.ceilingFlat, false]] as const) {
-      const mesh = out.meshFor(isSky(flat) ? out.sky() : out.material('flat', flat, sector.lightLevel, false, { sector: shape.sector }));
+      const material = isSky(flat) ? out.sky() : out.material('flat', flat, sector.lightLevel, false, { sector: shape.sector });
+      const mesh = moverMesh ?? out.meshFor(material);
       const base = mesh.vertexCount();
-      for (let i = 0; i < v.length; i += 2) mesh.vertex(toWorld(v[i]!, v[i + 1]!, height), flatUv(v[i]!, v[i + 1]!, originU, originV));
+      const motion: VertexMotion = up ? [1, 0, 0, 0] : [0, 1, 0, 0];
+      for (let i = 0; i < v.length; i += 2) mesh.vertex(toWorld(v[i]!, v[i + 1]!, height), flatUv(v[i]!, v[i + 1]!, originU, originV), motion);
       // The shape's triangles are counter-clockwise seen from above: as they are, they face up
       // (floors); reversed, down (ceilings). Emission is one-sided, so this matters for lit flats.
       for (let t = 0; t < shape.indices.length; t += 3) {
         const [a, b, c] = [shape.indices[t]!, shape.indices[t + 1]!, shape.indices[t + 2]!];
-        if (up) mesh.triangle(base + a, base + b, base + c);
-        else mesh.triangle(base + a, base + c, base + b);
+        if (up) mesh.triangle(base + a, base + b, base + c, material);
+        else mesh.triangle(base + a, base + c, base + b, material);
       }
     }
   }
@@ -133,21 +145,32 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   for (const quad of walls) {
     const scroll = quad.side === 'front' && map.linedefs[quad.line]!.special === SCROLL_LEFT_SPECIAL && quad.surface.kind === 'texture';
     if (scroll) scrollingLines.add(quad.line);
-    addWall(out, quad, map.sectors[quad.sector]!.lightLevel, scroll);
+    addWall(out, quad, map.sectors[quad.sector]!.lightLevel, scroll, quad.motion && moverMeshes.get(quad.motion.sector));
   }
 
-  const { meshes, materials, textures, animations } = out.finish();
+  const { meshes: staticMeshes, materials, textures, animations } = out.finish();
+  const meshes = [...staticMeshes];
+  const instances = placeEachOnce(staticMeshes);
+  const moverMeshIndex = new Map<number, number>();
+  for (const [sector, parts] of moverMeshes) {
+    const name = `sector ${sector} (${movers.sectors.find((m) => m.sector === sector)!.kinds.join(' and ')})`;
+    const mesh = parts.build(name, 0); // a moving sector's triangles carry their own materials
+    if (!mesh) continue;
+    moverMeshIndex.set(sector, meshes.push(mesh) - 1);
+    instances.push({ id: instances.length, name, mesh: meshes.length - 1, worldFromObject: IDENTITY, moves: true });
+  }
+  const moverSet = moverSetOf(map, movers, moverMeshIndex);
   const scene: Scene = {
     name: options.name ?? map.name,
     meshes,
-    instances: placeEachOnce(meshes),
+    instances,
     materials,
     textures,
     camera: playerCamera(map, shapes, warn),
     torch: DOOM_TORCH,
     metersPerUnit: DOOM_METERS_PER_UNIT,
     walkMap: doomWalkMap(map),
-    ...(animations && { dynamics: { materialAnimations: animations } }),
+    ...((animations || moverSet) && { dynamics: { ...(animations ? { materialAnimations: animations } : {}), ...(moverSet ? { movers: moverSet } : {}) } }),
   };
   return {
     scene,
@@ -157,6 +180,7 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
       triangulatedSectors,
       wallQuads: walls.length,
       triangles: meshes.reduce((n, m) => n + m.indices.length / 3, 0),
+      movers: moverSet?.movers.length ?? 0,
       materials: materials.length,
       emissiveMaterials: materials.filter((m) => m.emission.some((c) => c > 0)).length,
       textures: textures.length,
@@ -168,18 +192,42 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
   };
 }
 
-function addWall(out: SceneParts, q: WallQuad, lightLevel: number, scroll: boolean): void {
+/** Adds a wall quad to its material's mesh, or to `moverMesh` (a moving sector's) with its motion. */
+function addWall(out: SceneParts, q: WallQuad, lightLevel: number, scroll: boolean, moverMesh?: MeshParts): void {
   const s = q.surface;
   const material = s.kind === 'sky' ? out.sky() : s.kind === 'missing' ? out.missing() : out.material('texture', s.name, lightLevel, q.section === 'masked', { sector: q.sector, scroll });
-  const mesh = out.meshFor(material);
+  const mesh = moverMesh ?? out.meshFor(material);
   const base = mesh.vertexCount();
+  const m = q.motion;
+  const bottom: VertexMotion | undefined = m && [m.bottom[0], m.bottom[1], m.vBottom[0], m.vBottom[1]];
+  const top: VertexMotion | undefined = m && [m.top[0], m.top[1], m.vTop[0], m.vTop[1]];
   // Counter-clockwise seen from the quad's sector (walls.ts), so the geometric normal faces it.
-  mesh.vertex(toWorld(q.x0, q.y0, q.bottom), [q.u0, q.vBottom]);
-  mesh.vertex(toWorld(q.x1, q.y1, q.bottom), [q.u1, q.vBottom]);
-  mesh.vertex(toWorld(q.x1, q.y1, q.top), [q.u1, q.vTop]);
-  mesh.vertex(toWorld(q.x0, q.y0, q.top), [q.u0, q.vTop]);
-  mesh.triangle(base, base + 1, base + 2);
-  mesh.triangle(base, base + 2, base + 3);
+  mesh.vertex(toWorld(q.x0, q.y0, q.bottom), [q.u0, q.vBottom], bottom);
+  mesh.vertex(toWorld(q.x1, q.y1, q.bottom), [q.u1, q.vBottom], bottom);
+  mesh.vertex(toWorld(q.x1, q.y1, q.top), [q.u1, q.vTop], top);
+  mesh.vertex(toWorld(q.x0, q.y0, q.top), [q.u0, q.vTop], top);
+  mesh.triangle(base, base + 1, base + 2, material);
+  mesh.triangle(base, base + 2, base + 3, material);
+}
+
+/** Scene.dynamics.movers from the map's moving sectors and the meshes they got. */
+function moverSetOf(map: DoomMap, found: MapMovers, meshOf: ReadonlyMap<number, number>): MoverSet | undefined {
+  const index = new Map<number, number>();
+  const movers: Mover[] = [];
+  for (const m of found.sectors) {
+    const mesh = meshOf.get(m.sector);
+    if (mesh === undefined) continue;
+    const sector = map.sectors[m.sector]!;
+    index.set(m.sector, movers.length);
+    movers.push({ mesh, sector: m.sector, kinds: m.kinds, restFloor: sector.floorHeight, restCeiling: sector.ceilingHeight, doorTop: m.doorTop, liftBottom: m.liftBottom, outline: m.outline });
+  }
+  if (movers.length === 0) return undefined;
+  const triggers = found.triggers.flatMap((t) => {
+    const moved = t.sectors.flatMap((s) => (index.has(s) ? [index.get(s)!] : []));
+    return moved.length === 0 ? [] : [{ line: t.line, activation: t.activation, repeatable: t.repeatable, movers: moved, action: t.action, speed: t.speed, wait: t.wait, reverses: t.reverses }];
+  });
+  // Doom's USERANGE: the use key reaches 64 units.
+  return { movers, triggers, useRange: 64, body: { radius: PLAYER_RADIUS, height: PLAYER_HEIGHT } };
 }
 
 /**
@@ -215,31 +263,56 @@ function nearestSector(shapes: SectorShapes, x: number, y: number): number | und
   return best;
 }
 
-/** Triangles of one material. */
+/** How a vertex moves per unit of its moving sector's floor and ceiling height: dy, dy, dv, dv. */
+type VertexMotion = readonly [number, number, number, number];
+
+/**
+ * Triangles of one material; or, with `moves`, of a moving sector (any materials, with two morph
+ * targets: the displacement of every vertex and v per unit of the floor height, then of the ceiling).
+ */
 class MeshParts {
   private readonly positions: number[] = [];
   private readonly uvs: number[] = [];
   private readonly indices: number[] = [];
+  private readonly materials: number[] = [];
+  /** Per vertex, when `moves`: VertexMotion. */
+  private readonly motions: number[] = [];
+
+  constructor(private readonly moves = false) {}
 
   vertexCount(): number {
     return this.positions.length / 3;
   }
-  vertex(p: Vec3, uv: readonly [number, number]): void {
+  vertex(p: Vec3, uv: readonly [number, number], motion: VertexMotion = [0, 0, 0, 0]): void {
     this.positions.push(p[0], p[1], p[2]);
     this.uvs.push(uv[0], uv[1]);
+    if (this.moves) this.motions.push(...motion);
   }
-  triangle(a: number, b: number, c: number): void {
+  triangle(a: number, b: number, c: number, material: number): void {
     this.indices.push(a, b, c);
+    this.materials.push(material);
   }
   build(name: string, material: number): Mesh | undefined {
     if (this.indices.length === 0) return undefined;
-    return {
+    const mesh: Mesh = {
       name,
       positions: new Float32Array(this.positions),
       indices: new Uint32Array(this.indices),
       uvs: new Float32Array(this.uvs),
-      materialIds: new Uint32Array(this.indices.length / 3).fill(material),
+      materialIds: this.moves ? new Uint32Array(this.materials) : new Uint32Array(this.indices.length / 3).fill(material),
     };
+    if (!this.moves) return mesh;
+    const n = this.positions.length / 3;
+    // Heights are world y (coordinates.ts); v follows the pegged heights.
+    const target = (k: 0 | 1) => {
+      const positions = new Float32Array(3 * n), uvs = new Float32Array(2 * n);
+      for (let i = 0; i < n; i++) {
+        positions[3 * i + 1] = this.motions[4 * i + k]!;
+        uvs[2 * i + 1] = this.motions[4 * i + 2 + k]!;
+      }
+      return { positions, uvs };
+    };
+    return { ...mesh, morphTargets: [target(0), target(1)] };
   }
 }
 
