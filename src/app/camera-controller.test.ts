@@ -1,7 +1,10 @@
 import { describe, expect, it } from 'vitest';
 import type { Camera } from '../scene/types.ts';
 import type { WalkMap } from '../scene/walk-map.ts';
-import { CameraController, forwardOf, NO_INPUT, poseFromCamera } from './camera-controller.ts';
+import { twoRooms } from '../loaders/doom/test-wad.ts';
+import { doomMapToScene } from '../loaders/doom/to-scene.ts';
+import { World } from '../scene/world.ts';
+import { CameraController, DOOM_WALK_SPEED, forwardOf, NO_INPUT, poseFromCamera } from './camera-controller.ts';
 
 const camera: Camera = { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 };
 
@@ -83,5 +86,51 @@ describe('camera controller', () => {
   it('refuses walk mode without a walk map or outside it', () => {
     expect(new CameraController(camera, 1).setMode('walk')).toBe(false);
     expect(new CameraController({ ...camera, position: [1000, 0, 0] }, 1, room()).setMode('walk')).toBe(false);
+  });
+});
+
+describe('walking through a Doom door', () => {
+  /** Room A (x 0..128), the door (x 128..144, closed), room B (x 144..272); the start faces the door. */
+  function setup() {
+    const { scene } = doomMapToScene(twoRooms({}, 'door'), { texture: () => undefined, flat: () => undefined });
+    const c = new CameraController({ ...scene.camera, position: [100, 41, -64], forward: [1, 0, 0] }, DOOM_WALK_SPEED, scene.walkMap);
+    expect(c.setMode('walk')).toBe(true);
+    const world = World.of(scene)!;
+    const view = () => ({ position: c.camera().position, forward: c.camera().forward });
+    /** Walks forward for `seconds` in frames of 1/35 s, playing the world as the viewer does. */
+    const walk = (seconds: number, forward = 1) => {
+      for (let i = 0; i < Math.round(seconds * 35); i++) {
+        c.update(1 / 35, { ...NO_INPUT, forward });
+        for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
+        const update = world.advance(1 / 35, view());
+        if (update) c.setSectorHeights(update.walkHeights);
+      }
+    };
+    return { c, world, walk, view, scene };
+  }
+
+  it('cannot pass the closed door; after the use key, walks through the open one', () => {
+    const { c, world, walk, view, scene } = setup();
+    walk(1);
+    // Stopped one radius (16) before the door line at x = 128.
+    expect(c.pose.position[0]).toBeCloseTo(128 - 16, 0);
+    expect(c.pose.position[0]).toBeLessThan(128);
+    expect(world.use(view())).toBe(true);
+    walk(2); // 62 tics to open; the walker presses on meanwhile
+    const door = scene.dynamics!.movers!.movers[0]!.sector;
+    expect(c.sectorHeights(door)).toEqual([0, 124]);
+    expect(c.pose.position[0]).toBeGreaterThan(144 + 16);
+    // The scene's own walk map is untouched: the controller keeps heights of its own.
+    expect(scene.walkMap!.ceilings[door]).toBe(0);
+  });
+
+  it('reports the walker\'s moves for walk-over lines', () => {
+    const { c } = setup();
+    c.update(0.1, { ...NO_INPUT, forward: -1 });
+    const walks = c.takeWalked();
+    expect(walks).toHaveLength(1);
+    expect(walks[0]![0]).toBe(100);
+    expect(walks[0]![2]).toBeCloseTo(100 - DOOM_WALK_SPEED * 0.1, 6);
+    expect(c.takeWalked()).toEqual([]);
   });
 });

@@ -14,7 +14,7 @@ import { eyeLevel, moveWalker, NO_SECTOR, sectorAt, type WalkMap, type WalkPosit
 export type MoveMode = 'fly' | 'walk';
 export const MOVE_MODES: readonly MoveMode[] = ['fly', 'walk'];
 
-/** Held keys as axes in −1..1: forward (W/S), right (D/A), up (Space/C), turn (E/Q). */
+/** Held keys as axes in −1..1: forward (W/S), right (D/A), up (Space/C), turn (the arrow keys). */
 export interface MoveInput {
   readonly forward: number;
   readonly right: number;
@@ -61,13 +61,18 @@ export class CameraController {
   /** The thin lens (depth of field), the scene camera's to begin with; undefined: a pinhole. */
   lens: ThinLens | undefined;
   private walker?: WalkPosition;
+  /** The scene's walk map with heights of its own, which doors and lifts change (setSectorHeights). */
+  private readonly walkMap?: WalkMap;
+  /** The walker's moves since takeWalked(), x0, z0, x1, z1 each (walk-over triggers). */
+  private walks: [number, number, number, number][] = [];
 
   constructor(
     private readonly base: Camera,
     /** Walking speed in scene units per second. */
     readonly speed: number,
-    private readonly walkMap?: WalkMap,
+    walkMap?: WalkMap,
   ) {
+    this.walkMap = walkMap && { ...walkMap, floors: new Float32Array(walkMap.floors), ceilings: new Float32Array(walkMap.ceilings) };
     const pose = poseFromCamera(base);
     [this.x, this.y, this.z] = pose.position;
     this.yaw = pose.yaw;
@@ -127,7 +132,11 @@ export class CameraController {
       let dz = input.forward * ahead[2] + input.right * right[2];
       const n = Math.hypot(dx, dz);
       if (n > 1) [dx, dz] = [dx / n, dz / n];
-      if (dx !== 0 || dz !== 0) this.walker = moveWalker(this.walkMap, this.walker, dx * speed, dz * speed);
+      if (dx !== 0 || dz !== 0) {
+        const from = this.walker;
+        this.walker = moveWalker(this.walkMap, from, dx * speed, dz * speed);
+        if (this.walker.x !== from.x || this.walker.z !== from.z) this.walks.push([from.x, from.z, this.walker.x, this.walker.z]);
+      }
       this.x = this.walker.x;
       this.z = this.walker.z;
       const eye = eyeLevel(this.walkMap, this.walker.sector);
@@ -142,6 +151,33 @@ export class CameraController {
       this.z += (input.forward * ahead[2] + input.right * right[2]) * speed;
     }
     return [this.x, this.y, this.z, this.yaw].some((v, i) => v !== before[i]);
+  }
+
+  /**
+   * New floor and ceiling heights of walk-map sectors (SceneUpdate.walkHeights: a door opened, a lift
+   * went down); the walker's rules see them from the next update on, and its eye follows its floor.
+   */
+  setSectorHeights(heights: ReadonlyMap<number, readonly [number, number]>): void {
+    const map = this.walkMap;
+    if (!map) return;
+    for (const [sector, [floor, ceiling]] of heights) {
+      if (!(sector >= 0 && sector < map.floors.length)) continue;
+      map.floors[sector] = floor;
+      map.ceilings[sector] = ceiling;
+    }
+  }
+
+  /** Floor and ceiling of a walk-map sector now, or undefined (tests, the page's hooks). */
+  sectorHeights(sector: number): [number, number] | undefined {
+    const map = this.walkMap;
+    return map && sector >= 0 && sector < map.floors.length ? [map.floors[sector]!, map.ceilings[sector]!] : undefined;
+  }
+
+  /** The walker's moves since the last call, from → to in the walk plane (for World.walked), oldest first. */
+  takeWalked(): [number, number, number, number][] {
+    const walks = this.walks;
+    this.walks = [];
+    return walks;
   }
 
   camera(): Camera {

@@ -1,8 +1,9 @@
 /**
  * Keyboard and mouse for the viewer: held keys become MoveInput axes, mouse movement under pointer
- * lock (drag on the canvas to start it; Esc releases) becomes look deltas. Keys: WASD move, Q/E
- * turn, Space or R up, C or F down, Shift run. Keys typed into form fields (the settings panel) are
- * not movement. A click that is not the end of a drag, outside pointer lock, is reported (select;
+ * lock (drag on the canvas to start it; Esc releases) becomes look deltas. Keys: WASD (or the up
+ * and down arrows) move, the left and right arrows turn, Space or R up, C or F down, Shift run; E is
+ * the use key (doors, lifts), and so is Space while walking (onUse says which key: the page decides).
+ * Keys typed into form fields (the settings panel) are not movement. A click that is not the end of a drag, outside pointer lock, is reported (select;
  * with Alt, focus); Esc outside pointer lock is reported too (deselect).
  */
 import type { MoveInput } from './camera-controller.ts';
@@ -14,9 +15,7 @@ const AXES: Record<string, [keyof Omit<MoveInput, 'run'>, number]> = {
   ArrowDown: ['forward', -1],
   KeyD: ['right', 1],
   KeyA: ['right', -1],
-  KeyE: ['turn', 1],
   ArrowRight: ['turn', 1],
-  KeyQ: ['turn', -1],
   ArrowLeft: ['turn', -1],
   Space: ['up', 1],
   KeyR: ['up', 1],
@@ -31,8 +30,13 @@ export interface CanvasClick {
   readonly alt: boolean;
 }
 
+/** The keys that may mean "use": E always, Space only while walking (where it moves nothing). */
+export type UseKey = 'KeyE' | 'Space';
+
 export interface InputHandlers {
   onClick?(click: CanvasClick): void;
+  /** A use key went down (not its auto-repeat). */
+  onUse?(key: UseKey): void;
   onEscape?(): void;
 }
 
@@ -63,6 +67,8 @@ export class Input {
       const k = e as KeyboardEvent;
       if (k.code === 'Escape' && !locked() && !isTyping(k)) handlers.onEscape?.();
       if (isTyping(k) || k.ctrlKey || k.metaKey || k.altKey) return;
+      if ((k.code === 'KeyE' || k.code === 'Space') && !k.repeat) handlers.onUse?.(k.code);
+      if (k.code === 'KeyE') k.preventDefault();
       if (k.code in AXES || k.code.startsWith('Shift')) {
         this.held.add(k.code);
         k.preventDefault();

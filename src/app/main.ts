@@ -301,6 +301,10 @@ viewer.input = new Input(canvas, {
     } else viewer.select(x, y).catch((e) => showMessage(describeError(e), 'error'));
   },
   onEscape: () => void viewer.deselect().catch((e) => showMessage(describeError(e), 'error')),
+  // E is the use key everywhere; Space only while walking (flying, it rises).
+  onUse: (key) => {
+    if (key === 'KeyE' || viewer.controller?.mode === 'walk') viewer.use();
+  },
 });
 
 playButton.addEventListener('click', () => {
@@ -373,6 +377,7 @@ await viewer.updateSettings({
   ...(linked.samplesPerFrame !== undefined ? { samplesPerFrame: linked.samplesPerFrame } : {}),
   ...(linked.scale !== undefined ? { scale: linked.scale } : {}),
   ...(linked.accumulate !== undefined ? { accumulate: linked.accumulate } : {}),
+  ...(linked.animate !== undefined ? { animate: linked.animate } : {}),
   // The torch's other settings are the scene's business: they are applied once it is loaded.
   render: { ...linkedRenderSettings(linked), ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}) },
 });

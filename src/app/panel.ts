@@ -44,6 +44,7 @@ export class SettingsPanel {
     samplesPerFrame: 1,
     scale: 1,
     accumulate: true,
+    animate: true,
     fov: 60,
     mode: 'fly' as MoveMode,
     // The thin lens: aperture radius and focus distance in scene units (aperture 0: a pinhole).
@@ -80,6 +81,7 @@ export class SettingsPanel {
     render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value }));
     render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(0.25, p.scale), max: 2, step: 0.05 }).on('change', (e) => this.apply({ scale: e.value }));
     render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value }));
+    render.addBinding(p, 'animate', { label: 'animate scene' }).on('change', (e) => this.apply({ animate: e.value }));
 
     const camera = this.pane.addFolder({ title: 'Camera and torch' });
     camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => {
@@ -290,6 +292,7 @@ export class SettingsPanel {
     p.samplesPerFrame = s.samplesPerFrame;
     p.scale = s.scale;
     p.accumulate = s.accumulate;
+    p.animate = s.animate;
     Object.assign(this.environment, choiceOfEnvironment(this.viewer.environment, this.environment));
     if (this.environment.kind === 'map' && this.viewer.environment?.kind === 'map') this.environmentMap = this.viewer.environment.image;
     const c = this.viewer.controller;

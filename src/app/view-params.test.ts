@@ -16,6 +16,7 @@ describe('view parameters', () => {
       maxBounces: 3,
       scale: 0.5,
       accumulate: false,
+      animate: false,
       toneMapper: 'reinhard',
       exposureStops: -1.5,
       debugView: 'wireframe',

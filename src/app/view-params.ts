@@ -47,6 +47,8 @@ export type ViewParams = RenderSettingsPatch & {
   readonly samplesPerFrame?: number;
   readonly scale?: number;
   readonly accumulate?: boolean;
+  /** Whether the scene's clock runs (ViewerSettings.animate). */
+  readonly animate?: boolean;
   /** The sky that replaces the scene's environment: sun elevation and azimuth (degrees), turbidity. */
   readonly sky?: SkyParams;
   /** Multiplies the sky's radiance. */
@@ -128,6 +130,8 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   if (scale !== undefined) view.scale = scale;
   const acc = params.get('acc');
   if (acc !== null) view.accumulate = acc !== '0';
+  const anim = params.get('anim');
+  if (anim !== null) view.animate = anim !== '0';
   const skyRaw = params.get('sky');
   if (skyRaw !== null) {
     const values = skyRaw.split(',').map(Number);
@@ -172,6 +176,7 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
+  if (view.animate !== undefined) p.set('anim', view.animate ? '1' : '0');
   if (view.sky) p.set('sky', [view.sky.elevation, view.sky.azimuth, view.sky.turbidity].map(round).join(','));
   if (view.envIntensity !== undefined) p.set('env-intensity', String(round(view.envIntensity)));
   for (const m of view.materials ?? []) p.append(MATERIAL_LINK_PARAM, formatMaterialOverride(m));

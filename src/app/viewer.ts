@@ -33,6 +33,7 @@ import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import { lensProblem } from '../scene/lens.ts';
+import { World } from '../scene/world.ts';
 import type { Camera, ThinLens } from '../scene/types.ts';
 import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
@@ -49,6 +50,12 @@ export interface ViewerSettings {
   readonly scale: number;
   /** Keep adding frames into one estimate while the view is still (off: every frame stands alone). */
   readonly accumulate: boolean;
+  /**
+   * Play the scene's clock (Doom's animated textures and flickering lights, the dungeon's phantom,
+   * doors in motion). Off, the world holds still and the image converges; billboards still turn
+   * toward the camera and the use key still works (its doors move when the clock runs again).
+   */
+  readonly animate: boolean;
   readonly render: RenderSettings;
 }
 
@@ -57,7 +64,7 @@ export interface ViewerSettings {
  * switches to the real-time frame chain (renderer/denoiser.ts), which holds about 320 bytes per
  * pixel of G-buffer and history, so it is the user's choice.
  */
-export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
+export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
 
 /** Whether these settings ask for the real-time frame chain (temporal and/or spatial denoising). */
 export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise'>) => s.temporal || s.denoise;
@@ -113,6 +120,8 @@ export class Viewer {
 
   private loaded?: LoadedScene;
   private controllerValue?: CameraController;
+  /** What moves in the scene (doors, lifts, ...), or undefined for a frozen scene. */
+  private world?: World;
   private gpu?: GpuContext;
   private renderer?: Renderer;
   private context?: GPUCanvasContext;
@@ -155,6 +164,17 @@ export class Viewer {
 
   get controller(): CameraController | undefined {
     return this.controllerValue;
+  }
+
+  /**
+   * The use key (E, or Space when walking): opens the door or starts the lift in front of the
+   * camera (scene/movers.ts). True when something answered; it moves in the following frames.
+   */
+  use(): boolean {
+    const c = this.controllerValue;
+    if (!c || !this.world) return false;
+    const camera = c.camera();
+    return this.world.use({ position: camera.position, forward: camera.forward });
   }
 
   get scene(): LoadedScene | undefined {
@@ -222,6 +242,7 @@ export class Viewer {
     this.sceneEnvironment = given.prepared.scene.environment;
     const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
     const { scene, bvh } = loaded.prepared;
+    // The controller keeps its own heights of the walk map (doors and lifts change them).
     const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, scene.walkMap), scene.walkMap);
     if (view.pose) controller.setPose(view.pose);
     if (view.fovDegrees !== undefined) controller.vfovDegrees = view.fovDegrees;
@@ -244,6 +265,7 @@ export class Viewer {
     this.realTimeFrames = 0;
     this.loaded = loaded;
     this.controllerValue = controller;
+    this.world = World.of(scene);
     this.selectionValue = undefined;
     this.materialEdits = new Map();
     this.pendingEdits = new Map();
@@ -527,6 +549,7 @@ export class Viewer {
       samplesPerFrame: s.samplesPerFrame,
       scale: s.scale,
       accumulate: s.accumulate,
+      ...(s.animate ? {} : { animate: false }),
       ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
       ...linkOfEnvironment(this.environmentOverride),
       ...(this.materialEdits.size > 0 ? { materials: this.materialOverrides } : {}),
@@ -661,12 +684,34 @@ export class Viewer {
     requestAnimationFrame(frame);
   }
 
+  /** Whether the loaded scene has anything that moves (the panel shows the animate switch for it). */
+  get moving(): boolean {
+    return this.world !== undefined;
+  }
+
+  /**
+   * Advances the loaded scene's world by `dt` (0 while animation is off: billboards still turn, the
+   * use key still answers) and applies what changed: walk-over lines hear the walker's moves, the
+   * renderer and the walker's heights take the update.
+   */
+  private stepWorld(renderer: Renderer, c: CameraController, dt: number): void {
+    const world = this.world;
+    if (!world || !this.loaded) return;
+    for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
+    const update = world.advance(this.settings.animate ? dt : 0, c.camera());
+    if (!update) return;
+    c.setSectorHeights(update.walkHeights);
+    // Kept, so that a lost device is refilled with the scene as it is now.
+    this.loaded = { ...this.loaded, prepared: renderer.applySceneUpdate(update) };
+  }
+
   private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
     const c = this.controllerValue;
     if (c) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
       if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      this.stepWorld(renderer, c, dt);
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
     // The counters restart with the estimate (every camera move too): then the whole count is this frame's.

@@ -2,7 +2,9 @@
  * Deterministic triangle soups for the BVH tests (test-only; nothing in the renderer imports this).
  * Each returns a flat position array, 9 floats per triangle.
  */
+import { fromTrs, translation } from '../math/mat4.ts';
 import { seededRandom } from '../math/seeded-random.ts';
+import { diffuse, type Mesh, type Scene } from '../scene/types.ts';
 
 /** The seeded PRNG the BVH tests share (math/seeded-random.ts). */
 export const makeRandom = seededRandom;
@@ -70,4 +72,32 @@ export function degenerateSoup(): Float32Array {
 /** `count` copies of one zero-area triangle at a single point: the whole scene has no extent. */
 export function pointCloud(count: number): Float32Array {
   return new Float32Array(count * 9).fill(1.5);
+}
+
+function soupMesh(name: string, count: number, seed: number, scale: number): Mesh {
+  const positions = randomSoup(count, seed, scale);
+  return { name, positions, indices: Uint32Array.from({ length: count * 3 }, (_, i) => i), materialIds: new Uint32Array(count) };
+}
+
+/** A static soup, and moving instances of two meshes: shared, rotated, non-uniformly scaled, mirrored; plus spheres. */
+export function movingTestScene(): Scene {
+  const rock = soupMesh('rock', 60, 3, 0.1);
+  const ball: Mesh = { name: 'balls', positions: new Float32Array(), indices: new Uint32Array(), materialIds: new Uint32Array(), spheres: { centers: new Float32Array([0, 0, 0, 0.5, 0.2, 0]), radii: new Float32Array([0.3, 0.15]), materialIds: new Uint32Array([0, 0]) } };
+  const q = (x: number, y: number, z: number) => {
+    const w = Math.sqrt(Math.max(0, 1 - x * x - y * y - z * z));
+    return [x, y, z, w] as const;
+  };
+  return {
+    name: 'moving test',
+    meshes: [soupMesh('world', 400, 1, 1), rock, ball],
+    instances: [
+      { id: 10, mesh: 0, worldFromObject: translation([0, 0, 0]) },
+      { id: 11, mesh: 1, worldFromObject: fromTrs([2, 1, 0], q(0.3, 0.1, 0.2), [1, 2, 0.5]), moves: true },
+      { id: 12, mesh: 1, worldFromObject: fromTrs([-3, 0, 2], q(0, 0.6, 0), [-1.5, 1.5, 1.5]), moves: true },
+      { id: 13, mesh: 2, worldFromObject: fromTrs([0, -2, -3], q(0.1, 0, 0.3), [2, 2, 2]), moves: true },
+      { id: 14, mesh: 1, worldFromObject: translation([5, 5, 5]) },
+    ],
+    materials: [diffuse('grey', [0.5, 0.5, 0.5])],
+    camera: { position: [0, 0, 20], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 },
+  };
 }

@@ -167,6 +167,7 @@ export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
   punctualLights: 'SCENE_HAS_PUNCTUAL_LIGHTS',
   environment: 'SCENE_HAS_ENVIRONMENT',
   analyticPrimitives: 'SCENE_HAS_ANALYTIC_PRIMITIVES',
+  instances: 'SCENE_HAS_INSTANCES',
 };
 
 /**
@@ -217,8 +218,8 @@ export class SceneKernels {
   }
 }
 
-export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false });
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false });
 /** The features every path-tracing entry point compiles by. */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives'];
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances'];
 /** The features of passes that only trace (debug views, ray buffers). */
-export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives'];
+export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances'];

@@ -9,7 +9,7 @@ import type { PackedScene } from './pack/scene-pack.ts';
 import { createBufferWithData } from './readback.ts';
 import { withErrorScope } from './device.ts';
 
-const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs'] as const;
+const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs', 'instances'] as const;
 const UNIFORM_NAMES = ['scene_info', 'punctual_lights'] as const;
 type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf' | 'bsdf_tables' | 'triangle_attributes';
 

@@ -72,3 +72,29 @@ export function normalMatrix(m: Mat4): number[] {
   const s = a * cof[0]! + d * cof[1]! + g * cof[2]! < 0 ? -1 : 1;
   return [cof[0]! * s, cof[3]! * s, cof[6]! * s, cof[1]! * s, cof[4]! * s, cof[7]! * s, cof[2]! * s, cof[5]! * s, cof[8]! * s];
 }
+
+/**
+ * The inverse of an affine transform (last row 0 0 0 1): the inverse 3×3 and −inverse·translation.
+ * A singular 3×3 (a mesh flattened to a plane or a point) has no inverse: throws a RangeError.
+ */
+export function invertAffine(m: Mat4): Mat4 {
+  const a = m[0]!, b = m[1]!, c = m[2]!, d = m[4]!, e = m[5]!, f = m[6]!, g = m[8]!, h = m[9]!, i = m[10]!;
+  // Column-major 3×3 A with columns (a b c), (d e f), (g h i); inverse = adjugate / det.
+  const c00 = e * i - f * h, c01 = -(b * i - c * h), c02 = b * f - c * e;
+  const det = a * c00 + d * c01 + g * c02;
+  if (!(Math.abs(det) > 0) || !Number.isFinite(det)) throw new RangeError('invertAffine: the transform is singular');
+  const s = 1 / det;
+  // Inverse, column-major: column j holds row j of the adjugate's transpose.
+  const r = [
+    c00 * s, c01 * s, c02 * s,
+    -(d * i - f * g) * s, (a * i - c * g) * s, -(a * f - c * d) * s,
+    (d * h - e * g) * s, -(a * h - b * g) * s, (a * e - b * d) * s,
+  ];
+  const tx = m[12]!, ty = m[13]!, tz = m[14]!;
+  return [
+    r[0]!, r[1]!, r[2]!, 0,
+    r[3]!, r[4]!, r[5]!, 0,
+    r[6]!, r[7]!, r[8]!, 0,
+    -(r[0]! * tx + r[3]! * ty + r[6]! * tz), -(r[1]! * tx + r[4]! * ty + r[7]! * tz), -(r[2]! * tx + r[5]! * ty + r[8]! * tz), 1,
+  ];
+}

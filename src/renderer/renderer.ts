@@ -22,6 +22,7 @@ import type { GpuContext } from '../gpu/device.ts';
 import { withErrorScope } from '../gpu/device.ts';
 import { createBufferWithData, readBuffer, readTexture4x8 } from '../gpu/readback.ts';
 import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
+import { packInstances } from '../gpu/pack/scene-pack.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
@@ -36,7 +37,7 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
-import { editMaterials, LIGHT_BUFFERS, MOVED_BUFFERS, updateGeometry, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import { editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
@@ -242,16 +243,45 @@ export class Renderer {
     const resources = this.resources;
     if (!resources || !this.prepared) throw new Error('Renderer: setScene() before applySceneUpdate()');
     if (update.instances.size > 0 || update.morphWeights.size > 0) {
-      const prepared = updateGeometry(this.prepared, update.instances, update.morphWeights);
-      for (const name of MOVED_BUFFERS) this.device.queue.writeBuffer(resources.buffers[name], 0, prepared.packed[name]);
-      writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
+      const { prepared, writes, attributes, ms } = updateGeometry(this.prepared, update.instances, update.morphWeights);
+      this.writeScene(writes);
+      if (attributes) writeTriangleAttributes(this.device, this.resources!.triangleAttributes, prepared.packed.triangleAttributes);
       this.prepared = prepared;
+      this.lastUpdateMs = ms;
       this.selectionStale = true;
+      // The instance records now carry last frame's transforms as the previous ones: after one frame
+      // with them, they are settled (previous = current) unless another update comes first.
+      this.settle = prepared.levels ? 'after-frame' : 'no';
     }
     if (update.materials.size > 0) return this.updateMaterials(update.materials);
     this.invalidateSpecialisation();
     this.resetAccumulation();
     return this.prepared;
+  }
+
+  /** Writes a geometry update's buffers: in place, or anew for a whole buffer that grew (the light table). */
+  private writeScene(writes: readonly BufferWrite[]): void {
+    let resources = this.resources!;
+    for (const w of writes) {
+      if (w.offset === 0 && w.data.byteLength > resources.buffers[w.name].size) resources = resources.rewriteBuffer(this.device, w.name, w.data);
+      else this.device.queue.writeBuffer(resources.buffers[w.name], w.offset, w.data);
+    }
+    this.resources = resources;
+  }
+
+  /** CPU milliseconds of the last geometry update: bottom-level refits, the top-level build, packing. */
+  lastUpdateMs?: GeometryUpdate['ms'];
+
+  /** Whether the instance records' previous transforms must be made current ('after-frame': once the next frame has used them). */
+  private settle: 'no' | 'after-frame' | 'now' = 'no';
+
+  /** Before a real-time frame: instances that stopped moving get previous = current (no motion vectors left over). */
+  private settleInstances(): void {
+    if (this.settle !== 'now' || !this.prepared?.levels) return;
+    const p = this.prepared;
+    const bytes = packInstances(p.scene, p.levels, p.packed.layout, p.packed.packedMaterials, new Map());
+    this.device.queue.writeBuffer(this.resources!.buffers.instances, 0, bytes);
+    this.settle = 'no';
   }
 
   /**
@@ -265,8 +295,10 @@ export class Renderer {
   updateMaterials(edits: ReadonlyMap<number, MaterialEdit>): PreparedScene {
     let resources = this.resources;
     if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateMaterials()');
-    const { prepared, lightsChanged } = editMaterials(this.prepared, edits);
+    const { prepared, lightsChanged, textureRefsChanged } = editMaterials(this.prepared, edits);
     resources = resources.rewriteBuffer(this.device, 'materials', prepared.packed.materials);
+    // Animated textures scroll by their texture references' transforms.
+    if (textureRefsChanged) resources = resources.rewriteBuffer(this.device, 'texture_refs', prepared.packed.texture_refs);
     if (lightsChanged) for (const name of LIGHT_BUFFERS) resources = resources.rewriteBuffer(this.device, name, prepared.packed[name]);
     this.resources = resources;
     this.prepared = prepared;
@@ -396,13 +428,16 @@ export class Renderer {
    * (gpu/specialisation.ts), asynchronously: frames keep rendering with the generic kernels until
    * the compile is ready, then the next one uses them. Accumulation continues, since both compute the
    * same estimator. Resolves with the report once switched, or undefined when an edit came first (the
-   * result is dropped), and at once with undefined in spectral mode (specialised kernels are RGB).
+   * result is dropped), and at once with undefined in spectral mode (specialised kernels are RGB) and
+   * for scenes with moving instances (nothing there is frozen).
    * Calling it again while a compile runs waits for that one.
    */
   requestSpecialisation(options: SpecialiseOptions = {}): Promise<SpecialisationReport | undefined> {
     if (!this.prepared || !this.resources) throw new Error('Renderer: setScene() before requestSpecialisation()');
     // Specialised kernels are compiled in RGB; spectral mode keeps the generic spectral variants.
     if (this.settingsValue.spectral) return Promise.resolve(undefined);
+    // A scene with moving instances is never frozen: its generic two-level kernels are the ones to use.
+    if (this.prepared.levels) return Promise.resolve(undefined);
     if (this.kernel === 'specialised') return Promise.resolve(this.specialisationValue);
     const epoch = this.specialisationEpoch;
     if (this.pendingSpecialisation?.epoch === epoch) return this.pendingSpecialisation.done;
@@ -567,6 +602,7 @@ export class Renderer {
     const s = this.settingsValue;
     if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
+    this.settleInstances();
     const encoder = this.device.createCommandEncoder({ label: 'real-time frame' });
     this.denoiser.encodeFrame(encoder, {
       scene: resources,
@@ -582,6 +618,7 @@ export class Renderer {
     timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
     this.shown = 'frame';
+    if (this.settle === 'after-frame') this.settle = 'now';
   }
 
   /** Drops the real-time history: the next frame starts from its own samples. */

@@ -16,7 +16,9 @@
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Billboard } from './billboards.ts';
+import type { MaterialAnimations } from './material-animation.ts';
 import type { MaterialEdit } from './material-edit.ts';
+import type { MoverSet } from './movers.ts';
 
 /**
  * The dynamic parts of a scene. Every field is optional; a scene without `dynamics` is frozen. Each
@@ -25,6 +27,10 @@ import type { MaterialEdit } from './material-edit.ts';
  *   movers (scene/movers.ts), paths (scene/paths.ts).
  */
 export interface SceneDynamics {
+  /** Texture cycles, uv scrolls and emission patterns (scene/material-animation.ts). */
+  readonly materialAnimations?: MaterialAnimations;
+  /** Doors and lifts. */
+  readonly movers?: MoverSet;
   /** Quads turned toward the viewer, showing the image for the angle they are seen from (Doom's things). */
   readonly billboards?: readonly Billboard[];
 }

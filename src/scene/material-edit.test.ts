@@ -43,4 +43,29 @@ describe('material edits', () => {
     expect(editChangesEmission(lamp, { emission: [5, 5, 6] })).toBe(true);
     expect(editChangesEmission(lamp, { color: [1, 1, 1] })).toBe(false);
   });
+
+  it('swap an animated material\'s textures and move every texture use\'s uv offset, keeping rotation and scale', () => {
+    const wall = diffuse('NUKAGE1', [1, 1, 1], [2, 2, 2], { albedoTexture: { texture: 3 }, emissionTexture: { texture: 4 } });
+    const swapped = applyMaterialEdit(wall, { albedoTexture: 5, emissionTexture: 6, uvOffset: [0.25, 0] });
+    expect(swapped).toEqual({
+      ...wall,
+      albedoTexture: { texture: 5, transform: { offset: [0.25, 0], rotation: 0, scale: [1, 1] } },
+      emissionTexture: { texture: 6, transform: { offset: [0.25, 0], rotation: 0, scale: [1, 1] } },
+    });
+    const gltf = metallicRoughness('m', { baseColorTexture: { texture: 1, transform: { offset: [0.1, 0.2], rotation: 0.5, scale: [2, 3] } }, normalTexture: { texture: 2 } });
+    const moved = applyMaterialEdit(gltf, { uvOffset: [0.5, 0.75], albedoTexture: 7 });
+    expect(moved.kind === 'metallic-roughness' && moved.baseColorTexture).toEqual({ texture: 7, transform: { offset: [0.5, 0.75], rotation: 0.5, scale: [2, 3] } });
+    expect(moved.normalTexture).toEqual({ texture: 2, transform: { offset: [0.5, 0.75], rotation: 0, scale: [1, 1] } });
+    expect(moved.emissionTexture).toBeUndefined();
+    // Animation fields are not panel fields: a material's editable values never show them.
+    expect(Object.keys(editableValues(swapped)).sort()).toEqual(['color', 'emission']);
+  });
+
+  it('refuse texture swaps a material cannot take and malformed animation fields', () => {
+    expectLanternError(() => applyMaterialEdit(diffuse('plain', [1, 1, 1]), { albedoTexture: 2 }), /no colour texture to swap/);
+    expectLanternError(() => applyMaterialEdit(diffuse('plain', [1, 1, 1]), { emissionTexture: 2 }), /no emission texture to swap/);
+    expectLanternError(() => applyMaterialEdit(lamp, { albedoTexture: 0 }), /emissive material has no colour texture/);
+    expect(materialEditProblem('diffuse', { albedoTexture: 1.5 })).toMatch(/albedoTexture must be a texture index/);
+    expect(materialEditProblem('diffuse', { uvOffset: [0, Infinity] })).toMatch(/uvOffset must be two finite numbers/);
+  });
 });

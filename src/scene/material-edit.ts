@@ -6,12 +6,19 @@
  *
  * Each field maps onto what the kind has: `color` is a diffuse material's albedo, a metallic-roughness
  * material's base colour, a dielectric's tint; `emission` is emitted radiance (linear RGB, any kind).
+ *
+ * Animations (scene/material-animation.ts) edit materials too, with fields no panel shows
+ * (MaterialAnimationEdit): which texture a texture cycle shows, and how far a scrolling texture has
+ * moved. Those need the textures packed ahead (gpu/pack/material-pack.ts packs every texture a
+ * scene's animations can show, with texture references of their own), so a step of an animation
+ * still only rewrites records.
  */
 import { LanternError } from '../errors.ts';
 import type { Vec3 } from '../math/vec3.ts';
-import type { Material, MaterialKind } from './types.ts';
+import { coverageOf, type Material, type MaterialKind, type TextureRef } from './types.ts';
 
-export interface MaterialEdit {
+/** The constant factors a user may edit (the material panel, links). */
+export interface MaterialFactorEdit {
   /** Albedo / base colour / tint, linear RGB in [0, 1]. */
   readonly color?: Vec3;
   /** Perceptual roughness in [0, 1]. */
@@ -24,7 +31,30 @@ export interface MaterialEdit {
   readonly emission?: Vec3;
 }
 
-export type MaterialEditField = keyof MaterialEdit;
+/**
+ * What animations change (scene/material-animation.ts); never shown in panels or links. Texture
+ * indices are into Scene.textures; a material may only be given textures its animation lists (the
+ * packer placed those ahead; any other is a LanternError when the edit is packed).
+ */
+export interface MaterialAnimationEdit {
+  /** The colour texture: a diffuse material's albedo texture, a metallic-roughness material's base colour texture. */
+  readonly albedoTexture?: number;
+  readonly emissionTexture?: number;
+  /**
+   * The offset of every texture use of the material (KHR_texture_transform's offset, in uv units:
+   * uv' = T(offset) · R · S · uv), replacing the one it was loaded with.
+   */
+  readonly uvOffset?: readonly [number, number];
+}
+
+export interface MaterialEdit extends MaterialFactorEdit, MaterialAnimationEdit {}
+
+/** The fields panels and links show. */
+export type MaterialEditField = keyof MaterialFactorEdit;
+export type MaterialAnimationField = keyof MaterialAnimationEdit;
+
+/** The animation fields, apart from the panel's (MATERIAL_EDIT_FIELDS). */
+export const MATERIAL_ANIMATION_FIELDS: readonly MaterialAnimationField[] = ['albedoTexture', 'emissionTexture', 'uvOffset'];
 
 /** Every edit field, in the order panels and links show them. */
 export const MATERIAL_EDIT_FIELDS: readonly MaterialEditField[] = ['color', 'roughness', 'metallic', 'ior', 'transmission', 'emission'];
@@ -66,13 +96,69 @@ export function materialEditProblem(kind: MaterialKind, edit: MaterialEdit): str
     const inside = Number.isFinite(x) && x >= lo && (field === 'ior' ? x < hi : x <= hi);
     if (!inside) return `${field} ${x} is outside ${lo}–${hi}`;
   }
+  return animationEditProblem(kind, edit);
+}
+
+function animationEditProblem(kind: MaterialKind, edit: MaterialAnimationEdit): string | undefined {
+  const index = (x: number) => Number.isInteger(x) && x >= 0;
+  if (edit.albedoTexture !== undefined) {
+    if (kind !== 'diffuse' && kind !== 'metallic-roughness') return `a ${kind} material has no colour texture to swap`;
+    if (!index(edit.albedoTexture)) return `albedoTexture must be a texture index, not ${edit.albedoTexture}`;
+  }
+  if (edit.emissionTexture !== undefined && !index(edit.emissionTexture)) return `emissionTexture must be a texture index, not ${edit.emissionTexture}`;
+  const uv = edit.uvOffset;
+  if (uv !== undefined && !(Array.isArray(uv) && uv.length === 2 && uv.every((c) => Number.isFinite(c)))) return 'uvOffset must be two finite numbers';
   return undefined;
 }
 
+/** `ref` with its texture and transform offset changed as the edit says (undefined stays undefined). */
+function editRef<R extends TextureRef>(ref: R | undefined, edit: MaterialAnimationEdit, texture?: number): R | undefined {
+  if (!ref) return undefined;
+  let out: R = texture === undefined ? ref : { ...ref, texture };
+  if (edit.uvOffset) {
+    const t = ref.transform;
+    out = { ...out, transform: { offset: [edit.uvOffset[0], edit.uvOffset[1]], rotation: t?.rotation ?? 0, scale: t?.scale ?? [1, 1] } };
+  }
+  return out;
+}
+
+/** The texture uses of `m` with an animation edit applied (texture swaps and uv offsets). */
+function applyAnimationEdit(m: Material, edit: MaterialAnimationEdit): Material {
+  if (edit.albedoTexture === undefined && edit.emissionTexture === undefined && edit.uvOffset === undefined) return m;
+  if (edit.albedoTexture !== undefined && coverageOf(m).texture === undefined) {
+    throw new LanternError(`cannot edit material '${m.name}': it has no colour texture to swap for texture ${edit.albedoTexture}`);
+  }
+  if (edit.emissionTexture !== undefined && m.emissionTexture === undefined) {
+    throw new LanternError(`cannot edit material '${m.name}': it has no emission texture to swap for texture ${edit.emissionTexture}`);
+  }
+  const common = { emissionTexture: editRef(m.emissionTexture, edit, edit.emissionTexture), normalTexture: editRef(m.normalTexture, edit) };
+  const strip = <T extends object>(o: T): T => Object.fromEntries(Object.entries(o).filter(([, v]) => v !== undefined)) as T;
+  switch (m.kind) {
+    case 'diffuse':
+      return { ...m, ...strip({ ...common, albedoTexture: editRef(m.albedoTexture, edit, edit.albedoTexture) }) };
+    case 'metallic-roughness':
+      return {
+        ...m,
+        ...strip({
+          ...common,
+          baseColorTexture: editRef(m.baseColorTexture, edit, edit.albedoTexture),
+          metallicRoughnessTexture: editRef(m.metallicRoughnessTexture, edit),
+          specularTexture: editRef(m.specularTexture, edit),
+          specularColorTexture: editRef(m.specularColorTexture, edit),
+          transmissionTexture: editRef(m.transmissionTexture, edit),
+        }),
+      };
+    case 'dielectric':
+    case 'emissive':
+      return { ...m, ...strip(common) };
+  }
+}
+
 /** The material with the edit applied; a field the kind lacks or a value out of range is a LanternError. */
-export function applyMaterialEdit(material: Material, edit: MaterialEdit): Material {
-  const problem = materialEditProblem(material.kind, edit);
-  if (problem) throw new LanternError(`cannot edit material '${material.name}': ${problem}`);
+export function applyMaterialEdit(original: Material, edit: MaterialEdit): Material {
+  const problem = materialEditProblem(original.kind, edit);
+  if (problem) throw new LanternError(`cannot edit material '${original.name}': ${problem}`);
+  const material = applyAnimationEdit(original, edit);
   const emission = edit.emission ?? material.emission;
   switch (material.kind) {
     case 'diffuse':

@@ -96,8 +96,8 @@ interface MaterialBase {
   /** Default uv. */
   readonly emissionMapping?: EmissionMapping;
   /**
-   * Both faces emit (default: only the front face, the side the triangle's counter-clockwise winding
-   * faces). For thin emitters seen from either side: Doom's light-giving sprites.
+   * Both faces of a triangle emit `emission` (default false: only the front, see above). For thin
+   * emitters seen from both sides: Doom's torches and lamps, which are sprites turned toward the viewer.
    */
   readonly twoSidedEmission?: boolean;
   /**

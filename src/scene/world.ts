@@ -6,8 +6,10 @@
  */
 import type { Vec3 } from '../math/vec3.ts';
 import { billboardAnimator } from './billboards.ts';
+import { materialAnimator } from './material-animation.ts';
 import { emptySceneUpdate, isEmptyUpdate, type InstancePose, type SceneUpdate } from './dynamics.ts';
 import type { MaterialEdit } from './material-edit.ts';
+import { moverAnimator } from './movers.ts';
 import type { Scene } from './types.ts';
 
 /** Where the scene is seen from: billboards turn toward it; the use key acts in front of it. */
@@ -57,7 +59,7 @@ export interface Animator {
 export type AnimatorFactory = (scene: Scene) => Animator | undefined;
 
 /** Every kind of motion (scene/dynamics.ts lists them), in the order their updates are merged. */
-const ANIMATORS: readonly AnimatorFactory[] = [billboardAnimator];
+const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator, moverAnimator, billboardAnimator];
 
 export class World {
   private time = 0;
@@ -89,6 +91,20 @@ export class World {
     return isEmptyUpdate(update) ? undefined : update;
   }
 
+  /**
+   * Advances the clock to `t` (≥ seconds) in steps of at most `maxStep` seconds (movers integrate
+   * their motion), returning everything that changed as one update (empty when nothing did).
+   */
+  advanceTo(t: number, view: Viewpoint, maxStep = 1 / 35): SceneUpdate {
+    if (!(t >= this.time) || !Number.isFinite(t)) throw new RangeError(`World.advanceTo: ${t} is not a finite time at or after ${this.time}`);
+    const updates: (SceneUpdate | undefined)[] = [];
+    if (!this.stepped) updates.push(this.advance(0, view));
+    const steps = Math.min(100_000, Math.ceil((t - this.time) / maxStep));
+    const from = this.time;
+    for (let i = 1; i <= steps; i++) updates.push(this.advance(from + ((t - from) * i) / steps - this.time, view));
+    return mergeUpdates(updates);
+  }
+
   /** The player pressed use; true when something answered. */
   use(view: Viewpoint): boolean {
     let answered = false;
@@ -102,23 +118,23 @@ export class World {
   }
 }
 
-/**
- * The state of `scene` at `t` seconds seen from `view`, as one update from the scene as loaded (what
- * `lantern render --time` shows): the world is stepped in steps of at most `maxStep` seconds.
- */
-export function sceneUpdateAt(scene: Scene, t: number, view: Viewpoint, maxStep = 1 / 35): SceneUpdate {
-  const world = World.of(scene);
-  if (!world) return emptySceneUpdate();
+/** Merges updates in order (later ones win where they say the same thing). */
+export function mergeUpdates(updates: readonly (SceneUpdate | undefined)[]): SceneUpdate {
   const merged = new UpdateBuilder();
-  const merge = (u: SceneUpdate | undefined) => {
-    if (!u) return;
+  for (const u of updates) {
+    if (!u) continue;
     for (const [k, v] of u.instances) merged.pose(k, v);
     for (const [k, v] of u.morphWeights) merged.morphWeights.set(k, v);
     for (const [k, v] of u.materials) merged.material(k, v);
     for (const [k, v] of u.walkHeights) merged.walkHeights.set(k, v);
-  };
-  merge(world.advance(0, view));
-  const steps = Math.min(100_000, Math.ceil(t / maxStep));
-  for (let i = 0; i < steps; i++) merge(world.advance(t / steps, view));
+  }
   return merged.build();
+}
+
+/**
+ * The state of `scene` at `t` seconds seen from `view`, as one update from the scene as loaded (what
+ * `lantern render --time` shows).
+ */
+export function sceneUpdateAt(scene: Scene, t: number, view: Viewpoint): SceneUpdate {
+  return World.of(scene)?.advanceTo(t, view) ?? emptySceneUpdate();
 }

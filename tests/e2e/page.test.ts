@@ -152,11 +152,11 @@ describe('the page', () => {
     await page.keyboard.down('KeyW');
     await page.waitForTimeout(700);
     await page.keyboard.up('KeyW');
-    await page.keyboard.down('KeyE');
+    await page.keyboard.down('ArrowRight');
     await page.waitForTimeout(300);
-    await page.keyboard.up('KeyE');
+    await page.keyboard.up('ArrowRight');
     const after = await page.evaluate(() => window.lantern.camera!);
-    // The Cornell camera looks along +z: W moves toward the box, E turns right.
+    // The Cornell camera looks along +z: W moves toward the box, the right arrow turns right.
     expect(after.position[2]).toBeGreaterThan(before.position[2] + 50);
     expect(after.yaw).toBeGreaterThan(before.yaw + 0.2);
     await playUntil(page, 3);

@@ -47,7 +47,7 @@ let shown: string[];
 
 beforeAll(async () => {
   const s = scene();
-  shown = s.instances.filter((i) => i.moves).map((i) => s.materials[i.material!]!.name);
+  shown = s.instances.filter((i) => i.material !== undefined).map((i) => s.materials[i.material!]!.name);
   renderer = await Renderer.create(await testGpu());
   await renderer.setScene(prepareScene(s));
   await renderer.resize(W, H);

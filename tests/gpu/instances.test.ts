@@ -89,7 +89,10 @@ describe('moving an instance', () => {
   });
 });
 
-describe('a mirrored instance', () => {
+describe.each([
+  ['in the static world', false],
+  ['moving (two-level BVH: the panel in object space, sampled as a light through its instance)', true],
+])('a mirrored instance %s', (_, moves) => {
   /** An L-shaped emissive panel (asymmetric in x and z) in the y = 0 plane, front face down: (v1 − v0) × (v2 − v0) = −y. */
   const panel: Mesh = {
     name: 'L panel',
@@ -105,7 +108,7 @@ describe('a mirrored instance', () => {
       meshes: [floorSquare('floor', 20, 1, 0), panel],
       instances: [
         { id: 0, mesh: 0, worldFromObject: at([0, 0, 0]) },
-        { id: 1, mesh: 1, worldFromObject: fromTrs([0, 0.5, 0], [0, 0, 0, 1], [scaleX, 1, 1]) },
+        { id: 1, mesh: 1, worldFromObject: fromTrs([0, 0.5, 0], [0, 0, 0, 1], [scaleX, 1, 1]), moves },
       ],
       materials: [diffuse('floor', grey(0.5)), { kind: 'emissive', name: 'panel', emission: [3, 3, 3] }],
       // The camera sits below the panel (height 0.45), looking down at the floor it lights.

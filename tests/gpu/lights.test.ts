@@ -157,3 +157,33 @@ describe('emissive triangles and punctual lights share the light table', () => {
     expect(checked).toBe(SIZE * SIZE / 2);
   });
 });
+
+describe('two-sided emission (MaterialBase.twoSidedEmission)', () => {
+  /** The panel of the block above, turned over: its front faces up, away from the floor. */
+  const panelUp: Mesh = {
+    name: 'panel facing up',
+    positions: new Float32Array([-0.8, 0, -0.3, -0.2, 0, -0.3, -0.2, 0, 0.3, -0.8, 0, 0.3]),
+    indices: new Uint32Array([0, 2, 1, 0, 3, 2]),
+    materialIds: new Uint32Array([1, 1]),
+  };
+  const panelDown: Mesh = { ...panelUp, name: 'panel facing down', indices: new Uint32Array([0, 1, 2, 0, 2, 3]) };
+
+  function render(mesh: Mesh, twoSided: boolean, lightSampling: 'mis' | 'bsdf', seed: number): Promise<Accumulation> {
+    const panel: Material = { kind: 'emissive', name: 'panel', emission: grey(3), twoSidedEmission: twoSided };
+    const scene = floorScene('one panel', [FLOOR, panel], { camera: CAMERA }, [mesh]);
+    const placed = { ...scene, instances: [...scene.instances, { id: 1, mesh: 1, worldFromObject: translation([0, 0.8, 0]) }] };
+    return renderScene(placed, { width: SIZE, height: SIZE, spp: 64, maxBounces: 1, seed, lightSampling });
+  }
+
+  it('lights the floor from its back face as a one-sided panel does from its front, by light and by BSDF sampling; a one-sided back face lights nothing', async () => {
+    const right = [...Array(SIZE * SIZE).keys()].filter((i) => i % SIZE >= SIZE / 2);
+    const reference = regionStats(await render(panelDown, false, 'mis', 31), right);
+    const backMis = regionStats(await render(panelUp, true, 'mis', 32), right);
+    const backBsdf = regionStats(await render(panelUp, true, 'bsdf', 33), right);
+    const oneSidedBack = regionStats(await render(panelUp, false, 'mis', 34), right);
+    expect(reference.mean).toBeGreaterThan(0.02);
+    expect(Math.abs(backMis.mean - reference.mean)).toBeLessThan(4 * Math.hypot(backMis.se, reference.se) + 1e-4);
+    expect(Math.abs(backBsdf.mean - reference.mean)).toBeLessThan(4 * Math.hypot(backBsdf.se, reference.se) + 1e-4);
+    expect(oneSidedBack.mean).toBe(0);
+  });
+});

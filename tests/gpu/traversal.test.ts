@@ -1,15 +1,15 @@
 /**
  * GPU traversal (scene/bvh.wgsl through passes/trace-rays.wgsl) against the CPU oracle
- * (bvh/traverse.ts) for every pixel of small images and for random rays, on several scenes. The GPU
+ * (bvh/traverse.ts; bvh/levels.ts traceScene for both levels of a scene with moving instances) for every pixel of small images and for random rays, on several scenes. The GPU
  * computes in f32 and the oracle in f64, so distances agree to a relative tolerance and a different
  * triangle is accepted only where it is a genuine tie: the oracle itself hits the GPU's triangle at
  * the same distance (a shared edge), or the ray grazes an edge (both answers are right).
  */
 import { IDENTITY } from '../../src/math/mat4.ts';
 import { describe, expect, it } from 'vitest';
-import { traverseClosest } from '../../src/bvh/traverse.ts';
+import { traceScene } from '../../src/bvh/levels.ts';
 import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
-import { quadGrid, randomSoup, uvSphere, makeRandom } from '../../src/bvh/test-scenes.ts';
+import { quadGrid, randomSoup, uvSphere, makeRandom, movingTestScene } from '../../src/bvh/test-scenes.ts';
 import { createBufferWithData, readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
@@ -81,6 +81,7 @@ const SCENES: [string, () => Scene][] = [
   ['random soup', () => soupScene('soup', randomSoup(3000, 7), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 })],
   ['UV sphere', () => soupScene('sphere', uvSphere(24, 48, 2), { position: [0.3, 0.2, -6], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 45 })],
   ['flat quad grid', () => soupScene('grid', quadGrid(16), { position: [8, 8, -12], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 70 })],
+  ['moving instances (two levels: shared, rotated, scaled, mirrored meshes and spheres)', movingTestScene],
 ];
 
 interface TestRay {
@@ -108,6 +109,15 @@ function makeRays(prepared: PreparedScene): TestRay[] {
     let d: Vec3 = [rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 2 - 1];
     if (i % 16 === 0) d = [[1, 0, 0], [0, -1, 0], [0, 0, 1]][i % 3] as unknown as Vec3; // axis-aligned, exact zeros
     rays.push({ origin: o, direction: d });
+  }
+  // Rays aimed into the moving instances' boxes, from anywhere in the scene.
+  const boxes = prepared.levels?.boxes;
+  for (let g = 1; boxes && g < boxes.length / 6; g++) {
+    for (let i = 0; i < 256; i++) {
+      const o: Vec3 = [0, 1, 2].map((k) => lo[k]! + rnd() * (hi[k]! - lo[k]!)) as unknown as Vec3;
+      const target = [0, 1, 2].map((k) => boxes[g * 6 + k]! + rnd() * (boxes[g * 6 + 3 + k]! - boxes[g * 6 + k]!));
+      rays.push({ origin: o, direction: [target[0]! - o[0], target[1]! - o[1], target[2]! - o[2]] });
+    }
   }
   // Round to what the GPU sees, so both sides trace the very same ray.
   return rays.map((r) => ({ origin: r.origin.map(Math.fround) as unknown as Vec3, direction: r.direction.map(Math.fround) as unknown as Vec3 }));
@@ -142,7 +152,7 @@ describe('GPU traversal equals the CPU oracle', () => {
     let exact = 0, ties = 0, grazing = 0;
     const failures: string[] = [];
     rays.forEach((ray, i) => {
-      const cpu = traverseClosest(prepared.bvh, positions, ray, kinds);
+      const cpu = traceScene(prepared.scene, prepared.triangles, prepared.bvh, prepared.levels, ray);
       const gpuTri = gpu.tri[i]!;
       // A triangle's edge; for a sphere or capsule, the hit uv says nothing of grazing, so a ray
       // that the other side misses is checked for a near-tangent approach instead.
@@ -167,6 +177,10 @@ describe('GPU traversal equals the CPU oracle', () => {
       else failures.push(`ray ${i}: cpu triangle ${cpu.triangle} at ${cpu.t}, gpu triangle ${gpuTri} at ${gpu.t[i]} (oracle has it at ${tAlt})`);
     });
     expect(failures.slice(0, 10)).toEqual([]);
+    // With moving instances, enough rays end on them for the two-level path to be tested.
+    const moving = new Set(prepared.levels?.dynamic ?? []);
+    const onMoving = [...gpu.tri].filter((t) => t !== NO_TRIANGLE && moving.has(prepared.triangles.instanceIds[t]!)).length;
+    if (prepared.levels) expect(onMoving).toBeGreaterThan(60);
     // Ties and grazing rays are rare; a systematic traversal bug would not be.
     expect(ties + grazing).toBeLessThan(0.01 * rays.length);
     expect(exact + ties + grazing).toBe(rays.length);

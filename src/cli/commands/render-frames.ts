@@ -11,6 +11,8 @@ import { GpuTimer } from '../../gpu/timestamps.ts';
 import type { Renderer } from '../../renderer/renderer.ts';
 import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
+import { isEmptyUpdate } from '../../scene/dynamics.ts';
+import type { World } from '../../scene/world.ts';
 import { writeFile } from '../output-files.ts';
 import { readJsonFile } from '../read-files.ts';
 
@@ -37,7 +39,14 @@ export interface FrameModeResult {
  * Renders the frames. With more than one frame (or a path), `png` and `exr` name folders that
  * receive frame-0000.png, ...; with one frame they name files.
  */
-export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }): Promise<FrameModeResult> {
+/** A moving scene's world, played on from `start` seconds (frame times: the path's, else `fps` frames per second). */
+export interface FrameWorld {
+  readonly world: World;
+  readonly start: number;
+  readonly fps: number;
+}
+
+export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }, moving?: FrameWorld): Promise<FrameModeResult> {
   const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
@@ -49,7 +58,14 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   let previous: Float32Array | undefined;
   const start = performance.now();
   for (let f = 0; f < frames; f++) {
-    renderer.setCamera(path ? cameraAt(path, frameTime(path, f, frames), base) : base);
+    const camera = path ? cameraAt(path, frameTime(path, f, frames), base) : base;
+    renderer.setCamera(camera);
+    if (moving) {
+      // Scene time follows the path's clock, or the frame rate; the first frame is at `start`.
+      const t = moving.start + (path ? frameTime(path, f, frames) - frameTime(path, 0, frames) : f / moving.fps);
+      const update = moving.world.advanceTo(Math.max(t, moving.world.seconds), camera);
+      if (!isEmptyUpdate(update)) renderer.applySceneUpdate(update);
+    }
     renderer.renderFrame(spp, timer);
     if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
     const name = `frame-${String(f).padStart(4, '0')}`;

@@ -15,6 +15,7 @@ import type { CliContext } from '../context.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
+import { World } from '../../scene/world.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
 interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
@@ -25,6 +26,8 @@ interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOption
   exr?: string;
   camera?: number[];
   fov?: number;
+  time: number;
+  fps: number;
   lightTable?: string;
   skill?: number;
   json?: boolean;
@@ -49,6 +52,8 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--json', 'print what was done as JSON')
     .option('--frames <n>', 'frame mode: frames to render, --spp samples each; with more than one, --out and --exr name folders', integerOption('--frames', 1, 100_000))
     .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)')
+    .option('--time <seconds>', "the moment of a moving scene to render (Doom's animated textures and lights, the dungeon's phantom); frame mode: the first frame's", numberOption('--time', 0, 1e6), 0)
+    .option('--fps <n>', 'frame mode without --path: frames per second of scene time', numberOption('--fps', 0.001, 1000), 30)
     .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
 }
 
@@ -65,6 +70,10 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   const s = renderer.settings;
   if (s.spectral) await renderer.enableSpectral();
+  // A moving scene as it is at --time, seen from this camera (billboards turn toward it). Frame mode
+  // plays the world on from there.
+  const world = World.of(prepared.scene);
+  if (world && !isFrameMode(o)) renderer.applySceneUpdate(world.advanceTo(o.time, renderer.camera!));
   const debug = s.debugView !== 'none';
   // A debug view that replaces the image needs no path tracing.
   const spp = debug && s.debugLayout === 'replace' ? 0 : o.spp;
@@ -72,7 +81,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   if (isFrameMode(o)) {
     if (o.kernel === 'specialised') context.note('frame mode renders with the generic kernels (--kernel specialised applies to progressive renders)');
     const camera = renderer.camera!;
-    const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) });
+    const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
     const report = { scene: prepared.scene.name, width: o.width, height: o.height, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...result };
     const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
     context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${o.spp} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);

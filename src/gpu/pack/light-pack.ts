@@ -25,6 +25,8 @@ export interface LightInputs {
   /** Leaf-order indices and powers of emissive triangles. */
   readonly triangles: readonly number[];
   readonly trianglePowers: readonly number[];
+  /** The instance (shaders/scene/types.wgsl Instance) of each emissive triangle; all 0 (the static world) when absent. */
+  readonly triangleInstances?: readonly number[];
   readonly punctual: readonly PunctualLight[];
   /** Estimated powers of the environment map and of the sun (0: absent). */
   readonly environmentPower: number;
@@ -67,9 +69,11 @@ export function packLights(inputs: LightInputs, layouts: { lightSlot: StructLayo
   }
   const codes: number[] = [];
   const powers: number[] = [];
+  const instances: number[] = [];
   inputs.triangles.forEach((t, i) => {
     codes.push(lightCode('triangle', t));
     powers.push(inputs.trianglePowers[i]!);
+    instances.push(inputs.triangleInstances?.[i] ?? 0);
   });
   punctual.forEach((p, i) => {
     codes.push(lightCode('punctual', i));
@@ -90,10 +94,13 @@ export function packLights(inputs: LightInputs, layouts: { lightSlot: StructLayo
     const table = buildAliasTable(powers);
     total = table.total;
     const light = slots.u32Field('light'), alias = slots.u32Field('alias_light'), keep = slots.f32Field('keep');
+    const instance = slots.u32Field('instance'), aliasInstance = slots.u32Field('alias_instance');
     for (let i = 0; i < codes.length; i++) {
       light(i, codes[i]!);
       alias(i, codes[table.alias[i]!]!);
       keep(i, table.keep[i]!);
+      instance(i, instances[i] ?? 0);
+      aliasInstance(i, instances[table.alias[i]!] ?? 0);
     }
   }
 

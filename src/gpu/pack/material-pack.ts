@@ -22,6 +22,7 @@ export const MATERIAL_EMISSION_PANORAMA = 2;
 export const MATERIAL_ALPHA_BLEND = 4;
 export const MATERIAL_THIN_WALLED = 16;
 export const MATERIAL_SCATTER_IN_PLANE = 32;
+export const MATERIAL_TWO_SIDED_EMISSION = 64;
 /** shaders/scene/types.wgsl DISPERSION_*, by position. */
 export const DISPERSION_LAWS = ['none', 'sellmeier', 'cauchy'] as const;
 export const TEXTURE_LINEAR = 1;
@@ -43,6 +44,13 @@ export interface PackedMaterials {
   /** Whether any material reads per-vertex tangents (a normal map) or the second uv set. */
   readonly needsVertexAttributes: boolean;
   readonly textureRefCount: number;
+  /** Per material: each texture field it uses → the texture and its transform (transformKey) as packed. */
+  readonly textureUses: readonly ReadonlyMap<string, { readonly texture: number; readonly transform: string }>[];
+  /**
+   * Per animated material (scene/material-animation.ts): per texture field, every texture its
+   * animation can show → the material's own texture reference to it.
+   */
+  readonly animatedRefs: ReadonlyMap<number, ReadonlyMap<string, ReadonlyMap<number, number>>>;
   readonly warnings: readonly string[];
 }
 
@@ -70,6 +78,47 @@ function textureUses(m: Material): { field: string; ref: TextureRef; srgb: boole
       break;
   }
   return uses.filter((u): u is { field: string; ref: TextureRef; srgb: boolean } => u.ref !== undefined);
+}
+
+/** The WGSL field of each animation edit's texture (scene/material-edit.ts MaterialAnimationEdit). */
+export const ANIMATED_TEXTURE_FIELDS = { albedoTexture: 'base_color_texture', emissionTexture: 'emission_texture' } as const;
+
+/**
+ * Per animated material: the textures each field may show besides its own (a cycle's frames), and
+ * an entry (possibly empty) for every material a scroll moves.
+ */
+function animatedTextureSets(scene: Scene): Map<number, Map<string, number[]>> {
+  const a = scene.dynamics?.materialAnimations;
+  const out = new Map<number, Map<string, number[]>>();
+  const entry = (m: number) => {
+    let e = out.get(m);
+    if (!e) out.set(m, (e = new Map()));
+    return e;
+  };
+  const add = (e: Map<string, number[]>, field: string, ts: readonly number[]) => e.set(field, [...(e.get(field) ?? []), ...ts]);
+  for (const c of a?.cycles ?? []) {
+    const e = entry(c.material);
+    add(e, ANIMATED_TEXTURE_FIELDS.albedoTexture, c.frames);
+    if (c.emissionFrames) add(e, ANIMATED_TEXTURE_FIELDS.emissionTexture, c.emissionFrames);
+  }
+  for (const s of a?.scrolls ?? []) entry(s.material);
+  return out;
+}
+
+/** A texture reference's transform as a comparable key. */
+const transformKey = (ref: TextureRef): string => JSON.stringify(ref.transform ?? null);
+
+/** Writes a TextureRef record's transform rows: KHR_texture_transform, uv' = T · R · S · uv, R counter-clockwise in uv space. */
+function transformWriter(textureRefs: StructArray): (i: number, ref: TextureRef) => void {
+  const tu = textureRefs.vec3('transform_u'), tv = textureRefs.vec3('transform_v');
+  return (i, ref) => {
+    const t = ref.transform;
+    const [ox, oy] = t?.offset ?? [0, 0];
+    const [sx, sy] = t?.scale ?? [1, 1];
+    const c = Math.cos(t?.rotation ?? 0), s = Math.sin(t?.rotation ?? 0);
+    tu(i, c * sx, s * sy, ox);
+    tv(i, -s * sx, c * sy, oy);
+  };
 }
 
 /** Beer–Lambert coefficient −ln(colour)/distance per channel (0 for a clear volume). */
@@ -106,17 +155,33 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
 
   const refs: { ref: TextureRef; srgb: boolean; placement: ReturnType<typeof place>; bilinear: boolean }[] = [];
   const refIndex = new Map<string, number>();
-  const materialRefs = scene.materials.map((m) => {
+  const addRef = (ref: TextureRef, srgb: boolean, shared: boolean): number => {
+    const bilinear = (textures[ref.texture]?.filter ?? 'bilinear') === 'bilinear';
+    const placement = place(ref.texture, srgb, bilinear);
+    const key = `${srgb}:${placement.slot}:${bilinear}:${ref.texCoord ?? 0}:${JSON.stringify(ref.transform ?? null)}`;
+    if (!shared) return refs.push({ ref, srgb, placement, bilinear }) - 1;
+    let index = refIndex.get(key);
+    if (index === undefined) {
+      index = refs.push({ ref, srgb, placement, bilinear }) - 1;
+      refIndex.set(key, index);
+    }
+    return index;
+  };
+  // Animated materials (scene/material-animation.ts) get texture references of their own, one per
+  // texture each field can show, so a step of a cycle only rewrites the record's ref index and a
+  // scroll rewrites only its own refs' transforms.
+  const animatedTextures = animatedTextureSets(scene);
+  const animatedRefs = new Map<number, Map<string, Map<number, number>>>();
+  const materialRefs = scene.materials.map((m, i) => {
+    const animated = animatedTextures.get(i);
     return textureUses(m).map((u) => {
-      const bilinear = (textures[u.ref.texture]?.filter ?? 'bilinear') === 'bilinear';
-      const placement = place(u.ref.texture, u.srgb, bilinear);
-      const key = `${u.srgb}:${placement.slot}:${bilinear}:${u.ref.texCoord ?? 0}:${JSON.stringify(u.ref.transform ?? null)}`;
-      let index = refIndex.get(key);
-      if (index === undefined) {
-        index = refs.push({ ref: u.ref, srgb: u.srgb, placement, bilinear }) - 1;
-        refIndex.set(key, index);
-      }
-      return { field: u.field, index };
+      if (!animated) return { field: u.field, index: addRef(u.ref, u.srgb, true), texture: u.ref.texture, transform: transformKey(u.ref) };
+      let fields = animatedRefs.get(i);
+      if (!fields) animatedRefs.set(i, (fields = new Map()));
+      const byTexture = new Map<number, number>();
+      fields.set(u.field, byTexture);
+      for (const k of new Set([u.ref.texture, ...(animated.get(u.field) ?? [])])) byTexture.set(k, addRef({ ...u.ref, texture: k }, u.srgb, false));
+      return { field: u.field, index: byTexture.get(u.ref.texture)!, texture: u.ref.texture, transform: transformKey(u.ref) };
     });
   });
 
@@ -125,7 +190,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
   const textureRefs = new StructArray(layouts.textureRef, refs.length);
   {
     const origin = textureRefs.vec2u('origin'), size = textureRefs.vec2u('size'), page = textureRefs.u32Field('page'), flags = textureRefs.u32Field('flags'), levels = textureRefs.u32Field('levels');
-    const tu = textureRefs.vec3('transform_u'), tv = textureRefs.vec3('transform_v');
+    const writeTransform = transformWriter(textureRefs);
     refs.forEach((r, i) => {
       const rect = (r.srgb ? atlas : linearAtlas).rects[r.placement.slot]!;
       origin(i, rect.x, rect.y);
@@ -134,13 +199,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
       levels(i, r.placement.levels);
       page(i, rect.page);
       flags(i, (r.srgb ? 0 : TEXTURE_LINEAR) | (r.bilinear ? TEXTURE_BILINEAR : 0) | (r.ref.texCoord === 1 ? TEXTURE_UV1 : 0));
-      // KHR_texture_transform: uv' = T · R · S · uv, with R rotating counter-clockwise in uv space.
-      const t = r.ref.transform;
-      const [ox, oy] = t?.offset ?? [0, 0];
-      const [sx, sy] = t?.scale ?? [1, 1];
-      const c = Math.cos(t?.rotation ?? 0), s = Math.sin(t?.rotation ?? 0);
-      tu(i, c * sx, s * sy, ox);
-      tv(i, -s * sx, c * sy, oy);
+      writeTransform(i, r.ref);
     });
   }
 
@@ -178,6 +237,8 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     general: general || refs.some((r) => r.ref.texCoord === 1),
     needsVertexAttributes: scene.materials.some((m) => m.normalTexture !== undefined) || refs.some((r) => r.ref.texCoord === 1),
     textureRefCount: refs.length,
+    textureUses: materialRefs.map((uses) => new Map(uses.map((u) => [u.field, { texture: u.texture, transform: u.transform }]))),
+    animatedRefs,
     warnings: [...new Set(warnings)],
   };
 }
@@ -216,6 +277,7 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
     const alpha = m.alphaMode ?? 'opaque';
     const filter = alpha !== 'opaque' && (coverage.texture !== undefined || coverage.opacity < 1);
     if (filter) f |= alpha === 'mask' ? MATERIAL_ALPHA_MASK : MATERIAL_ALPHA_BLEND;
+    if (m.twoSidedEmission) f |= MATERIAL_TWO_SIDED_EMISSION;
     const mapping = m.emissionMapping;
     if (mapping?.kind === 'panorama') {
       f |= MATERIAL_EMISSION_PANORAMA;
@@ -261,21 +323,59 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
 }
 
 /**
- * The materials packed again after edits of their constant factors (scene/material-edit.ts): the
- * records of `changed` are rewritten over a copy of the packed ones, so texture references, atlases
- * and everything derived from textures are kept as they are (nothing is uploaded again but the
- * records). Kinds, textures and coverage must be those the materials were packed with.
+ * The materials packed again after edits (scene/material-edit.ts): the records of `changed` are
+ * rewritten over a copy of the packed ones, so atlases and everything derived from textures are kept
+ * as they are. Constant factors may change on any material; textures and uv offsets only on animated
+ * materials (scene/material-animation.ts), and only to textures their animation lists: those were
+ * packed ahead with texture references of the material's own, so a texture swap rewrites the
+ * record's reference index and a uv offset rewrites the material's own references' transforms (then
+ * `textureRefs` is a new buffer: `texture_refs` must be written again). Kinds and coverage must be
+ * those the materials were packed with. The emission texture means (the light table's powers) stay
+ * those of the textures packed first.
  */
-export function repackMaterialRecords(materials: readonly Material[], packed: PackedMaterials, layout: StructLayout, changed: Iterable<number>): PackedMaterials {
-  const out = new StructArray(layout, materials.length);
+export function repackMaterialRecords(
+  materials: readonly Material[],
+  packed: PackedMaterials,
+  layouts: { material: StructLayout; textureRef: StructLayout },
+  changed: Iterable<number>,
+): PackedMaterials {
+  const out = new StructArray(layouts.material, materials.length);
   new Uint8Array(out.bytes).set(new Uint8Array(packed.materials));
   const writeRecord = materialRecordWriter(out);
+  let refsOut: StructArray | undefined;
+  const usesNow = [...packed.textureUses];
   for (const i of changed) {
     const m = materials[i];
     if (!m) throw new LanternError(`no material ${i} to repack (the scene has ${materials.length})`);
     if (writeRecord(i, m) !== packed.hasHitFilter[i]) throw new LanternError(`material '${m.name}' changed its coverage: prepare the scene again`);
+    const before = packed.textureUses[i]!;
+    const uses = textureUses(m);
+    if (uses.length !== before.size || uses.some((u) => !before.has(u.field))) throw new LanternError(`material '${m.name}' changed which textures it uses: prepare the scene again`);
+    const animated = packed.animatedRefs.get(i);
+    for (const u of uses) {
+      const was = before.get(u.field)!;
+      if (!animated) {
+        if (u.ref.texture !== was.texture || transformKey(u.ref) !== was.transform) {
+          throw new LanternError(`material '${m.name}' changed the texture or uv transform of its ${u.field}, which only animated materials (scene/material-animation.ts) may: prepare the scene again`);
+        }
+        continue;
+      }
+      const byTexture = animated.get(u.field)!;
+      const ref = byTexture.get(u.ref.texture);
+      if (ref === undefined) throw new LanternError(`material '${m.name}' shows texture ${u.ref.texture} in its ${u.field}, which its animation does not list (so it was not packed for it)`);
+      out.u32Field(u.field)(i, ref);
+      if (transformKey(u.ref) === was.transform) continue;
+      if (!refsOut) {
+        refsOut = new StructArray(layouts.textureRef, packed.textureRefCount);
+        new Uint8Array(refsOut.bytes).set(new Uint8Array(packed.textureRefs));
+      }
+      const write = transformWriter(refsOut);
+      for (const [texture, r] of byTexture) write(r, { ...u.ref, texture });
+    }
+    // What the record and the refs hold now, which the next repack compares against.
+    if (animated) usesNow[i] = new Map(uses.map((u) => [u.field, { texture: u.ref.texture, transform: transformKey(u.ref) }]));
   }
-  return { ...packed, materials: out.bytes };
+  return { ...packed, materials: out.bytes, textureUses: usesNow, ...(refsOut ? { textureRefs: refsOut.bytes } : {}) };
 }
 
 /** A nearest-filtered texture halved (by dropping every other texel) until it fits a page. */

@@ -35,6 +35,19 @@ export class StructArray {
     };
   }
 
+  vec4(field: string): (i: number, x: number, y: number, z: number, w: number) => void {
+    const o = this.layout.word(field, 'vec4f');
+    const s = this.layout.strideWords;
+    const f32 = this.f32;
+    return (i, x, y, z, w) => {
+      const b = i * s + o;
+      f32[b] = x;
+      f32[b + 1] = y;
+      f32[b + 2] = z;
+      f32[b + 3] = w;
+    };
+  }
+
   vec2(field: string): (i: number, x: number, y: number) => void {
     const o = this.layout.word(field, 'vec2f');
     const s = this.layout.strideWords;

@@ -74,7 +74,8 @@ describe.each([
       const loaded = loadDoomMap(stack, map, { things: { skill: Number(skill) }, onWarning: (w) => warnings.push(w) });
       expect(loaded.stats.sprites).toBe(n);
       expect(loaded.stats.emittingSprites).toBe(emitting);
-      expect(loaded.scene.instances.filter((i) => i.moves)).toHaveLength(n);
+      const sprites = new Set(loaded.scene.dynamics!.billboards!.map((b) => b.instance));
+      expect(loaded.scene.instances.filter((i) => sprites.has(i.id) && i.moves)).toHaveLength(n);
       // Every floor lamp's material emits on both faces.
       const lamps = loaded.scene.instances.filter((i) => i.name === 'Floor lamp');
       expect(lamps).toHaveLength(emitting);

@@ -4,6 +4,7 @@
  * prints. Pure, like every loader.
  */
 import { LanternError } from '../../errors.ts';
+import { DOOM_ANIMATIONS, readAnimatedLump, resolveCycles, type DoomCycles } from './animations.ts';
 import type { LightTable } from './light-table.ts';
 import { readMap } from './map-lumps.ts';
 import type { SectorFailure } from './sectors.ts';
@@ -30,6 +31,16 @@ export interface DoomLoad extends DoomScene {
   readonly linedefs: number;
 }
 
+/**
+ * The stack's animated flats and textures: its BOOM ANIMATED lump's when it has one, else Doom's
+ * built-in table (animations.ts), over the flats and textures in WAD order.
+ */
+export function doomCycles(stack: WadStack, graphics: DoomGraphics, onWarning?: (message: string) => void): DoomCycles {
+  const lump = stack.lump('ANIMATED');
+  const defs = lump ? readAnimatedLump(lump, `${stack.describe()}: ANIMATED`) : DOOM_ANIMATIONS;
+  return resolveCycles(defs, { flats: graphics.flatNames(), textures: graphics.textureNames() }, onWarning);
+}
+
 /** Loads `mapName`, or the stack's first map when none is given. */
 export function loadDoomMap(stack: WadStack, mapName: string | undefined, options: DoomLoadOptions = {}): DoomLoad {
   const maps = stack.maps();
@@ -46,6 +57,7 @@ export function loadDoomMap(stack: WadStack, mapName: string | undefined, option
     sprites,
     ...(options.things ? { things: options.things } : {}),
     ...(sky ? { sky } : {}),
+    cycles: doomCycles(stack, graphics, options.onWarning),
     ...(options.lightTable ? { lightTable: options.lightTable } : {}),
     ...(options.onWarning ? { onWarning: options.onWarning } : {}),
   });

@@ -210,6 +210,38 @@ export const cw = (x: number, y: number, w: number, h = w): MapPoint[] => [[x, y
 export const ccw = (x: number, y: number, w: number, h = w): MapPoint[] => cw(x, y, w, h).reverse();
 
 /**
+ * Two rooms (x 0..128 and 144..272, y 0..128) joined by a 16-unit sector between them (x 128..144):
+ * a door (manual special 1 on both faces) or a lift (walk-over 88 on room A's edge, tag 1).
+ * The door faces are upper-unpegged on one side, offset on the other; the jambs lower-unpegged.
+ * Player start in room A, facing east (toward the door).
+ */
+export function twoRooms(middle: Partial<Sector>, kind: 'door' | 'lift', roomB: Partial<Sector> = {}): DoomMap {
+  const m = new MapBuilder();
+  const a = m.sector();
+  const door = m.sector({ floorHeight: 0, ceilingHeight: 0, ...middle });
+  const b = m.sector(roomB);
+  const line = (p: MapPoint, q: MapPoint, front: number, back?: number, sides = {}, flags = 0) => m.line(p, q, front, back, sides, flags);
+  line([0, 0], [0, 128], a);
+  line([0, 128], [128, 128], a);
+  line([128, 0], [0, 0], a);
+  line([128, 128], [128, 0], a, door, { upper: 'DOOR', yOffset: 5 });
+  line([128, 128], [144, 128], door, undefined, { middle: 'JAMB' }, LINEDEF_FLAGS.LOWER_UNPEGGED);
+  line([144, 0], [128, 0], door, undefined, { middle: 'JAMB' }, LINEDEF_FLAGS.LOWER_UNPEGGED);
+  line([144, 0], [144, 128], b, door, { upper: 'DOOR', lower: 'WALL' }, LINEDEF_FLAGS.UPPER_UNPEGGED);
+  line([144, 128], [272, 128], b);
+  line([272, 128], [272, 0], b);
+  line([272, 0], [144, 0], b);
+  if (kind === 'door') {
+    for (const i of [3, 6]) m.linedefs[i] = { ...m.linedefs[i]!, special: 1 };
+  } else {
+    m.sectors[door] = { ...m.sectors[door]!, tag: 1 };
+    m.linedefs[3] = { ...m.linedefs[3]!, special: 88, tag: 1 };
+  }
+  m.player(64, 64, 0);
+  return m.build();
+}
+
+/**
  * A one-sector square room, `size` units on a side, with the player 1 start in the middle: the
  * smallest map the geometry builders can turn into a scene. Walls use STARTAN3, floor FLOOR4_8,
  * ceiling CEIL3_5 (Doom names; provide them in the WAD if a test composes images).
@@ -382,4 +414,50 @@ export function squareRoomsWad(maps: readonly { name: string; size?: number }[],
     .lump('F_SKY1', encodeFlat(30))
     .marker('F_END')
     .build(kind);
+}
+
+export interface AnimatedRoomOptions {
+  /** Sector 0's special (default 12, a slow strobe in sync). */
+  readonly special?: number;
+  /** Whether the WAD has NUKAGE3, the last frame of the NUKAGE cycle (default true). */
+  readonly withNukage3?: boolean;
+  /** A BOOM ANIMATED lump to include. */
+  readonly animated?: Uint8Array;
+}
+
+/**
+ * A little IWAD for the animation tests (animations.ts): sector 0 (light 160, special `special`),
+ * 256 units square, floored with NUKAGE2 under a CEIL1_2 lamp, around sector 1 (64 units square,
+ * light 96, floor 16, floor and ceiling CEIL3_5). Its west wall (linedef 0, front side facing east)
+ * scrolls (special 48). STARTAN3 (64×128) has vertical stripes of palette index 100 + x % 4. The
+ * player stands at (224, 128) looking west. Flats in WAD order: NUKAGE1 (41), NUKAGE2 (42),
+ * FLOOR4_8 (10), NUKAGE3 (43), CEIL3_5 (20), CEIL1_2 (250): FLOOR4_8, between NUKAGE1 and NUKAGE3,
+ * joins the NUKAGE cycle, as it would in Doom.
+ */
+export function animatedRoomWad(options: AnimatedRoomOptions = {}): Uint8Array {
+  const b = new MapBuilder();
+  const walls = { upper: 'STARTAN3', lower: 'STARTAN3', middle: 'STARTAN3' };
+  const s0 = b.sector({ lightLevel: 160, special: options.special ?? 12, floorFlat: 'NUKAGE2', ceilingFlat: 'CEIL1_2' });
+  const s1 = b.sector({ lightLevel: 96, floorHeight: 16, floorFlat: 'CEIL3_5' });
+  b.loop(cw(0, 0, 256), s0, undefined, walls);
+  b.loop(ccw(96, 96, 64), s0, s1, { ...walls, middle: '-' });
+  b.linedefs[0] = { ...b.linedefs[0]!, special: 48 };
+  b.player(224, 128, 180);
+  const stripes = Array.from({ length: 64 * 128 }, (_, i) => 100 + ((i % 64) % 4));
+  const wad = new WadBuilder()
+    .lump('PLAYPAL', encodePalette())
+    .lumps(encodeMap(b.build('MAP01')))
+    .lump('PNAMES', encodePnames(['WALLPAT']))
+    .lump('TEXTURE1', encodeTextureLump([{ name: 'STARTAN3', width: 64, height: 128, patches: [{ x: 0, y: 0, patch: 0 }] }]))
+    .marker('P_START')
+    .lump('WALLPAT', encodePatch(64, 128, stripes))
+    .marker('P_END')
+    .marker('F_START')
+    .lump('NUKAGE1', encodeFlat(41))
+    .lump('NUKAGE2', encodeFlat(42))
+    .lump('FLOOR4_8', encodeFlat(10));
+  if (options.withNukage3 ?? true) wad.lump('NUKAGE3', encodeFlat(43));
+  wad.lump('CEIL3_5', encodeFlat(20)).lump('CEIL1_2', encodeFlat(250)).marker('F_END');
+  if (options.animated) wad.lump('ANIMATED', options.animated);
+  return wad.build('IWAD');
 }

@@ -134,12 +134,12 @@ fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -
       cone_width += cone_spread * hit.t;
       texture_lod = texture_lod_at(surface, hit.triangle, cone_width, ray.direction);
       if (textureDimensions(triangle_attributes).x > 1u) {
-        surface_uv1 = triangle_uv1(hit.triangle, vec2f(hit.u, hit.v));
+        surface_uv1 = triangle_uv1(hit.triangle, stored_bary(hit));
       }
     }
 
-    // Emission, seen only from the side the geometric normal faces.
-    let cos_emitter = -dot(surface.geometric_normal, ray.direction);
+    // Emission, seen only from the side the geometric normal faces (both, for two-sided emitters).
+    let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
     if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
       let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
       radiance += throughput * lift(material_emission(material, surface.uv, ray.direction)) * weight;

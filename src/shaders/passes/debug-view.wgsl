@@ -56,7 +56,7 @@ fn debug_value(kind: u32, ray: Ray, hit: Hit) -> vec4f {
       return vec4f(f32(node_depths[work.hit_leaf]), 0.0, 0.0, 1.0);
     }
     case DEBUG_VIEW_TRIANGLE_ID: {
-      return vec4f(f32(triangles_shading[hit.triangle].source_index), 0.0, 0.0, 1.0);
+      return vec4f(f32(world_shading(hit.instance, hit.triangle).source_index), 0.0, 0.0, 1.0);
     }
     case DEBUG_VIEW_BARYCENTRICS: {
       return vec4f(1.0 - hit.u - hit.v, hit.u, hit.v, 1.0);

@@ -38,7 +38,8 @@ fn centre_texel(pixel: vec2u) -> GBufferTexel {
   }
   let surface = surface_at(hit, ray);
   let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
-  let previous = project_point(frame.previous_camera, view.image_size, surface.position);
+  // Where the point was: moved with its instance, seen by the previous camera.
+  let previous = project_point(frame.previous_camera, view.image_size, previous_world_point(hit.instance, surface.position));
   let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
   let depth = dot(surface.position - view.camera.position, view.camera.forward);
   return GBufferTexel(normal, depth, vec3f(1.0), surface.material, vec3f(0.0), previous.z, position);

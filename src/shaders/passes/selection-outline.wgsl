@@ -38,7 +38,7 @@ fn selection_mask(@builtin(global_invocation_id) id: vec3u) {
   let hit = trace_closest(camera_ray(vec2f(id.xy) + 0.5));
   var selected = 0u;
   if (hit.triangle != NO_TRIANGLE) {
-    let shading = triangles_shading[hit.triangle];
+    let shading = world_shading(hit.instance, hit.triangle);
     let source = shading.source_index;
     selected = select(0u, 1u, source >= params.first && source < params.end && shading.material == params.material);
   }

@@ -22,7 +22,7 @@ fn trace_rays(@builtin(global_invocation_id) id: vec3u, @builtin(num_workgroups)
   let hit = trace_closest(rays[i]);
   var source = NO_TRIANGLE;
   if (hit.triangle != NO_TRIANGLE) {
-    source = triangles_shading[hit.triangle].source_index;
+    source = world_shading(hit.instance, hit.triangle).source_index;
   }
   hits[i] = HitRecord(hit.t, source, hit.u, hit.v);
 }

@@ -43,7 +43,14 @@ struct LightSample {
 
 // Probability of choosing a triangle of this material and area, as the alias table does.
 fn light_selection_pmf(material: Material, area: f32) -> f32 {
-  return luminance(material.emission) * material.emission_texture_mean * area / scene_info.total_light_power;
+  let sides = select(1.0, 2.0, (material.flags & MATERIAL_TWO_SIDED_EMISSION) != 0u);
+  return luminance(material.emission) * material.emission_texture_mean * area * sides / scene_info.total_light_power;
+}
+
+// The cosine between an emitter's front normal and the direction toward the viewer, as emission sees
+// it: as is for one-sided emitters (≤ 0: nothing is emitted), its magnitude for two-sided ones.
+fn emitter_cosine(material: Material, cos_front: f32) -> f32 {
+  return select(cos_front, abs(cos_front), (material.flags & MATERIAL_TWO_SIDED_EMISSION) != 0u);
 }
 
 // Solid-angle density with which sample_light finds the emitter point `surface`, hit at distance t
@@ -91,23 +98,24 @@ fn no_light() -> LightSample {
   return LightSample(vec3f(0.0, 0.0, 1.0), 0.0, vec3f(0.0), 0.0, false);
 }
 
-// A point on an emissive triangle (leaf order), uniformly by area.
-fn sample_triangle_light(triangle: u32, p: vec3f, u: vec2f) -> LightSample {
-  let tri = triangles_hot[triangle];
+// A point on an emissive triangle (leaf order) of `instance`, uniformly by area.
+fn sample_triangle_light(triangle: u32, instance: u32, p: vec3f, u: vec2f) -> LightSample {
+  let tri = world_primitive(instance, triangle);
+  let shading = world_shading(instance, triangle);
   let b = sample_triangle_uniform(u);
   let cross_e = cross(tri.e1, tri.e2);
   let area = 0.5 * length(cross_e);
-  let material = materials[triangles_shading[triangle].material];
+  let material = materials[shading.material];
   let to_light = tri.v0 + b.x * tri.e1 + b.y * tri.e2 - p;
   let distance2 = dot(to_light, to_light);
   let distance = sqrt(distance2);
   let wi = to_light / distance;
-  // Emission is one-sided: the light faces along e1 × e2.
-  let cos_light = -dot(cross_e, wi) / (2.0 * area);
+  // Emission is one-sided: the light faces along e1 × e2 (unless both faces emit).
+  let cos_light = emitter_cosine(material, -dot(cross_e, wi) / (2.0 * area));
   if (!(cos_light > 0.0) || !(distance > 0.0)) {
     return no_light();
   }
-  let emission = material_emission(material, triangle_uv(triangle, b), wi);
+  let emission = material_emission(material, shading_uv(shading, b), wi);
   let pdf = light_selection_pmf(material, area) / area * distance2 / cos_light;
   return LightSample(wi, distance, emission, pdf, false);
 }
@@ -115,10 +123,10 @@ fn sample_triangle_light(triangle: u32, p: vec3f, u: vec2f) -> LightSample {
 // A point of an emissive sphere (leaf order), by the cone of directions it subtends from p (pbrt-v4
 // §6.2.4): uniform in that cone, so the density is 1 / its solid angle. The sphere emits outward
 // only, so a point inside it receives nothing from it.
-fn sample_sphere_light(sphere: u32, p: vec3f, u: vec2f) -> LightSample {
-  let prim = triangles_hot[sphere];
+fn sample_sphere_light(sphere: u32, instance: u32, p: vec3f, u: vec2f) -> LightSample {
+  let prim = world_primitive(instance, sphere);
   let r = prim.e1.x;
-  let material = materials[triangles_shading[sphere].material];
+  let material = materials[instance_material(instance, sphere)];
   let to_centre = prim.v0 - p;
   let d2 = dot(to_centre, to_centre);
   let sin2_max = r * r / d2;
@@ -178,14 +186,16 @@ fn sample_light(p: vec3f, u_select: vec2f, u: vec2f) -> LightSample {
   let light_count = scene_light_count();
   let slot_index = min(u32(u_select.x * f32(light_count)), light_count - 1u);
   let slot = light_slots[slot_index];
-  let code = select(slot.alias_light, slot.light, u_select.y < slot.keep);
+  let keep = u_select.y < slot.keep;
+  let code = select(slot.alias_light, slot.light, keep);
   let kind = code >> LIGHT_KIND_SHIFT;
   let index = code & LIGHT_INDEX_MASK;
   if (kind == LIGHT_KIND_TRIANGLE) {
+    let instance = select(0u, select(slot.alias_instance, slot.instance, keep), SCENE_HAS_INSTANCES);
     if (SCENE_HAS_ANALYTIC_PRIMITIVES && (triangles_hot[index].flags & PRIMITIVE_SPHERE) != 0u) {
-      return sample_sphere_light(index, p, u);
+      return sample_sphere_light(index, instance, p, u);
     }
-    return sample_triangle_light(index, p, u);
+    return sample_triangle_light(index, instance, p, u);
   }
   if (SCENE_HAS_PUNCTUAL_LIGHTS && kind == LIGHT_KIND_PUNCTUAL) {
     return sample_punctual_light(index, p);

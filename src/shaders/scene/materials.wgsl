@@ -152,9 +152,12 @@ fn coverage_random(triangle: u32, bary: vec2f, salt: u32) -> f32 {
 }
 
 // Whether a triangle with a hit filter (alpha mask or blend) is really there at these barycentrics,
-// for a ray identified by `salt`.
-fn alpha_test_passes(triangle: u32, bary: vec2f, salt: u32) -> bool {
-  let material = materials[triangles_shading[triangle].material];
+// for a ray identified by `salt`, when it shows `material_index` (its own, or its instance's).
+fn alpha_test_passes(material_index: u32, triangle: u32, bary: vec2f, salt: u32) -> bool {
+  let material = materials[material_index];
+  if ((material.flags & (MATERIAL_ALPHA_MASK | MATERIAL_ALPHA_BLEND)) == 0u) {
+    return true;
+  }
   let coverage = material.opacity * coverage_texel(material.base_color_texture, triangle_uv(triangle, bary));
   if ((material.flags & MATERIAL_ALPHA_BLEND) != 0u) {
     return coverage > coverage_random(triangle, bary, salt);

@@ -6,6 +6,7 @@
 #import scene/bindings
 #import scene/intersect
 #import scene/materials
+#import scene/instances
 
 struct Surface {
   position: vec3f,
@@ -29,9 +30,14 @@ struct Surface {
 // camera at distance 10 shows that acne). 4 ulps of float32 (2^-23 each).
 const ANALYTIC_SPAWN_ULPS: f32 = 4.0 / 8388608.0;
 
+// Texture coordinates at barycentrics (u, v) of v1 and v2 of a shading record.
+fn shading_uv(s: TriangleShading, bary: vec2f) -> vec2f {
+  return (1.0 - bary.x - bary.y) * s.uv0 + bary.x * s.uv1 + bary.y * s.uv2;
+}
+
 fn surface_at(hit: Hit, ray: Ray) -> Surface {
-  let tri = triangles_hot[hit.triangle];
-  let shading = triangles_shading[hit.triangle];
+  let tri = world_primitive(hit.instance, hit.triangle);
+  let shading = world_shading(hit.instance, hit.triangle);
   if (SCENE_HAS_ANALYTIC_PRIMITIVES && (tri.flags & PRIMITIVE_ANALYTIC) != 0u) {
     return analytic_surface(hit, ray, tri, shading.material);
   }
@@ -44,7 +50,7 @@ fn surface_at(hit: Hit, ray: Ray) -> Surface {
   let ns_length = length(ns);
   ns = select(ng, ns / ns_length, ns_length > 1e-12);
   ns = select(-ns, ns, dot(ns, ng) >= 0.0);
-  return Surface(position, ng, ns, 0.5 * twice_area, shading.material, triangle_uv(hit.triangle, vec2f(hit.u, hit.v)), 0u, 0.0);
+  return Surface(position, ng, ns, 0.5 * twice_area, shading.material, shading_uv(shading, vec2f(hit.u, hit.v)), 0u, 0.0);
 }
 
 // A sphere or capsule: the point along the ray (as precise as the root), its outward normal from the
@@ -93,15 +99,16 @@ fn normal_mapped(surface: Surface, hit: Hit, material: Material) -> vec3f {
   }
   let triangle = hit.triangle;
   let n = surface.shading_normal;
-  let t0 = triangle_attribute(triangle, 0u);
-  let t1 = triangle_attribute(triangle, 1u);
-  let t2 = triangle_attribute(triangle, 2u);
+  // Tangents are stored like the positions (object space for a moving instance): to world space.
+  let t0 = instance_tangent(hit.instance, triangle_attribute(triangle, stored_vertex(hit.instance, triangle, 0u)));
+  let t1 = instance_tangent(hit.instance, triangle_attribute(triangle, stored_vertex(hit.instance, triangle, 1u)));
+  let t2 = instance_tangent(hit.instance, triangle_attribute(triangle, stored_vertex(hit.instance, triangle, 2u)));
   var t_raw = (1.0 - hit.u - hit.v) * t0.xyz + hit.u * t1.xyz + hit.v * t2.xyz;
   var sign = select(1.0, -1.0, t0.w < 0.0);
   if (t0.w == 0.0) {
     // No tangents: the triangle's uv parameterisation.
-    let tri = triangles_hot[triangle];
-    let s = triangles_shading[triangle];
+    let tri = world_primitive(hit.instance, triangle);
+    let s = world_shading(hit.instance, triangle);
     let duv1 = s.uv1 - s.uv0;
     let duv2 = s.uv2 - s.uv0;
     let det = duv1.x * duv2.y - duv1.y * duv2.x;
@@ -124,6 +131,17 @@ fn normal_mapped(surface: Surface, hit: Hit, material: Material) -> vec3f {
   let mapped = t * local.x + b * local.y + n * local.z;
   let len = length(mapped);
   return select(n, mapped / len, len > 1e-12);
+}
+
+// A stored tangent (xyz, w = bitangent sign) of `instance` in world space: the direction transformed,
+// the handedness flipped by a mirror.
+fn instance_tangent(instance: u32, t: vec4f) -> vec4f {
+  if (instance_is_static(instance) || t.w == 0.0) {
+    return t;
+  }
+  let inst = instances[instance];
+  let w = select(t.w, -t.w, (inst.flags & INSTANCE_MIRRORED) != 0u);
+  return vec4f(world_vector(inst, t.xyz), w);
 }
 
 // log2 of the footprint, in uv units, of a ray cone of width `cone_width` (scene units) arriving along

@@ -22,7 +22,7 @@ fn unrolled_intersect(ray: Ray, prim: TriangleHot, t_best: f32) -> vec3f {
 fn closest_candidate(ray: Ray, prim: TriangleHot, index: u32, hit: ptr<function, Hit>) {
   let r = unrolled_intersect(ray, prim, (*hit).t);
   if (r.x < (*hit).t && accept_hit(prim, index, r.yz)) {
-    *hit = Hit(r.x, index, r.y, r.z);
+    *hit = Hit(r.x, index, r.y, r.z, 0u);
   }
 }
 
@@ -33,7 +33,7 @@ fn any_candidate(ray: Ray, prim: TriangleHot, index: u32) -> bool {
 }
 
 fn trace_closest(ray: Ray) -> Hit {
-  var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0);
+  var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0, 0u);
   set_alpha_salt(ray);
   unrolled_closest(ray, &hit);
   return hit;

@@ -32,6 +32,37 @@ const PRIMITIVE_SPHERE: u32 = 256u;
 const PRIMITIVE_CAPSULE: u32 = 512u;
 const PRIMITIVE_ANALYTIC: u32 = 768u;
 
+// One placement of a bottom-level BVH in the world (bvh/levels.ts): instance 0 is the static
+// world (identity; its primitives are stored in world space), the others are moving instances of a
+// mesh whose primitives are stored once, in object space. Rows of 3×4 affine transforms: a point p
+// maps to (dot(r0.xyz, p) + r0.w, dot(r1.xyz, p) + r1.w, dot(r2.xyz, p) + r2.w).
+struct Instance {
+  world_from_object_0: vec4f,
+  world_from_object_1: vec4f,
+  world_from_object_2: vec4f,
+  object_from_world_0: vec4f,
+  object_from_world_1: vec4f,
+  object_from_world_2: vec4f,
+  // world_from_object of the previous frame (motion vectors: where a point of the instance was).
+  previous_0: vec4f,
+  previous_1: vec4f,
+  previous_2: vec4f,
+  // The bottom level's root in bvh_nodes.
+  blas_root: u32,
+  // The instance's first primitive in the scene's flattened list (HitRecord source indices).
+  source_base: u32,
+  // Scene material replacing the mesh's (scene/types.ts Instance.material), or NO_MATERIAL.
+  material: u32,
+  // INSTANCE_* bits.
+  flags: u32,
+}
+
+// The transform mirrors (negative determinant): v1 and v2 swap, as scene/triangles.ts swaps them.
+const INSTANCE_MIRRORED: u32 = 1u;
+// The instance's material has a hit filter (alpha mask or blend), whatever its mesh's materials say.
+const INSTANCE_ALPHA_FILTER: u32 = 2u;
+const NO_MATERIAL: u32 = 0xffffffffu;
+
 // What shading reads once per closest hit, same order as TriangleHot. The "cold" half. Spheres and
 // capsules use only material and source_index (their normals and uvs are analytic).
 struct TriangleShading {
@@ -126,6 +157,8 @@ const MATERIAL_ALPHA_BLEND: u32 = 4u;
 const MATERIAL_THIN_WALLED: u32 = 16u;
 // Scatters only in the plane perpendicular to scatter_plane_normal (scene/types.ts DiffuseMaterial.scatterPlaneNormal).
 const MATERIAL_SCATTER_IN_PLANE: u32 = 32u;
+// Both faces emit (scene/types.ts MaterialBase.twoSidedEmission: Doom's lamps on sprites).
+const MATERIAL_TWO_SIDED_EMISSION: u32 = 64u;
 
 // A material's use of one texture: where the texture lies in its atlas, how it is stored, and the
 // uv transform (KHR_texture_transform) applied first.
@@ -163,6 +196,9 @@ struct LightSlot {
   light: u32,
   alias_light: u32,
   keep: f32,
+  // The instances of an emissive primitive (light, alias_light): 0 for the static world.
+  instance: u32,
+  alias_instance: u32,
 }
 
 // A light code: the kind in the top two bits, an index below. Emissive triangles are coded by their
@@ -216,6 +252,9 @@ struct SceneInfo {
   // Selection probabilities of the environment map and of the sun (0 without them), for MIS.
   environment_select_pmf: f32,
   sun_select_pmf: f32,
+  // The top-level tree's root in bvh_nodes (bvh/levels.ts), for scenes with moving instances.
+  tlas_root: u32,
+  instance_count: u32,
 }
 
 // A ray with its valid interval (t_min, t_max). Directions need not be unit length unless a caller says so.
@@ -233,6 +272,8 @@ struct Hit {
   triangle: u32,
   u: f32,
   v: f32,
+  // The instance whose primitive was hit (0: the static world; see Instance).
+  instance: u32,
 }
 
 // A hit as ray-buffer passes report it to the host: the triangle as a source index (scene/triangles.ts).
