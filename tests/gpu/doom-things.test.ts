@@ -6,7 +6,8 @@
  * quad projects, the opaque half must show the picture's colours, the right way up, and hide the
  * wall; the transparent half must show the wall and floor behind. The projection is computed here:
  * 64×48 pixels, 73.74° vertical field of view, so 32 pixels of focal length; both quads face the view
- * plane, 72 units in front of the eye.
+ * plane, 72 units in front of the eye. Then the world is stepped from another view and its update
+ * applied: the imps turn to the new view plane and show the rotation seen from there.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { loadDoomMap } from '../../src/loaders/doom/load.ts';
@@ -14,7 +15,11 @@ import { encodeMap, encodePatch, squareRoom, squareRoomWad, testPaletteColor, Wa
 import { readWad, WadStack } from '../../src/loaders/doom/wad.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
-import type { Scene } from '../../src/scene/types.ts';
+import { cameraBasis } from '../../src/gpu/view.ts';
+import { determinant3, transformPoint } from '../../src/math/mat4.ts';
+import { dot, normalize, sub, type Vec3 } from '../../src/math/vec3.ts';
+import type { Camera, Scene } from '../../src/scene/types.ts';
+import { World } from '../../src/scene/world.ts';
 import { testGpu } from './gpu-context.ts';
 
 const W = 64, H = 48;
@@ -44,9 +49,10 @@ const albedoOf = (index: number) => testPaletteColor(index).map(linear);
 let renderer: Renderer;
 let albedo: Float32Array;
 let shown: string[];
+let loaded: Scene;
 
 beforeAll(async () => {
-  const s = scene();
+  const s = (loaded = scene());
   shown = s.instances.filter((i) => i.material !== undefined).map((i) => s.materials[i.material!]!.name);
   renderer = await Renderer.create(await testGpu());
   await renderer.setScene(prepareScene(s));
@@ -110,5 +116,51 @@ describe('sprites in front of a wall', () => {
     const [w, h] = [column(112) - column(96), row(0) - row(48)];
     // Pixel centres sample each rectangle: the count differs from the area by at most half the perimeter's worth.
     expect(Math.abs(count - 2 * w * h)).toBeLessThan(2 * (w + h));
+  });
+});
+
+/** The pixel (x, y) whose primary ray passes nearest `p` (gpu/view.ts primaryRay inverted). */
+function project(camera: Camera, p: Vec3): [number, number] {
+  const b = cameraBasis(camera, W / H);
+  const v = sub(p, b.position);
+  const t = dot(v, b.forward);
+  const nx = dot(v, b.right) / (t * dot(b.right, b.right));
+  const ny = -dot(v, b.up) / (t * dot(b.up, b.up));
+  return [((nx + 1) * W) / 2, ((ny + 1) * H) / 2];
+}
+
+describe('the world turns the sprites toward a new view (World -> applySceneUpdate -> GPU)', () => {
+  // From map (250, 100), south-east of both imps and looking between them: R_PointToAngle from there
+  // is 147° to the left imp and 132° to the right one; less their facing (270°) plus 202.5°, 79.5°
+  // and 64.5°: rotation 2 for both (TROOA2A8 as drawn), so the right imp, mirrored from the player
+  // start (rotation 8), turns back. 15° apart, the two quads do not overlap on the screen.
+  const camera = (): Camera => ({ ...loaded.camera, position: [250, 41, -100], forward: normalize([-122, -21, -100]) });
+
+  it("shows each imp's new rotation, facing the new view plane, opaque where its texels are", async () => {
+    const view = camera();
+    const update = World.of(loaded)!.advance(0, { position: view.position, forward: view.forward })!;
+    renderer.applySceneUpdate(update);
+    renderer.setCamera(view);
+    const seen = await renderer.readDebugValues();
+    const sprites = loaded.dynamics!.billboards!;
+    const poses = sprites.map((b) => update.instances.get(b.instance)!);
+    expect(poses.map((p) => loaded.materials[p.material!]!.name)).toEqual(['TROOA2A8', 'TROOA2A8']);
+    expect(poses.map((p) => determinant3(p.worldFromObject!) < 0)).toEqual([false, false]);
+    const at = (i: number, k: number) => seen[i * 4 + k]!;
+    const colour = (i: number) => [at(i, 0), at(i, 1), at(i, 2)];
+    const near = (c: number[], index: number) => albedoOf(index).every((x, k) => Math.abs(c[k]! - x) < 2e-3);
+    for (const pose of poses) {
+      const m = pose.worldFromObject!;
+      // The quad's normal (object +z) points against the view's horizontal forward.
+      const n = sub(transformPoint(m, [0, 0, 1]), transformPoint(m, [0, 0, 0]));
+      expect(Math.sign(determinant3(m)) * dot(n, [view.forward[0], 0, view.forward[2]])).toBeLessThan(0);
+      // Object x runs along the picture's columns (u), y up its rows from the bottom.
+      for (const [u, v, index] of [[0.7, 0.8, TOP], [0.85, 0.65, TOP], [0.7, 0.2, BOTTOM], [0.85, 0.35, BOTTOM], [0.2, 0.5, -1], [0.3, 0.3, -1]] as const) {
+        const [px, py] = project(view, transformPoint(m, [u, v, 0]));
+        const i = Math.floor(py) * W + Math.floor(px);
+        if (index < 0) expect(near(colour(i), TOP) || near(colour(i), BOTTOM), `transparent (${u}, ${v})`).toBe(false);
+        else expect(near(colour(i), index), `opaque (${u}, ${v}) at pixel ${px.toFixed(1)}, ${py.toFixed(1)}`).toBe(true);
+      }
+    }
   });
 });
