@@ -6,6 +6,7 @@ import { prepareScene, type PreparedScene } from '../renderer/prepare.ts';
 import { withEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
 import { Renderer } from '../renderer/renderer.ts';
+import type { Scene } from '../scene/types.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import { loadSceneArgument } from './scene-source.ts';
 
@@ -15,10 +16,12 @@ export interface Session {
   readonly loadMs: number;
 }
 
-export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string, environment?: Environment): Promise<Session> {
+/** `adjust` changes the loaded scene before it is prepared (bench --levels). */
+export async function openSession(sceneArg: string, note: (message: string) => void, lightTablePath?: string, environment?: Environment, adjust?: (scene: Scene) => Scene): Promise<Session> {
   const t0 = performance.now();
   const loaded = await loadSceneArgument(sceneArg, { onWarning: note, ...(lightTablePath ? { lightTablePath } : {}) });
-  const scene = environment ? withEnvironment(loaded, environment) : loaded;
+  const lit = environment ? withEnvironment(loaded, environment) : loaded;
+  const scene = adjust ? adjust(lit) : lit;
   const prepared = prepareScene(scene);
   const loadMs = performance.now() - t0;
   const gpu = await acquireNodeGpu({ onNote: note });
