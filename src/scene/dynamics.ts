@@ -16,6 +16,7 @@
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { MaterialEdit } from './material-edit.ts';
+import type { InstancePath } from './paths.ts';
 
 /**
  * The dynamic parts of a scene. Every field is optional; a scene without `dynamics` is frozen. Each
@@ -23,8 +24,10 @@ import type { MaterialEdit } from './material-edit.ts';
  *   billboards (scene/billboards.ts), materialAnimations (scene/material-animation.ts),
  *   movers (scene/movers.ts), paths (scene/paths.ts).
  */
-// eslint-disable-next-line @typescript-eslint/no-empty-interface
-export interface SceneDynamics {}
+export interface SceneDynamics {
+  /** Instances carried along closed paths (scene/paths.ts). */
+  readonly paths?: readonly InstancePath[];
+}
 
 /** An instance's new state: a transform, a material override (Instance.material), or both. */
 export interface InstancePose {

@@ -7,6 +7,7 @@
 import type { Vec3 } from '../math/vec3.ts';
 import { emptySceneUpdate, isEmptyUpdate, type InstancePose, type SceneUpdate } from './dynamics.ts';
 import type { MaterialEdit } from './material-edit.ts';
+import { pathAnimator } from './paths.ts';
 import type { Scene } from './types.ts';
 
 /** Where the scene is seen from: billboards turn toward it; the use key acts in front of it. */
@@ -56,7 +57,7 @@ export interface Animator {
 export type AnimatorFactory = (scene: Scene) => Animator | undefined;
 
 /** Every kind of motion (scene/dynamics.ts lists them), in the order their updates are merged. */
-const ANIMATORS: readonly AnimatorFactory[] = [];
+const ANIMATORS: readonly AnimatorFactory[] = [pathAnimator];
 
 export class World {
   private time = 0;
