@@ -39,8 +39,12 @@ export interface InstancePath {
   readonly pathFromObject?: Mat4;
 }
 
-/** Arc-length samples per segment of the curve: the table that makes the speed constant. */
-const SAMPLES_PER_SEGMENT = 32;
+/**
+ * Arc-length samples per segment of the curve: the table that makes the speed constant. Between samples
+ * the parameter is interpolated linearly, so the speed is off by about the relative change of the
+ * curve's parametric speed over one sample: under 0.5 % at 128 on a right-angle Catmull–Rom turn.
+ */
+const SAMPLES_PER_SEGMENT = 128;
 
 /** What is wrong with a path in `scene`, or undefined. */
 export function pathProblem(scene: Scene, path: InstancePath): string | undefined {
