@@ -33,7 +33,7 @@ export const LEVEL_ID = 0;
 
 /** Flame radiance: warm, bright enough that a flame lights its stretch of corridor dimly. */
 const FLAME_EMISSION: Vec3 = [26, 12, 3.2];
-const PHANTOM_EMISSION: Vec3 = [0.34, 0.46, 0.68];
+const PHANTOM_EMISSION: Vec3 = [0.4, 0.56, 0.88];
 
 /** The centre of tile (row, column) on the floor. */
 export const tileCentre = (row: number, column: number): Vec3 => [(column + 0.5) * DUNGEON_TILE, 0, (row + 0.5) * DUNGEON_TILE];
@@ -230,7 +230,7 @@ export function dungeonScene(): Scene {
     flame: add({ kind: 'emissive', name: 'flame', emission: FLAME_EMISSION }),
   };
   const phantom = {
-    robe: add(diffuse('phantom robe', [0.55, 0.6, 0.68], PHANTOM_EMISSION)),
+    robe: add(diffuse('phantom robe', [0.26, 0.3, 0.38], PHANTOM_EMISSION)),
     shadow: add(diffuse('phantom shadow', [0.01, 0.01, 0.012])),
     eyes: add({ kind: 'emissive', name: 'phantom eyes', emission: [2.2, 2.8, 3.4] }),
   };
