@@ -103,11 +103,11 @@ function grid(block: number): Layout {
 }
 
 /** Wall blocks: 128 × 128 pixels for one tile's width of wall (two blocks a course, four courses). */
-export const wallTexture = (): Texture => paint('dungeon-wall', 128, runningBond(128, 64, 32), [150, 136, 118], 2, 11);
+export const wallTexture = (): Texture => paint('dungeon-wall', 128, runningBond(128, 64, 32), [124, 112, 98], 2, 11);
 
 /** Floor: 256 × 256 pixels, 4 × 4 flagstones; a floor tile shows four of them, chosen per tile. */
 export const FLOOR_STONES_PER_SIDE = 4;
-export const floorTexture = (): Texture => paint('dungeon-floor', 256, grid(64), [128, 120, 108], 3, 23);
+export const floorTexture = (): Texture => paint('dungeon-floor', 256, grid(64), [112, 104, 94], 3, 23);
 
 /** Ceiling: rough, darker, larger blocks. */
-export const ceilingTexture = (): Texture => paint('dungeon-ceiling', 128, runningBond(128, 128, 64), [104, 98, 92], 2, 37);
+export const ceilingTexture = (): Texture => paint('dungeon-ceiling', 128, runningBond(128, 128, 64), [84, 79, 74], 2, 37);

@@ -66,13 +66,14 @@ describe('dungeon map', () => {
 
   it('every flame emits into the floor tile in front of its wall', () => {
     const mesh = scene.meshes[0]!;
-    const flame = scene.materials.findIndex((m) => m.name === 'flame');
+    const flames = new Set(scene.materials.flatMap((m, i) => (m.name.startsWith('flame') ? [i] : [])));
+    expect(flames.size).toBe(2);
     const P = mesh.positions;
     const v = (i: number): Vec3 => [P[i * 3]!, P[i * 3 + 1]!, P[i * 3 + 2]!];
-    let flames = 0;
+    let flameTriangles = 0;
     for (let t = 0; t < mesh.indices.length / 3; t++) {
-      if (mesh.materialIds[t] !== flame) continue;
-      flames++;
+      if (!flames.has(mesh.materialIds[t]!)) continue;
+      flameTriangles++;
       const [a, b, c] = [0, 1, 2].map((k) => v(mesh.indices[t * 3 + k]!)) as [Vec3, Vec3, Vec3];
       const n = normalize(cross(sub(b, a), sub(c, a)));
       const centroid: Vec3 = [(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3];
@@ -81,11 +82,11 @@ describe('dungeon map', () => {
       expect(ahead).toBeGreaterThan(behind);
       expect(isFloor(map, ...tileOf(centroid[0], centroid[2]))).toBe(true);
     }
-    // Two triangles per quad, two quads per flame, one flame per torch face.
+    // Per torch face, two planes of a six-triangle teardrop and a two-triangle core.
     let torchFaces = 0;
     for (let r = 0; r < map.rows; r++) for (let c = 0; c < map.columns; c++) if (isFloor(map, r, c)) for (const [dc, dr] of DIRS) if (map.cells[(r + dr) * map.columns + c + dc] === 'torch') torchFaces++;
     expect(torchFaces).toBeGreaterThan(10);
-    expect(flames).toBe(4 * torchFaces);
+    expect(flameTriangles).toBe(16 * torchFaces);
   });
 });
 

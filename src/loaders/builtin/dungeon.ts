@@ -3,7 +3,8 @@
  * issue #12 §4). Doom's scale, so that Doom's walker and torch fit it unchanged: a tile is 64 units
  * (2 m at 1/32 m per unit), the ceiling 96 units (3 m) high. Per floor tile: four flagstones and a
  * ceiling slab; per wall face: a wall above a plinth (whose ends meet at inner and outer corners);
- * on every face of a torch tile ('t') an iron sconce and a flame of two emitting quads. The player's
+ * on every face of a torch tile ('t') an iron sconce and a flame (an orange teardrop round a
+ * yellow-white core, twice, in a V so it shows from along the corridor too). The player's
  * torch (Doom's) is the main light. The phantom (phantom.ts), a faintly glowing robe, walks the ring
  * corridor (scene/paths.ts: a Catmull–Rom loop through tile centres at 1.5 m/s, facing its way,
  * bobbing). The walk map has one sector, the floor, bounded by every wall face. Pure.
@@ -31,8 +32,9 @@ export const PHANTOM_SPEED = 1.5 / DUNGEON_METERS_PER_UNIT;
 export const PHANTOM_ID = 1;
 export const LEVEL_ID = 0;
 
-/** Flame radiance: warm, bright enough that a flame lights its stretch of corridor dimly. */
-const FLAME_EMISSION: Vec3 = [26, 12, 3.2];
+/** Flame radiance, the outer teardrop and the core: a pool of warm light round each sconce. */
+const FLAME_EMISSION: Vec3 = [7, 3, 0.7];
+const FLAME_CORE_EMISSION: Vec3 = [14, 10, 4.5];
 const PHANTOM_EMISSION: Vec3 = [0.4, 0.56, 0.88];
 
 /** The centre of tile (row, column) on the floor. */
@@ -55,6 +57,15 @@ class Builder {
     this.materialIds.push(material, material);
   }
 
+  /** A triangle without texture (a, b, c counter-clockwise seen from its emitting side). */
+  triangle(material: number, a: Vec3, b: Vec3, c: Vec3): void {
+    const base = this.positions.length / 3;
+    this.positions.push(...a, ...b, ...c);
+    this.uvs.push(0, 0, 1, 0, 0, 1);
+    this.indices.push(base, base + 1, base + 2);
+    this.materialIds.push(material);
+  }
+
   build(name: string): Mesh {
     return { name, positions: new Float32Array(this.positions), uvs: new Float32Array(this.uvs), indices: new Uint32Array(this.indices), materialIds: new Uint32Array(this.materialIds) };
   }
@@ -67,6 +78,7 @@ interface LevelMaterials {
   readonly ceiling: number;
   readonly iron: number;
   readonly flame: number;
+  readonly flameCore: number;
 }
 
 /** The four directions in the plan: (dx, dz) = (column step, row step). */
@@ -179,14 +191,22 @@ function torch(b: Builder, m: LevelMaterials, r: number, c: number, dx: number, 
     b.quad(m.iron, [p(s0, y0, e0), p(s0, y0, e1), p(s0, y1, e1), p(s0, y1, e0)], flat); // side −t
   };
   box(-3, 3, 54, 60, 0, 9);
-  // The flame: two quads in a V over the sconce, turned 35° either way from the wall's normal so it
-  // shows from along the corridor too; each emits toward the room.
-  const turn = (35 * Math.PI) / 180;
+  // The flame, above the sconce: a teardrop (fan of six triangles) with a diamond core in front of
+  // it, in two planes turned 35° either way from the wall's normal (a V), so that it shows from
+  // along the corridor too; counter-clockwise in (across, up), so each emits toward the room.
+  const turn = (35 * Math.PI) / 180, y0 = 60, e = 5.5;
+  const OUTER: readonly (readonly [number, number])[] = [[0, 0], [2.6, 3.5], [2.2, 9], [0, 15], [-2.2, 9], [-2.6, 3.5]];
+  const CORE: readonly (readonly [number, number])[] = [[0, 1.5], [1.3, 5], [0, 10.5], [-1.3, 5]];
   for (const side of [-1, 1]) {
-    const w = 5, e = 5.5, y0 = 60, y1 = 76;
-    const ds = Math.cos(turn) * w, de = Math.sin(turn) * w * side;
-    const a = p(-ds, y0, e - de), bb = p(ds, y0, e + de), cc = p(ds, y1, e + de), d = p(-ds, y1, e - de);
-    b.quad(m.flame, [a, bb, cc, d], [[0, 1], [1, 1], [1, 0], [0, 0]]);
+    const q = (across: number, y: number, forward = 0): Vec3 => p(Math.cos(turn) * across, y0 + y, e + forward + Math.sin(turn) * across * side);
+    const centre = q(0, 6);
+    OUTER.forEach(([s0, h0], k) => {
+      const [s1, h1] = OUTER[(k + 1) % OUTER.length]!;
+      b.triangle(m.flame, centre, q(s0, h0), q(s1, h1));
+    });
+    const [c0, c1, c2, c3] = CORE.map(([s0, h0]) => q(s0, h0, 0.3)) as [Vec3, Vec3, Vec3, Vec3];
+    b.triangle(m.flameCore, c0, c1, c2);
+    b.triangle(m.flameCore, c0, c2, c3);
   }
 }
 
@@ -228,6 +248,7 @@ export function dungeonScene(): Scene {
     ceiling: add(diffuse('ceiling', [1, 1, 1], [0, 0, 0], { albedoTexture: { texture: 2 } })),
     iron: add(diffuse('iron', [0.05, 0.045, 0.04])),
     flame: add({ kind: 'emissive', name: 'flame', emission: FLAME_EMISSION }),
+    flameCore: add({ kind: 'emissive', name: 'flame core', emission: FLAME_CORE_EMISSION }),
   };
   const phantom = {
     robe: add(diffuse('phantom robe', [0.26, 0.3, 0.38], PHANTOM_EMISSION)),

@@ -25,7 +25,7 @@ const PROFILE: readonly (readonly [number, number])[] = [
 ];
 
 /** Around the axis. */
-const SEGMENTS = 20;
+const SEGMENTS = 16;
 /** The hood's opening: rings between these heights, within this angle of +z. */
 const FACE_FROM = 44.5, FACE_TO = 56, FACE_HALF_ANGLE = (50 * Math.PI) / 180;
 
