@@ -103,12 +103,12 @@ export class CompiledPath {
     // Centripetal knots: t_{i+1} = t_i + |P_{i+1} − P_i|^½.
     const t0 = 0, t1 = t0 + Math.sqrt(length(sub(p1, p0))), t2 = t1 + Math.sqrt(length(sub(p2, p1))), t3 = t2 + Math.sqrt(length(sub(p3, p2)));
     const t = t1 + f * (t2 - t1);
-    const a1 = mix(p0, p1, (t - t0) / (t1 - t0));
-    const a2 = mix(p1, p2, (t - t1) / (t2 - t1));
-    const a3 = mix(p2, p3, (t - t2) / (t3 - t2));
-    const b1 = mix(a1, a2, (t - t0) / (t2 - t0));
-    const b2 = mix(a2, a3, (t - t1) / (t3 - t1));
-    return mix(b1, b2, (t - t1) / (t2 - t1));
+    const a1 = lerp(p0, p1, (t - t0) / (t1 - t0));
+    const a2 = lerp(p1, p2, (t - t1) / (t2 - t1));
+    const a3 = lerp(p2, p3, (t - t2) / (t3 - t2));
+    const b1 = lerp(a1, a2, (t - t0) / (t2 - t0));
+    const b2 = lerp(a2, a3, (t - t1) / (t3 - t1));
+    return lerp(b1, b2, (t - t1) / (t2 - t1));
   }
 
   /** The curve parameter at arc length s (any real; wraps around the loop). */
@@ -172,7 +172,6 @@ export class CompiledPath {
 }
 
 const lerp = (a: Vec3, b: Vec3, f: number): Vec3 => [a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f];
-const mix = lerp;
 
 /** The scene's paths, checked and compiled; throws LanternError naming the first bad one. */
 export function compilePaths(scene: Scene): CompiledPath[] {

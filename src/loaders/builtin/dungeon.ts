@@ -9,7 +9,7 @@
  * corridor (scene/paths.ts: a Catmull–Rom loop through tile centres at 1.5 m/s, facing its way,
  * bobbing). The walk map has one sector, the floor, bounded by every wall face. Pure.
  */
-import { type Mat4 } from '../../math/mat4.ts';
+import { IDENTITY, type Mat4 } from '../../math/mat4.ts';
 import type { Vec3 } from '../../math/vec3.ts';
 import { CompiledPath, type InstancePath } from '../../scene/paths.ts';
 import { diffuse, type Material, type Mesh, type Scene } from '../../scene/types.ts';
@@ -263,7 +263,7 @@ export function dungeonScene(): Scene {
     name: 'dungeon',
     meshes: [mesh, phantomMesh(phantom)],
     instances: [
-      { id: LEVEL_ID, name: 'dungeon', mesh: 0, worldFromObject: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] },
+      { id: LEVEL_ID, name: 'dungeon', mesh: 0, worldFromObject: IDENTITY },
       { id: PHANTOM_ID, name: 'phantom', mesh: 1, worldFromObject: start, moves: true },
     ],
     materials,
