@@ -4,7 +4,9 @@
  * distance, and the choice of which to trace as the camera moves. Not yet connected to `Renderer`:
  * the wiring (behind a `tileCulling` setting, off until measured) is a swap of the geometry buffers
  * (TILE_SWAP_BUFFERS and the triangle attributes: materials, textures and the environment are shared
- * with the full scene, packed once) followed by `applySceneUpdate(selection.catchUp)`.
+ * with the full scene, packed once) followed by `applySceneUpdate(selection.catchUp)`; the grid and
+ * distance come from `defaultTileCulling(scene)` (2 m tiles, 10 m), and each world step's update goes
+ * to `noteUpdate` as well as to the renderer.
  *
  * Precomputation reuses the full scene's packed materials and environment, so a tile costs only its
  * geometry (flatten, BVH build, geometry packing). Pure (no GPU): it runs in a worker or a test.

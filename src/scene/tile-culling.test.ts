@@ -3,7 +3,7 @@ import { expectLanternError } from '../expect-lantern-error.ts';
 import { DUNGEON_MAP, isFloor, parseTileMap } from '../loaders/builtin/dungeon-map.ts';
 import { DUNGEON_TILE, dungeonScene, PHANTOM_ID } from '../loaders/builtin/dungeon.ts';
 import { flattenTriangles } from './triangles.ts';
-import { cullSceneToTile, drawnTriangles, tileAt, tileGridFromWalkMap, tileSquare, triangleSquareDistance, walkableTiles } from './tile-culling.ts';
+import { cullSceneToTile, defaultTileCulling, drawnTriangles, tileAt, tileGridFromWalkMap, tileSquare, triangleSquareDistance, walkableTiles } from './tile-culling.ts';
 import { validateScene } from './validate.ts';
 
 /** The distance: 10 units of the seed's 2-unit tiles, five tiles. */
@@ -135,6 +135,14 @@ describe('tile culling on the dungeon', () => {
     const tile = walkableTiles(grid)[40]!;
     expect(drawnTriangles(cullSceneToTile(scene, grid, tile, 2 * DISTANCE))).toBeGreaterThan(drawnTriangles(cullSceneToTile(scene, grid, tile, DISTANCE)));
     expect(drawnTriangles(cullSceneToTile(scene, grid, tile, 100 * DUNGEON_TILE))).toBe(full);
+  });
+
+  it('defaults to 2 m tiles and 10 m for a scene with a walk map and a unit size, and to nothing otherwise', () => {
+    const d = defaultTileCulling(scene)!;
+    expect(d.distance).toBe(DISTANCE);
+    expect(d.grid).toEqual(grid);
+    expect(defaultTileCulling({ ...scene, walkMap: undefined })).toBeUndefined();
+    expect(defaultTileCulling({ ...scene, metersPerUnit: undefined })).toBeUndefined();
   });
 
   it('refuses a tile that is not walkable, a bad distance or a bad tile size', () => {

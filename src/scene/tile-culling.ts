@@ -251,3 +251,17 @@ export function tileCulledScenes(scene: Scene, grid: TileGrid, distance: number)
 export function drawnTriangles(scene: Scene): number {
   return scene.instances.reduce((n, inst) => n + scene.meshes[inst.mesh]!.indices.length / 3, 0);
 }
+
+/** The seed's tile (2 m) and culling distance (10 units of its 2-unit tiles: five tiles, 10 m). */
+export const TILE_CULLING_TILE_METERS = 2;
+export const TILE_CULLING_DISTANCE_METERS = 10;
+
+/**
+ * The grid and distance a renderer uses for `scene` when per-tile culling is on: tiles of 2 m over
+ * its walk map, everything within 10 m kept (the dungeon: 64-unit tiles, 320 units). Undefined for a
+ * scene without a walk map or a known unit size, which the trick does not apply to.
+ */
+export function defaultTileCulling(scene: Scene): { readonly grid: TileGrid; readonly distance: number } | undefined {
+  if (!scene.walkMap || !scene.metersPerUnit) return undefined;
+  return { grid: tileGridFromWalkMap(scene.walkMap, TILE_CULLING_TILE_METERS / scene.metersPerUnit), distance: TILE_CULLING_DISTANCE_METERS / scene.metersPerUnit };
+}
