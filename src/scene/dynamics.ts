@@ -18,6 +18,7 @@ import type { Mat4 } from '../math/mat4.ts';
 import type { MaterialAnimations } from './material-animation.ts';
 import type { MaterialEdit } from './material-edit.ts';
 import type { MoverSet } from './movers.ts';
+import type { InstancePath } from './paths.ts';
 
 /**
  * The dynamic parts of a scene. Every field is optional; a scene without `dynamics` is frozen. Each
@@ -30,6 +31,8 @@ export interface SceneDynamics {
   readonly materialAnimations?: MaterialAnimations;
   /** Doors and lifts. */
   readonly movers?: MoverSet;
+  /** Instances carried along closed paths (scene/paths.ts). */
+  readonly paths?: readonly InstancePath[];
 }
 
 /** An instance's new state: a transform, a material override (Instance.material), or both. */
