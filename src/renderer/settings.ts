@@ -96,6 +96,10 @@ export const RENDER_SETTINGS = {
     name: 'wireframe depth', description: 'wireframe view: the BVH depth whose boxes are drawn (0 = the scene bounds)', min: 0, max: MAX_WIREFRAME_DEPTH, default: 0,
     cli: { flag: '--wireframe-depth', argument: '<d>' }, link: 'depth', restarts: false, panel: { folder: 'debug', label: 'box depth', step: 1 },
   }),
+  tileCulling: boolean({
+    name: 'tile culling', description: 'walk-map scenes (the dungeon): trace only what lies within 10 m of the tile the camera stands on, one BVH per tile precomputed and swapped as the camera steps (an approximation: farther lights and walls vanish)', words: ['0', '1'], default: false,
+    cli: { flag: '--tile-culling', switch: true }, link: 'tile-cull', restarts: true, panel: { folder: 'render', label: 'tile culling' },
+  }),
   wireframeLevel: choice(WIREFRAME_LEVELS, {
     name: 'wireframe level', description: "wireframe view: the static world's BVH boxes, or the top level's (over the moving instances: doors, lifts, sprites)", default: 'static',
     cli: { flag: '--wireframe-level', argument: '<level>' }, link: 'wf-level', restarts: false, panel: { folder: 'debug', label: 'boxes of' },

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { traverseClosest } from '../bvh/traverse.ts';
+import { traceScene } from '../bvh/levels.ts';
 import { DUNGEON_TILE, dungeonScene, PHANTOM_ID, tileCentre } from '../loaders/builtin/dungeon.ts';
 import { EYE_HEIGHT } from '../loaders/doom/map-types.ts';
 import { normalize, type Vec3 } from '../math/vec3.ts';
@@ -19,7 +19,7 @@ const eye = (row: number, column: number): Vec3 => {
 };
 
 /** The closest hit's distance along a unit ray, or Infinity. */
-const hitT = (p: PreparedScene, origin: Vec3, direction: Vec3): number => traverseClosest(p.bvh, p.triangles.positions, { origin, direction }, p.triangles.kinds)?.t ?? Infinity;
+const hitT = (p: PreparedScene, origin: Vec3, direction: Vec3): number => traceScene(p.scene, p.triangles, p.bvh, p.levels, { origin, direction })?.t ?? Infinity;
 
 describe('tile-culled scenes', () => {
   it('prepares one scene per walkable tile, smaller than the full one', () => {
@@ -82,8 +82,8 @@ describe('tile-culled scenes', () => {
     const from = eye(1, 1);
     const selection = fresh.select(from);
     expect(selection.catchUp.instances.get(PHANTOM_ID)?.worldFromObject).toEqual(pose);
-    const caughtUp = updateGeometry(selection.prepared, selection.catchUp.instances, selection.catchUp.morphWeights);
-    const fullMoved = updateGeometry(full, update.instances, update.morphWeights);
+    const caughtUp = updateGeometry(selection.prepared, selection.catchUp.instances, selection.catchUp.morphWeights).prepared;
+    const fullMoved = updateGeometry(full, update.instances, update.morphWeights).prepared;
     // Aim at the phantom's chest where it now is: both scenes hit it at the same distance, and not where it stood.
     const target: Vec3 = [pose[12]!, pose[13]! + 30, pose[14]!];
     const d = normalize([target[0] - from[0], target[1] - from[1], target[2] - from[2]]);

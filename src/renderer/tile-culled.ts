@@ -11,17 +11,17 @@
  * Precomputation reuses the full scene's packed materials and environment, so a tile costs only its
  * geometry (flatten, BVH build, geometry packing). Pure (no GPU): it runs in a worker or a test.
  */
-import { buildBvh } from '../bvh/build.ts';
+import { buildLevels, buildStaticBvh } from '../bvh/levels.ts';
 import { packGeometry } from '../gpu/pack/scene-pack.ts';
 import type { Vec3 } from '../math/vec3.ts';
 import { emptySceneUpdate, type InstancePose, type SceneUpdate } from '../scene/dynamics.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { cullSceneToTile, tileAt, walkableTiles, type TileGrid } from '../scene/tile-culling.ts';
 import { flattenTriangles } from '../scene/triangles.ts';
-import { MOVED_BUFFERS, type PreparedScene } from './prepare.ts';
+import { GEOMETRY_BUFFERS, type PreparedScene } from './prepare.ts';
 
 /** The group-0 buffers that differ between tiles (besides the triangle-attribute texture). */
-export const TILE_SWAP_BUFFERS = MOVED_BUFFERS;
+export const TILE_SWAP_BUFFERS = GEOMETRY_BUFFERS;
 
 /** Which prepared scene to trace from a camera position. */
 export interface TileSelection {
@@ -62,11 +62,13 @@ export function prepareTile(full: PreparedScene, grid: TileGrid, tile: number, d
   const scene = cullSceneToTile(full.scene, grid, tile, distance);
   const triangles = flattenTriangles(scene);
   const t1 = performance.now();
-  const bvh = buildBvh(triangles.positions, {}, triangles.kinds);
+  const bvh = buildStaticBvh(scene, triangles);
+  const levels = buildLevels(scene, bvh);
   const t2 = performance.now();
-  const packed = packGeometry(scene, triangles, bvh, full.packed.packedMaterials, full.packed.environment);
+  const packed = packGeometry(scene, triangles, bvh, full.packed.packedMaterials, full.packed.environment, levels);
   const t3 = performance.now();
-  return { scene, triangles, bvh, packed, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+  // The full scene's features: the pipelines compiled for it serve every tile (a superset is always correct).
+  return { scene, triangles, bvh, ...(levels ? { levels } : {}), packed: { ...packed, features: full.packed.features }, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
 }
 
 export class TileCulledScenes {
@@ -104,8 +106,12 @@ export class TileCulledScenes {
     const chosen = prepared === this.full ? undefined : tile;
     const changed = this.last === null || this.last !== chosen;
     this.last = chosen;
-    const catchUp = { ...emptySceneUpdate(), instances: new Map(this.poses), morphWeights: new Map(this.weights), materials: new Map(this.edits) };
-    return { tile: chosen, prepared, changed, catchUp };
+    return { tile: chosen, prepared, changed, catchUp: this.catchUp() };
+  }
+
+  /** Everything the world changed since the scenes were prepared (what a swapped-in scene must apply). */
+  catchUp(): SceneUpdate {
+    return { ...emptySceneUpdate(), instances: new Map(this.poses), morphWeights: new Map(this.weights), materials: new Map(this.edits) };
   }
 
   stats(): TileCullingStats {

@@ -80,6 +80,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
   const result = await runBenchmark(renderer, { repeats: o.repeats });
   const levels = benchmarkLevels(prepared, o.tlasInstances, o.repeats);
+  const culling = renderer.tileCullingStats;
   const s = prepared.bvh.stats;
   const report = {
     scene: prepared.scene.name,
@@ -90,6 +91,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     spectral: renderer.settings.spectral,
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
     levels: { mode: o.levels, instances: prepared.packed.counts.instances, ...levels },
+    ...(culling ? { tileCulling: culling } : {}),
     kernel: { kind: o.kernel, ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, unrolled: specialisation.unrolled } : {}) },
     ...result,
   };
@@ -109,6 +111,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
       `  levels          ${o.levels}: ${prepared.packed.counts.instances} instance record(s), ${levels.blas.meshes} moving mesh(es) of ${levels.blas.triangles.toLocaleString('en-US')} primitives`,
       `  top level       rebuilt over ${levels.tlas.instances.toLocaleString('en-US')} instances in ${f(levels.tlas.ms, 3)} ms (CPU)`,
       ...(levels.blas.meshes > 0 ? [`  moving meshes   refit ${f(levels.blas.refitMs, 3)} ms vs rebuild ${f(levels.blas.rebuildMs, 3)} ms; a frame moving all of them: ${f(levels.updateMs, 3)} ms (CPU)`] : []),
+      ...(culling ? [`  tile culling    ${culling.tiles} tiles of ${f(culling.meanTriangles, 0)} triangles on average (max ${culling.maxTriangles}, full ${culling.fullTriangles}); geometry ${f(culling.tilesGeometryBytes / 2 ** 20)} MiB for all tiles vs ${f(culling.fullGeometryBytes / 2 ** 20, 2)} MiB; precomputed in ${f(culling.precomputeMs, 0)} ms (CPU)`] : []),
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,
       `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms)`,
       `  kernel          ${specialisation ? `specialised (${specialisation.description}), compiled in ${f(specialisation.compileMs, 0)} ms` : 'generic'}`,
