@@ -9,7 +9,7 @@ import type { Bvh } from './types.ts';
 export const NO_DEPTH = 0xffffffff;
 
 /** depths[node] for every slot of the flat layout; NO_DEPTH for the unused slot 1. */
-export function nodeDepths(bvh: Bvh): Uint32Array {
+export function nodeDepths(bvh: Pick<Bvh, 'nodeCount' | 'leftFirst' | 'triCount'>): Uint32Array {
   const depths = new Uint32Array(bvh.nodeCount).fill(NO_DEPTH);
   const stack = [0];
   depths[0] = 0;

@@ -63,9 +63,9 @@ function radixSort(keys: Uint32Array, index: Uint32Array): void {
  */
 export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
   const total = boxes.length / 6;
-  const live: number[] = [];
-  for (let i = 0; i < total; i++) if (boxes[i * 6]! <= boxes[i * 6 + 3]!) live.push(i);
-  const n = live.length;
+  const live = new Uint32Array(total);
+  let n = 0;
+  for (let i = 0; i < total; i++) if (boxes[i * 6]! <= boxes[i * 6 + 3]!) live[n++] = i;
   const capacity = tlasCapacity(n);
   const out: Tlas =
     into && into.bounds.length >= capacity * 6
@@ -84,8 +84,8 @@ export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
 
   // Morton codes of the centroids within the centroids' bounds.
   let lx = Infinity, ly = Infinity, lz = Infinity, hx = -Infinity, hy = -Infinity, hz = -Infinity;
-  for (const i of live) {
-    const o = i * 6;
+  for (let j = 0; j < n; j++) {
+    const o = live[j]! * 6;
     const cx = boxes[o]! + boxes[o + 3]!, cy = boxes[o + 1]! + boxes[o + 4]!, cz = boxes[o + 2]! + boxes[o + 5]!;
     if (cx < lx) lx = cx;
     if (cx > hx) hx = cx;
@@ -116,9 +116,16 @@ export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
   while (sp > 0) {
     const hi = stack[--sp]!, lo = stack[--sp]!, node = stack[--sp]!;
     if (hi - lo === 1) {
-      leftFirst[node] = order[lo]!;
+      const item = order[lo]!;
+      leftFirst[node] = item;
       triCount[node] = 1;
-      bounds.set(boxes.subarray(order[lo]! * 6, order[lo]! * 6 + 6), node * 6);
+      const o = node * 6, b = item * 6;
+      bounds[o] = boxes[b]!;
+      bounds[o + 1] = boxes[b + 1]!;
+      bounds[o + 2] = boxes[b + 2]!;
+      bounds[o + 3] = boxes[b + 3]!;
+      bounds[o + 4] = boxes[b + 4]!;
+      bounds[o + 5] = boxes[b + 5]!;
       continue;
     }
     const first = codes[lo]!, last = codes[hi - 1]!;
@@ -153,8 +160,9 @@ export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
     if (node === 1 || triCount[node] !== 0) continue;
     const l = leftFirst[node]! * 6, r = l + 6, o = node * 6;
     for (let c = 0; c < 3; c++) {
-      bounds[o + c] = Math.min(bounds[l + c]!, bounds[r + c]!);
-      bounds[o + 3 + c] = Math.max(bounds[l + 3 + c]!, bounds[r + 3 + c]!);
+      const a = bounds[l + c]!, b = bounds[r + c]!, A = bounds[l + 3 + c]!, B = bounds[r + 3 + c]!;
+      bounds[o + c] = a < b ? a : b;
+      bounds[o + 3 + c] = A > B ? A : B;
     }
   }
   return { ...out, nodeCount: next };

@@ -6,6 +6,7 @@ import { prepareScene, type PreparedScene } from '../renderer/prepare.ts';
 import { withEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
 import { Renderer } from '../renderer/renderer.ts';
+import type { Scene } from '../scene/types.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
 import { loadSceneArgument, sceneLoadOptions } from './scene-source.ts';
@@ -16,10 +17,12 @@ export interface Session {
   readonly loadMs: number;
 }
 
-export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment): Promise<Session> {
+/** `adjust` changes the loaded scene before it is prepared (bench --levels). */
+export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene): Promise<Session> {
   const t0 = performance.now();
   const loaded = await loadSceneArgument(sceneArg, sceneLoadOptions(sceneOptions, note));
-  const scene = environment ? withEnvironment(loaded, environment) : loaded;
+  const lit = environment ? withEnvironment(loaded, environment) : loaded;
+  const scene = adjust ? adjust(lit) : lit;
   const prepared = prepareScene(scene);
   const loadMs = performance.now() - t0;
   const gpu = await acquireNodeGpu({ onNote: note });

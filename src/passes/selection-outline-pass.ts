@@ -4,7 +4,7 @@
  * changed, and an outline composed over the shown image into a texture of its own. The estimate and
  * what readImage() returns are never touched.
  */
-import { ComputeKernel, SceneKernels } from '../gpu/kernel.ts';
+import { ComputeKernel, SceneKernels, TRAVERSAL_FEATURES } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -48,7 +48,7 @@ export class SelectionOutlinePass {
 
   static async create(device: GPUDevice): Promise<SelectionOutlinePass> {
     const [maskKernels, outlineKernel] = await Promise.all([
-      SceneKernels.create(device, { module: MODULE, entryPoint: 'selection_mask' }, ['alphaMasks']),
+      SceneKernels.create(device, { module: MODULE, entryPoint: 'selection_mask' }, TRAVERSAL_FEATURES),
       ComputeKernel.create(device, { module: MODULE, entryPoint: 'selection_outline' }),
     ]);
     return new SelectionOutlinePass(device, maskKernels, outlineKernel, new UniformParams(device, MODULE));

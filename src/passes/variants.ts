@@ -23,6 +23,9 @@ export type DebugView = (typeof DEBUG_VIEWS)[number];
 
 /** How a debug view meets the image: instead of it, in a pane beside it (both at half size), or blended over it. */
 export const DEBUG_LAYOUTS = ['replace', 'side-by-side', 'overlay'] as const;
+/** Whose boxes the wireframe view draws: the static world's BVH, or the top level over the moving instances (bvh/levels.ts). */
+export const WIREFRAME_LEVELS = ['static', 'top'] as const;
+export type WireframeLevel = (typeof WIREFRAME_LEVELS)[number];
 export type DebugLayout = (typeof DEBUG_LAYOUTS)[number];
 
 /**

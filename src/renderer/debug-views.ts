@@ -80,7 +80,7 @@ export class DebugViews {
     const scene = this.scene(frame.prepared, frame.resources);
     this.trace.encode(encoder, frame.resources, frame.view, { ...size, nodeDepths: scene.depthBuffer }, s.debugView);
     if (s.debugView === 'wireframe') {
-      const nodes = this.wireframeNodes(scene, s.wireframeDepth);
+      const nodes = s.wireframeLevel === 'top' && frame.prepared.levels ? this.topLevelNodes(frame.prepared, s.wireframeDepth) : this.wireframeNodes(scene, s.wireframeDepth);
       this.wireframe.encode(encoder, frame.resources, frame.view, nodes.buffer, nodes.count, scene.near, size.wireframe);
     }
     // 0 asks the shader for the image's own maximum (heatMax 'auto').
@@ -116,6 +116,7 @@ export class DebugViews {
     this.destroySize();
     this.destroyScene();
     this.trace.destroy();
+    this.topLevel?.buffer.destroy();
     this.wireframe.destroy();
     this.compose.destroy();
   }
@@ -156,6 +157,22 @@ export class DebugViews {
     };
     return this.sceneData;
   }
+
+  /** The top level's boxes at `depth`, made again whenever the top level was rebuilt (something moved). */
+  private topLevelNodes(prepared: PreparedScene, depth: number): { buffer: GPUBuffer; count: number } {
+    const tlas = prepared.levels!.tlas;
+    if (this.topLevel?.tlas !== tlas || this.topLevel.depth !== depth) {
+      this.topLevel?.buffer.destroy();
+      const base = prepared.packed.layout.tlasBase;
+      const list = nodesAtDepth(nodeDepths(tlas), depth).map((n) => n + base);
+      // An empty list still needs a buffer to bind.
+      const buffer = createBufferWithData(this.device, `top-level nodes at depth ${depth}`, list.length > 0 ? list : new Uint32Array(1), GPUBufferUsage.STORAGE);
+      this.topLevel = { tlas, depth, buffer, count: list.length };
+    }
+    return this.topLevel;
+  }
+
+  private topLevel?: { tlas: object; depth: number; buffer: GPUBuffer; count: number };
 
   private wireframeNodes(scene: SceneData, depth: number): { buffer: GPUBuffer; count: number } {
     let nodes = scene.wireframeNodes.get(depth);

@@ -29,7 +29,9 @@ import { PresentPass } from '../passes/present-pass.ts';
 import { SelectionOutlinePass, type SelectedRange } from '../passes/selection-outline-pass.ts';
 import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes/trace-rays-pass.ts';
 import { dot, type Vec3 } from '../math/vec3.ts';
-import { emptySceneUpdate, type SceneUpdate } from '../scene/dynamics.ts';
+import { emptySceneUpdate, isEmptyUpdate, type SceneUpdate } from '../scene/dynamics.ts';
+import { defaultTileCulling } from '../scene/tile-culling.ts';
+import { TILE_SWAP_BUFFERS, TileCulledScenes, type TileCullingStats } from './tile-culled.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
 import { lensProblem } from '../scene/lens.ts';
@@ -220,6 +222,9 @@ export class Renderer {
     this.resources = resources;
     this.prepared = prepared;
     this.selectionStale = true;
+    // A new scene: its own tiles, if the setting asks for them.
+    this.tileCulled = undefined;
+    this.configureTileCulling();
     // After the swap, so the idle timer it restarts sees the new scene.
     this.invalidateSpecialisation();
   }
@@ -240,6 +245,12 @@ export class Renderer {
    * `walkHeights` is the viewer's business.
    */
   applySceneUpdate(update: SceneUpdate): PreparedScene {
+    // The other tiles' scenes catch up when they are swapped in.
+    this.tileCulled?.noteUpdate(update);
+    return this.applyToCurrent(update);
+  }
+
+  private applyToCurrent(update: SceneUpdate): PreparedScene {
     const resources = this.resources;
     if (!resources || !this.prepared) throw new Error('Renderer: setScene() before applySceneUpdate()');
     if (update.instances.size > 0 || update.morphWeights.size > 0) {
@@ -394,14 +405,62 @@ export class Renderer {
     const problem = camera.lens && lensProblem(camera.lens);
     if (problem) throw new LanternError(problem, 'Give an aperture radius ≥ 0 and a focus distance > 0 (scene units)');
     this.cameraValue = camera;
+    this.swapTile(camera.position);
     this.updateView();
+  }
+
+  /** The per-tile culled scenes while the tileCulling setting is on (and the scene has a walk map). */
+  private tileCulled?: TileCulledScenes;
+
+  /** What tile culling costs and saves, while it is on. */
+  get tileCullingStats(): TileCullingStats | undefined {
+    return this.tileCulled?.stats();
+  }
+
+  /** Builds or drops the per-tile scenes as the setting says (the scene as it is now is the full one). */
+  private configureTileCulling(): void {
+    const want = this.settingsValue.tileCulling && this.prepared !== undefined;
+    if (!want) {
+      const culled = this.tileCulled;
+      this.tileCulled = undefined;
+      // Back to the whole scene, caught up with what moved.
+      if (culled && this.resources) this.swapGeometry(culled.full, culled.catchUp());
+      return;
+    }
+    if (this.tileCulled) return;
+    const config = defaultTileCulling(this.prepared!.scene);
+    if (!config) return;
+    this.tileCulled = TileCulledScenes.prepare(this.prepared!, config.grid, config.distance);
+    if (this.cameraValue) this.swapTile(this.cameraValue.position);
+  }
+
+  /** With tile culling, the camera stepped onto another tile: that tile's geometry replaces the current. */
+  private swapTile(position: Vec3): void {
+    if (!this.tileCulled || !this.resources) return;
+    const selection = this.tileCulled.select(position);
+    if (!selection.changed) return;
+    this.swapGeometry(selection.prepared, selection.catchUp);
+  }
+
+  /** Writes another prepared scene's geometry (same materials, textures, environment) and catches it up with the world. */
+  private swapGeometry(prepared: PreparedScene, catchUp: SceneUpdate | undefined): void {
+    let resources = this.resources!;
+    for (const name of TILE_SWAP_BUFFERS) resources = resources.rewriteBuffer(this.device, name, prepared.packed[name]);
+    this.resources = resources;
+    if (prepared.packed.triangleAttributes.height === 1) writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
+    this.prepared = prepared;
+    this.selectionStale = true;
+    if (catchUp && !isEmptyUpdate(catchUp)) this.applyToCurrent(catchUp);
+    this.resetAccumulation();
   }
 
   /** Applies changed settings; those that change the estimate restart accumulation. */
   updateSettings(changes: Partial<RenderSettings>): void {
     const next = validateSettings({ ...this.settingsValue, ...changes });
     const restart = ESTIMATE_SETTINGS.some((k) => next[k] !== this.settingsValue[k]);
+    const culling = next.tileCulling !== this.settingsValue.tileCulling;
     this.settingsValue = next;
+    if (culling) this.configureTileCulling();
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();

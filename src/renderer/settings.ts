@@ -11,7 +11,7 @@ import {
 } from './settings-schema.ts';
 
 // The closed lists live beside the passes that turn them into WGSL constants (passes sit below the renderer).
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS } from '../passes/variants.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS, WIREFRAME_LEVELS } from '../passes/variants.ts';
 export { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS } from '../passes/variants.ts';
 export type { DebugLayout, DebugView, DenoiseView, LightSampling, ToneMapper } from '../passes/variants.ts';
 
@@ -95,6 +95,14 @@ export const RENDER_SETTINGS = {
   wireframeDepth: integer({
     name: 'wireframe depth', description: 'wireframe view: the BVH depth whose boxes are drawn (0 = the scene bounds)', min: 0, max: MAX_WIREFRAME_DEPTH, default: 0,
     cli: { flag: '--wireframe-depth', argument: '<d>' }, link: 'depth', restarts: false, panel: { folder: 'debug', label: 'box depth', step: 1 },
+  }),
+  tileCulling: boolean({
+    name: 'tile culling', description: 'walk-map scenes (the dungeon): trace only what lies within 10 m of the tile the camera stands on, one BVH per tile precomputed and swapped as the camera steps (an approximation: farther lights and walls vanish)', words: ['0', '1'], default: false,
+    cli: { flag: '--tile-culling', switch: true }, link: 'tile-cull', restarts: true, panel: { folder: 'render', label: 'tile culling' },
+  }),
+  wireframeLevel: choice(WIREFRAME_LEVELS, {
+    name: 'wireframe level', description: "wireframe view: the static world's BVH boxes, or the top level's (over the moving instances: doors, lifts, sprites)", default: 'static',
+    cli: { flag: '--wireframe-level', argument: '<level>' }, link: 'wf-level', restarts: false, panel: { folder: 'debug', label: 'boxes of' },
   }),
   temporal: boolean({
     name: 'temporal', description: 'frame mode: accumulate over frames with reprojection (temporal denoising)', words: ['0', '1'], default: true,

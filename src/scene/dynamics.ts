@@ -19,6 +19,7 @@ import type { Billboard } from './billboards.ts';
 import type { MaterialAnimations } from './material-animation.ts';
 import type { MaterialEdit } from './material-edit.ts';
 import type { MoverSet } from './movers.ts';
+import type { InstancePath } from './paths.ts';
 
 /**
  * The dynamic parts of a scene. Every field is optional; a scene without `dynamics` is frozen. Each
@@ -31,6 +32,8 @@ export interface SceneDynamics {
   readonly materialAnimations?: MaterialAnimations;
   /** Doors and lifts. */
   readonly movers?: MoverSet;
+  /** Instances carried along closed paths (scene/paths.ts). */
+  readonly paths?: readonly InstancePath[];
   /** Quads turned toward the viewer, showing the image for the angle they are seen from (Doom's things). */
   readonly billboards?: readonly Billboard[];
 }

@@ -10,6 +10,7 @@ import { materialAnimator } from './material-animation.ts';
 import { emptySceneUpdate, isEmptyUpdate, type InstancePose, type SceneUpdate } from './dynamics.ts';
 import type { MaterialEdit } from './material-edit.ts';
 import { moverAnimator } from './movers.ts';
+import { pathAnimator } from './paths.ts';
 import type { Scene } from './types.ts';
 
 /** Where the scene is seen from: billboards turn toward it; the use key acts in front of it. */
@@ -59,7 +60,7 @@ export interface Animator {
 export type AnimatorFactory = (scene: Scene) => Animator | undefined;
 
 /** Every kind of motion (scene/dynamics.ts lists them), in the order their updates are merged. */
-const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator, moverAnimator, billboardAnimator];
+const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator, moverAnimator, pathAnimator, billboardAnimator];
 
 export class World {
   private time = 0;

@@ -4,6 +4,8 @@
  * than the raw one without losing or gaining energy, and a moving object leaving no trail.
  */
 import { placeEachOnce } from '../../src/scene/instances.ts';
+import { translation } from '../../src/math/mat4.ts';
+import { emptySceneUpdate } from '../../src/scene/dynamics.ts';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { dot, sub, type Vec3 } from '../../src/math/vec3.ts';
@@ -182,16 +184,36 @@ describe('denoising the Cornell box at 1 spp', () => {
   });
 });
 
+/** The wall, and the black square as a moving instance of its own mesh (two-level BVH) at x = occluderX. */
+function movingSquareScene(occluderX: number): Scene {
+  const wall = new MeshBuilder('wall');
+  const wallMaterial = wall.material({ kind: 'diffuse', name: 'wall', albedo: [0, 0, 0], emission: [1, 1, 1] });
+  wall.quad(wallMaterial, [-40, -40, WALL_Z], [-40, 40, WALL_Z], [40, 40, WALL_Z], [40, -40, WALL_Z]);
+  const square = new MeshBuilder('square');
+  const black = square.material({ kind: 'diffuse', name: 'occluder', albedo: [0, 0, 0], emission: [0, 0, 0] });
+  square.quad(black, [-1, -1, 0], [-1, 1, 0], [1, 1, 0], [1, -1, 0]);
+  return {
+    name: 'wall and moving square',
+    meshes: [wall.build(), { ...square.build(), materialIds: new Uint32Array([1, 1]) }],
+    instances: [
+      { id: 0, mesh: 0, worldFromObject: translation([0, 0, 0]) },
+      { id: 1, mesh: 1, worldFromObject: translation([occluderX, 0, OCCLUDER_Z]), moves: true },
+    ],
+    materials: [...wall.materials, ...square.materials],
+    camera: camera(0),
+  };
+}
+
 describe('a moving object', () => {
-  it('leaves no trail longer than a few frames', async () => {
+  // A black square sliding across an emissive wall at 1 unit (about 7 pixels) per frame: once it has
+  // left a pixel, the pixel must show the wall again within TRAIL_LIMIT frames.
+  const TRAIL_LIMIT = 2;
+  const FRAMES = 10;
+
+  /** Renders FRAMES frames, `place(f)` putting the square at x = −4 + f before frame f; the longest trail. */
+  async function trail(place: (f: number) => Promise<void>): Promise<{ uncovered: number; longest: number }> {
     await renderer.resize(SIZE, SIZE);
-    // A black square sliding across an emissive wall at 1 unit (about 7 pixels) per frame: once it
-    // has left a pixel, the pixel must show the wall again within TRAIL_LIMIT frames.
-    const TRAIL_LIMIT = 2;
-    const FRAMES = 10;
     renderer.updateSettings({ maxBounces: 0, temporal: true, denoise: true, historyCap: 32, denoiseView: 'output' });
-    renderer.resetHistory();
-    renderer.setCamera(camera(0));
     const c = camera(0);
     const covered = (f: number, x: number, y: number, margin: number) => {
       const [x0, y0] = project(c, [-4 + f + 1, 1, OCCLUDER_Z]), [x1, y1] = project(c, [-4 + f - 1, -1, OCCLUDER_Z]);
@@ -199,8 +221,9 @@ describe('a moving object', () => {
     };
     const images: LinearImage[] = [];
     for (let f = 0; f < FRAMES; f++) {
-      await renderer.setScene(wallScene(-4 + f, { albedo: 0, emission: 0, sameMaterial: false }));
+      await place(f);
       renderer.setCamera(c);
+      if (f === 0) renderer.resetHistory();
       renderer.renderFrame(1);
       images.push(await renderer.readFrame());
     }
@@ -220,9 +243,49 @@ describe('a moving object', () => {
         }
       }
     }
-    console.log(`moving square: ${uncovered} pixels uncovered, longest trail ${longest} frames`);
+    return { uncovered, longest };
+  }
+
+  it('leaves no trail longer than a few frames (the scene built anew each frame)', async () => {
+    const { uncovered, longest } = await trail(async (f) => {
+      await renderer.setScene(wallScene(-4 + f, { albedo: 0, emission: 0, sameMaterial: false }));
+    });
+    console.log(`moving square, scene rebuilt: ${uncovered} pixels uncovered, longest trail ${longest} frames`);
     expect(uncovered).toBeGreaterThan(100);
     expect(longest).toBeLessThanOrEqual(TRAIL_LIMIT);
+  });
+
+  it('leaves no trail longer than a few frames as a moving instance (its own previous transform in the motion vectors)', async () => {
+    const { uncovered, longest } = await trail(async (f) => {
+      if (f === 0) await renderer.setScene(movingSquareScene(-4));
+      else renderer.applySceneUpdate({ ...emptySceneUpdate(), instances: new Map([[1, { worldFromObject: translation([-4 + f, 0, OCCLUDER_Z]) }]]) });
+    });
+    console.log(`moving square, an instance: ${uncovered} pixels uncovered, longest trail ${longest} frames`);
+    expect(uncovered).toBeGreaterThan(100);
+    expect(longest).toBeLessThanOrEqual(TRAIL_LIMIT);
+
+    // The motion vectors follow the instance: one more unit to the right, and the square's pixels
+    // say they were dx pixels to the left (the motion view: x motion / 32 + 0.5), the wall's that
+    // they did not move.
+    renderer.updateSettings({ denoiseView: 'motion' });
+    const c = camera(0);
+    const from = 0, to = 1;
+    renderer.applySceneUpdate({ ...emptySceneUpdate(), instances: new Map([[1, { worldFromObject: translation([from, 0, OCCLUDER_Z]) }]]) });
+    renderer.renderFrame(1);
+    renderer.applySceneUpdate({ ...emptySceneUpdate(), instances: new Map([[1, { worldFromObject: translation([to, 0, OCCLUDER_Z]) }]]) });
+    renderer.renderFrame(1);
+    const motion = await renderer.readFrame();
+    const dx = project(c, [to, 0, OCCLUDER_Z])[0] - project(c, [from, 0, OCCLUDER_Z])[0];
+    const [cx, cy] = project(c, [to, 0, OCCLUDER_Z]).map(Math.floor) as [number, number];
+    expect(cx >= 0 && cx < SIZE && cy >= 0 && cy < SIZE).toBe(true);
+    expect(Math.abs(dx)).toBeGreaterThan(3);
+    expect(px(motion, cx, cy)).toBeCloseTo(-dx / 32 + 0.5, 2);
+    expect(px(motion, cx, cy, 1)).toBeCloseTo(0.5, 2);
+    expect(px(motion, 2, 2)).toBeCloseTo(0.5, 3);
+    // A frame without an update: the instance stands still, and so do its motion vectors.
+    renderer.renderFrame(1);
+    expect(px(await renderer.readFrame(), cx, cy)).toBeCloseTo(0.5, 3);
+    renderer.updateSettings({ denoiseView: 'output' });
   });
 });
 

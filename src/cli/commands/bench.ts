@@ -14,6 +14,8 @@ import { sceneHelp } from '../scene-source.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { openSession } from '../session.ts';
+import { benchmarkLevels } from '../../renderer/level-benchmark.ts';
+import type { Scene } from '../../scene/types.ts';
 
 interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
   width: number;
@@ -25,6 +27,16 @@ interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<
   kernel: KernelKind;
   unrollLimit?: number;
   specialise?: string;
+  levels: 'scene' | 'single' | 'two';
+  tlasInstances: number;
+}
+
+/** --levels: the scene as it says (moving instances in a top level), nothing moving (one BVH), or every instance moving (every mesh its own bottom level). */
+const LEVELS = ['scene', 'single', 'two'] as const;
+
+function withLevels(levels: BenchOptions['levels']): ((scene: Scene) => Scene) | undefined {
+  if (levels === 'scene') return undefined;
+  return (scene) => ({ ...scene, instances: scene.instances.map((inst) => ({ ...inst, moves: levels === 'two' })) });
 }
 
 /** The settings that change what path tracing costs: those that change the estimate. */
@@ -42,6 +54,11 @@ export function registerBench(program: Command, context: CliContext): void {
   )
     .option('--unroll-limit <n>', `with --kernel specialised: trace scenes of at most n primitives without a BVH (default ${UNROLL_PRIMITIVE_LIMIT}; 0: never)`, integerOption('--unroll-limit', 0, 1_000_000))
     .option('--specialise <parts>', `with --kernel specialised: the parts applied, comma-separated (${SPECIALISATION_PARTS.join(', ')}; default all)`)
+    .option('--levels <which>', `the acceleration structure: ${LEVELS.join(', ')} (scene: moving instances in a top level over the static world; single: one BVH, nothing moves; two: every instance in the top level, each mesh its own bottom level)`, (v: string) => {
+      if (!(LEVELS as readonly string[]).includes(v)) throw new LanternError(`--levels must be one of ${LEVELS.join(', ')}, not '${v}'`);
+      return v;
+    }, 'scene')
+    .option('--tlas-instances <n>', 'instances of the timed top-level rebuild (CPU)', integerOption('--tlas-instances', 1, 10_000_000), 10_000)
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
@@ -50,7 +67,7 @@ export function registerBench(program: Command, context: CliContext): void {
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
   checkLensOptions(o);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o));
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), withLevels(o.levels));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   if (renderer.settings.spectral) await renderer.enableSpectral();
@@ -63,6 +80,8 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation({ ...(o.unrollLimit !== undefined ? { unrollLimit: o.unrollLimit } : {}), ...(parts ? { parts: parts as SpecialisationPart[] } : {}) }) : undefined;
   if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
   const result = await runBenchmark(renderer, { repeats: o.repeats });
+  const levels = benchmarkLevels(prepared, o.tlasInstances, o.repeats);
+  const culling = renderer.tileCullingStats;
   const s = prepared.bvh.stats;
   const report = {
     scene: prepared.scene.name,
@@ -72,6 +91,8 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
     ...(camera.lens ? { lens: camera.lens } : {}),
     spectral: renderer.settings.spectral,
     bvh: { buildMs: s.buildMs, nodes: s.nodeCount, leaves: s.leafCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
+    levels: { mode: o.levels, instances: prepared.packed.counts.instances, ...levels },
+    ...(culling ? { tileCulling: culling } : {}),
     kernel: { kind: o.kernel, ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, unrolled: specialisation.unrolled } : {}) },
     ...result,
   };
@@ -88,6 +109,10 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
       ...(camera.lens ? [`  lens            aperture radius ${camera.lens.apertureRadius.toPrecision(3)}, focus distance ${camera.lens.focusDistance.toPrecision(4)} (scene units)`] : []),
       `  triangles       ${report.triangles.toLocaleString('en-US')} (${report.lights} emissive)`,
       `  BVH build       ${f(s.buildMs)} ms: ${s.nodeCount.toLocaleString('en-US')} nodes, depth ${s.maxDepth}, SAH cost ${f(s.sahCost, 2)}`,
+      `  levels          ${o.levels}: ${prepared.packed.counts.instances} instance record(s), ${levels.blas.meshes} moving mesh(es) of ${levels.blas.triangles.toLocaleString('en-US')} primitives`,
+      `  top level       rebuilt over ${levels.tlas.instances.toLocaleString('en-US')} instances in ${f(levels.tlas.ms, 3)} ms (CPU)`,
+      ...(levels.blas.meshes > 0 ? [`  moving meshes   refit ${f(levels.blas.refitMs, 3)} ms vs rebuild ${f(levels.blas.rebuildMs, 3)} ms; a frame moving all of them: ${f(levels.updateMs, 3)} ms (CPU)`] : []),
+      ...(culling ? [`  tile culling    ${culling.tiles} tiles of ${f(culling.meanTriangles, 0)} triangles on average (max ${culling.maxTriangles}, full ${culling.fullTriangles}); geometry ${f(culling.tilesGeometryBytes / 2 ** 20)} MiB for all tiles vs ${f(culling.fullGeometryBytes / 2 ** 20, 2)} MiB; precomputed in ${f(culling.precomputeMs, 0)} ms (CPU)`] : []),
       `  primary rays    ${f(result.primary.mraysPerSecond)} Mrays/s (${f(result.primary.ms, 3)} ms)`,
       `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms)`,
       `  kernel          ${specialisation ? `specialised (${specialisation.description}), compiled in ${f(specialisation.compileMs, 0)} ms` : 'generic'}`,

@@ -8,6 +8,7 @@ import type { Scene } from '../../scene/types.ts';
 import { bvhTeaching } from './bvh-teaching.ts';
 import { caffeineScene } from './caffeine.ts';
 import { cornellBox } from './cornell.ts';
+import { dungeonScene } from './dungeon.ts';
 import { whiteFurnace } from './furnace.ts';
 import { goldenGridScene } from './golden-grid.ts';
 import { hexGridScene } from './hex-grid.ts';
@@ -35,6 +36,7 @@ export const BUILTIN_SCENES = {
   'golden-grid': { description: 'a grid of gold spheres under a sky, shallow depth of field', make: goldenGridScene },
   'hex-grid': { description: 'a hexagonal grid of coloured spheres seen through a thin lens: focal blur', make: hexGridScene },
   caffeine: { description: 'the caffeine molecule (PubChem CID 2519), ball-and-stick, in the studio', make: caffeineScene },
+  dungeon: { description: 'a torch-lit stone dungeon on a 16 × 16 tile map, walkable, with a glowing phantom that wanders its corridors', make: dungeonScene },
   prism: { description: 'a dense-flint prism splits a narrow beam of white light into a spectrum on a screen (render with --spectral)', make: () => prismScene() },
 } as const satisfies Record<string, BuiltinScene>;
 
