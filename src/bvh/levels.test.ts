@@ -90,3 +90,24 @@ describe('two-level traversal (CPU oracle)', () => {
     expect(bvh.triIndices.length).toBe(triangles.count);
   });
 });
+
+describe('a scene where everything moves', () => {
+  it('has an empty static world, and traces through the top level alone', () => {
+    const moving = movingTestScene();
+    const scene = { ...moving, instances: moving.instances.map((i) => ({ ...i, moves: true })) };
+    const triangles = flattenTriangles(scene);
+    const staticBvh = buildStaticBvh(scene, triangles);
+    expect(staticBvh.triIndices.length).toBe(0);
+    const levels = buildLevels(scene, staticBvh)!;
+    expect(levels.dynamic.length).toBe(scene.instances.length);
+    const rnd = makeRandom(4);
+    for (let i = 0; i < 500; i++) {
+      const origin: [number, number, number] = [rnd() * 30 - 15, rnd() * 30 - 15, 20];
+      const ray = { origin, direction: [rnd() * 2 - 1 - origin[0] / 20, rnd() * 2 - 1 - origin[1] / 20, -1] as [number, number, number] };
+      const expected = intersectAll(triangles.positions, ray, triangles.kinds);
+      const got = traceScene(scene, triangles, staticBvh, levels, ray);
+      expect(got?.t ?? null).toBe(expected ? got!.t : null);
+      if (expected) expect(got!.t).toBeCloseTo(expected.t, 4);
+    }
+  });
+});

@@ -66,6 +66,7 @@ export function buildStaticBvh(scene: Scene, triangles: TriangleList): Bvh {
   if (!moving.some(Boolean)) return buildBvh(triangles.positions, {}, triangles.kinds);
   const keep: number[] = [];
   for (let t = 0; t < triangles.count; t++) if (!moving[triangles.instanceIds[t]!]) keep.push(t);
+  if (keep.length === 0) return emptyBvh();
   const positions = new Float32Array(keep.length * PRIMITIVE_FLOATS);
   const kinds = new Uint8Array(keep.length);
   keep.forEach((t, i) => {
@@ -75,6 +76,20 @@ export function buildStaticBvh(scene: Scene, triangles: TriangleList): Bvh {
   const bvh = buildBvh(positions, {}, kinds);
   const triIndices = bvh.triIndices.map((i) => keep[i]!);
   return { ...bvh, triIndices };
+}
+
+/** The static world of a scene where everything moves: a root leaf of nothing, its box inverted (no ray enters it). */
+export function emptyBvh(): Bvh {
+  const bounds = new Float32Array(12);
+  bounds.set([3.4e38, 3.4e38, 3.4e38, -3.4e38, -3.4e38, -3.4e38, 3.4e38, 3.4e38, 3.4e38, -3.4e38, -3.4e38, -3.4e38]);
+  return {
+    nodeCount: 2,
+    bounds,
+    leftFirst: new Uint32Array(2),
+    triCount: new Uint32Array(2),
+    triIndices: new Uint32Array(0),
+    stats: { buildMs: 0, nodeCount: 1, leafCount: 1, maxDepth: 0, meanLeafDepth: 0, sahCost: 0, triangleCount: 0 },
+  };
 }
 
 /** Whether a BVH has anything in it (an empty one's root box is inverted). */

@@ -29,32 +29,47 @@ function spread(x: number): number {
   return x >>> 0;
 }
 
-/** Sorts `index` by `keys` (30-bit unsigned), stably, three passes of 10 bits. */
-function radixSort(keys: Uint32Array, index: Uint32Array): void {
-  const n = keys.length;
-  let k: Uint32Array = keys, ix: Uint32Array = index;
-  let k2: Uint32Array = new Uint32Array(n), ix2: Uint32Array = new Uint32Array(n);
-  const count = new Uint32Array(1 << 10);
+/** Scratch arrays reused from one build to the next (a top level is rebuilt every frame something moves). */
+const scratch = { size: 0, live: new Uint32Array(0), codes: new Uint32Array(0), order: new Uint32Array(0), codes2: new Uint32Array(0), order2: new Uint32Array(0) };
+const counts = new Uint32Array(1024);
+
+function scratchFor(n: number): typeof scratch {
+  if (scratch.size < n) {
+    const size = Math.max(n, 2 * scratch.size);
+    Object.assign(scratch, { size, live: new Uint32Array(size), codes: new Uint32Array(size), order: new Uint32Array(size), codes2: new Uint32Array(size), order2: new Uint32Array(size) });
+  }
+  return scratch;
+}
+
+/**
+ * Sorts `index` by `keys` (30-bit unsigned, the first n of each), stably, in three passes of 10 bits;
+ * `keys2`/`index2` are scratch. After an odd number of passes the sorted data is in the scratch
+ * arrays: returns the arrays that hold it.
+ */
+function radixSort(n: number, keys: Uint32Array, index: Uint32Array, keys2: Uint32Array, index2: Uint32Array): [Uint32Array, Uint32Array] {
+  let k = keys, ix = index, k2 = keys2, ix2 = index2;
   for (let shift = 0; shift < 30; shift += 10) {
-    count.fill(0);
-    for (let i = 0; i < n; i++) count[(k[i]! >>> shift) & 1023]!++;
+    counts.fill(0);
+    for (let i = 0; i < n; i++) counts[(k[i]! >>> shift) & 1023]!++;
     let sum = 0;
     for (let b = 0; b < 1024; b++) {
-      const c = count[b]!;
-      count[b] = sum;
+      const c = counts[b]!;
+      counts[b] = sum;
       sum += c;
     }
     for (let i = 0; i < n; i++) {
-      const dst = count[(k[i]! >>> shift) & 1023]!++;
-      k2[dst] = k[i]!;
+      const key = k[i]!;
+      const dst = counts[(key >>> shift) & 1023]!++;
+      k2[dst] = key;
       ix2[dst] = ix[i]!;
     }
-    [k, k2] = [k2, k];
-    [ix, ix2] = [ix2, ix];
+    const tk = k, ti = ix;
+    k = k2;
+    ix = ix2;
+    k2 = tk;
+    ix2 = ti;
   }
-  // Three passes: the sorted data ended in the scratch arrays.
-  keys.set(k);
-  index.set(ix);
+  return [k, ix];
 }
 
 /**
@@ -63,7 +78,8 @@ function radixSort(keys: Uint32Array, index: Uint32Array): void {
  */
 export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
   const total = boxes.length / 6;
-  const live = new Uint32Array(total);
+  const work = scratchFor(total);
+  const live = work.live;
   let n = 0;
   for (let i = 0; i < total; i++) if (boxes[i * 6]! <= boxes[i * 6 + 3]!) live[n++] = i;
   const capacity = tlasCapacity(n);
@@ -96,25 +112,20 @@ export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
   }
   const q = (1 << MORTON_BITS) - 1;
   const sx = hx > lx ? q / (hx - lx) : 0, sy = hy > ly ? q / (hy - ly) : 0, sz = hz > lz ? q / (hz - lz) : 0;
-  const codes = new Uint32Array(n);
-  const order = new Uint32Array(n);
   for (let j = 0; j < n; j++) {
     const o = live[j]! * 6;
-    const x = Math.floor((boxes[o]! + boxes[o + 3]! - lx) * sx), y = Math.floor((boxes[o + 1]! + boxes[o + 4]! - ly) * sy), z = Math.floor((boxes[o + 2]! + boxes[o + 5]! - lz) * sz);
-    codes[j] = ((spread(x) << 2) | (spread(y) << 1) | spread(z)) >>> 0;
-    order[j] = live[j]!;
+    const x = ((boxes[o]! + boxes[o + 3]! - lx) * sx) | 0, y = ((boxes[o + 1]! + boxes[o + 4]! - ly) * sy) | 0, z = ((boxes[o + 2]! + boxes[o + 5]! - lz) * sz) | 0;
+    work.codes[j] = ((spread(x) << 2) | (spread(y) << 1) | spread(z)) >>> 0;
+    work.order[j] = live[j]!;
   }
-  radixSort(codes, order);
+  const [codes, order] = radixSort(n, work.codes, work.order, work.codes2, work.order2);
 
-  // Top-down over ranges of the sorted order: [node, lo, hi) on a stack.
-  const stack = new Uint32Array(3 * 64 * 2);
+  // Top-down over ranges of the sorted order: the left child next, the right one's [node, lo, hi) on a stack.
+  const stack = new Uint32Array(3 * 96);
   let sp = 0;
   let next = 2;
-  stack[sp++] = 0;
-  stack[sp++] = 0;
-  stack[sp++] = n;
-  while (sp > 0) {
-    const hi = stack[--sp]!, lo = stack[--sp]!, node = stack[--sp]!;
+  let node = 0, lo = 0, hi = n;
+  for (;;) {
     if (hi - lo === 1) {
       const item = order[lo]!;
       leftFirst[node] = item;
@@ -126,6 +137,10 @@ export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
       bounds[o + 3] = boxes[b + 3]!;
       bounds[o + 4] = boxes[b + 4]!;
       bounds[o + 5] = boxes[b + 5]!;
+      if (sp === 0) break;
+      hi = stack[--sp]!;
+      lo = stack[--sp]!;
+      node = stack[--sp]!;
       continue;
     }
     const first = codes[lo]!, last = codes[hi - 1]!;
@@ -147,13 +162,12 @@ export function buildTlas(boxes: Float32Array, into?: Tlas): Tlas {
     next += 2;
     leftFirst[node] = left;
     triCount[node] = 0;
-    if (sp + 6 > stack.length) throw new Error('buildTlas: stack overflow');
-    stack[sp++] = left;
-    stack[sp++] = lo;
-    stack[sp++] = split;
+    if (sp + 3 > stack.length) throw new Error('buildTlas: stack overflow');
     stack[sp++] = left + 1;
     stack[sp++] = split;
     stack[sp++] = hi;
+    node = left;
+    hi = split;
   }
   // Interior boxes bottom-up: children always sit after their parent.
   for (let node = next - 1; node >= 0; node--) {

@@ -28,15 +28,27 @@ interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<
   unrollLimit?: number;
   specialise?: string;
   levels: 'scene' | 'single' | 'two';
+  billboards: boolean;
   tlasInstances: number;
 }
 
 /** --levels: the scene as it says (moving instances in a top level), nothing moving (one BVH), or every instance moving (every mesh its own bottom level). */
 const LEVELS = ['scene', 'single', 'two'] as const;
 
-function withLevels(levels: BenchOptions['levels']): ((scene: Scene) => Scene) | undefined {
-  if (levels === 'scene') return undefined;
-  return (scene) => ({ ...scene, instances: scene.instances.map((inst) => ({ ...inst, moves: levels === 'two' })) });
+/** The scene as --levels and --no-billboards ask (undefined: as loaded). */
+function adjustScene(levels: BenchOptions['levels'], billboards: boolean): ((scene: Scene) => Scene) | undefined {
+  if (levels === 'scene' && billboards) return undefined;
+  return (loaded) => {
+    let scene = loaded;
+    if (!billboards && scene.dynamics?.billboards) {
+      // Without Doom's things: what a map cost before it had them.
+      const posed = new Set(scene.dynamics.billboards.map((b) => b.instance));
+      const { billboards: _, ...dynamics } = scene.dynamics;
+      scene = { ...scene, instances: scene.instances.filter((inst) => !posed.has(inst.id)), dynamics };
+    }
+    if (levels !== 'scene') scene = { ...scene, instances: scene.instances.map((inst) => ({ ...inst, moves: levels === 'two' })) };
+    return scene;
+  };
 }
 
 /** The settings that change what path tracing costs: those that change the estimate. */
@@ -58,6 +70,7 @@ export function registerBench(program: Command, context: CliContext): void {
       if (!(LEVELS as readonly string[]).includes(v)) throw new LanternError(`--levels must be one of ${LEVELS.join(', ')}, not '${v}'`);
       return v;
     }, 'scene')
+    .option('--no-billboards', "leave out the scene's billboards (Doom's things): what a map cost before it had them")
     .option('--tlas-instances <n>', 'instances of the timed top-level rebuild (CPU)', integerOption('--tlas-instances', 1, 10_000_000), 10_000)
     .option('-r, --repeats <n>', 'timed repetitions of each measurement', integerOption('--repeats', 1, 1000), 10)
     .option('--json', 'print the figures as JSON')
@@ -67,7 +80,7 @@ export function registerBench(program: Command, context: CliContext): void {
 async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Promise<void> {
   checkLensOptions(o);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), withLevels(o.levels));
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), adjustScene(o.levels, o.billboards));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   if (renderer.settings.spectral) await renderer.enableSpectral();

@@ -41,148 +41,107 @@ fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
   return intersect_aabb(origin, inv_dir, n.aabb_min, n.aabb_max, t_best);
 }
 
-// Closest hit among the primitives under bottom-level root `root`, for a ray (origin, direction) in
-// the space they are stored in, improving *hit (its t prunes); hits are recorded for `instance`.
-fn trace_blas_closest(origin: vec3f, direction: vec3f, t_min: f32, root: u32, instance: u32, hit: ptr<function, Hit>) {
-  let inv_dir = safe_inverse(direction);
-  if (node_entry(root, origin, inv_dir, (*hit).t) == T_MISS) {
-    if (BVH_COUNT_WORK) {
-      bvh_work.nodes_visited += 1u;
-    }
-    return;
+// The instance a traversal is in while it walks the top level (no bottom level entered yet).
+const NO_INSTANCE: u32 = 0xffffffffu;
+
+// One loop walks both levels with one stack, so that a scene with moving instances compiles to about
+// the code (and the registers) of the single-level loop. Entering a top-level leaf switches the ray
+// to the instance's object space and notes the stack depth; when the stack is back at that depth the
+// bottom level is done and the ray returns to world space. Without moving instances the loop starts
+// in the static world's tree (instance 0) and the switches fold away.
+fn trace_closest(ray: Ray) -> Hit {
+  var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0, 0u);
+  set_alpha_salt(ray);
+  if (BVH_COUNT_WORK) {
+    bvh_work = TraversalWork(1u, 0u, NO_NODE);
+  }
+  var origin = ray.origin;
+  var direction = ray.direction;
+  var inv_dir = safe_inverse(direction);
+  var instance = select(0u, NO_INSTANCE, SCENE_HAS_INSTANCES);
+  var node = select(0u, scene_info.tlas_root, SCENE_HAS_INSTANCES);
+  var leave_at = 0u;
+  if (node_entry(node, origin, inv_dir, hit.t) == T_MISS) {
+    return hit;
+  }
+  if (BVH_COUNT_WORK) {
+    bvh_work.nodes_visited = 0u;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
   var sp = 0u;
-  var node = root;
   loop {
     let n = bvh_nodes[node];
     if (BVH_COUNT_WORK) {
       bvh_work.nodes_visited += 1u;
     }
+    var descend = false;
     if (n.tri_count > 0u) {
+      if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
+        // A top-level leaf: into its instance's bottom level, the ray in the instance's space.
+        instance = n.left_first;
+        let inst = instances[instance];
+        origin = object_point(inst, ray.origin);
+        direction = object_vector(inst, ray.direction);
+        inv_dir = safe_inverse(direction);
+        set_filter_instance(instance);
+        leave_at = sp;
+        node = inst.blas_root;
+        continue;
+      }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
-        let r = intersect_primitive(origin, direction, tri, t_min, (*hit).t);
+        let r = intersect_primitive(origin, direction, tri, ray.t_min, hit.t);
         if (BVH_COUNT_WORK) {
           bvh_work.triangles_tested += 1u;
         }
-        if (r.x < (*hit).t && accept_hit(tri, i, r.yz)) {
-          *hit = Hit(r.x, i, r.y, r.z, instance);
+        if (r.x < hit.t && accept_hit(tri, i, r.yz)) {
+          hit = Hit(r.x, i, r.y, r.z, instance);
           if (BVH_COUNT_WORK) {
             bvh_work.hit_leaf = node;
           }
         }
       }
-      if (sp == 0u) {
-        break;
+    } else {
+      var near = n.left_first;
+      var far = near + 1u;
+      var t_near = node_entry(near, origin, inv_dir, hit.t);
+      var t_far = node_entry(far, origin, inv_dir, hit.t);
+      if (t_far < t_near) {
+        let swap_node = near;
+        near = far;
+        far = swap_node;
+        let swap_t = t_near;
+        t_near = t_far;
+        t_far = swap_t;
       }
-      sp -= 1u;
-      node = stack[sp];
+      if (t_near != T_MISS) {
+        if (t_far != T_MISS) {
+          stack[sp] = far;
+          sp += 1u;
+        }
+        node = near;
+        descend = true;
+      }
+    }
+    if (descend) {
       continue;
     }
-    var near = n.left_first;
-    var far = near + 1u;
-    var t_near = node_entry(near, origin, inv_dir, (*hit).t);
-    var t_far = node_entry(far, origin, inv_dir, (*hit).t);
-    if (t_far < t_near) {
-      let swap_node = near;
-      near = far;
-      far = swap_node;
-      let swap_t = t_near;
-      t_near = t_far;
-      t_far = swap_t;
+    if (SCENE_HAS_INSTANCES && instance != NO_INSTANCE && sp == leave_at) {
+      // The bottom level is done: back to the top level in world space.
+      instance = NO_INSTANCE;
+      origin = ray.origin;
+      direction = ray.direction;
+      inv_dir = safe_inverse(direction);
+      set_filter_instance(0u);
     }
-    if (t_near == T_MISS) {
-      if (sp == 0u) {
-        break;
-      }
-      sp -= 1u;
-      node = stack[sp];
-      continue;
+    if (sp == 0u) {
+      break;
     }
-    if (t_far != T_MISS) {
-      stack[sp] = far;
-      sp += 1u;
-    }
-    node = near;
-  }
-}
-
-// The bottom level of instance g, the ray taken into its space.
-fn trace_instance_closest(ray: Ray, g: u32, hit: ptr<function, Hit>) {
-  let inst = instances[g];
-  if (g == 0u) {
-    trace_blas_closest(ray.origin, ray.direction, ray.t_min, inst.blas_root, 0u, hit);
-    return;
-  }
-  set_filter_instance(g);
-  trace_blas_closest(object_point(inst, ray.origin), object_vector(inst, ray.direction), ray.t_min, inst.blas_root, g, hit);
-  set_filter_instance(0u);
-}
-
-fn trace_closest(ray: Ray) -> Hit {
-  var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0, 0u);
-  set_alpha_salt(ray);
-  if (BVH_COUNT_WORK) {
-    bvh_work = TraversalWork(0u, 0u, NO_NODE);
-  }
-  if (!SCENE_HAS_INSTANCES) {
-    trace_blas_closest(ray.origin, ray.direction, ray.t_min, 0u, 0u, &hit);
-    return hit;
-  }
-  let root = scene_info.tlas_root;
-  let inv_dir = safe_inverse(ray.direction);
-  if (node_entry(root, ray.origin, inv_dir, hit.t) == T_MISS) {
-    if (BVH_COUNT_WORK) {
-      bvh_work.nodes_visited = 1u;
-    }
-    return hit;
-  }
-  var stack: array<u32, BVH_STACK_SIZE>;
-  var sp = 0u;
-  var node = root;
-  loop {
-    let n = bvh_nodes[node];
-    if (BVH_COUNT_WORK) {
-      bvh_work.nodes_visited += 1u;
-    }
-    if (n.tri_count > 0u) {
-      trace_instance_closest(ray, n.left_first, &hit);
-      if (sp == 0u) {
-        break;
-      }
-      sp -= 1u;
-      node = stack[sp];
-      continue;
-    }
-    var near = n.left_first;
-    var far = near + 1u;
-    var t_near = node_entry(near, ray.origin, inv_dir, hit.t);
-    var t_far = node_entry(far, ray.origin, inv_dir, hit.t);
-    if (t_far < t_near) {
-      let swap_node = near;
-      near = far;
-      far = swap_node;
-      let swap_t = t_near;
-      t_near = t_far;
-      t_far = swap_t;
-    }
-    if (t_near == T_MISS) {
-      if (sp == 0u) {
-        break;
-      }
-      sp -= 1u;
-      node = stack[sp];
-      continue;
-    }
-    if (t_far != T_MISS) {
-      stack[sp] = far;
-      sp += 1u;
-    }
-    node = near;
+    sp -= 1u;
+    node = stack[sp];
   }
   // A mirroring instance's world triangle has v1 and v2 swapped (scene/instances world_primitive): so do the barycentrics.
-  if (hit.triangle != NO_TRIANGLE && instance_mirrored(hit.instance) && (triangles_hot[hit.triangle].flags & PRIMITIVE_ANALYTIC) == 0u) {
+  if (SCENE_HAS_INSTANCES && hit.triangle != NO_TRIANGLE && instance_mirrored(hit.instance) && (triangles_hot[hit.triangle].flags & PRIMITIVE_ANALYTIC) == 0u) {
     let u = hit.u;
     hit.u = hit.v;
     hit.v = u;
@@ -190,30 +149,47 @@ fn trace_closest(ray: Ray) -> Hit {
   return hit;
 }
 
-// Whether anything lies strictly between t_min and t_max among the primitives under `root`, for a
-// ray in their space.
-fn trace_blas_any(origin: vec3f, direction: vec3f, t_min: f32, t_max: f32, root: u32) -> bool {
-  let inv_dir = safe_inverse(direction);
-  if (node_entry(root, origin, inv_dir, t_max) == T_MISS) {
+// True when anything lies strictly between t_min and t_max along the ray. Children are visited in
+// storage order: any hit ends the search, so ordering buys little. Both levels in one loop, as
+// trace_closest walks them.
+fn trace_any(ray: Ray) -> bool {
+  set_alpha_salt(ray);
+  var origin = ray.origin;
+  var direction = ray.direction;
+  var inv_dir = safe_inverse(direction);
+  var instance = select(0u, NO_INSTANCE, SCENE_HAS_INSTANCES);
+  var node = select(0u, scene_info.tlas_root, SCENE_HAS_INSTANCES);
+  var leave_at = 0u;
+  if (node_entry(node, origin, inv_dir, ray.t_max) == T_MISS) {
     return false;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
   var sp = 0u;
-  var node = root;
   loop {
     let n = bvh_nodes[node];
     if (n.tri_count > 0u) {
+      if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
+        instance = n.left_first;
+        let inst = instances[instance];
+        origin = object_point(inst, ray.origin);
+        direction = object_vector(inst, ray.direction);
+        inv_dir = safe_inverse(direction);
+        set_filter_instance(instance);
+        leave_at = sp;
+        node = inst.blas_root;
+        continue;
+      }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
-        let r = intersect_primitive(origin, direction, tri, t_min, t_max);
-        if (r.x < t_max && accept_hit(tri, i, r.yz)) {
+        let r = intersect_primitive(origin, direction, tri, ray.t_min, ray.t_max);
+        if (r.x < ray.t_max && accept_hit(tri, i, r.yz)) {
           return true;
         }
       }
     } else {
       let left = n.left_first;
-      let hit_left = node_entry(left, origin, inv_dir, t_max) != T_MISS;
-      let hit_right = node_entry(left + 1u, origin, inv_dir, t_max) != T_MISS;
+      let hit_left = node_entry(left, origin, inv_dir, ray.t_max) != T_MISS;
+      let hit_right = node_entry(left + 1u, origin, inv_dir, ray.t_max) != T_MISS;
       if (hit_left && hit_right) {
         stack[sp] = left + 1u;
         sp += 1u;
@@ -225,59 +201,12 @@ fn trace_blas_any(origin: vec3f, direction: vec3f, t_min: f32, t_max: f32, root:
         continue;
       }
     }
-    if (sp == 0u) {
-      return false;
-    }
-    sp -= 1u;
-    node = stack[sp];
-  }
-}
-
-// True when anything lies strictly between t_min and t_max along the ray. Children are visited in
-// storage order: any hit ends the search, so ordering buys little.
-fn trace_any(ray: Ray) -> bool {
-  set_alpha_salt(ray);
-  if (!SCENE_HAS_INSTANCES) {
-    return trace_blas_any(ray.origin, ray.direction, ray.t_min, ray.t_max, 0u);
-  }
-  let root = scene_info.tlas_root;
-  let inv_dir = safe_inverse(ray.direction);
-  if (node_entry(root, ray.origin, inv_dir, ray.t_max) == T_MISS) {
-    return false;
-  }
-  var stack: array<u32, BVH_STACK_SIZE>;
-  var sp = 0u;
-  var node = root;
-  loop {
-    let n = bvh_nodes[node];
-    if (n.tri_count > 0u) {
-      let g = n.left_first;
-      let inst = instances[g];
-      var blocked: bool;
-      if (g == 0u) {
-        blocked = trace_blas_any(ray.origin, ray.direction, ray.t_min, ray.t_max, inst.blas_root);
-      } else {
-        set_filter_instance(g);
-        blocked = trace_blas_any(object_point(inst, ray.origin), object_vector(inst, ray.direction), ray.t_min, ray.t_max, inst.blas_root);
-        set_filter_instance(0u);
-      }
-      if (blocked) {
-        return true;
-      }
-    } else {
-      let left = n.left_first;
-      let hit_left = node_entry(left, ray.origin, inv_dir, ray.t_max) != T_MISS;
-      let hit_right = node_entry(left + 1u, ray.origin, inv_dir, ray.t_max) != T_MISS;
-      if (hit_left && hit_right) {
-        stack[sp] = left + 1u;
-        sp += 1u;
-        node = left;
-        continue;
-      }
-      if (hit_left || hit_right) {
-        node = select(left + 1u, left, hit_left);
-        continue;
-      }
+    if (SCENE_HAS_INSTANCES && instance != NO_INSTANCE && sp == leave_at) {
+      instance = NO_INSTANCE;
+      origin = ray.origin;
+      direction = ray.direction;
+      inv_dir = safe_inverse(direction);
+      set_filter_instance(0u);
     }
     if (sp == 0u) {
       return false;
