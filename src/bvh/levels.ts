@@ -4,7 +4,8 @@
  *   (the single-level BVH of a frozen scene, the fastest thing to trace for what never moves);
  * - one bottom-level BVH per mesh that a moving instance uses, over its primitives in object space,
  *   built once and shared by every instance of the mesh (refitted when the mesh morphs);
- * - a top-level tree over the instances' world boxes (bvh/tlas.ts), rebuilt whenever one moves.
+ * - a top-level tree over the moving instances' world boxes (bvh/tlas.ts), rebuilt whenever one
+ *   moves. Rays trace the static world first, then the top level (pruned by the static hit).
  *
  * GPU instance 0 is the static world (identity transform); moving instance k of `dynamic` is GPU
  * instance k + 1. A scene where nothing moves has no levels: its one BVH is the static world. Pure.
@@ -31,7 +32,7 @@ export interface SceneLevels {
   readonly dynamic: readonly number[];
   /** By mesh index: the bottom level of every mesh a moving instance uses. */
   readonly blas: ReadonlyMap<number, MeshBlas>;
-  /** 6 floats per GPU instance: its world box (instance 0: the static world's; empty when it has nothing). */
+  /** 6 floats per GPU instance: its world box (instance 0: the static world's; empty when it has nothing). The top level is built over all but instance 0. */
   readonly boxes: Float32Array;
   readonly tlas: Tlas;
   /** Milliseconds of the last top-level build. */
@@ -125,8 +126,12 @@ export function buildTopLevel(scene: Scene, staticBvh: Bvh, dynamic: readonly nu
     const inst = scene.instances[ii]!;
     transformBox(blas.get(inst.mesh)!.bvh.bounds, 0, inst.worldFromObject, boxes, (k + 1) * 6);
   });
+  // The static world is traced first, on its own (traceScene, trace_closest): the top level holds
+  // only the moving instances.
   const t0 = performance.now();
-  const tlas = buildTlas(boxes, previous);
+  const moving = boxes.slice();
+  moving.set([Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity], 0);
+  const tlas = buildTlas(moving, previous);
   return { boxes, tlas, tlasMs: performance.now() - t0 };
 }
 
@@ -197,6 +202,8 @@ export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh
       best = { t: r.hit.t, u: swapped ? r.hit.v : r.hit.u, v: swapped ? r.hit.u : r.hit.v, triangle, instance: g, nodesVisited: 0 };
     }
   };
+  // The static world first, then the top level over the moving instances, pruned by what it found.
+  traceInstance(0);
   const { tlas } = levels;
   const pr = prepareRay(ray);
   const stack: number[] = [];

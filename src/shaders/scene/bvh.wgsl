@@ -45,10 +45,12 @@ fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
 const NO_INSTANCE: u32 = 0xffffffffu;
 
 // One loop walks both levels with one stack, so that a scene with moving instances compiles to about
-// the code (and the registers) of the single-level loop. Entering a top-level leaf switches the ray
-// to the instance's object space and notes the stack depth; when the stack is back at that depth the
-// bottom level is done and the ray returns to world space. Without moving instances the loop starts
-// in the static world's tree (instance 0) and the switches fold away.
+// the code (and the registers) of the single-level loop. It starts in the static world's tree (root
+// 0, world space: exactly the single-level traversal), then walks the top level over the moving
+// instances with the static hit's distance pruning it. Entering a top-level leaf switches the ray to
+// the instance's object space and notes the stack depth; when the stack is back at that depth the
+// bottom level is done and the ray returns to world space. Without moving instances the switches
+// fold away.
 fn trace_closest(ray: Ray) -> Hit {
   var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0, 0u);
   set_alpha_salt(ray);
@@ -58,11 +60,15 @@ fn trace_closest(ray: Ray) -> Hit {
   var origin = ray.origin;
   var direction = ray.direction;
   var inv_dir = safe_inverse(direction);
-  var instance = select(0u, NO_INSTANCE, SCENE_HAS_INSTANCES);
-  var node = select(0u, scene_info.tlas_root, SCENE_HAS_INSTANCES);
+  var instance = 0u;
+  var node = 0u;
   var leave_at = 0u;
-  if (node_entry(node, origin, inv_dir, hit.t) == T_MISS) {
-    return hit;
+  if (node_entry(0u, origin, inv_dir, hit.t) == T_MISS) {
+    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, origin, inv_dir, hit.t) == T_MISS) {
+      return hit;
+    }
+    instance = NO_INSTANCE;
+    node = scene_info.tlas_root;
   }
   if (BVH_COUNT_WORK) {
     bvh_work.nodes_visited = 0u;
@@ -127,6 +133,15 @@ fn trace_closest(ray: Ray) -> Hit {
       continue;
     }
     if (SCENE_HAS_INSTANCES && instance != NO_INSTANCE && sp == leave_at) {
+      if (instance == 0u) {
+        // The static world is done: on to the moving instances, if the closest hit so far leaves room.
+        instance = NO_INSTANCE;
+        if (node_entry(scene_info.tlas_root, origin, inv_dir, hit.t) == T_MISS) {
+          break;
+        }
+        node = scene_info.tlas_root;
+        continue;
+      }
       // The bottom level is done: back to the top level in world space.
       instance = NO_INSTANCE;
       origin = ray.origin;
@@ -157,11 +172,15 @@ fn trace_any(ray: Ray) -> bool {
   var origin = ray.origin;
   var direction = ray.direction;
   var inv_dir = safe_inverse(direction);
-  var instance = select(0u, NO_INSTANCE, SCENE_HAS_INSTANCES);
-  var node = select(0u, scene_info.tlas_root, SCENE_HAS_INSTANCES);
+  var instance = 0u;
+  var node = 0u;
   var leave_at = 0u;
-  if (node_entry(node, origin, inv_dir, ray.t_max) == T_MISS) {
-    return false;
+  if (node_entry(0u, origin, inv_dir, ray.t_max) == T_MISS) {
+    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, origin, inv_dir, ray.t_max) == T_MISS) {
+      return false;
+    }
+    instance = NO_INSTANCE;
+    node = scene_info.tlas_root;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
   var sp = 0u;
@@ -202,6 +221,14 @@ fn trace_any(ray: Ray) -> bool {
       }
     }
     if (SCENE_HAS_INSTANCES && instance != NO_INSTANCE && sp == leave_at) {
+      if (instance == 0u) {
+        instance = NO_INSTANCE;
+        if (node_entry(scene_info.tlas_root, origin, inv_dir, ray.t_max) == T_MISS) {
+          return false;
+        }
+        node = scene_info.tlas_root;
+        continue;
+      }
       instance = NO_INSTANCE;
       origin = ray.origin;
       direction = ray.direction;
