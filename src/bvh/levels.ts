@@ -203,7 +203,7 @@ export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh
     }
   };
   // The static world first, then the top level over the moving instances, pruned by what it found.
-  traceInstance(0);
+  if (staticBvh.triIndices.length > 0) traceInstance(0);
   const { tlas } = levels;
   const pr = prepareRay(ray);
   const stack: number[] = [];

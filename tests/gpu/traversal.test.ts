@@ -82,6 +82,10 @@ const SCENES: [string, () => Scene][] = [
   ['UV sphere', () => soupScene('sphere', uvSphere(24, 48, 2), { position: [0.3, 0.2, -6], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 45 })],
   ['flat quad grid', () => soupScene('grid', quadGrid(16), { position: [8, 8, -12], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 70 })],
   ['moving instances (two levels: shared, rotated, scaled, mirrored meshes and spheres)', movingTestScene],
+  ['everything moving (an empty static world: the top level alone)', () => {
+    const s = movingTestScene();
+    return { ...s, instances: s.instances.map((i) => ({ ...i, moves: true })) };
+  }],
 ];
 
 interface TestRay {

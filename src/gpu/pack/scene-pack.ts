@@ -192,7 +192,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
   const triangleAttributes = packTriangleAttributes(parts, primTotal, packedMaterials.needsVertexAttributes);
   const environment = packedEnvironment ?? packEnvironment(scene.environment ?? { kind: 'none' });
   const packedLights = packSceneLights(scene, bvh, levels, lights, environment, layouts);
-  const info = sceneInfo(layouts, primTotal, nodeTotal, packedLights, levels ? layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1);
+  const info = sceneInfo(layouts, primTotal, nodeTotal, packedLights, levels ? layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1, bvh.triIndices.length === 0);
 
   return {
     scene_info: info,
@@ -283,7 +283,7 @@ function packSceneLights(scene: Scene, bvh: Bvh, levels: SceneLevels | undefined
   );
 }
 
-function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number, nodeCount: number, lights: ReturnType<typeof packLights>, tlasRoot: number, instanceCount: number): ArrayBuffer {
+function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number, nodeCount: number, lights: ReturnType<typeof packLights>, tlasRoot: number, instanceCount: number, staticWorldEmpty: boolean): ArrayBuffer {
   const info = new StructArray(layouts.sceneInfo, 1);
   info.u32Field('triangle_count')(0, primitives);
   info.u32Field('node_count')(0, nodeCount);
@@ -293,6 +293,7 @@ function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number,
   info.f32Field('sun_select_pmf')(0, lights.sunSelectPmf);
   info.u32Field('tlas_root')(0, tlasRoot);
   info.u32Field('instance_count')(0, instanceCount);
+  info.u32Field('static_world_empty')(0, staticWorldEmpty ? 1 : 0);
   return info.bytes;
 }
 
@@ -308,7 +309,7 @@ export function repackLights(scene: Scene, triangles: TriangleList, bvh: Bvh, le
   };
   const packedLights = packSceneLights(scene, bvh, levels, lights, packed.environment, layouts);
   return {
-    scene_info: sceneInfo(layouts, packed.counts.triangles, packed.counts.nodes, packedLights, packed.layout.tlasBase, levels.dynamic.length + 1),
+    scene_info: sceneInfo(layouts, packed.counts.triangles, packed.counts.nodes, packedLights, packed.layout.tlasBase, levels.dynamic.length + 1, bvh.triIndices.length === 0),
     light_slots: packedLights.lightSlots,
     punctual_lights: packedLights.punctualLights,
     totalLightPower: packedLights.totalPower,

@@ -63,7 +63,7 @@ fn trace_closest(ray: Ray) -> Hit {
   var instance = 0u;
   var node = 0u;
   var leave_at = 0u;
-  if (node_entry(0u, origin, inv_dir, hit.t) == T_MISS) {
+  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, origin, inv_dir, hit.t) == T_MISS) {
     if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, origin, inv_dir, hit.t) == T_MISS) {
       return hit;
     }
@@ -175,7 +175,7 @@ fn trace_any(ray: Ray) -> bool {
   var instance = 0u;
   var node = 0u;
   var leave_at = 0u;
-  if (node_entry(0u, origin, inv_dir, ray.t_max) == T_MISS) {
+  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, origin, inv_dir, ray.t_max) == T_MISS) {
     if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, origin, inv_dir, ray.t_max) == T_MISS) {
       return false;
     }

@@ -255,6 +255,8 @@ struct SceneInfo {
   // The top-level tree's root in bvh_nodes (bvh/levels.ts), for scenes with moving instances.
   tlas_root: u32,
   instance_count: u32,
+  // 1 when the static world has no primitives (everything moves): traversal starts at the top level.
+  static_world_empty: u32,
 }
 
 // A ray with its valid interval (t_min, t_max). Directions need not be unit length unless a caller says so.
