@@ -105,8 +105,16 @@ function makeRays(prepared: PreparedScene): TestRay[] {
       rays.push({ origin: b.position, direction: [d[0] / len, d[1] / len, d[2] / len] });
     }
   }
-  const bvh = prepared.bvh;
-  const lo = [bvh.bounds[0]!, bvh.bounds[1]!, bvh.bounds[2]!], hi = [bvh.bounds[3]!, bvh.bounds[4]!, bvh.bounds[5]!];
+  // The scene's bounds: the static world's box with every instance's (an empty static world has none).
+  const boxes = prepared.levels?.boxes ?? prepared.bvh.bounds.subarray(0, 6);
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < boxes.length; i += 6) {
+    if (!(boxes[i]! <= boxes[i + 3]!)) continue;
+    for (let k = 0; k < 3; k++) {
+      lo[k] = Math.min(lo[k]!, boxes[i + k]!);
+      hi[k] = Math.max(hi[k]!, boxes[i + 3 + k]!);
+    }
+  }
   const rnd = makeRandom(99);
   for (let i = 0; i < 1024; i++) {
     const o: Vec3 = [0, 1, 2].map((k) => lo[k]! + rnd() * (hi[k]! - lo[k]!)) as unknown as Vec3;
@@ -115,8 +123,7 @@ function makeRays(prepared: PreparedScene): TestRay[] {
     rays.push({ origin: o, direction: d });
   }
   // Rays aimed into the moving instances' boxes, from anywhere in the scene.
-  const boxes = prepared.levels?.boxes;
-  for (let g = 1; boxes && g < boxes.length / 6; g++) {
+  for (let g = 1; prepared.levels && g < boxes.length / 6; g++) {
     for (let i = 0; i < 256; i++) {
       const o: Vec3 = [0, 1, 2].map((k) => lo[k]! + rnd() * (hi[k]! - lo[k]!)) as unknown as Vec3;
       const target = [0, 1, 2].map((k) => boxes[g * 6 + k]! + rnd() * (boxes[g * 6 + 3 + k]! - boxes[g * 6 + k]!));
