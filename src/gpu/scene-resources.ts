@@ -5,13 +5,13 @@
 import { LanternError } from '../errors.ts';
 import { BSDF_TABLE_TEXTURE_FORMAT, bsdfTableTexture } from './pack/bsdf-tables.ts';
 import { ENVIRONMENT_CDF_FORMAT, ENVIRONMENT_MAP_FORMAT, type PackedEnvironment } from './pack/environment-pack.ts';
-import type { PackedScene } from './pack/scene-pack.ts';
+import { INSTANCE_TEXELS, INSTANCES_PER_ROW, type PackedScene } from './pack/scene-pack.ts';
 import { createBufferWithData } from './readback.ts';
 import { withErrorScope } from './device.ts';
 
-const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs', 'instances'] as const;
+const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs'] as const;
 const UNIFORM_NAMES = ['scene_info', 'punctual_lights'] as const;
-type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf' | 'bsdf_tables' | 'triangle_attributes';
+type TextureName = 'texture_atlas' | 'texture_atlas_linear' | 'environment_map' | 'environment_cdf' | 'bsdf_tables' | 'triangle_attributes' | 'instance_data';
 
 type BufferName = (typeof UNIFORM_NAMES)[number] | (typeof STORAGE_NAMES)[number];
 
@@ -27,6 +27,8 @@ export class SceneResources {
     private readonly bsdfTables: GPUTexture,
     /** Per-vertex tangents and second uvs (group 0 binding 15); rewritten in place when instances move. */
     readonly triangleAttributes: GPUTexture,
+    /** The Instance records (group 0 binding 16), rewritten whenever an instance moves. */
+    readonly instanceData: GPUTexture,
     readonly counts: PackedScene['counts'],
     readonly features: PackedScene['features'],
     readonly byteSize: number,
@@ -38,6 +40,7 @@ export class SceneResources {
       ...environment.bindings,
       bsdf_tables: bsdfTables.createView({ label: 'BSDF tables' }),
       triangle_attributes: triangleAttributes.createView({ label: 'triangle attributes' }),
+      instance_data: instanceData.createView({ label: 'instance records' }),
     };
   }
 
@@ -78,9 +81,10 @@ export class SceneResources {
       writeTriangleAttributes(device, texture, attributes);
       return texture;
     });
+    const instanceData = await withErrorScope(device, `the instances of scene '${label}'`, () => createInstanceTexture(device, packed.instances, label));
     const atlasBytes = (a: PackedScene['atlas']) => a.pages.length * a.pageSize * a.pageSize * 4;
     const byteSize = Object.values(buffers).reduce((s, b) => s + b.size, 0) + atlasBytes(packed.atlas) + atlasBytes(packed.linearAtlas) + environment.byteSize;
-    return new SceneResources(buffers, atlas, linearAtlas, environment, bsdfTables, triangleAttributes, packed.counts, packed.features, byteSize + bsdfTables.width * bsdfTables.height * 4 + attributes.data.byteLength);
+    return new SceneResources(buffers, atlas, linearAtlas, environment, bsdfTables, triangleAttributes, instanceData, packed.counts, packed.features, byteSize + bsdfTables.width * bsdfTables.height * 4 + attributes.data.byteLength + instanceData.width * instanceData.height * 16);
   }
 
   /**
@@ -107,10 +111,27 @@ export class SceneResources {
       this.environment,
       this.bsdfTables,
       this.triangleAttributes,
+      this.instanceData,
       this.counts,
       this.features,
       this.byteSize - old.size + buffer.size,
     );
+  }
+
+  /**
+   * Writes the Instance records (PackedScene.instances) into instance_data; where they need more rows
+   * than it has, the texture alone is made anew and a new SceneResources returned (as rewriteBuffer).
+   */
+  rewriteInstances(device: GPUDevice, records: ArrayBuffer): SceneResources {
+    const { height } = instanceTextureSize(records.byteLength);
+    if (height <= this.instanceData.height) {
+      writeInstanceTexture(device, this.instanceData, records);
+      return this;
+    }
+    const texture = createInstanceTexture(device, records, this.instanceData.label);
+    const oldBytes = this.instanceData.width * this.instanceData.height * 16;
+    this.instanceData.destroy();
+    return new SceneResources(this.buffers, this.atlas, this.linearAtlas, this.environment, this.bsdfTables, this.triangleAttributes, texture, this.counts, this.features, this.byteSize - oldBytes + texture.width * texture.height * 16);
   }
 
   destroy(): void {
@@ -120,7 +141,29 @@ export class SceneResources {
     this.environment.destroy();
     this.bsdfTables.destroy();
     this.triangleAttributes.destroy();
+    this.instanceData.destroy();
   }
+}
+
+/** instance_data's size for records of `bytes` bytes: INSTANCES_PER_ROW records a row (shaders/scene/types.wgsl). */
+export function instanceTextureSize(bytes: number): { width: number; height: number } {
+  const records = Math.max(1, Math.ceil(bytes / (INSTANCE_TEXELS * 16)));
+  return { width: INSTANCES_PER_ROW * INSTANCE_TEXELS, height: Math.ceil(records / INSTANCES_PER_ROW) };
+}
+
+function createInstanceTexture(device: GPUDevice, records: ArrayBuffer, label: string): GPUTexture {
+  const { width, height } = instanceTextureSize(records.byteLength);
+  const texture = device.createTexture({ label: `${label} instance records`, size: [width, height], format: 'rgba32uint', usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+  writeInstanceTexture(device, texture, records);
+  return texture;
+}
+
+/** The records' bytes are the texels in order: whole rows, the last padded with zeros. */
+function writeInstanceTexture(device: GPUDevice, texture: GPUTexture, records: ArrayBuffer): void {
+  const { width, height } = instanceTextureSize(records.byteLength);
+  const data = new Uint8Array(width * height * 16);
+  data.set(new Uint8Array(records));
+  device.queue.writeTexture({ texture }, data, { bytesPerRow: width * 16, rowsPerImage: height }, [width, height]);
 }
 
 /** Writes triangle_attributes' texels (f32 bits into rgba32uint). */

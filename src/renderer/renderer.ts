@@ -274,7 +274,8 @@ export class Renderer {
   private writeScene(writes: readonly BufferWrite[]): void {
     let resources = this.resources!;
     for (const w of writes) {
-      if (w.offset === 0 && w.data.byteLength > resources.buffers[w.name].size) resources = resources.rewriteBuffer(this.device, w.name, w.data);
+      if (w.name === 'instances') resources = resources.rewriteInstances(this.device, w.data);
+      else if (w.offset === 0 && w.data.byteLength > resources.buffers[w.name].size) resources = resources.rewriteBuffer(this.device, w.name, w.data);
       else this.device.queue.writeBuffer(resources.buffers[w.name], w.offset, w.data);
     }
     this.resources = resources;
@@ -291,7 +292,7 @@ export class Renderer {
     if (this.settle !== 'now' || !this.prepared?.levels) return;
     const p = this.prepared;
     const bytes = packInstances(p.scene, p.levels, p.packed.layout, p.packed.packedMaterials, new Map());
-    this.device.queue.writeBuffer(this.resources!.buffers.instances, 0, bytes);
+    this.resources = this.resources!.rewriteInstances(this.device, bytes);
     this.settle = 'no';
   }
 
@@ -445,7 +446,7 @@ export class Renderer {
   /** Writes another prepared scene's geometry (same materials, textures, environment) and catches it up with the world. */
   private swapGeometry(prepared: PreparedScene, catchUp: SceneUpdate | undefined): void {
     let resources = this.resources!;
-    for (const name of TILE_SWAP_BUFFERS) resources = resources.rewriteBuffer(this.device, name, prepared.packed[name]);
+    for (const name of TILE_SWAP_BUFFERS) resources = name === 'instances' ? resources.rewriteInstances(this.device, prepared.packed.instances) : resources.rewriteBuffer(this.device, name, prepared.packed[name]);
     this.resources = resources;
     if (prepared.packed.triangleAttributes.height === 1) writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
     this.prepared = prepared;

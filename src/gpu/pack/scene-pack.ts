@@ -410,6 +410,9 @@ export function packInstances(scene: Scene, levels: SceneLevels | undefined, lay
 }
 
 export const NO_MATERIAL = 0xffffffff;
+/** How instance_data stores the records (INSTANCE_TEXELS, INSTANCES_PER_ROW in shaders/scene/types.wgsl): 16-byte texels, a row of 128 records is 20,480 bytes, a multiple of 256 as texture writes require. */
+export const INSTANCE_TEXELS = 10;
+export const INSTANCES_PER_ROW = 128;
 export const INSTANCE_MIRRORED = 1;
 export const INSTANCE_ALPHA_FILTER = 2;
 

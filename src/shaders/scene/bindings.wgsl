@@ -19,8 +19,11 @@
 // Per-vertex tangents and the second uv set, only for scenes with normal maps or TEXCOORD_1 (else
 // 1×1): f32 bits in an rgba32uint texture (gpu/pack/scene-pack.ts), read where a material needs them.
 @group(0) @binding(15) var triangle_attributes: texture_2d<u32>;
-// The instances of the two-level BVH (bvh/levels.ts; one, the static world, without moving instances).
-@group(0) @binding(16) var<storage, read> instances: array<Instance>;
+// The instances of the two-level BVH (bvh/levels.ts; one, the static world, without moving instances):
+// the bytes of Instance records, INSTANCE_TEXELS rgba32uint texels each, INSTANCES_PER_ROW to a row
+// (scene/instances.wgsl instance_record reads one). A texture, not a storage buffer: the real-time
+// chain's passes already use the ten storage buffers a browser may give a shader stage.
+@group(0) @binding(16) var instance_data: texture_2d<u32>;
 
 // ---- Environment (bindings 8–11): scene/environment.wgsl reads these; gpu/pack/environment-pack.ts
 // packs them. environment_map is a lat-long image of f32 RGBA radiance (top row = +y) stored as the

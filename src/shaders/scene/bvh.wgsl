@@ -44,6 +44,26 @@ fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
 // The instance a traversal is in while it walks the top level (no bottom level entered yet).
 const NO_INSTANCE: u32 = 0xffffffffu;
 
+// The ray as the traversal loop tests it: in world space, or in the object space of the instance
+// whose bottom level it is in (the direction transformed, not normalised, so t is the same).
+struct TraversalRay {
+  origin: vec3f,
+  direction: vec3f,
+  inv_dir: vec3f,
+}
+
+// The ray in instance `instance`'s space (0: the world; the static world is stored in it), its alpha
+// test following that instance's material.
+fn traversal_ray(ray: Ray, instance: u32) -> TraversalRay {
+  set_filter_instance(instance);
+  if (instance_is_static(instance)) {
+    return TraversalRay(ray.origin, ray.direction, safe_inverse(ray.direction));
+  }
+  let inst = instance_record(instance);
+  let direction = object_vector(inst, ray.direction);
+  return TraversalRay(object_point(inst, ray.origin), direction, safe_inverse(direction));
+}
+
 // One loop walks both levels with one stack, so that a scene with moving instances compiles to about
 // the code (and the registers) of the single-level loop. It starts in the static world's tree (root
 // 0, world space: exactly the single-level traversal), then walks the top level over the moving
@@ -57,14 +77,12 @@ fn trace_closest(ray: Ray) -> Hit {
   if (BVH_COUNT_WORK) {
     bvh_work = TraversalWork(1u, 0u, NO_NODE);
   }
-  var origin = ray.origin;
-  var direction = ray.direction;
-  var inv_dir = safe_inverse(direction);
+  var local = traversal_ray(ray, 0u);
   var instance = 0u;
   var node = 0u;
   var leave_at = 0u;
-  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, origin, inv_dir, hit.t) == T_MISS) {
-    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, origin, inv_dir, hit.t) == T_MISS) {
+  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, local.origin, local.inv_dir, hit.t) == T_MISS) {
+    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, local.origin, local.inv_dir, hit.t) == T_MISS) {
       return hit;
     }
     instance = NO_INSTANCE;
@@ -85,18 +103,14 @@ fn trace_closest(ray: Ray) -> Hit {
       if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
         // A top-level leaf: into its instance's bottom level, the ray in the instance's space.
         instance = n.left_first;
-        let inst = instances[instance];
-        origin = object_point(inst, ray.origin);
-        direction = object_vector(inst, ray.direction);
-        inv_dir = safe_inverse(direction);
-        set_filter_instance(instance);
+        local = traversal_ray(ray, instance);
         leave_at = sp;
-        node = inst.blas_root;
+        node = instance_record(instance).blas_root;
         continue;
       }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
-        let r = intersect_primitive(origin, direction, tri, ray.t_min, hit.t);
+        let r = intersect_primitive(local.origin, local.direction, tri, ray.t_min, hit.t);
         if (BVH_COUNT_WORK) {
           bvh_work.triangles_tested += 1u;
         }
@@ -110,8 +124,8 @@ fn trace_closest(ray: Ray) -> Hit {
     } else {
       var near = n.left_first;
       var far = near + 1u;
-      var t_near = node_entry(near, origin, inv_dir, hit.t);
-      var t_far = node_entry(far, origin, inv_dir, hit.t);
+      var t_near = node_entry(near, local.origin, local.inv_dir, hit.t);
+      var t_far = node_entry(far, local.origin, local.inv_dir, hit.t);
       if (t_far < t_near) {
         let swap_node = near;
         near = far;
@@ -136,7 +150,7 @@ fn trace_closest(ray: Ray) -> Hit {
       if (instance == 0u) {
         // The static world is done: on to the moving instances, if the closest hit so far leaves room.
         instance = NO_INSTANCE;
-        if (node_entry(scene_info.tlas_root, origin, inv_dir, hit.t) == T_MISS) {
+        if (node_entry(scene_info.tlas_root, local.origin, local.inv_dir, hit.t) == T_MISS) {
           break;
         }
         node = scene_info.tlas_root;
@@ -144,10 +158,7 @@ fn trace_closest(ray: Ray) -> Hit {
       }
       // The bottom level is done: back to the top level in world space.
       instance = NO_INSTANCE;
-      origin = ray.origin;
-      direction = ray.direction;
-      inv_dir = safe_inverse(direction);
-      set_filter_instance(0u);
+      local = traversal_ray(ray, 0u);
     }
     if (sp == 0u) {
       break;
@@ -169,14 +180,12 @@ fn trace_closest(ray: Ray) -> Hit {
 // trace_closest walks them.
 fn trace_any(ray: Ray) -> bool {
   set_alpha_salt(ray);
-  var origin = ray.origin;
-  var direction = ray.direction;
-  var inv_dir = safe_inverse(direction);
+  var local = traversal_ray(ray, 0u);
   var instance = 0u;
   var node = 0u;
   var leave_at = 0u;
-  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, origin, inv_dir, ray.t_max) == T_MISS) {
-    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, origin, inv_dir, ray.t_max) == T_MISS) {
+  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, local.origin, local.inv_dir, ray.t_max) == T_MISS) {
+    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, local.origin, local.inv_dir, ray.t_max) == T_MISS) {
       return false;
     }
     instance = NO_INSTANCE;
@@ -188,27 +197,24 @@ fn trace_any(ray: Ray) -> bool {
     let n = bvh_nodes[node];
     if (n.tri_count > 0u) {
       if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
+        // A top-level leaf: into its instance's bottom level, the ray in the instance's space.
         instance = n.left_first;
-        let inst = instances[instance];
-        origin = object_point(inst, ray.origin);
-        direction = object_vector(inst, ray.direction);
-        inv_dir = safe_inverse(direction);
-        set_filter_instance(instance);
+        local = traversal_ray(ray, instance);
         leave_at = sp;
-        node = inst.blas_root;
+        node = instance_record(instance).blas_root;
         continue;
       }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
         let tri = triangles_hot[i];
-        let r = intersect_primitive(origin, direction, tri, ray.t_min, ray.t_max);
+        let r = intersect_primitive(local.origin, local.direction, tri, ray.t_min, ray.t_max);
         if (r.x < ray.t_max && accept_hit(tri, i, r.yz)) {
           return true;
         }
       }
     } else {
       let left = n.left_first;
-      let hit_left = node_entry(left, origin, inv_dir, ray.t_max) != T_MISS;
-      let hit_right = node_entry(left + 1u, origin, inv_dir, ray.t_max) != T_MISS;
+      let hit_left = node_entry(left, local.origin, local.inv_dir, ray.t_max) != T_MISS;
+      let hit_right = node_entry(left + 1u, local.origin, local.inv_dir, ray.t_max) != T_MISS;
       if (hit_left && hit_right) {
         stack[sp] = left + 1u;
         sp += 1u;
@@ -223,17 +229,15 @@ fn trace_any(ray: Ray) -> bool {
     if (SCENE_HAS_INSTANCES && instance != NO_INSTANCE && sp == leave_at) {
       if (instance == 0u) {
         instance = NO_INSTANCE;
-        if (node_entry(scene_info.tlas_root, origin, inv_dir, ray.t_max) == T_MISS) {
+        if (node_entry(scene_info.tlas_root, local.origin, local.inv_dir, ray.t_max) == T_MISS) {
           return false;
         }
         node = scene_info.tlas_root;
         continue;
       }
+      // The bottom level is done: back to the top level in world space.
       instance = NO_INSTANCE;
-      origin = ray.origin;
-      direction = ray.direction;
-      inv_dir = safe_inverse(direction);
-      set_filter_instance(0u);
+      local = traversal_ray(ray, 0u);
     }
     if (sp == 0u) {
       return false;

@@ -22,7 +22,7 @@ var<private> filter_instance_alpha: bool;
 fn set_filter_instance(instance: u32) {
   if (SCENE_HAS_ALPHA_MASKS && SCENE_HAS_INSTANCES) {
     filter_instance = instance;
-    filter_instance_alpha = instance != 0u && (instances[instance].flags & INSTANCE_ALPHA_FILTER) != 0u;
+    filter_instance_alpha = instance != 0u && (instance_record(instance).flags & INSTANCE_ALPHA_FILTER) != 0u;
   }
 }
 

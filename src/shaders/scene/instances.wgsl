@@ -9,6 +9,22 @@
 // (gpu/kernel.ts, from the packed scene's features): a frozen scene compiles the single-level code.
 override SCENE_HAS_INSTANCES: bool = false;
 
+// Texel k of instance g's record.
+fn instance_texel(g: u32, k: u32) -> vec4u {
+  return textureLoad(instance_data, vec2u((g % INSTANCES_PER_ROW) * INSTANCE_TEXELS + k, g / INSTANCES_PER_ROW), 0);
+}
+
+// Instance g's record (scene/types Instance), from instance_data.
+fn instance_record(g: u32) -> Instance {
+  let last = instance_texel(g, 9u);
+  return Instance(
+    bitcast<vec4f>(instance_texel(g, 0u)), bitcast<vec4f>(instance_texel(g, 1u)), bitcast<vec4f>(instance_texel(g, 2u)),
+    bitcast<vec4f>(instance_texel(g, 3u)), bitcast<vec4f>(instance_texel(g, 4u)), bitcast<vec4f>(instance_texel(g, 5u)),
+    bitcast<vec4f>(instance_texel(g, 6u)), bitcast<vec4f>(instance_texel(g, 7u)), bitcast<vec4f>(instance_texel(g, 8u)),
+    last.x, last.y, last.z, last.w,
+  );
+}
+
 fn instance_is_static(instance: u32) -> bool {
   return !SCENE_HAS_INSTANCES || instance == 0u;
 }
@@ -51,12 +67,12 @@ fn previous_world_point(instance: u32, p: vec3f) -> vec3f {
   if (instance_is_static(instance)) {
     return p;
   }
-  let inst = instances[instance];
+  let inst = instance_record(instance);
   return rows_point(inst.previous_0, inst.previous_1, inst.previous_2, object_point(inst, p));
 }
 
 fn instance_mirrored(instance: u32) -> bool {
-  return !instance_is_static(instance) && (instances[instance].flags & INSTANCE_MIRRORED) != 0u;
+  return !instance_is_static(instance) && (instance_record(instance).flags & INSTANCE_MIRRORED) != 0u;
 }
 
 // The uniform scale of a similarity transform (spheres and capsules): the length of a transformed axis.
@@ -71,7 +87,7 @@ fn world_primitive(instance: u32, leaf: u32) -> TriangleHot {
   if (instance_is_static(instance)) {
     return prim;
   }
-  let inst = instances[instance];
+  let inst = instance_record(instance);
   var out = prim;
   out.v0 = world_point(inst, prim.v0);
   if ((prim.flags & PRIMITIVE_SPHERE) != 0u) {
@@ -97,7 +113,7 @@ fn world_shading(instance: u32, leaf: u32) -> TriangleShading {
   if (instance_is_static(instance)) {
     return s;
   }
-  let inst = instances[instance];
+  let inst = instance_record(instance);
   var out = s;
   let mirrored = (inst.flags & INSTANCE_MIRRORED) != 0u && (triangles_hot[leaf].flags & PRIMITIVE_ANALYTIC) == 0u;
   out.n0 = world_normal(inst, s.n0);
@@ -116,7 +132,7 @@ fn instance_material(instance: u32, leaf: u32) -> u32 {
   if (instance_is_static(instance)) {
     return own;
   }
-  let m = instances[instance].material;
+  let m = instance_record(instance).material;
   return select(m, own, m == NO_MATERIAL);
 }
 

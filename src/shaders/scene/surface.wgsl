@@ -139,7 +139,7 @@ fn instance_tangent(instance: u32, t: vec4f) -> vec4f {
   if (instance_is_static(instance) || t.w == 0.0) {
     return t;
   }
-  let inst = instances[instance];
+  let inst = instance_record(instance);
   let w = select(t.w, -t.w, (inst.flags & INSTANCE_MIRRORED) != 0u);
   return vec4f(world_vector(inst, t.xyz), w);
 }

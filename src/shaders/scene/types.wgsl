@@ -62,6 +62,9 @@ const INSTANCE_MIRRORED: u32 = 1u;
 // The instance's material has a hit filter (alpha mask or blend), whatever its mesh's materials say.
 const INSTANCE_ALPHA_FILTER: u32 = 2u;
 const NO_MATERIAL: u32 = 0xffffffffu;
+// How instance_data stores the records (gpu/pack/scene-pack.ts INSTANCE_TEXELS, INSTANCES_PER_ROW).
+const INSTANCE_TEXELS: u32 = 10u;
+const INSTANCES_PER_ROW: u32 = 128u;
 
 // What shading reads once per closest hit, same order as TriangleHot. The "cold" half. Spheres and
 // capsules use only material and source_index (their normals and uvs are analytic).
