@@ -2,7 +2,7 @@
  * Deterministic triangle soups for the BVH tests (test-only; nothing in the renderer imports this).
  * Each returns a flat position array, 9 floats per triangle.
  */
-import { fromTrs, translation } from '../math/mat4.ts';
+import { fromTrs, IDENTITY, translation } from '../math/mat4.ts';
 import { seededRandom } from '../math/seeded-random.ts';
 import { diffuse, type Mesh, type Scene } from '../scene/types.ts';
 
@@ -74,9 +74,17 @@ export function pointCloud(count: number): Float32Array {
   return new Float32Array(count * 9).fill(1.5);
 }
 
-function soupMesh(name: string, count: number, seed: number, scale: number): Mesh {
-  const positions = randomSoup(count, seed, scale);
-  return { name, positions, indices: Uint32Array.from({ length: count * 3 }, (_, i) => i), materialIds: new Uint32Array(count) };
+/** A mesh of the triangles in `positions` (9 floats each), one material. */
+function meshOf(name: string, positions: Float32Array): Mesh {
+  const n = positions.length / 9;
+  return { name, positions, indices: Uint32Array.from({ length: n * 3 }, (_, i) => i), materialIds: new Uint32Array(n) };
+}
+
+const soupMesh = (name: string, count: number, seed: number, scale: number): Mesh => meshOf(name, randomSoup(count, seed, scale));
+
+/** A one-instance scene of the triangles in `positions`, grey diffuse, seen from `camera`. */
+export function soupScene(name: string, positions: Float32Array, camera: Scene['camera']): Scene {
+  return { name, meshes: [meshOf(name, positions)], instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }], materials: [diffuse('grey', [0.5, 0.5, 0.5])], camera };
 }
 
 /** A static soup, and moving instances of two meshes: shared, rotated, non-uniformly scaled, mirrored; plus spheres. */

@@ -5,7 +5,7 @@
  * restarting accumulation, and any edit goes back to the generic kernel at once.
  */
 import { describe, expect, it } from 'vitest';
-import { makeRandom, randomSoup, uvSphere } from '../../src/bvh/test-scenes.ts';
+import { makeRandom, randomSoup, soupScene, uvSphere } from '../../src/bvh/test-scenes.ts';
 import { traverseClosest } from '../../src/bvh/traverse.ts';
 import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
 import { createBufferWithData, readBuffer } from '../../src/gpu/readback.ts';
@@ -25,16 +25,6 @@ import { lum } from './scene-render.ts';
 
 const NO_TRIANGLE = 0xffffffff;
 
-function soupScene(name: string, positions: Float32Array, camera: Scene['camera']): Scene {
-  const n = positions.length / 9;
-  return {
-    name,
-    meshes: [{ name, positions, indices: Uint32Array.from({ length: n * 3 }, (_, i) => i), materialIds: new Uint32Array(n) }],
-    instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }],
-    materials: [{ kind: 'diffuse', name: 'grey', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] }],
-    camera,
-  };
-}
 
 interface TestRay {
   origin: Vec3;

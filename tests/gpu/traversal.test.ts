@@ -9,7 +9,7 @@ import { IDENTITY } from '../../src/math/mat4.ts';
 import { describe, expect, it } from 'vitest';
 import { traceScene } from '../../src/bvh/levels.ts';
 import { prepareRay, intersectPrimitive } from '../../src/bvh/ray.ts';
-import { quadGrid, randomSoup, uvSphere, makeRandom, movingTestScene } from '../../src/bvh/test-scenes.ts';
+import { quadGrid, randomSoup, soupScene, uvSphere, makeRandom, movingTestScene } from '../../src/bvh/test-scenes.ts';
 import { createBufferWithData, readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
@@ -22,16 +22,6 @@ import { testGpu } from './gpu-context.ts';
 
 const SIZE = 48;
 
-function soupScene(name: string, positions: Float32Array, camera: Scene['camera']): Scene {
-  const n = positions.length / 9;
-  return {
-    name,
-    meshes: [{ name, positions, indices: Uint32Array.from({ length: n * 3 }, (_, i) => i), materialIds: new Uint32Array(n) }],
-    instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }],
-    materials: [{ kind: 'diffuse', name: 'grey', albedo: [0.5, 0.5, 0.5], emission: [0, 0, 0] }],
-    camera,
-  };
-}
 
 /**
  * Spheres and capsules among triangles: random small ones, nested and touching ones, long thin

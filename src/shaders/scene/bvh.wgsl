@@ -64,6 +64,19 @@ fn traversal_ray(ray: Ray, instance: u32) -> TraversalRay {
   return TraversalRay(object_point(inst, ray.origin), direction, safe_inverse(direction));
 }
 
+// Where a traversal starts (node, instance): the static world's root, or the top level's when the ray
+// misses the static world (or it is empty); node NO_NODE when it misses both before t.
+fn traversal_start(local: TraversalRay, t: f32) -> vec2u {
+  let static_world = !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
+  if (static_world && node_entry(0u, local.origin, local.inv_dir, t) != T_MISS) {
+    return vec2u(0u, 0u);
+  }
+  if (SCENE_HAS_INSTANCES && node_entry(scene_info.tlas_root, local.origin, local.inv_dir, t) != T_MISS) {
+    return vec2u(scene_info.tlas_root, NO_INSTANCE);
+  }
+  return vec2u(NO_NODE, 0u);
+}
+
 // One loop walks both levels with one stack, so that a scene with moving instances compiles to about
 // the code (and the registers) of the single-level loop. It starts in the static world's tree (root
 // 0, world space: exactly the single-level traversal), then walks the top level over the moving
@@ -78,16 +91,13 @@ fn trace_closest(ray: Ray) -> Hit {
     bvh_work = TraversalWork(1u, 0u, NO_NODE);
   }
   var local = traversal_ray(ray, 0u);
-  var instance = 0u;
-  var node = 0u;
-  var leave_at = 0u;
-  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, local.origin, local.inv_dir, hit.t) == T_MISS) {
-    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, local.origin, local.inv_dir, hit.t) == T_MISS) {
-      return hit;
-    }
-    instance = NO_INSTANCE;
-    node = scene_info.tlas_root;
+  let start = traversal_start(local, hit.t);
+  if (start.x == NO_NODE) {
+    return hit;
   }
+  var node = start.x;
+  var instance = start.y;
+  var leave_at = 0u;
   if (BVH_COUNT_WORK) {
     bvh_work.nodes_visited = 0u;
   }
@@ -181,16 +191,13 @@ fn trace_closest(ray: Ray) -> Hit {
 fn trace_any(ray: Ray) -> bool {
   set_alpha_salt(ray);
   var local = traversal_ray(ray, 0u);
-  var instance = 0u;
-  var node = 0u;
-  var leave_at = 0u;
-  if ((SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) || node_entry(0u, local.origin, local.inv_dir, ray.t_max) == T_MISS) {
-    if (!SCENE_HAS_INSTANCES || node_entry(scene_info.tlas_root, local.origin, local.inv_dir, ray.t_max) == T_MISS) {
-      return false;
-    }
-    instance = NO_INSTANCE;
-    node = scene_info.tlas_root;
+  let start = traversal_start(local, ray.t_max);
+  if (start.x == NO_NODE) {
+    return false;
   }
+  var node = start.x;
+  var instance = start.y;
+  var leave_at = 0u;
   var stack: array<u32, BVH_STACK_SIZE>;
   var sp = 0u;
   loop {
