@@ -12,7 +12,7 @@ import { createBufferWithData, readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
 import { compileSpecialised, specialiseScene } from '../../src/gpu/specialisation.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
-import { IDENTITY, translation } from '../../src/math/mat4.ts';
+import { translation } from '../../src/math/mat4.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
 import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../../src/passes/trace-rays-pass.ts';
 import { UniformParams } from '../../src/passes/uniform-params.ts';
