@@ -89,6 +89,7 @@ export function moveInstances(prepared: PreparedScene, moves: ReadonlyMap<number
  *   morphed mesh's bottom level is refitted and its records rewritten where they lie; the instance
  *   records are rewritten (with this frame's transforms as the previous ones of those that moved, for
  *   motion vectors) and the top level rebuilt; the light table is rebuilt when a moving emitter moved.
+ *   The world-space primitive list is shared with `prepared` and updated in place: use the result.
  * - Anything else (an instance that does not move moved after all, or a mesh of the static world
  *   morphed): its world-space primitives are written again, the static world's BVH is refitted rather
  *   than rebuilt, and the geometry is packed again around the materials and textures already packed.
@@ -113,12 +114,19 @@ export function updateGeometry(prepared: PreparedScene, poses: ReadonlyMap<numbe
   });
   const moved: Scene = { ...scene, meshes, instances };
   const touched = (i: number) => poses.has(instances[i]!.id) || morphWeights.has(instances[i]!.mesh);
-  const triangles: TriangleList = { ...prepared.triangles, positions: new Float32Array(prepared.triangles.positions), swapped: new Uint8Array(prepared.triangles.swapped), materialIds: new Uint32Array(prepared.triangles.materialIds) };
+  const levels = prepared.levels;
+  const staticTouched = instances.some((inst, i) => !inst.moves && touched(i));
+  // The world-space copies of what moved (CPU tools, light areas). When only moving instances moved
+  // they are written in place: copying the whole scene's list every frame would cost a large scene
+  // tens of megabytes per frame for a door. The static world's BVH indexes the list, so a static
+  // move works on a copy.
+  const fast = levels !== undefined && !staticTouched;
+  const triangles: TriangleList = fast
+    ? prepared.triangles
+    : { ...prepared.triangles, positions: new Float32Array(prepared.triangles.positions), swapped: new Uint8Array(prepared.triangles.swapped), materialIds: new Uint32Array(prepared.triangles.materialIds) };
   instances.forEach((inst, i) => {
     if (touched(i)) writeInstanceTriangles(moved, inst, i, triangles, triangles.instanceFirstTriangle[i]!);
   });
-  const levels = prepared.levels;
-  const staticTouched = instances.some((inst, i) => !inst.moves && touched(i));
   const t0 = performance.now();
   if (!levels || staticTouched) {
     const bvh = refitBvh(prepared.bvh, triangles.positions, triangles.kinds);
