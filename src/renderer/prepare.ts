@@ -9,7 +9,7 @@ import type { Mat4 } from '../math/mat4.ts';
 import type { Bvh } from '../bvh/types.ts';
 import { packEnvironment } from '../gpu/pack/environment-pack.ts';
 import { repackMaterialRecords } from '../gpu/pack/material-pack.ts';
-import { packGeometry, packInstances, packMeshPart, packScene, packTlasNodes, repackLights, sceneLayouts, type PackedScene } from '../gpu/pack/scene-pack.ts';
+import { packGeometry, packInstances, packMeshPart, packScene, packTlasNodes, repackLights, rescaleLights, sceneLayouts, type PackedScene } from '../gpu/pack/scene-pack.ts';
 import { applyMaterialEdit, editChangesEmission, type MaterialEdit } from '../scene/material-edit.ts';
 import { withEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
@@ -236,8 +236,14 @@ export function editMaterials(prepared: PreparedScene, edits: ReadonlyMap<number
   const edited: Scene = { ...scene, materials };
   const packedMaterials = repackMaterialRecords(materials, prepared.packed.packedMaterials, sceneLayouts(), edits.keys());
   const textureRefsChanged = packedMaterials.textureRefs !== prepared.packed.packedMaterials.textureRefs;
-  const packed: PackedScene = lightsChanged
-    ? packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels)
-    : { ...prepared.packed, materials: packedMaterials.materials, texture_refs: packedMaterials.textureRefs, packedMaterials };
+  const base: PackedScene = { ...prepared.packed, materials: packedMaterials.materials, texture_refs: packedMaterials.textureRefs, packedMaterials };
+  // New emission: the light table is rebuilt from the emitters it holds (no walk over the geometry),
+  // unless a material starts to emit, whose primitives it does not hold yet.
+  const rescaled = lightsChanged ? rescaleLights(edited, prepared.triangles, prepared.bvh, prepared.levels, base, scene.materials, edits.keys()) : undefined;
+  const packed: PackedScene = !lightsChanged
+    ? base
+    : rescaled
+      ? { ...base, ...rescaled }
+      : packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels);
   return { prepared: { ...prepared, scene: edited, packed }, lightsChanged, textureRefsChanged };
 }

@@ -12,7 +12,7 @@ import { determinant3, IDENTITY, invertAffine, normalMatrix, type Mat4 } from '.
 import { meshScene, type SceneLevels } from '../../bvh/levels.ts';
 import { luminance } from '../../math/vec3.ts';
 import { meshPrimitiveCount, PRIMITIVE_KIND, type TriangleList } from '../../scene/triangles.ts';
-import type { Scene } from '../../scene/types.ts';
+import type { Material, Scene } from '../../scene/types.ts';
 import { reflectModule, structLayout } from '../wgsl/reflect.ts';
 import { packEnvironment, type PackedEnvironment } from './environment-pack.ts';
 import { packLights } from './light-pack.ts';
@@ -298,23 +298,73 @@ function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number,
 }
 
 /** The light table again, around the same emitters with the moving instances' powers recomputed (they moved, scaled or changed material). */
-export function repackLights(scene: Scene, triangles: TriangleList, bvh: Bvh, levels: SceneLevels, packed: PackedScene): Pick<PackedScene, 'scene_info' | 'light_slots' | 'punctual_lights' | 'totalLightPower' | 'lightList'> {
+export function repackLights(scene: Scene, triangles: TriangleList, bvh: Bvh, levels: SceneLevels | undefined, packed: PackedScene, staticLights?: LightList): Pick<PackedScene, 'scene_info' | 'light_slots' | 'punctual_lights' | 'totalLightPower' | 'lightList' | 'counts'> {
   const layouts = sceneLayouts();
   const staticCount = packed.lightList.instances.filter((g) => g === 0).length;
-  const dynamic = dynamicLights(scene, triangles, levels, packed.layout, packed.packedMaterials);
+  const own = staticLights ?? { leaves: packed.lightList.leaves.slice(0, staticCount), powers: packed.lightList.powers.slice(0, staticCount), instances: packed.lightList.instances.slice(0, staticCount) };
+  const dynamic = levels ? dynamicLights(scene, triangles, levels, packed.layout, packed.packedMaterials) : { leaves: [], powers: [], instances: [], spheres: 0 };
   const lights: LightList = {
-    leaves: [...packed.lightList.leaves.slice(0, staticCount), ...dynamic.leaves],
-    powers: [...packed.lightList.powers.slice(0, staticCount), ...dynamic.powers],
-    instances: [...packed.lightList.instances.slice(0, staticCount), ...dynamic.instances],
+    leaves: [...own.leaves, ...dynamic.leaves],
+    powers: [...own.powers, ...dynamic.powers],
+    instances: [...own.instances, ...dynamic.instances],
   };
   const packedLights = packSceneLights(scene, bvh, levels, lights, packed.environment, layouts);
+  const spheres = own.leaves.filter((leaf) => triangles.kinds[bvh.triIndices[leaf]!] === PRIMITIVE_KIND.sphere).length + dynamic.spheres;
   return {
-    scene_info: sceneInfo(layouts, packed.counts.triangles, packed.counts.nodes, packedLights, packed.layout.tlasBase, levels.dynamic.length + 1, bvh.triIndices.length === 0),
+    scene_info: sceneInfo(layouts, packed.counts.triangles, packed.counts.nodes, packedLights, levels ? packed.layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1, bvh.triIndices.length === 0),
     light_slots: packedLights.lightSlots,
     punctual_lights: packedLights.punctualLights,
     totalLightPower: packedLights.totalPower,
     lightList: lights,
+    counts: { ...packed.counts, lights: packedLights.slotCount, emissiveTriangles: lights.leaves.length, emissiveSpheres: spheres },
   };
+}
+
+/** A material's power per unit of emitting area (luminance; both faces for two-sided emitters), as the light table weighs it. */
+export function emitterStrength(material: Material, emissionMean: number): number {
+  return luminance(material.emission) * emissionMean * (material.twoSidedEmission ? 2 : 1);
+}
+
+/**
+ * The light table after emission edits, without walking the geometry: the static world's emitters
+ * keep their order and take their materials' new strengths, powers computed as packing computes
+ * them (so the table is the one a fresh preparation makes), those gone dark dropped; the moving
+ * instances' are recomputed. Undefined when an edited material starts to emit (its primitives are
+ * not in the table yet: pack the geometry again).
+ */
+export function rescaleLights(scene: Scene, triangles: TriangleList, bvh: Bvh, levels: SceneLevels | undefined, packed: PackedScene, before: readonly Material[], edited: Iterable<number>): ReturnType<typeof repackLights> | undefined {
+  const mean = packed.packedMaterials.emissionMean;
+  const changed = new Set<number>();
+  for (const m of edited) {
+    if (!(emitterStrength(before[m]!, mean[m]!) > 0) && emitterStrength(scene.materials[m]!, mean[m]!) > 0) return undefined;
+    changed.add(m);
+  }
+  const { leaves, powers, instances } = packed.lightList;
+  const kept: LightList = { leaves: [], powers: [], instances: [] };
+  const p = triangles.positions;
+  for (let i = 0; i < instances.length && instances[i] === 0; i++) {
+    const t = bvh.triIndices[leaves[i]!]!;
+    const m = triangles.materialIds[t]!;
+    let power = powers[i]!;
+    if (changed.has(m)) {
+      const strength = emitterStrength(scene.materials[m]!, mean[m]!);
+      const o = t * 9;
+      power = triangles.kinds[t] === PRIMITIVE_KIND.sphere ? strength * (4 * Math.PI * p[o + 3]! * p[o + 3]!) : strength * 0.5 * triangleTwiceArea(p, o);
+    }
+    if (!(power > 0)) continue;
+    kept.leaves.push(leaves[i]!);
+    kept.powers.push(power);
+    kept.instances.push(0);
+  }
+  return repackLights(scene, triangles, bvh, levels, packed, kept);
+}
+
+/** |(v1 − v0) × (v2 − v0)| of the triangle at float `o` of `p`, as packing computes it. */
+function triangleTwiceArea(p: Float32Array, o: number): number {
+  const ax = p[o]!, ay = p[o + 1]!, az = p[o + 2]!;
+  const e1x = p[o + 3]! - ax, e1y = p[o + 4]! - ay, e1z = p[o + 5]! - az;
+  const e2x = p[o + 6]! - ax, e2y = p[o + 7]! - ay, e2z = p[o + 8]! - az;
+  return Math.hypot(e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x);
 }
 
 /**
@@ -436,7 +486,7 @@ function dynamicLights(scene: Scene, triangles: TriangleList, levels: SceneLevel
     for (let t = 0; t < list.count; t++) {
       const m = inst.material ?? list.materialIds[t]!;
       const mat = scene.materials[m]!;
-      const e = luminance(mat.emission) * packedMaterials.emissionMean[m]! * (mat.twoSidedEmission ? 2 : 1);
+      const e = emitterStrength(mat, packedMaterials.emissionMean[m]!);
       if (!(e > 0)) continue;
       const kind = list.kinds[t]!;
       if (kind === PRIMITIVE_KIND.capsule) continue;
@@ -520,7 +570,7 @@ function writePrimitives(part: PrimitivePart, packedMaterials: PackedMaterials, 
         e2(leaf, r, 0, 0);
         area = 2 * Math.PI * r * Math.hypot(ax, ay, az) + 4 * Math.PI * r * r;
       }
-      const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * area * (mat.twoSidedEmission ? 2 : 1);
+      const power = emitterStrength(mat, packedMaterials.emissionMean[m]!) * area;
       if (power > 0 && kind === PRIMITIVE_KIND.sphere) {
         lights?.leaves.push(lightLeafBase + j);
         lights?.powers.push(power);
@@ -560,7 +610,7 @@ function writePrimitives(part: PrimitivePart, packedMaterials: PackedMaterials, 
     }
 
     // Power in the luminance sense, as lights.wgsl light_selection_pmf computes it.
-    const power = luminance(mat.emission) * packedMaterials.emissionMean[m]! * 0.5 * twiceArea * (mat.twoSidedEmission ? 2 : 1);
+    const power = emitterStrength(mat, packedMaterials.emissionMean[m]!) * 0.5 * twiceArea;
     if (power > 0 && lights) {
       lights.leaves.push(lightLeafBase + j);
       lights.powers.push(power);
