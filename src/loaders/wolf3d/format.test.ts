@@ -85,6 +85,10 @@ describe('opening a set', () => {
     const { maphead, gamemaps, vswap } = testGameFiles();
     await expect(WOLF3D_FORMAT.open({ files: [maphead], resolve: resolveFrom([gamemaps]) })).rejects.toThrow(/MAPHEAD\.WL1: VSWAP\.WL1 is missing beside it/);
     await expect(WOLF3D_FORMAT.open({ files: [maphead, maphead], resolve: resolveFrom([]) })).rejects.toThrow(/both are MAPHEAD files/);
+    // Two whole games dropped together: the registered one.
+    const registered = testGameFiles({ extension: 'WL6', maps: 3 });
+    const both = await WOLF3D_FORMAT.open({ files: [maphead, gamemaps, vswap, registered.maphead, registered.gamemaps, registered.vswap], resolve: resolveFrom([]) });
+    expect([both.description, both.parts.length]).toEqual(['MAPHEAD.WL6 + GAMEMAPS.WL6 + VSWAP.WL6', 3]);
     await expect(WOLF3D_FORMAT.open({ files: [{ name: 'AUDIOT.WL1', bytes: new Uint8Array(2) }], resolve: resolveFrom([]) })).rejects.toThrow(LanternError);
     const cut = { ...vswap, bytes: vswap.bytes.subarray(0, 100) };
     await expect(WOLF3D_FORMAT.open({ files: [maphead, gamemaps, cut], resolve: resolveFrom([]) })).rejects.toThrow(/^VSWAP\.WL1: /);

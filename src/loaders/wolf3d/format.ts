@@ -77,7 +77,10 @@ export const WOLF3D_FORMAT: SceneFormat = {
   async open(set) {
     if (set.files.length === 0) throw new LanternError('no Wolfenstein 3D file was given', SET_HINT);
     const found: Partial<Record<Role, NamedBytes>> = {};
-    for (const file of set.files) {
+    // A whole game among the files (a dropped folder, perhaps with both .WL1 and .WL6): that one.
+    const complete = wolfFilesInFolder(set.files.map((f) => f.name));
+    const given = complete ? complete.map((name) => set.files.find((f) => f.name === name)!) : set.files;
+    for (const file of given) {
       const role = wolfRole(file.name);
       if (!role) continue;
       const already = found[role];
