@@ -63,7 +63,7 @@ describe('opening a set', () => {
     expect(scene.camera.forward).toEqual([0, 0, -1]);
     const inventory = opened.inventory!();
     expect(inventory.lines[0]).toBe('Wolfenstein 3D (.WL1): 2 maps, 16 wall pages, 50 sprites');
-    expect(inventory.json).toMatchObject({ extension: 'WL1', maps: [{ id: 'E1L1', title: 'Test Map1', width: 64, height: 64, doors: 1, statics: 5 }, { id: 'E1L2' }] });
+    expect(inventory.json).toMatchObject({ extension: 'WL1', maps: [{ id: 'E1L1', title: 'Test Map1', width: 64, height: 64, doors: 2, statics: 5 }, { id: 'E1L2' }] });
   });
 
   it('finds the other two beside any one of them, in its case', async () => {

@@ -55,6 +55,7 @@ export function readWolfGame(files: WolfFiles): WolfGame {
   return {
     extension,
     maps,
+    // A number is a map's `index` (MAPHEAD's slot, as WolfMapInfo.index), not its place in `maps`.
     map(idOrIndex) {
       const index = typeof idOrIndex === 'number' ? idOrIndex : mapIndexOf(idOrIndex);
       const info = maps.find((m) => m.index === index);

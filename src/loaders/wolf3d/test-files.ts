@@ -222,7 +222,7 @@ function concat(chunks: readonly Uint8Array[]): Uint8Array {
 export const TEST_CODES = {
   /** Wall tiles 1–4 (pages 0–7); the door pages are the last 8 wall pages, as in the game (DOORWALL). */
   walls: [1, 2, 3, 4],
-  /** A door between vertical walls (opens along y) and one between horizontal walls. */
+  /** A door in a wall running north–south (passed east–west; the game's vertical door) and one in a wall running east–west. */
   doorVertical: 90,
   doorHorizontal: 91,
   /** The first floor (area) code. */
@@ -250,7 +250,11 @@ export function testGameFiles(options: { extension?: string; maps?: number; fold
   return { maphead: { name: `${prefix}MAPHEAD.${ext}`, bytes: maphead }, gamemaps: { name: `${prefix}GAMEMAPS.${ext}`, bytes: gamemaps }, vswap: { name: `${prefix}VSWAP.${ext}`, bytes: vswap } };
 }
 
-/** Map k of testGameFiles: room from (2, 2) to (61 − k, 40), a dividing wall at y = 20 with a door at x = 10. */
+/**
+ * Map k of testGameFiles: a room from (2, 2) to (61 − k, 40) (x east, y south), split by a wall
+ * along y = 20 with a door (91) at x = 10, its south half split again by a wall along x = 30 with a
+ * door (90) at y = 33; the player at (10, 30) facing north; statics west of x = 30.
+ */
 export function testMap(k: number): TestMap {
   const width = 64;
   const height = 64;
@@ -260,6 +264,8 @@ export function testMap(k: number): TestMap {
   for (let y = 2; y <= 40; y++) for (let x = 2; x <= right; x++) walls[y * width + x] = TEST_CODES.floor + (y < 20 ? 0 : 1);
   for (let x = 2; x <= right; x++) walls[20 * width + x] = 2 + (x % 3);
   walls[20 * width + 10] = TEST_CODES.doorHorizontal;
+  for (let y = 21; y <= 40; y++) walls[y * width + 30] = 3;
+  walls[33 * width + 30] = TEST_CODES.doorVertical;
   objects[30 * width + 10] = TEST_CODES.playerStart.north;
   objects[10 * width + 10] = TEST_CODES.statics.chandelier;
   objects[25 * width + 5] = TEST_CODES.statics.floorLamp;
