@@ -2,7 +2,8 @@
  * The hybrid recipe's raster first hit (shaders/passes/hybrid-raster.wgsl): two render pipelines
  * over the scene's primitive records, one for triangles and one for spheres and capsules (drawn as
  * their boxes, depth from the exact intersection), into a visibility buffer (rg32uint: instance,
- * primitive) and a reversed depth buffer. One draw for the static world and one per moving instance
+ * primitive) and a reversed depth buffer: opaque triangles, analytic primitives, then alpha-masked
+ * triangles (the only fragments that may discard). One draw for the static world and one per moving instance
  * (its mesh's primitives, placed by its instance record). Pipelines are compiled per scene features,
  * as the compute kernels are.
  */
@@ -15,7 +16,7 @@ import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/hybrid-raster';
-const ENTRIES = ['raster_triangle', 'raster_fragment', 'raster_analytic', 'raster_analytic_fragment'] as const;
+const ENTRIES = ['raster_triangle', 'raster_fragment', 'raster_masked_triangle', 'raster_masked_fragment', 'raster_analytic', 'raster_analytic_fragment'] as const;
 /** The features the raster module compiles by. */
 const RASTER_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances'];
 
@@ -46,6 +47,7 @@ export interface RasterFrame {
 
 interface Pipelines {
   readonly triangles: GPURenderPipeline;
+  readonly masked: GPURenderPipeline;
   readonly analytic: GPURenderPipeline;
 }
 
@@ -96,7 +98,7 @@ export class HybridRasterPass {
           primitive: { topology: 'triangle-list', cullMode: 'none' },
           depthStencil: { format: DEPTH_FORMAT, depthWriteEnabled: true, depthCompare: 'greater' },
         });
-      pending = Promise.all([make('raster_triangle', 'raster_fragment'), make('raster_analytic', 'raster_analytic_fragment')]).then(([triangles, analytic]) => ({ triangles, analytic }));
+      pending = Promise.all([make('raster_triangle', 'raster_fragment'), make('raster_masked_triangle', 'raster_masked_fragment'), make('raster_analytic', 'raster_analytic_fragment')]).then(([triangles, masked, analytic]) => ({ triangles, masked, analytic }));
       this.pending.set(key, pending);
     }
     this.ready.set(key, await pending);
@@ -127,6 +129,7 @@ export class HybridRasterPass {
     };
     draw(pipelines.triangles, 3);
     if (f.scene.features.analyticPrimitives) draw(pipelines.analytic, 36);
+    if (f.scene.features.alphaMasks) draw(pipelines.masked, 3);
     pass.end();
   }
 

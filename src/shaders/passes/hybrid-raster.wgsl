@@ -3,8 +3,8 @@
 // (hybrid/visibility) with a depth buffer. Vertices are pulled from the same primitive records the
 // ray tracer reads, so there is one copy of the geometry. Triangles are drawn as themselves; spheres
 // and capsules as their bounding boxes, whose fragments intersect the ray with the primitive and
-// write its depth. Alpha-masked materials run the ray tracer's alpha test (scene/hit-filter) per
-// fragment. The projection follows view/bindings' camera_ray exactly, shifted by this frame's
+// write its depth. Opaque triangles are drawn first (early depth test), then the alpha-masked ones,
+// which run the ray tracer's alpha test (scene/hit-filter) per fragment. The projection follows view/bindings' camera_ray exactly, shifted by this frame's
 // subpixel jitter, with a reversed, infinite depth range (depth = near / linear depth: precise at
 // every distance, whatever the scene's units).
 // Expects the scene (group 0) and the view (group 1); group 2 holds the raster parameters.
@@ -54,14 +54,26 @@ fn fragment_ray(fragment: vec2f) -> Ray {
   return camera_ray(fragment + raster.jitter);
 }
 
-@vertex
-fn raster_triangle(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> RasterVertex {
+// Whether a primitive drawn through `instance` runs the alpha test (its own mask, or its instance's material's).
+fn raster_masked(tri: TriangleHot, instance: u32) -> bool {
+  if (!SCENE_HAS_ALPHA_MASKS) {
+    return false;
+  }
+  if ((tri.flags & TRIANGLE_ALPHA_MASKED) != 0u) {
+    return true;
+  }
+  return !instance_is_static(instance) && (instance_record(instance).flags & INSTANCE_ALPHA_FILTER) != 0u;
+}
+
+// A triangle's corner, or DROPPED_VERTEX when the triangle belongs to the other draw (analytic, or
+// masked when opaque ones are drawn and the reverse).
+fn triangle_vertex(vertex: u32, instance: u32, masked: bool) -> RasterVertex {
   let primitive = vertex / 3u;
   let corner = vertex % 3u;
   let tri = triangles_hot[primitive];
   var out: RasterVertex;
   out.id = vec2u(instance, primitive);
-  if ((tri.flags & PRIMITIVE_ANALYTIC) != 0u) {
+  if ((tri.flags & PRIMITIVE_ANALYTIC) != 0u || raster_masked(tri, instance) != masked) {
     out.clip = DROPPED_VERTEX;
     return out;
   }
@@ -75,17 +87,33 @@ fn raster_triangle(@builtin(vertex_index) vertex: u32, @builtin(instance_index) 
   return out;
 }
 
+// Opaque triangles first: their fragment shader never discards, so the depth test runs before it
+// (early-Z) and hidden surfaces cost nothing.
+@vertex
+fn raster_triangle(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> RasterVertex {
+  return triangle_vertex(vertex, instance, false);
+}
+
 @fragment
 fn raster_fragment(v: RasterVertex) -> @location(0) vec2u {
-  if (SCENE_HAS_ALPHA_MASKS) {
-    let ray = fragment_ray(v.clip.xy);
-    set_filter_instance(v.id.x);
-    set_alpha_salt(ray);
-    let tri = triangles_hot[v.id.y];
-    let h = triangle_plane_hit(local_ray(ray, v.id.x), tri);
-    if (!accept_hit(tri, v.id.y, h.yz)) {
-      discard;
-    }
+  return v.id;
+}
+
+// Then the alpha-masked ones (Doom's sprites and masked middle textures), tested per fragment.
+@vertex
+fn raster_masked_triangle(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> RasterVertex {
+  return triangle_vertex(vertex, instance, true);
+}
+
+@fragment
+fn raster_masked_fragment(v: RasterVertex) -> @location(0) vec2u {
+  let ray = fragment_ray(v.clip.xy);
+  set_alpha_salt(ray);
+  set_filter_instance(v.id.x);
+  let tri = triangles_hot[v.id.y];
+  let h = triangle_plane_hit(local_ray(ray, v.id.x), tri);
+  if (!accept_hit(tri, v.id.y, h.yz)) {
+    discard;
   }
   return v.id;
 }
