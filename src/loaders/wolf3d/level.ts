@@ -9,7 +9,7 @@
  * (the game's `block` statics fill their tile for walking) and the outside have none.
  */
 import { LanternError } from '../../errors.ts';
-import { doorCode, PUSHABLETILE, staticInfo, startFacing, tileKind, type DoorCode, type StaticInfo, type TileKind } from './map-codes.ts';
+import { doorCode, isInvisibleMark, PUSHABLETILE, staticInfo, startFacing, tileKind, type DoorCode, type StaticInfo, type TileKind } from './map-codes.ts';
 import type { WolfMap } from './types.ts';
 
 /** No sector: a wall, a blocking object, outside the map. */
@@ -88,7 +88,7 @@ export function readLevel(map: WolfMap, warn: (message: string) => void = () => 
   for (let y = 0; y < height; y++) {
     for (let x = 0; x < width; x++) {
       const code = objects[at(x, y)]!;
-      if (code === 0) continue;
+      if (code === 0 || isInvisibleMark(code)) continue;
       const facing = startFacing(code);
       const info = staticInfo(code);
       if (facing) {

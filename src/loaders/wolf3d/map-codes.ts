@@ -23,6 +23,8 @@
  * - 19–22: the player's start, facing north, east, south, west;
  * - 23–71: static objects, statinfo[code − 23] (STATICS below);
  * - 98 (PUSHABLETILE): the wall under it (plane 0) is a push wall;
+ * - 90–97 (ICONARROWS: where patrolling guards turn) and 99 (EXITTILE: the end of the last level)
+ *   are invisible marks;
  * - 108 and up: guards, dogs and the other actors (not built).
  */
 
@@ -133,6 +135,9 @@ export const STATICS: readonly StaticInfo[] = [
 export function staticInfo(code: number): StaticInfo | undefined {
   return code >= FIRST_STATIC ? STATICS[code - FIRST_STATIC] : undefined;
 }
+
+/** Invisible plane-1 marks: the patrol arrows 90–97 and EXITTILE 99. */
+export const isInvisibleMark = (code: number): boolean => (code >= 90 && code <= 97) || code === 99;
 
 /** Plane-1 codes of the actors (guards, dogs, officers, SS, mutants, bosses, ghosts, dead guards). */
 export const FIRST_ACTOR = 108;
