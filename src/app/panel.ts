@@ -107,6 +107,7 @@ export class SettingsPanel {
       render,
       torch: camera,
       denoise: this.pane.addFolder({ title: 'Denoising (real time)' }),
+      hybrid: this.pane.addFolder({ title: 'Hybrid recipe', expanded: false }),
       debug: this.pane.addFolder({ title: 'Debug views', expanded: false }),
     };
     for (const entry of PANEL_SETTINGS) this.addSettingBinding(folders[entry.spec.panel!.folder], entry);

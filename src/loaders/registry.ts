@@ -13,12 +13,13 @@ import type { FileFormat, FileHead, SceneFormat, SceneReference } from './format
 import { GLTF_FORMAT } from './gltf/format.ts';
 import { MOLECULE_FORMAT } from './molecule/format.ts';
 import { PLY_FORMAT } from './ply/format.ts';
+import { WOLF3D_FORMAT } from './wolf3d/format.ts';
 
 export type * from './format.ts';
 export { NO_SIBLINGS, SNIFF_BYTES } from './format.ts';
 
 /** Every format, in the order help texts name them. Environment maps join as `kind: 'environment'` entries. */
-export const FORMATS: readonly SceneFormat[] = [WAD_FORMAT, GLTF_FORMAT, PLY_FORMAT, MOLECULE_FORMAT];
+export const FORMATS: readonly SceneFormat[] = [WAD_FORMAT, GLTF_FORMAT, PLY_FORMAT, MOLECULE_FORMAT, WOLF3D_FORMAT];
 
 export function formatById(id: string): SceneFormat | undefined {
   return FORMATS.find((f) => f.id === id);
@@ -75,6 +76,15 @@ export function parseSceneReference(argument: string): SceneReference & { readon
     if (reference) return { ...reference, format };
   }
   return { paths: [argument] };
+}
+
+/** The first format that finds a set of its files among a folder's names, and those names in load order; undefined for none. */
+export function formatOfFolder(names: readonly string[]): { format: SceneFormat; names: readonly string[] } | undefined {
+  for (const format of FORMATS) {
+    const found = format.filesInFolder?.(names);
+    if (found) return { format, names: found };
+  }
+  return undefined;
 }
 
 /** The formats of the files named together, checked to make one set; the set's files in load order. */

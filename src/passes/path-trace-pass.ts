@@ -1,5 +1,5 @@
 /** The path tracer dispatch (shaders/passes/path-trace.wgsl): adds samples to the accumulation buffer. */
-import { SceneKernels, TRACING_FEATURES, type ComputeKernel } from '../gpu/kernel.ts';
+import { SceneKernels, TRACING_FEATURES, type ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { compileSpecialised, type SceneSpecialisation, type SpecialisedKernel } from '../gpu/specialisation.ts';
@@ -119,7 +119,7 @@ export class TracingKernels {
   }
 
   /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
-  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, GPUBuffer>, tile: Tile, spectral: boolean, timer?: GpuTimer): void {
+  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, NamedResource>, tile: Tile, spectral: boolean, timer?: GpuTimer): void {
     // Specialised kernels are compiled in RGB: spectral dispatches use the generic spectral variants.
     const kernel = !spectral && this.active?.scene === scene ? this.active.kernel : this.variants(spectral).get(scene.features);
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });

@@ -39,6 +39,7 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
+import { Hybrid } from './hybrid.ts';
 import { editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
@@ -124,6 +125,10 @@ export class Renderer {
   private samples = 0;
   private epoch = 0;
   private denoiser?: Denoiser;
+  /** The hybrid recipe (enableHybrid). */
+  private hybrid?: Hybrid;
+  /** The recipe of the last real-time frame (whose output present and readFrame show). */
+  private frameRecipe: 'path' | 'hybrid' = 'path';
   /** Whether the spectral variants are compiled for each scene (enableSpectral). */
   private spectralEnabled = false;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
@@ -214,7 +219,7 @@ export class Renderer {
   private async upload(prepared: PreparedScene): Promise<void> {
     const features = prepared.packed.features;
     await Promise.all([
-      this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
+      this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
       ...(this.spectralEnabled ? [this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)] : []),
     ]);
     const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
@@ -657,9 +662,10 @@ export class Renderer {
    */
   renderFrame(samples: number, timer?: GpuTimer): void {
     const { resources, targets } = this.ready();
+    const s = this.settingsValue;
+    if (s.recipe === 'hybrid') return this.renderHybridFrame(timer);
     if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
-    const s = this.settingsValue;
     if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     this.settleInstances();
@@ -677,19 +683,58 @@ export class Renderer {
     });
     timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
+    this.frameRecipe = 'path';
     this.shown = 'frame';
     if (this.settle === 'after-frame') this.settle = 'now';
+  }
+
+  /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
+  async enableHybrid(): Promise<void> {
+    this.hybrid ??= await Hybrid.create(this.device);
+    if (this.prepared) await this.hybrid.prepare(this.prepared.packed.features);
+  }
+
+  /** One frame of the hybrid recipe (renderer/hybrid.ts): RGB always (spectral mode is the path tracer's). */
+  private renderHybridFrame(timer?: GpuTimer): void {
+    const { resources, targets } = this.ready();
+    if (!this.hybrid || !this.cameraValue || !this.prepared) throw new Error('Renderer: enableHybrid() before renderFrame() with the hybrid recipe');
+    const s = this.settingsValue;
+    const torch = effectiveTorch(this.prepared.scene, s.torch);
+    this.settleInstances();
+    const encoder = this.device.createCommandEncoder({ label: 'hybrid frame' });
+    this.hybrid.encodeFrame(encoder, {
+      scene: resources,
+      prepared: this.prepared,
+      view: this.view,
+      camera: this.cameraValue,
+      settings: s,
+      rayCounters: targets.rayCounters,
+      sceneSize: 2 * this.sceneSize(),
+      ...(torch ? { torch } : {}),
+      ...(timer ? { timer } : {}),
+    });
+    timer?.resolve(encoder);
+    this.device.queue.submit([encoder.finish()]);
+    this.frameRecipe = 'hybrid';
+    this.shown = 'frame';
+    if (this.settle === 'after-frame') this.settle = 'now';
+  }
+
+  /** The linear output of the last real-time frame, of whichever recipe made it. */
+  private frameOutput(): GPUBuffer | undefined {
+    return this.frameRecipe === 'hybrid' ? this.hybrid?.output : this.denoiser?.output;
   }
 
   /** Drops the real-time history: the next frame starts from its own samples. */
   resetHistory(): void {
     this.denoiser?.resetHistory();
+    this.hybrid?.resetHistory();
   }
 
   /** The linear radiance of the last real-time frame (before tone mapping; a debug view if one is chosen). */
   async readFrame(): Promise<LinearImage> {
     const { targets } = this.ready();
-    const output = this.denoiser?.output;
+    const output = this.frameOutput();
     if (!output) throw new Error('Renderer: renderFrame() before readFrame()');
     const raw = new Float32Array(await readBuffer(this.device, output));
     const n = targets.width * targets.height;
@@ -803,6 +848,8 @@ export class Renderer {
     this.view.destroy();
     this.denoiser?.destroy();
     this.denoiser = undefined;
+    this.hybrid?.destroy();
+    this.hybrid = undefined;
     this.pathTrace.destroy();
     this.tonemap.destroy();
     this.debugViews?.destroy();
@@ -818,10 +865,10 @@ export class Renderer {
 
   private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, timer?: GpuTimer): void {
     const s = this.settingsValue;
-    const frame = this.shown === 'frame' ? this.denoiser?.output : undefined;
+    const frame = this.shown === 'frame' ? this.frameOutput() : undefined;
     if (frame) {
       // Debug views are shown as computed: no exposure, no tone curve.
-      const debug = s.denoiseView !== 'output';
+      const debug = this.frameRecipe === 'path' && s.denoiseView !== 'output';
       this.tonemap.encode(
         encoder,
         this.view,

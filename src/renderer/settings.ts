@@ -18,6 +18,10 @@ export type { DebugLayout, DebugView, DenoiseView, LightSampling, ToneMapper } f
 /** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
 export const MAX_WIREFRAME_DEPTH = 64;
 
+/** The frame recipes (settings.recipe): the path tracer, or the hybrid raster + ray-traced recipe (renderer/hybrid.ts). */
+export const RENDER_MODES = ['path', 'hybrid'] as const;
+export type RenderMode = (typeof RENDER_MODES)[number];
+
 /** Frames of temporal history: a cap, or no cap (a still camera then converges like progressive rendering). */
 export type HistoryCap = number | 'unlimited';
 export const MAX_HISTORY_CAP = 65536;
@@ -31,6 +35,11 @@ export const MAX_BOUNCES_LIMIT = 1024;
  * says how). To add a setting, add an entry here; the front ends pick it up.
  */
 export const RENDER_SETTINGS = {
+  // The link says `recipe`: `mode` was already the walk/fly mode of the page's links.
+  recipe: choice(RENDER_MODES, {
+    name: 'recipe', description: "the frame recipe: 'path' traces every pixel's path (progressive, or the real-time denoiser's chain); 'hybrid' rasterises the first hit and ray-traces direct light with shadows, diffuse GI at --gi-scale and reflections, then TAA (docs/hybrid.md)", default: 'path',
+    cli: { flag: '--mode', argument: '<path|hybrid>' }, link: 'recipe', restarts: true, panel: { folder: 'render', label: 'recipe' },
+  }),
   maxBounces: integer({
     name: 'bounces', description: 'maximum bounces per path (0: emitters only, 1: direct light, ...)', min: 0, max: MAX_BOUNCES_LIMIT, default: 8,
     cli: { flag: '--bounces', short: '-b', argument: '<n>' }, link: 'bounces', restarts: true,
@@ -125,6 +134,40 @@ export const RENDER_SETTINGS = {
     name: 'denoise view', description: 'frame mode: what the real-time chain shows', default: 'output',
     cli: { flag: '--denoise-view', argument: '<view>' }, link: 'denoise-view', restarts: false, panel: { folder: 'denoise', label: 'show' },
   }),
+  hybrid: {
+    giScale: number({
+      name: 'GI buffer scale', description: 'hybrid: GI texels per pixel along each axis (0.5: one GI path per four pixels), upsampled by a joint bilateral filter', min: 0.25, max: 1, default: 0.5,
+      cli: { flag: '--gi-scale', argument: '<0.25..1>' }, link: 'gi-scale', restarts: true, panel: { folder: 'hybrid', label: 'GI buffer scale', step: 0.25 },
+    }),
+    giBounces: integer({
+      name: 'GI bounces', description: 'hybrid: bounces of each GI path (1: the light its first hit receives)', min: 0, max: 16, default: 2,
+      cli: { flag: '--gi-bounces', argument: '<n>' }, link: 'gi-bounces', restarts: true, panel: { folder: 'hybrid', label: 'GI bounces', step: 1 },
+    }),
+    giSamples: integer({
+      name: 'GI samples', description: 'hybrid: GI paths per GI texel per frame', min: 1, max: 64, default: 1,
+      cli: { flag: '--gi-samples', argument: '<n>' }, link: 'gi-samples', restarts: true, panel: { folder: 'hybrid', label: 'GI samples', step: 1, slider: [1, 8] },
+    }),
+    giFilter: boolean({
+      name: 'GI filter', description: 'hybrid: the à-trous filter on the GI target before upsampling', words: ['0', '1'], default: true,
+      cli: { flag: '--gi-filter', argument: '<0|1>' }, link: 'gi-filter', restarts: false, panel: { folder: 'hybrid', label: 'GI à-trous filter' },
+    }),
+    lightSamples: integer({
+      name: 'light samples', description: 'hybrid: light samples (each with a shadow ray) per pixel per frame', min: 1, max: 64, default: 1,
+      cli: { flag: '--light-samples', argument: '<n>' }, link: 'light-samples', restarts: true, panel: { folder: 'hybrid', label: 'light samples', step: 1, slider: [1, 8] },
+    }),
+    reflections: boolean({
+      name: 'reflections', description: 'hybrid: trace reflection rays from glossy, mirror and glass surfaces, weighted by their Fresnel reflectance', words: ['0', '1'], default: true,
+      cli: { flag: '--reflections', argument: '<0|1>' }, link: 'reflections', restarts: true, panel: { folder: 'hybrid', label: 'reflections' },
+    }),
+    reflectionBounces: integer({
+      name: 'reflection bounces', description: 'hybrid: bounces a reflection path may take after the reflection', min: 0, max: 16, default: 2,
+      cli: { flag: '--reflection-bounces', argument: '<n>' }, link: 'reflection-bounces', restarts: true, panel: { folder: 'hybrid', label: 'reflection bounces', step: 1 },
+    }),
+    taa: boolean({
+      name: 'TAA', description: 'hybrid: temporal anti-aliasing (history reprojected and clamped to the 3×3 neighbourhood)', words: ['0', '1'], default: true,
+      cli: { flag: '--taa', argument: '<0|1>' }, link: 'taa', restarts: false, panel: { folder: 'hybrid', label: 'TAA' },
+    }),
+  },
 } as const satisfies SettingGroup;
 
 export type RenderSettings = SettingsOf<typeof RENDER_SETTINGS>;

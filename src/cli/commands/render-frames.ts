@@ -1,6 +1,6 @@
 /**
- * `lantern render` in frame mode (--denoise, --temporal, --frames, --path): the real-time chain
- * (Renderer.renderFrame) run frame by frame, --spp samples per frame, the camera still or following
+ * `lantern render` in frame mode (--denoise, --temporal, --frames, --path, --mode hybrid): a real-time
+ * recipe (Renderer.renderFrame: the denoiser's chain or the hybrid recipe) run frame by frame, --spp samples per frame, the camera still or following
  * a camera path; each frame written as PNG and/or EXR, GPU milliseconds per pass in the report.
  */
 import { join } from 'node:path';
@@ -21,9 +21,11 @@ export interface FrameModeOptions {
   readonly temporal?: boolean;
   readonly path?: string;
   readonly frames?: number;
+  /** --mode: the hybrid recipe is a real-time recipe, always rendered in frame mode. */
+  readonly mode?: string;
 }
 
-export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined);
+export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
 
 export interface FrameModeResult {
   readonly frames: number;
@@ -50,8 +52,9 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
-  // The denoiser's settings (--temporal, --denoise, --history-cap, ...) are the caller's, applied with the others.
-  await renderer.enableRealTime();
+  // The denoiser's settings (--temporal, --denoise, --history-cap, ...) and the hybrid recipe's are the caller's, applied with the others.
+  if (renderer.settings.recipe === 'hybrid') await renderer.enableHybrid();
+  else await renderer.enableRealTime();
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
   const samples = new Map<string, number[]>();
   const changes: number[] = [];

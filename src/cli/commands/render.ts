@@ -82,7 +82,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     if (o.kernel === 'specialised') context.note('frame mode renders with the generic kernels (--kernel specialised applies to progressive renders)');
     const camera = renderer.camera!;
     const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
-    const report = { scene: prepared.scene.name, width: o.width, height: o.height, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...result };
+    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...result };
     const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
     context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${o.spp} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
     renderer.destroy();

@@ -1,0 +1,282 @@
+/**
+ * The hybrid frame recipe (Renderer.renderFrame with settings.recipe = 'hybrid'):
+ *
+ *   raster (visibility + depth, Halton (2, 3) jitter) → resolve (guide, motion) → shade (emission,
+ *   direct light with shadow rays, reflections; diffuse weight) → GI at gi_scale (+ à-trous ×k on
+ *   the GI target) → compose (joint bilateral upsampling of GI) → TAA → the output the tone mapper reads
+ *
+ * The raster pass decides what each pixel sees; every other pass reconstructs the exact ray hit
+ * from it (hybrid/visibility.wgsl), so surfaces, materials, lights, textures and alpha tests are the
+ * path tracer's own. The Hybrid owns the per-pixel buffers, the GI target at its scale, the TAA
+ * history (ping-ponged) and the previous camera (motion vectors). docs/hybrid.md says what the
+ * recipe gets right and what it cannot see.
+ */
+import { LanternError } from '../errors.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
+import type { SceneResources } from '../gpu/scene-resources.ts';
+import type { GpuTimer } from '../gpu/timestamps.ts';
+import { cameraUniform, ViewUniform } from '../gpu/view.ts';
+import { ATROUS_STEPS, atrousParams } from '../passes/denoise-passes.ts';
+import { HybridRasterPass, DEPTH_FORMAT, VISIBILITY_FORMAT, type RasterDraw } from '../passes/hybrid-raster-pass.ts';
+import { ImagePass } from '../passes/image-pass.ts';
+import { pathTraceParams, TracingKernels } from '../passes/path-trace-pass.ts';
+import { UniformParams, type UniformValues } from '../passes/uniform-params.ts';
+import type { Camera, Torch } from '../scene/types.ts';
+import type { PreparedScene } from './prepare.ts';
+import type { RenderSettings } from './settings.ts';
+
+const MODULE = 'passes/hybrid';
+const VEC4_BYTES = 16;
+/** Frames of the jitter sequence before it repeats. */
+const JITTER_PERIOD = 16;
+/** TAA's smallest blend of the current frame: the history is never more than 1 / this frames long. */
+const TAA_MIN_BLEND = 0.1;
+/** The near plane as a fraction of the scene's size. */
+const NEAR_FRACTION = 1e-5;
+/** À-trous iterations on the GI target (steps 1, 2, 4: the GI texels are already a block apart). */
+const GI_FILTER_ITERATIONS = 3;
+
+/** The radical inverse of i in `base` (Halton's sequence), in [0, 1). */
+export function radicalInverse(i: number, base: number): number {
+  let f = 1, r = 0;
+  for (let n = i; n > 0; n = Math.floor(n / base)) {
+    f /= base;
+    r += f * (n % base);
+  }
+  return r;
+}
+
+/** The subpixel offset of frame `frame` (pixels, in [−0.5, 0.5)²): Halton (2, 3), from its first point on. */
+export function haltonJitter(frame: number): [number, number] {
+  const i = (frame % JITTER_PERIOD) + 1;
+  return [radicalInverse(i, 2) - 0.5, radicalInverse(i, 3) - 0.5];
+}
+
+/** The GI target's size for an image and a buffer scale. */
+export function giSize(width: number, height: number, scale: number): [number, number] {
+  const block = Math.max(1, Math.round(1 / scale));
+  return [Math.ceil(width / block), Math.ceil(height / block)];
+}
+
+/** The draws of the raster pass: the static world's primitives, then each moving instance's mesh. */
+export function rasterDraws(prepared: PreparedScene): RasterDraw[] {
+  const draws: RasterDraw[] = [{ first: 0, count: prepared.bvh.triIndices.length, instance: 0 }];
+  const levels = prepared.levels;
+  if (!levels) return draws;
+  levels.dynamic.forEach((sceneInstance, k) => {
+    const mesh = prepared.scene.instances[sceneInstance]!.mesh;
+    const part = prepared.packed.layout.meshes.get(mesh);
+    if (part) draws.push({ first: part.leafBase, count: part.leafCount, instance: k + 1 });
+  });
+  return draws;
+}
+
+export interface HybridFrameRequest {
+  readonly scene: SceneResources;
+  readonly prepared: PreparedScene;
+  readonly view: ViewUniform;
+  readonly camera: Camera;
+  readonly settings: RenderSettings;
+  readonly torch?: Torch;
+  readonly rayCounters: GPUBuffer;
+  /** The scene's size (its bounding box's diagonal): sets the near plane. */
+  readonly sceneSize: number;
+  readonly timer?: GpuTimer;
+}
+
+interface Buffers {
+  readonly width: number;
+  readonly height: number;
+  readonly giWidth: number;
+  readonly giHeight: number;
+  readonly visibility: GPUTexture;
+  readonly depth: GPUTexture;
+  readonly visibilityView: GPUTextureView;
+  readonly depthView: GPUTextureView;
+  readonly guide: GPUBuffer;
+  readonly motion: GPUBuffer;
+  readonly lit: GPUBuffer;
+  readonly diffuseWeight: GPUBuffer;
+  readonly gi: GPUBuffer;
+  readonly giGuide: GPUBuffer;
+  readonly giScratch: GPUBuffer;
+  readonly composed: GPUBuffer;
+  readonly histories: readonly [GPUBuffer, GPUBuffer];
+  readonly output: GPUBuffer;
+  readonly giView: ViewUniform;
+  /** The renderer's ray counters the kernels' bind groups hold. */
+  readonly rayCounters: GPUBuffer;
+}
+
+export class Hybrid {
+  private buffers?: Buffers;
+  private previousCamera?: Camera;
+  private frameIndex = 0;
+  private parity = 0;
+  private historyValid = false;
+
+  private constructor(
+    private readonly device: GPUDevice,
+    private readonly raster: HybridRasterPass,
+    private readonly kernels: { readonly resolve: TracingKernels; readonly shade: TracingKernels; readonly gi: TracingKernels },
+    private readonly compose: ImagePass<UniformValues>,
+    private readonly taa: ImagePass<UniformValues>,
+    private readonly atrous: ImagePass<UniformValues>,
+    private readonly params: UniformParams<UniformValues>,
+    private readonly hybridParams: UniformParams<UniformValues>,
+  ) {}
+
+  static async create(device: GPUDevice): Promise<Hybrid> {
+    const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, { CAPTURE_PRIMARY: 1 });
+    const [raster, resolve, shade, gi, compose, taa, atrous] = await Promise.all([
+      HybridRasterPass.create(device),
+      traced('hybrid_resolve'),
+      traced('hybrid_shade'),
+      traced('hybrid_gi'),
+      ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_compose', 'compose'),
+      ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_taa', 'taa'),
+      ImagePass.create(device, 'passes/atrous', 'atrous_step', 'a-trous (GI)', GI_FILTER_ITERATIONS),
+    ]);
+    return new Hybrid(device, raster, { resolve, shade, gi }, compose, taa, atrous, new UniformParams(device, 'passes/path-trace'), new UniformParams(device, MODULE, 'hybrid'));
+  }
+
+  /** Compiles the variants a scene with these features needs. */
+  async prepare(features: SceneFeatures): Promise<void> {
+    await Promise.all([this.raster.prepare(features), ...Object.values(this.kernels).map((k) => k.prepare(features))]);
+  }
+
+  /** The recipe's linear output of the last frame (vec4f per pixel), if a frame was rendered. */
+  get output(): GPUBuffer | undefined {
+    return this.buffers?.output;
+  }
+
+  /** Forgets the TAA history and the previous camera. */
+  resetHistory(): void {
+    this.historyValid = false;
+    this.previousCamera = undefined;
+  }
+
+  /** Records one hybrid frame into `encoder` (parameters are written now: submit before the next frame). */
+  encodeFrame(encoder: GPUCommandEncoder, r: HybridFrameRequest): void {
+    const s = r.settings;
+    const h = s.hybrid;
+    const b = this.ensureBuffers(r.view, r.camera, h.giScale, r.rayCounters);
+    b.giView.update(r.camera, b.giWidth, b.giHeight);
+    this.parity ^= 1;
+    const jitter = haltonJitter(this.frameIndex);
+    const previousCamera = this.previousCamera ?? r.camera;
+    const aspect = r.view.width / r.view.height;
+    this.raster.encode(encoder, { scene: r.scene, view: r.view, visibility: b.visibilityView, depth: b.depthView, draws: rasterDraws(r.prepared), jitter, near: Math.max(r.sceneSize * NEAR_FRACTION, 1e-6), ...(r.timer ? { timer: r.timer } : {}) });
+
+    const tile = { x: 0, y: 0, width: b.width, height: b.height };
+    this.params.write(pathTraceParams({ tile, sampleIndex: this.frameIndex, samples: 1, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, ...(r.torch ? { torch: r.torch } : {}) }));
+    this.hybridParams.write({
+      previous_camera: cameraUniform(previousCamera, aspect),
+      jitter,
+      gi_size: [b.giWidth, b.giHeight],
+      gi_scale: b.giWidth / b.width,
+      frame_index: this.frameIndex,
+      light_samples: h.lightSamples,
+      gi_bounces: h.giBounces,
+      gi_samples: h.giSamples,
+      reflections: h.reflections ? 1 : 0,
+      reflection_bounces: h.reflectionBounces,
+    });
+    const targets = () => ({
+      params: this.params.buffer, hybrid: this.hybridParams.buffer, ray_counters: r.rayCounters, visibility: b.visibilityView,
+      guide: b.guide, motion: b.motion, lit: b.lit, diffuse_weight: b.diffuseWeight, gi: b.gi, gi_guide: b.giGuide,
+    });
+    // The kernels cache group 2 by this buffer: made anew with the buffers, which are made anew when the counters change.
+    const key = b.guide;
+    this.kernels.resolve.dispatch(encoder, 'resolve', r.scene, r.view, key, targets, tile, false, r.timer);
+    this.kernels.shade.dispatch(encoder, 'shade', r.scene, r.view, key, targets, tile, false, r.timer);
+    const useGi = s.maxBounces > 0 && h.giBounces > 0;
+    if (useGi) {
+      this.kernels.gi.dispatch(encoder, 'GI', r.scene, r.view, key, targets, { x: 0, y: 0, width: b.giWidth, height: b.giHeight }, false, r.timer);
+      if (h.giFilter) this.encodeGiFilter(encoder, b, r.timer);
+    }
+
+    const composeValues = { gi_size: [b.giWidth, b.giHeight], gi_scale: b.giWidth / b.width, use_gi: useGi ? 1 : 0, min_blend: h.taa ? TAA_MIN_BLEND : 1, use_history: this.historyValid ? 1 : 0 };
+    this.compose.write(composeValues);
+    this.taa.write(composeValues);
+    const previousHistory = b.histories[1 - this.parity]!, history = b.histories[this.parity]!;
+    const imageResources = { guide: b.guide, lit: b.lit, diffuse_weight: b.diffuseWeight, gi: b.gi, gi_guide: b.giGuide, composed: b.composed, motion: b.motion, previous_history: previousHistory, history, output: b.output };
+    this.compose.encode(encoder, this.compose.bindGroups(r.view, imageResources), b.width, b.height, r.timer);
+    this.taa.encode(encoder, this.taa.bindGroups(r.view, imageResources), b.width, b.height, r.timer, 'TAA');
+
+    this.frameIndex = (this.frameIndex + 1) >>> 0;
+    this.previousCamera = r.camera;
+    this.historyValid = true;
+  }
+
+  destroy(): void {
+    this.destroyBuffers();
+    this.raster.destroy();
+    for (const p of [this.compose, this.taa, this.atrous, this.params, this.hybridParams]) p.destroy();
+  }
+
+  /** The à-trous filter (the denoiser's) on the GI target, guided by the normals and depths the GI texels were traced from; the result ends in `gi`. */
+  private encodeGiFilter(encoder: GPUCommandEncoder, b: Buffers, timer?: GpuTimer): void {
+    const chain = [b.gi, b.giScratch];
+    for (let i = 0; i < GI_FILTER_ITERATIONS; i++) {
+      this.atrous.write(atrousParams(i), i);
+      const groups = this.atrous.bindGroups(b.giView, { guide: b.giGuide, filter_source: chain[i % 2]!, filter_result: chain[(i + 1) % 2]! }, i);
+      this.atrous.encode(encoder, groups, b.giWidth, b.giHeight, timer, `a-trous GI ${i + 1}`);
+    }
+    // An odd number of iterations ends in the scratch buffer: copy it back where compose reads.
+    if (GI_FILTER_ITERATIONS % 2 === 1) encoder.copyBufferToBuffer(b.giScratch, 0, b.gi, 0, b.gi.size);
+  }
+
+  private ensureBuffers(view: ViewUniform, camera: Camera, scale: number, rayCounters: GPUBuffer): Buffers {
+    const { width, height } = view;
+    const [giWidth, giHeight] = giSize(width, height, scale);
+    const b0 = this.buffers;
+    if (b0 && b0.width === width && b0.height === height && b0.giWidth === giWidth && b0.giHeight === giHeight && b0.rayCounters === rayCounters) return b0;
+    this.destroyBuffers();
+    this.resetHistory();
+    const pixels = width * height;
+    const limits = this.device.limits;
+    if (pixels * VEC4_BYTES > limits.maxStorageBufferBindingSize || width > limits.maxTextureDimension2D || height > limits.maxTextureDimension2D) {
+      throw new LanternError(`image ${width}×${height} is too large for the hybrid recipe on this GPU`);
+    }
+    const make = (label: string, size: number) => this.device.createBuffer({ label, size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST });
+    const texture = (label: string, format: GPUTextureFormat) => this.device.createTexture({ label, size: [width, height], format, usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.TEXTURE_BINDING });
+    const visibility = texture('visibility', VISIBILITY_FORMAT);
+    const depth = texture('depth', DEPTH_FORMAT);
+    const giView = new ViewUniform(this.device);
+    giView.update(camera, giWidth, giHeight);
+    this.buffers = {
+      width, height, giWidth, giHeight, visibility, depth, giView, rayCounters,
+      visibilityView: visibility.createView(),
+      depthView: depth.createView(),
+      guide: make('hybrid guide', pixels * VEC4_BYTES),
+      motion: make('hybrid motion', pixels * VEC4_BYTES),
+      lit: make('hybrid lit', pixels * VEC4_BYTES),
+      diffuseWeight: make('hybrid diffuse weight', pixels * VEC4_BYTES),
+      gi: make('hybrid GI', giWidth * giHeight * VEC4_BYTES),
+      giGuide: make('hybrid GI guide', giWidth * giHeight * VEC4_BYTES),
+      giScratch: make('hybrid GI scratch', giWidth * giHeight * VEC4_BYTES),
+      composed: make('hybrid composed', pixels * VEC4_BYTES),
+      histories: [make('TAA history 0', pixels * VEC4_BYTES), make('TAA history 1', pixels * VEC4_BYTES)],
+      output: make('hybrid output', pixels * VEC4_BYTES),
+    };
+    return this.buffers;
+  }
+
+  private destroyBuffers(): void {
+    const b = this.buffers;
+    if (!b) return;
+    b.visibility.destroy();
+    b.depth.destroy();
+    b.giView.destroy();
+    for (const buffer of [b.guide, b.motion, b.lit, b.diffuseWeight, b.gi, b.giGuide, b.giScratch, b.composed, ...b.histories, b.output]) buffer.destroy();
+    this.buffers = undefined;
+  }
+}
+
+/** Bytes per pixel the hybrid recipe holds at a GI scale (docs/hybrid.md's memory line). */
+export function hybridBytesPerPixel(scale: number): number {
+  const block = Math.max(1, Math.round(1 / scale));
+  // guide, motion, lit, diffuse weight, composed, two histories, output; visibility (8) and depth (4); three GI buffers per block.
+  return 8 * VEC4_BYTES + 8 + 4 + (3 * VEC4_BYTES) / (block * block);
+}
