@@ -68,8 +68,12 @@ export const DOOR_PROXIMITY = 1.5 * WOLF_TILE;
  * across a 4:3 image.
  */
 export const WOLF_VFOV_DEGREES = (2 * Math.atan((0.75 * 0x8000) / (0x5700 + 0x5800)) * 180) / Math.PI;
-/** Wolfenstein's palette is brighter than Doom's; a stop of exposure makes torch-lit walls read about as the game shows them. */
-export const WOLF_EXPOSURE_STOPS = 1;
+/**
+ * The torch is Doom's, and so is the exposure (doom/to-scene.ts DOOM_EXPOSURE_STOPS): the palette's
+ * stone blues and greys are 0.03–0.15 in linear terms, where the tone curve's toe sits well below
+ * what the game displays.
+ */
+export const WOLF_EXPOSURE_STOPS = 1.5;
 
 /** The lamps' light: warm white of luminance 1. */
 const LAMP_TINT: Vec3 = [1, 0.82, 0.58];
