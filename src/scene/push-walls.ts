@@ -16,7 +16,8 @@
  *   shut from the moment it starts toward it.
  */
 import type { Mat4 } from '../math/mat4.ts';
-import { usedCell, type WalkGrid } from './sliding-doors.ts';
+import { gridProblem, usedCell, type WalkGrid } from './sliding-doors.ts';
+import type { Scene } from './types.ts';
 import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
 
 /** A cell a push wall may enter, with its walk-map sector. */
@@ -50,6 +51,24 @@ export interface PushWallSet {
   readonly secondsPerCell: number;
   /** The most cells a block moves (the game: 2). */
   readonly reach: number;
+}
+
+/** What is wrong with a scene's push walls, or undefined (validate.ts reports it). */
+export function pushWallProblem(scene: Scene): string | undefined {
+  const set = scene.dynamics?.pushWalls;
+  if (!set) return undefined;
+  const grid = gridProblem(set.grid);
+  if (grid) return `push walls: ${grid}`;
+  if (!(set.secondsPerCell > 0 && Number.isFinite(set.secondsPerCell)) || !(Number.isInteger(set.reach) && set.reach >= 0)) return 'push walls: seconds per cell must be finite and > 0, reach a whole number ≥ 0';
+  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
+  const sectors = scene.walkMap?.floors.length ?? 0;
+  const valid = (s: number) => Number.isInteger(s) && s >= 0 && s < sectors;
+  for (const [k, w] of set.walls.entries()) {
+    if (!moving.has(w.instance)) return `push wall ${k} moves instance ${w.instance}, which is not a moving instance of the scene`;
+    if (w.paths.length !== 4) return `push wall ${k} has ${w.paths.length} paths, not 4`;
+    if (!valid(w.sector) || !w.paths.every((p) => p.every((c) => valid(c.sector)))) return `push wall ${k} names a walk-map sector outside the ${sectors} there are`;
+  }
+  return undefined;
 }
 
 /** Unit steps of the four directions, in the order of PushWall.paths. */

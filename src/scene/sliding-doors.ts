@@ -28,6 +28,7 @@
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
 import { touches } from './movers.ts';
+import type { Scene } from './types.ts';
 import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
 
 /** A square grid in the walk plane (x, z): cell (i, j) covers [ox + i·size, ox + (i+1)·size) × [oz + j·size, …). */
@@ -78,6 +79,29 @@ interface DoorState {
   position: number;
   /** Seconds spent open. */
   waited: number;
+}
+
+/** What is wrong with a walk grid, or undefined. */
+export function gridProblem(grid: WalkGrid): string | undefined {
+  return Number.isFinite(grid.originX) && Number.isFinite(grid.originZ) && grid.size > 0 && Number.isFinite(grid.size) ? undefined : 'a grid of no or infinite cell size, or a non-finite origin';
+}
+
+/** What is wrong with a scene's sliding doors, or undefined (validate.ts reports it). */
+export function slidingDoorProblem(scene: Scene): string | undefined {
+  const set = scene.dynamics?.slidingDoors;
+  if (!set) return undefined;
+  const grid = gridProblem(set.grid);
+  if (grid) return `sliding doors: ${grid}`;
+  if (!(set.travelSeconds > 0 && Number.isFinite(set.travelSeconds)) || !(set.waitSeconds >= 0 && Number.isFinite(set.waitSeconds))) return 'sliding doors: travel time must be > 0 and wait ≥ 0, both finite';
+  if (!(set.proximity >= 0 && set.bodyRadius >= 0)) return 'sliding doors: proximity and body radius must be ≥ 0';
+  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
+  const sectors = scene.walkMap?.floors.length ?? 0;
+  for (const [k, d] of set.doors.entries()) {
+    if (!moving.has(d.instance)) return `sliding door ${k} moves instance ${d.instance}, which is not a moving instance of the scene`;
+    if (!(Number.isInteger(d.sector) && d.sector >= 0 && d.sector < sectors)) return `sliding door ${k} names walk-map sector ${d.sector} of ${sectors}`;
+    if (![...d.slide, ...d.across, d.floor, d.ceiling].every(Number.isFinite)) return `sliding door ${k} has a non-finite slide, direction or height`;
+  }
+  return undefined;
 }
 
 /** The cell [i, j] of `grid` containing (x, z). */

@@ -175,8 +175,16 @@ describe('wolfMapToScene: doors', () => {
     expect([Math.min(...zs), Math.max(...zs)]).toEqual([T, 2 * T]);
     // A vertical door shows DOORWALL + 1 (the shareware's DOORWALL is 98).
     expect(new Set(panel.map((t) => pageOf(t.material)))).toEqual(new Set([99]));
-    // Its broad faces face east and west.
+    // Its broad faces face east and west; its trailing (north) end faces north, a hair inside the
+    // panel so that, fully open, it hides behind the frame; the leading end, always in the wall, has no face.
     expect(panel.filter((t) => Math.abs(t.normal[0]) > 0.99)).toHaveLength(4);
+    const ends = panel.filter((t) => Math.abs(t.normal[2]) > 0.99);
+    expect(ends).toHaveLength(2);
+    for (const t of ends) {
+      expect(t.normal[2]).toBeCloseTo(-1, 9);
+      expect(t.a[2]).toBeGreaterThan(T);
+      expect(t.a[2]).toBeLessThan(T + 1);
+    }
   });
 
   it('gives the walls beside a door the door-frame page on their faces toward it', () => {
@@ -400,5 +408,18 @@ describe('static objects and lamps', () => {
     const scene = build(['#####', '#>.g#', '#####'], warnings);
     expect(scene.dynamics?.billboards).toBeUndefined();
     expect(warnings.join('\n')).toMatch(/1 guards, dogs and other actors are not shown/);
+  });
+});
+
+describe('validation of the moving parts', () => {
+  it('rejects a door whose instance does not move, and a push wall naming a sector past the walk map', () => {
+    const scene = build(['#########', '#>.|..P.#', '#########']);
+    const set = scene.dynamics!.slidingDoors!;
+    const still = scene.instances.find((i) => !i.moves)!.id;
+    expect(() => validateScene({ ...scene, dynamics: { ...scene.dynamics, slidingDoors: { ...set, doors: [{ ...set.doors[0]!, instance: still }] } } })).toThrow(/sliding door 0 moves instance/);
+    const walls = scene.dynamics!.pushWalls!;
+    const far = scene.walkMap!.floors.length;
+    expect(() => validateScene({ ...scene, dynamics: { ...scene.dynamics, pushWalls: { ...walls, walls: [{ ...walls.walls[0]!, sector: far }] } } })).toThrow(/push wall 0 names a walk-map sector/);
+    expect(() => validateScene({ ...scene, dynamics: { ...scene.dynamics, slidingDoors: { ...set, travelSeconds: 0 } } })).toThrow(/travel time/);
   });
 });

@@ -54,6 +54,8 @@ export const WOLF_PLAYER_RADIUS = (0x5800 / 0x10000) * WOLF_TILE;
 export const WOLF_BODY_HEIGHT = 56;
 /** A door panel's thickness: an eighth of a tile. */
 export const DOOR_THICKNESS = WOLF_TILE / 8;
+/** How far a door panel's trailing end sits inside the panel (units): see doorPanel. */
+const DOOR_END_RECESS = 0.25;
 /** The game's timing at 70 tics a second: a door moves in 64 tics and stays open 300 (OPENTICS); a push wall moves a tile per 128 tics. */
 const TICS_PER_SECOND = 70;
 export const DOOR_TRAVEL_SECONDS = 64 / TICS_PER_SECOND;
@@ -277,13 +279,15 @@ function wallFace(mesh: MeshBuilder, material: number, x0: number, z0: number, d
 
 /**
  * A door panel in the object space of tile (0, 0): a box an eighth of a tile thick across the
- * tile's middle, its two broad faces and two narrow ends (its top and bottom touch the floor and
- * ceiling). The page's u runs with the map's y (vertical doors) or x (horizontal doors) on both
- * faces, as the game draws it.
+ * tile's middle, its two broad faces and its trailing end, the one that shows as the panel slides
+ * away (its top and bottom touch the floor and ceiling; its leading end is always in the wall). The
+ * page's u runs with the map's y (vertical doors) or x (horizontal doors) on both faces, as the game
+ * draws it. The trailing end is set DOOR_END_RECESS into the panel so that, fully open, it hides
+ * behind the frame's face instead of lying in its plane.
  */
 function doorPanel(vertical: boolean, material: number, name: string): Mesh {
   const b = new MeshBuilder();
-  const T = WOLF_TILE, H = WOLF_WALL_HEIGHT, c = T / 2, h = DOOR_THICKNESS / 2;
+  const T = WOLF_TILE, H = WOLF_WALL_HEIGHT, c = T / 2, h = DOOR_THICKNESS / 2, r = DOOR_END_RECESS;
   // Each face: bottom-left and bottom-right (x, z) seen from outside, with their u.
   const face = (l: [number, number], r: [number, number], ul: number, ur: number) =>
     b.quad(material, [[l[0], 0, l[1]], [r[0], 0, r[1]], [r[0], H, r[1]], [l[0], H, l[1]]], [[ul, 1], [ur, 1], [ur, 0], [ul, 0]]);
@@ -291,13 +295,11 @@ function doorPanel(vertical: boolean, material: number, name: string): Mesh {
   if (vertical) {
     face([c - h, 0], [c - h, T], 0, 1); // west face, u = z / T
     face([c + h, T], [c + h, 0], 1, 0); // east face
-    face([c + h, 0], [c - h, 0], 0, end); // north end
-    face([c - h, T], [c + h, T], 1 - end, 1); // south end
+    face([c + h, r], [c - h, r], 0, end); // north (trailing) end
   } else {
     face([0, c + h], [T, c + h], 0, 1); // south face, u = x / T
     face([T, c - h], [0, c - h], 1, 0); // north face
-    face([0, c - h], [0, c + h], 0, end); // west end
-    face([T, c + h], [T, c - h], 1 - end, 1); // east end
+    face([r, c - h], [r, c + h], 0, end); // west (trailing) end
   }
   return b.build(`door panel ${name}${vertical ? ' (vertical)' : ''}`);
 }
