@@ -9,7 +9,7 @@
  * (the game's `block` statics fill their tile for walking) and the outside have none.
  */
 import { LanternError } from '../../errors.ts';
-import { doorCode, isInvisibleMark, PUSHABLETILE, staticInfo, startFacing, tileKind, type DoorCode, type StaticInfo, type TileKind } from './map-codes.ts';
+import { actorInfo, doorCode, FIRST_ACTOR, isInvisibleMark, PUSHABLETILE, staticInfo, startFacing, tileKind, type ActorInfo, type DoorCode, type StaticInfo, type TileKind } from './map-codes.ts';
 import type { WolfMap } from './types.ts';
 
 /** No sector: a wall, a blocking object, outside the map. */
@@ -44,6 +44,13 @@ export interface LevelStatic {
   readonly info: StaticInfo;
 }
 
+export interface LevelActor {
+  readonly x: number;
+  readonly y: number;
+  readonly code: number;
+  readonly info: ActorInfo;
+}
+
 export interface Level {
   readonly width: number;
   readonly height: number;
@@ -58,9 +65,13 @@ export interface Level {
   readonly doors: readonly LevelDoor[];
   readonly pushWalls: readonly LevelPushWall[];
   readonly statics: readonly LevelStatic[];
+  /** The actors drawn (map-codes.ts actorInfo), at the level's skill. */
+  readonly actors: readonly LevelActor[];
+  /** Actors of the skill that are not drawn (officers, mutants, bosses, ghosts). */
+  readonly undrawnActors: number;
   /** The player's start tile and facing (a unit step on the map), or undefined when the map has none. */
   readonly start?: { readonly x: number; readonly y: number; readonly facing: readonly [number, number] };
-  /** Plane-1 codes the builder does not show (actors, unknown codes), with how many of each. */
+  /** Plane-1 codes the builder does not know, with how many of each. */
   readonly skipped: ReadonlyMap<number, number>;
 }
 
@@ -69,7 +80,8 @@ export const PUSH_REACH = 2;
 /** East, north, west, south as map steps (y south). */
 export const DIRECTIONS: readonly (readonly [number, number])[] = [[1, 0], [0, -1], [-1, 0], [0, 1]];
 
-export function readLevel(map: WolfMap, warn: (message: string) => void = () => {}): Level {
+/** Wolfenstein's skill levels 1–4 ("can I play, daddy?" … "I am death incarnate"); Doom's 5 counts as 4. Default 3. */
+export function readLevel(map: WolfMap, warn: (message: string) => void = () => {}, skill = 3): Level {
   const { width, height } = map;
   const n = width * height;
   if (!(width > 0 && height > 0) || map.planes.some((p) => p.length < n)) {
@@ -81,6 +93,8 @@ export function readLevel(map: WolfMap, warn: (message: string) => void = () => 
   const kinds: TileKind[] = Array.from(walls.subarray(0, n), tileKind);
 
   const statics: LevelStatic[] = [];
+  const actors: LevelActor[] = [];
+  let undrawnActors = 0;
   const pushTiles: { x: number; y: number }[] = [];
   const skipped = new Map<number, number>();
   let start: Level['start'];
@@ -100,6 +114,11 @@ export function readLevel(map: WolfMap, warn: (message: string) => void = () => 
       } else if (info && kinds[at(x, y)] === 'open') {
         statics.push({ x, y, code, info });
         if (info.blocks) blocking[at(x, y)] = 1;
+      } else if (code >= FIRST_ACTOR) {
+        const actor = actorInfo(code, skill);
+        if ('skipped' in actor) {
+          if (actor.skipped === 'kind') undrawnActors++;
+        } else if (kinds[at(x, y)] !== 'wall') actors.push({ x, y, code, info: actor });
       } else skipped.set(code, (skipped.get(code) ?? 0) + 1);
     }
   }
@@ -158,7 +177,7 @@ export function readLevel(map: WolfMap, warn: (message: string) => void = () => 
     const paths: LevelPushWall['paths'] = [path(0), path(1), path(2), path(3)];
     return { x, y, code: walls[at(x, y)]!, sector, paths };
   });
-  return { width, height, walls, kinds, sectors, sectorCount, shutAtStart, doors, pushWalls, statics, ...(start && { start }), skipped };
+  return { width, height, walls, kinds, sectors, sectorCount, shutAtStart, doors, pushWalls, statics, actors, undrawnActors, ...(start && { start }), skipped };
 }
 
 /** The sector of tile (x, y), SOLID outside the map. */

@@ -25,7 +25,9 @@
  * - 98 (PUSHABLETILE): the wall under it (plane 0) is a push wall;
  * - 90–97 (ICONARROWS: where patrolling guards turn) and 99 (EXITTILE: the end of the last level)
  *   are invisible marks;
- * - 108 and up: guards, dogs and the other actors (not built).
+ * - 108 and up: guards, dogs and the other actors, in three blocks of 36 codes by skill (108–143
+ *   at every skill, 144–179 from "bring 'em on", 180–215 at "I am death incarnate"): ACTORS below
+ *   for the ones drawn (standing still).
  */
 
 /** The game's AREATILE: plane-0 codes from here on are open floor (and name the area). */
@@ -141,3 +143,45 @@ export const isInvisibleMark = (code: number): boolean => (code >= 90 && code <=
 
 /** Plane-1 codes of the actors (guards, dogs, officers, SS, mutants, bosses, ghosts, dead guards). */
 export const FIRST_ACTOR = 108;
+
+/** How an actor is drawn: its sprite (SPR_* number) and whether it has eight rotations from there. */
+export interface ActorInfo {
+  readonly name: string;
+  /** The first sprite: rotation 1 (seen from the front) when `rotations` is 8. */
+  readonly sprite: number;
+  readonly rotations: 1 | 8;
+  /** Facing east, north, west, south (0–3), for those with rotations. */
+  readonly facing: number;
+}
+
+/**
+ * The game's sprite list (WL_DEF.H) after the 48 statics: the guard from SPR_GRD_S_1 = 50 (eight
+ * standing rotations, then four walking frames of eight, pain, dying, dead at 95, shooting: 49),
+ * the dog from SPR_DOG_W1_1 = 99 (walking only: 39), the SS from SPR_SS_S_1 = 138 (as the guard).
+ */
+const SPR_GRD_S_1 = 50, SPR_GRD_W1_1 = 58, SPR_GRD_DEAD = 95, SPR_DOG_W1_1 = 99, SPR_SS_S_1 = 138, SPR_SS_W1_1 = 146;
+
+/**
+ * The actor of plane-1 code `code` at Wolfenstein skill `skill` (1 "can I play, daddy?" … 4 "I am
+ * death incarnate"), drawn as it stands when the level starts: guards and SS standing (their
+ * standing rotations) or on patrol (their first walking frame), dogs (always walking), the dead
+ * guard. ScanInfoPlane's blocks: code − 108 − 36·k for k = 0, 1, 2 (the last two only from skill 3
+ * and 4), offsets 0–3 guard standing, 4–7 guard patrolling, 16 the dead guard (first block only),
+ * 18–21 SS standing, 22–25 SS patrolling, 26–29 dog standing, 30–33 dog patrolling, each facing
+ * east, north, west, south. Undefined for the others (officers, mutants, bosses, ghosts: not drawn)
+ * and for actors of a higher skill.
+ */
+export function actorInfo(code: number, skill: number): ActorInfo | { readonly skipped: 'skill' | 'kind' } {
+  if (code < FIRST_ACTOR || code >= FIRST_ACTOR + 3 * 36) return { skipped: 'kind' };
+  const block = Math.floor((code - FIRST_ACTOR) / 36);
+  if (block > 0 && skill < block + 2) return { skipped: 'skill' };
+  const o = (code - FIRST_ACTOR) % 36;
+  const facing = (o - (o < 16 ? 0 : 2)) % 4;
+  if (o === 16) return block === 0 ? { name: 'dead guard', sprite: SPR_GRD_DEAD, rotations: 1, facing: 0 } : { skipped: 'kind' };
+  if (o < 4) return { name: 'guard', sprite: SPR_GRD_S_1, rotations: 8, facing };
+  if (o < 8) return { name: 'guard on patrol', sprite: SPR_GRD_W1_1, rotations: 8, facing };
+  if (o >= 18 && o < 22) return { name: 'SS', sprite: SPR_SS_S_1, rotations: 8, facing };
+  if (o >= 22 && o < 26) return { name: 'SS on patrol', sprite: SPR_SS_W1_1, rotations: 8, facing };
+  if (o >= 26 && o < 34) return { name: 'dog', sprite: SPR_DOG_W1_1, rotations: 8, facing };
+  return { skipped: 'kind' };
+}

@@ -21,7 +21,7 @@ const T = WOLF_TILE;
 describe.skipIf(!DIR)('E1L1 as a scene', () => {
   const game = DIR ? readWolfGame({ maphead: file('MAPHEAD.WL1'), gamemaps: file('GAMEMAPS.WL1'), vswap: file('VSWAP.WL1') }) : undefined!;
 
-  it('has a door per door tile, a block per push-wall mark, a sprite per object and an emitter per lamp', () => {
+  it('has a door per door tile, a block per push-wall mark, a sprite per object and actor of the skill, an emitter per lamp', () => {
     const map = game.map('E1L1');
     const warnings: string[] = [];
     const scene = wolfMapToScene(game, map, { onWarning: (w) => warnings.push(w) });
@@ -33,14 +33,21 @@ describe.skipIf(!DIR)('E1L1 as a scene', () => {
     expect(d.slidingDoors!.doors).toHaveLength(22);
     expect(d.pushWalls!.walls).toHaveLength(count(objects, (c) => c === 98));
     expect(d.pushWalls!.walls).toHaveLength(5);
-    expect(d.billboards).toHaveLength(count(objects, (c) => c >= 23 && c <= 71));
-    expect(d.billboards).toHaveLength(121);
+    // Objects, and the guards, SS and dogs of skill 3 (the first two blocks of 36 actor codes; the dead guard only in the first).
+    const statics = count(objects, (c) => c >= 23 && c <= 71);
+    const drawnActor = (c: number) => {
+      const o = (c - 108) % 36, block = Math.floor((c - 108) / 36);
+      return c >= 108 && block <= 1 && (o < 8 || (o === 16 && block === 0) || (o >= 18 && o < 34));
+    };
+    expect(statics).toBe(121);
+    expect(d.billboards).toHaveLength(statics + count(objects, drawnActor));
+    expect(d.billboards!.filter((b) => b.frames[0]!.images.length === 8).length).toBe(count(objects, (c) => drawnActor(c) && c !== 124));
     const lamps = count(objects, (c) => c === 26 || c === 27 || c === 37);
     const emitterTriangles = scene.meshes.filter((m, i) => scene.instances.some((inst) => inst.mesh === i) && scene.materials[m.materialIds[0]!]!.kind === 'emissive').reduce((n, m) => n + m.indices.length / 3, 0);
     expect(emitterTriangles).toBe(2 * lamps);
     expect(lamps).toBeGreaterThan(10);
-    // The 38 guards and dogs are left out, said once; nothing else is.
-    expect(warnings).toEqual(['E1L1: 38 guards, dogs and other actors are not shown (Lantern builds the level, not its inhabitants)']);
+    // E1L1 has only guards, SS and dogs: nothing is left out.
+    expect(warnings).toEqual([]);
   });
 
   it('starts in the cell at (29, 57) at eye height, facing east at its door, which opens as the camera nears it', () => {

@@ -8,16 +8,17 @@
  *   'P' push wall (wall 3 under object 98),
  *   '^' '>' 'v' '<' the player's start facing north, east, south, west,
  *   'c' chandelier (27), 'l' ceiling light (37), 'L' floor lamp (26), 'b' barrel (58, blocks), 'o' puddle (23),
- *   'g' a guard (108).
+ *   'g' a guard standing, facing east (108), 'n' one facing north (109), 'h' a guard from skill 3 (144),
+ *   'H' one from skill 4 (180), 'd' a dog on patrol (138), 'O' an officer (116: not drawn).
  */
 import type { WolfGame, WolfGraphics, WolfImage, WolfMap } from './types.ts';
 
 /** The shareware VSWAP's count: 98 wall pages, then the eight door pages from DOORWALL = 98. */
 export const TEST_WALL_PAGES = 106;
-export const TEST_SPRITES = 60;
+export const TEST_SPRITES = 200;
 
 const WALLS: Record<string, number> = { '#': 1, P: 3, '|': 90, '-': 91, G: 92, E: 101 };
-const OBJECTS: Record<string, number> = { '^': 19, '>': 20, v: 21, '<': 22, c: 27, l: 37, L: 26, b: 58, o: 23, g: 108, P: 98 };
+const OBJECTS: Record<string, number> = { '^': 19, '>': 20, v: 21, '<': 22, c: 27, l: 37, L: 26, b: 58, o: 23, g: 108, n: 109, h: 144, H: 180, d: 138, O: 116, P: 98 };
 
 export function testMap(rows: readonly string[], index = 0): WolfMap {
   const height = rows.length;

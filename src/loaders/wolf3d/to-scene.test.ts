@@ -403,11 +403,30 @@ describe('static objects and lamps', () => {
     expect(end.x).toBeLessThan(5 * T);
   });
 
-  it('leaves actors out, with a warning', () => {
+  it('stands guards and dogs still, with eight rotations facing their way; officers are left out, said once', () => {
     const warnings: string[] = [];
-    const scene = build(['#####', '#>.g#', '#####'], warnings);
-    expect(scene.dynamics?.billboards).toBeUndefined();
-    expect(warnings.join('\n')).toMatch(/1 guards, dogs and other actors are not shown/);
+    const scene = build(['#######', '#>.gnd#', '#.O...#', '#######'], warnings);
+    const billboards = scene.dynamics!.billboards!;
+    expect(billboards).toHaveLength(3);
+    const [east, north, dog] = billboards;
+    expect(east!.position).toEqual([3.5 * T, 0, 1.5 * T]);
+    expect(east!.facing).toBe(0);
+    expect(north!.facing).toBeCloseTo(Math.PI / 2, 12);
+    // SPR_GRD_S_1 = 50 … 57, the dog's first walking frame SPR_DOG_W1_1 = 99 … 106 (test sprites are red = their index).
+    const red = (b: typeof east, k: number) => {
+      const m = scene.materials[b!.frames[0]!.images[k]!.material]!;
+      return m.kind === 'diffuse' ? scene.textures![m.albedoTexture!.texture]!.rgba[4 * 64 * 63] : undefined;
+    };
+    expect([0, 1, 7].map((k) => red(east, k))).toEqual([50, 51, 57]);
+    expect(dog!.facing).toBe(0);
+    expect([0, 4].map((k) => red(dog, k))).toEqual([99, 103]);
+    expect(warnings.join('\n')).toMatch(/1 officers, mutants, bosses and ghosts are not shown/);
+  });
+
+  it('draws the actors of the skill: skill 3 by default, 4 adds the hardest', () => {
+    const map = testMap(['#######', '#>.ghH#', '#######']);
+    const at = (skill?: number) => wolfMapToScene(testGame([map]), map, skill === undefined ? {} : { skill }).dynamics!.billboards!.length;
+    expect([at(1), at(2), at(), at(4), at(5)]).toEqual([1, 1, 2, 3, 3]);
   });
 });
 

@@ -24,7 +24,11 @@
  * 2 m high and Doom's torch fits unchanged. The map's x (east) is world +x, its y (south) world +z,
  * and y is up: north is −z, as in the Doom loader. Tile (x, y) covers [64x, 64x + 64] × [64y, 64y + 64].
  *
- * Not built: actors (guards, dogs and the rest, plane-1 codes from 108: listed in a warning),
+ * - guards, SS and dogs of the skill (LoadOptions.skill, 1–4, default 3) as billboards standing
+ *   still where the level starts them, with their eight rotations (the dead guard with one); they
+ *   do not block the walker.
+ *
+ * Not built: officers, mutants, bosses and ghosts (counted in a warning), the actors' behaviour,
  * the elevator switch's behaviour, keys and locks (every door opens).
  */
 import { IDENTITY, translation } from '../../math/mat4.ts';
@@ -36,7 +40,7 @@ import { diffuse, type Camera, type Instance, type Material, type Mesh, type Sce
 import { DOOM_TORCH } from '../doom/light-table.ts';
 import type { LoadOptions } from '../format.ts';
 import { DIRECTIONS, readLevel, SOLID, type Level, type LevelDoor } from './level.ts';
-import { doorPage, doorSidePage, FIRST_ACTOR, LAST_TEXTURED_WALL, wallPages, type StaticInfo } from './map-codes.ts';
+import { doorPage, doorSidePage, LAST_TEXTURED_WALL, SPR_STAT_0, wallPages, type StaticInfo } from './map-codes.ts';
 import { ceilingColourIndex, FLOOR_COLOUR_INDEX } from './palette.ts';
 import type { WolfGame, WolfImage, WolfMap } from './types.ts';
 import { wolfWalkMap } from './walk-map.ts';
@@ -104,7 +108,7 @@ const lightSide = (d: number): boolean => LIGHT_SIDE[d] === true;
 
 export function wolfMapToScene(game: WolfGame, map: WolfMap, options: LoadOptions = {}): Scene {
   const warn = options.onWarning ?? (() => {});
-  const level = readLevel(map, warn);
+  const level = readLevel(map, warn, Math.min(4, Math.max(1, options.skill ?? 3)));
   const parts = new Parts(game, warn);
   const T = WOLF_TILE, H = WOLF_WALL_HEIGHT;
   const at = (x: number, y: number) => y * level.width + x;
@@ -210,6 +214,20 @@ export function wolfMapToScene(game: WolfGame, map: WolfMap, options: LoadOption
     });
     names.push(`${s.info.name} (${s.x}, ${s.y})`);
   }
+  // Actors, standing still where the level starts them: eight rotations, chosen by the angle they are seen from.
+  for (const a of level.actors) {
+    const count = a.info.rotations;
+    const materials = Array.from({ length: count }, (_, k) => parts.sprite({ name: count === 1 ? a.info.name : `${a.info.name} ${k + 1}`, stat: a.info.sprite - SPR_STAT_0 + k, blocks: false }));
+    if (materials.some((m) => m === undefined)) continue;
+    billboards.push({
+      instance: -1,
+      position: [(a.x + 0.5) * T, 0, (a.y + 0.5) * T],
+      // Billboard facing: 0 east, π/2 north (−z), as the game's angles.
+      facing: (a.info.facing * Math.PI) / 2,
+      frames: [{ duration: 1, images: materials.map((material) => ({ material: material!, width: T, height: H, left: T / 2, top: H, mirrored: false })) }],
+    });
+    names.push(`${a.info.name} (${a.x}, ${a.y})`);
+  }
   let placed: Billboard[] = [];
   if (billboards.length > 0) {
     const quad = meshes.push(billboardQuad(billboards[0]!.frames[0]!.images[0]!.material, 'sprite quad')) - 1;
@@ -218,9 +236,8 @@ export function wolfMapToScene(game: WolfGame, map: WolfMap, options: LoadOption
     placed.forEach((b, k) => instances.push({ id: b.instance, name: names[k]!, mesh: quad, moves: true, ...poses.get(b.instance)! }));
   }
 
-  const actors = [...level.skipped].filter(([code]) => code >= FIRST_ACTOR).reduce((n, [, count]) => n + count, 0);
-  if (actors > 0) warn(`${map.id}: ${actors} guards, dogs and other actors are not shown (Lantern builds the level, not its inhabitants)`);
-  const unknown = [...level.skipped].filter(([code]) => code < FIRST_ACTOR);
+  if (level.undrawnActors > 0) warn(`${map.id}: ${level.undrawnActors} officers, mutants, bosses and ghosts are not shown (Lantern draws the guards, SS and dogs)`);
+  const unknown = [...level.skipped];
   if (unknown.length > 0) warn(`${map.id}: object codes not shown: ${unknown.map(([code, count]) => `${code} (×${count})`).join(', ')}`);
 
   const slidingDoors: SlidingDoorSet = {
@@ -416,7 +433,7 @@ class Parts {
     if (known !== undefined) return known < 0 ? undefined : known;
     let image: WolfImage;
     try {
-      image = this.game.graphics.sprite(2 + info.stat);
+      image = this.game.graphics.sprite(SPR_STAT_0 + info.stat);
     } catch (e) {
       this.warn(`the sprite of the ${info.name} cannot be read (${e instanceof Error ? e.message : String(e)}); not shown`);
       this.byKey.set(key, -1);
