@@ -117,7 +117,7 @@ export class SettingsPanel {
     const m = this.monitor;
     numbers.addBinding(m, 'fps', { label: 'frames/s', readonly: true, view: 'graph', min: 0, max: 120 });
     numbers.addBinding(m, 'frame', { label: 'frame', readonly: true });
-    numbers.addBinding(m, 'gpu', { label: 'GPU passes', readonly: true, multiline: true, rows: 4 });
+    numbers.addBinding(m, 'gpu', { label: 'GPU passes', readonly: true, multiline: true, rows: 10 });
     numbers.addBinding(m, 'spp', { label: 'samples/pixel', readonly: true, format: (v) => v.toFixed(0) });
     numbers.addBinding(m, 'rays', { label: 'rays/s', readonly: true });
     numbers.addBinding(m, 'image', { label: 'image', readonly: true });

@@ -66,8 +66,14 @@ export interface ViewerSettings {
  */
 export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
 
-/** Whether these settings ask for the real-time frame chain (temporal and/or spatial denoising). */
-export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise'>) => s.temporal || s.denoise;
+/** Whether these settings ask for a real-time recipe: the denoiser's chain (temporal and/or spatial) or the hybrid recipe. */
+export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise' | 'recipe'>) => s.temporal || s.denoise || s.recipe === 'hybrid';
+
+/** Compiles what a real-time recipe in these settings needs. */
+async function enableRecipe(renderer: Renderer, s: RenderSettings): Promise<void> {
+  if (s.recipe === 'hybrid') await renderer.enableHybrid();
+  else if (isRealTime(s)) await renderer.enableRealTime();
+}
 
 /** Milliseconds without an edit after which the scene's specialised kernels are compiled (Lantern issue #11). */
 const SPECIALISE_AFTER_IDLE_MS = 1000;
@@ -444,7 +450,7 @@ export class Viewer {
     const next = { ...before, ...changes, render };
     // Compile what the new settings need before the frame loop sees them.
     if (this.renderer && render.debugView !== 'none') await this.renderer.enableDebugViews();
-    if (this.renderer && isRealTime(render)) await this.renderer.enableRealTime();
+    if (this.renderer) await enableRecipe(this.renderer, render);
     if (this.renderer && render.spectral) await this.renderer.enableSpectral();
     this.settings = next;
     this.legendAt = 0;
@@ -590,7 +596,7 @@ export class Viewer {
     if (!/swiftshader/i.test(gpu.adapterName)) renderer.setIdleSpecialisation(SPECIALISE_AFTER_IDLE_MS);
     await renderer.enablePresentation();
     if (this.settings.render.debugView !== 'none') await renderer.enableDebugViews();
-    if (isRealTime(this.settings.render)) await renderer.enableRealTime();
+    await enableRecipe(renderer, this.settings.render);
     if (this.settings.render.spectral) await renderer.enableSpectral();
     this.realTimeFrames = 0;
     renderer.updateSettings(this.settings.render);
