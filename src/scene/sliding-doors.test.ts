@@ -62,6 +62,15 @@ describe('SlidingDoorAnimator', () => {
     expect(a.state(0)).toEqual({ action: 'closing', position: 0.5 });
   });
 
+  it('by proximity, the use key opens a door but never closes one', () => {
+    const a = new SlidingDoorAnimator(set('proximity'));
+    step(a, 0, at(-20, 5), true);
+    expect(a.use(at(15, 5))).toBe(true);
+    step(a, 0.5, at(15, 5));
+    expect(a.use(at(15, 5))).toBe(true);
+    expect(a.state(0)).toEqual({ action: 'opening', position: 0.5 });
+  });
+
   it('opens by proximity only in front of the door, within the doorway width', () => {
     const a = new SlidingDoorAnimator(set('proximity'));
     step(a, 0, at(-20, 5), true);

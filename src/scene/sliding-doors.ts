@@ -19,7 +19,8 @@
  * - 'use': the use key only, Wolfenstein's rule (Cmd_Use): the player's direction of view rounded to
  *   the nearest of east, north, west and south picks the tile next to the player's; a door there
  *   answers;
- * - 'proximity': as 'use', and a door also opens by itself while the viewer stands in front of it
+ * - 'proximity': the use key opens doors (it never closes one: whoever uses a door stands in front
+ *   of it, which keeps it open), and a door also opens by itself while the viewer stands in front of it
  *   (within `proximity` of its panel, measured across the panel, and within the doorway's width
  *   along it): deterministic, so a camera path or a still render at a given time sees the same
  *   doors open. An open door stays open while the viewer stands there (the game's OpenDoor on an
@@ -232,7 +233,8 @@ export class SlidingDoorAnimator implements Animator {
     if (i === undefined) return false;
     const s = this.states[i]!;
     if (s.action === 'closed' || s.action === 'closing') this.open(i);
-    else if (!this.blocked(i)) s.action = 'closing';
+    // By proximity the user stands in front of the door, which keeps it open: the key only opens.
+    else if (this.set.trigger === 'use' && !this.blocked(i)) s.action = 'closing';
     return true;
   }
 
