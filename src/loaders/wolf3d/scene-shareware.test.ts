@@ -46,6 +46,16 @@ describe.skipIf(!DIR)('E1L1 as a scene', () => {
     const emitterTriangles = scene.meshes.filter((m, i) => scene.instances.some((inst) => inst.mesh === i) && scene.materials[m.materialIds[0]!]!.kind === 'emissive').reduce((n, m) => n + m.indices.length / 3, 0);
     expect(emitterTriangles).toBe(2 * lamps);
     expect(lamps).toBeGreaterThan(10);
+    // A wall face wherever a wall tile (push walls aside: they are blocks of their own) borders a
+    // tile one sees into: floor, door or push wall.
+    const at = (x: number, y: number) => (x >= 0 && y >= 0 && x < 64 && y < 64 ? y * 64 + x : -1);
+    const push = (i: number) => objects[i] === 98;
+    const solid = (i: number) => i < 0 || (walls[i]! >= 1 && walls[i]! <= 63 && !push(i));
+    let faces = 0;
+    for (let y = 0; y < 64; y++) for (let x = 0; x < 64; x++) if (solid(at(x, y))) for (const [dx, dy] of [[1, 0], [0, -1], [-1, 0], [0, 1]]) if (!solid(at(x + dx!, y + dy!))) faces++;
+    const wallTriangles = scene.instances.filter((i) => !i.moves).map((i) => scene.meshes[i.mesh]!).filter((m) => scene.materials[m.materialIds[0]!]!.name.startsWith('wall page')).reduce((n, m) => n + m.indices.length / 3, 0);
+    expect(wallTriangles).toBe(2 * faces);
+    expect(faces).toBe(758);
     // E1L1 has only guards, SS and dogs: nothing is left out.
     expect(warnings).toEqual([]);
   });
