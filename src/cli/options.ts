@@ -50,7 +50,7 @@ export function numberListOption(name: string, counts: readonly number[]): (valu
 export function withSceneOptions(command: Command): Command {
   return command
     .option('--light-table <file.json>', 'Doom maps: JSON overrides of which textures, flats and things emit, and how strongly (see the README)')
-    .option('--skill <1-5>', "Doom maps: the skill level whose things appear (1: I'm too young to die ... 5: Nightmare!; default 3)", integerOption('--skill', 1, 5));
+    .option('--skill <1-5>', "Doom maps: the skill level whose things appear (1: I'm too young to die ... 5: Nightmare!; default 3); Wolfenstein 3D maps: whose guards appear (1-4, 5 counts as 4)", integerOption('--skill', 1, 5));
 }
 
 /** The values withSceneOptions parses. */

@@ -33,7 +33,7 @@ export interface LoadOptions {
   readonly onWarning?: (message: string) => void;
   /** Doom only: light table overrides (doom/light-table.ts). */
   readonly lightTable?: Partial<LightTable>;
-  /** Doom only: the skill level (1–5, default 3) whose things appear (doom/thing-types.ts). */
+  /** Doom: the skill level (1–5, default 3) whose things appear (doom/thing-types.ts); Wolfenstein 3D: whose actors appear (1–4, 5 counts as 4, default 3). */
   readonly skill?: number;
 }
 

@@ -12,7 +12,10 @@
  *   emission patterns (Doom's animated flats and walls, scrolling walls, flickering sectors);
  * - movers (scene/movers.ts): doors and lifts, moving a sector's floor or ceiling by mesh morph
  *   weights, opened by the use key or by walking over a line;
- * - paths (scene/paths.ts): instances carried along a closed path (the dungeon's phantom).
+ * - paths (scene/paths.ts): instances carried along a closed path (the dungeon's phantom);
+ * - slidingDoors (scene/sliding-doors.ts): panels sliding sideways into the wall, opened by the use
+ *   key or by standing in front of them (Wolfenstein's doors);
+ * - pushWalls (scene/push-walls.ts): wall blocks pushed away by the use key (Wolfenstein's secrets).
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Billboard } from './billboards.ts';
@@ -20,6 +23,8 @@ import type { MaterialAnimations } from './material-animation.ts';
 import type { MaterialEdit } from './material-edit.ts';
 import type { MoverSet } from './movers.ts';
 import type { InstancePath } from './paths.ts';
+import type { PushWallSet } from './push-walls.ts';
+import type { SlidingDoorSet } from './sliding-doors.ts';
 
 /**
  * The dynamic parts of a scene. Every field is optional; a scene without `dynamics` is frozen. Each
@@ -36,6 +41,10 @@ export interface SceneDynamics {
   readonly paths?: readonly InstancePath[];
   /** Quads turned toward the viewer, showing the image for the angle they are seen from (Doom's things). */
   readonly billboards?: readonly Billboard[];
+  /** Wolfenstein's doors (scene/sliding-doors.ts). */
+  readonly slidingDoors?: SlidingDoorSet;
+  /** Wolfenstein's push walls (scene/push-walls.ts). */
+  readonly pushWalls?: PushWallSet;
 }
 
 /** An instance's new state: a transform, a material override (Instance.material), or both. */

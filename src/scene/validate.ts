@@ -7,6 +7,8 @@ import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
 import { validateDispersion } from './dispersion.ts';
 import { lensProblem } from './lens.ts';
 import { billboardProblem } from './billboards.ts';
+import { pushWallProblem } from './push-walls.ts';
+import { slidingDoorProblem } from './sliding-doors.ts';
 import { morphTargetProblem } from './morph.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
@@ -120,6 +122,8 @@ export function validateScene(scene: Scene): void {
   if (lens) fail(lens);
   const billboards = billboardProblem(scene);
   if (billboards) fail(billboards);
+  const moving = slidingDoorProblem(scene) ?? pushWallProblem(scene);
+  if (moving) fail(moving);
 }
 
 /** Whether the linear part of m is a rotation (or reflection) times a uniform scale, to 1e-4 relative. */

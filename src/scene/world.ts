@@ -11,6 +11,8 @@ import { emptySceneUpdate, isEmptyUpdate, type InstancePose, type SceneUpdate } 
 import type { MaterialEdit } from './material-edit.ts';
 import { moverAnimator } from './movers.ts';
 import { pathAnimator } from './paths.ts';
+import { pushWallAnimator } from './push-walls.ts';
+import { slidingDoorAnimator } from './sliding-doors.ts';
 import type { Scene } from './types.ts';
 
 /** Where the scene is seen from: billboards turn toward it; the use key acts in front of it. */
@@ -60,7 +62,7 @@ export interface Animator {
 export type AnimatorFactory = (scene: Scene) => Animator | undefined;
 
 /** Every kind of motion (scene/dynamics.ts lists them), in the order their updates are merged. */
-const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator, moverAnimator, pathAnimator, billboardAnimator];
+const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator, moverAnimator, pathAnimator, billboardAnimator, slidingDoorAnimator, pushWallAnimator];
 
 export class World {
   private time = 0;

@@ -36,7 +36,7 @@ export function registerView(program: Command, context: CliContext): void {
     .option('--host <address>', 'address to listen on (127.0.0.1: this machine only)', '127.0.0.1')
     .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)')
     .option('--aperture <radius>', 'open the page with a thin lens of this radius (scene units; 0: a pinhole)', lensNumber('--aperture', true))
-    .option('--skill <1-5>', "Doom maps: the skill level whose things appear (default 3)", integerOption('--skill', 1, 5))
+    .option('--skill <1-5>', "Doom maps: the skill level whose things appear; Wolfenstein 3D maps: whose guards (default 3)", integerOption('--skill', 1, 5))
     .option('--focus-distance <d>', "the lens's focus distance (scene units; default: the scene's, or what lies at the image centre)", lensNumber('--focus-distance', false))
     .action((sceneArg: string, options: ViewOptions) => context.run(() => view(sceneArg, options, context)));
 }

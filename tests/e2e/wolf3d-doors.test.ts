@@ -1,0 +1,57 @@
+/**
+ * Wolfenstein 3D's doors in the page (headless Chromium, WebGPU on SwiftShader): E1L1 of the
+ * shareware (read in place; skipped where absent) opened by link, in walk mode at the player's
+ * start, the cell at tile (29, 57) facing east. Its door, a vertical door at tile (32, 57), spans
+ * world x 2048–2112 (tiles are 64 units); walking east, the walker comes in front of it, the door
+ * slides open and the walker goes through, past the door tile's far edge, and on. Frames are cheap:
+ * a tiny image and the normals debug view instead of path tracing.
+ */
+import { existsSync } from 'node:fs';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import type { Browser, Page } from 'playwright-core';
+import { launchBrowser, servePage, type ServedPage } from './browser.ts';
+
+const SHAREWARE = ['../shared/assets/wolf3d-shareware', '/work/shared/assets/wolf3d-shareware'].find((d) => ['MAPHEAD.WL1', 'GAMEMAPS.WL1', 'VSWAP.WL1'].every((f) => existsSync(join(d, f))));
+if (!SHAREWARE) console.warn('skipped: the Wolfenstein 3D shareware files are absent (../shared/assets/wolf3d-shareware)');
+
+const TILE = 64;
+/** The walker's radius (the game's MINDIST: 22 units). */
+const RADIUS = 22;
+
+describe.skipIf(!SHAREWARE)('Wolfenstein 3D doors in the page', () => {
+  let browser: Browser;
+  let served: ServedPage;
+
+  beforeAll(async () => {
+    served = await servePage(['MAPHEAD.WL1', 'GAMEMAPS.WL1', 'VSWAP.WL1'].map((f) => join(SHAREWARE!, f)));
+    browser = await launchBrowser();
+  });
+
+  afterAll(async () => {
+    await browser?.close();
+    await served?.close();
+  });
+
+  const x = (page: Page) => page.evaluate(() => window.lantern.camera!.position[0]);
+
+  it("walks out of E1L1's cell through its door, which opens as the walker comes to it", async () => {
+    const page = await browser.newPage({ viewport: { width: 320, height: 200 } });
+    const errors: string[] = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    const files = served.fileUrls.map((u) => `wolf=${u}`).join('&');
+    await page.goto(`${served.url}?${files}&map=E1L1&mode=walk&scale=0.05&debug=normals&layout=replace`);
+    await page.waitForFunction(() => window.lantern && !window.lantern.loading && /E1L1/.test(window.lantern.scene), undefined, { timeout: 120_000 });
+    // The start: the cell's middle, west of the door.
+    expect(await x(page)).toBeCloseTo(29.5 * TILE, 0);
+    await page.click('#play');
+    await page.waitForFunction(() => window.lantern.state === 'playing', undefined, { timeout: 60_000 });
+
+    // East, into the door tile and out of its far side: only an open door lets the walker there.
+    await page.keyboard.down('KeyW');
+    await expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(33 * TILE + RADIUS);
+    await page.keyboard.up('KeyW');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+});
