@@ -180,7 +180,7 @@ export class Viewer {
     const c = this.controllerValue;
     if (!c || !this.world) return false;
     const camera = c.camera();
-    return this.world.use({ position: camera.position, forward: camera.forward });
+    return this.world.use({ position: camera.position, forward: camera.forward, walking: c.mode === 'walk' });
   }
 
   get scene(): LoadedScene | undefined {
@@ -704,7 +704,7 @@ export class Viewer {
     const world = this.world;
     if (!world || !this.loaded) return;
     for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
-    const update = world.advance(this.settings.animate ? dt : 0, c.camera());
+    const update = world.advance(this.settings.animate ? dt : 0, { ...c.camera(), walking: c.mode === 'walk' });
     if (!update) return;
     c.setSectorHeights(update.walkHeights);
     // Kept, so that a lost device is refilled with the scene as it is now.

@@ -83,4 +83,17 @@ describe('SlidingDoorAnimator', () => {
     step(b, 0.1, at(11, 5));
     expect(b.state(0).action).toBe('closed');
   });
+
+  it('waits for a walking player\'s use key even where the demo opens doors by proximity, and the key then closes them too', () => {
+    const a = new SlidingDoorAnimator(set('proximity'));
+    const walker = (x: number, z: number): Viewpoint => ({ ...at(x, z), walking: true });
+    step(a, 0, walker(-20, 5), true);
+    step(a, 0.5, walker(11, 5)); // in front, where a flying camera opens it
+    expect(a.state(0).action).toBe('closed');
+    expect(a.use(walker(15, 5))).toBe(true);
+    step(a, 2, walker(15, 5));
+    expect(a.state(0).action).toBe('open');
+    expect(a.use(walker(15, 5))).toBe(true);
+    expect(a.state(0).action).toBe('closing');
+  });
 });

@@ -19,6 +19,7 @@
  * - 'use': the use key only, Wolfenstein's rule (Cmd_Use): the player's direction of view rounded to
  *   the nearest of east, north, west and south picks the tile next to the player's; a door there
  *   answers;
+ * A walking player (Viewpoint.walking: the viewer's walk mode) always gets 'use', as in the game.
  * - 'proximity': the use key opens doors (it never closes one: whoever uses a door stands in front
  *   of it, which keeps it open), and a door also opens by itself while the viewer stands in front of it
  *   (within `proximity` of its panel, measured across the panel, and within the doorway's width
@@ -177,7 +178,7 @@ export class SlidingDoorAnimator implements Animator {
     doors.forEach((door, i) => {
       const s = this.states[i]!;
       const before = s.position;
-      if (this.set.trigger === 'proximity' && this.inFront(door, view)) this.open(i);
+      if (this.trigger(view) === 'proximity' && this.inFront(door, view)) this.open(i);
       let left = dt;
       // A few state changes per step at most (opening → open → closing …); the bound ends the loop.
       for (let guard = 0; guard < 4 && left > 0; guard++) {
@@ -234,8 +235,13 @@ export class SlidingDoorAnimator implements Animator {
     const s = this.states[i]!;
     if (s.action === 'closed' || s.action === 'closing') this.open(i);
     // By proximity the user stands in front of the door, which keeps it open: the key only opens.
-    else if (this.set.trigger === 'use' && !this.blocked(i)) s.action = 'closing';
+    else if (this.trigger(view) === 'use' && !this.blocked(i)) s.action = 'closing';
     return true;
+  }
+
+  /** The trigger in force: a walking player always uses doors (Wolfenstein's rule), whatever the demo default. */
+  private trigger(view: Viewpoint): 'use' | 'proximity' {
+    return view.walking ? 'use' : this.set.trigger;
   }
 
   /** OpenDoor: a closed or closing door starts opening; an open one waits again from the start. */

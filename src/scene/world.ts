@@ -20,6 +20,11 @@ export interface Viewpoint {
   readonly position: Vec3;
   /** Need not be unit length. */
   readonly forward: Vec3;
+  /**
+   * A player walks (the viewer's walk mode): what a demo does by itself waits for the player's use
+   * key (Wolfenstein's doors). Absent: a camera flies or follows a path (renders, fly mode).
+   */
+  readonly walking?: boolean;
 }
 
 /** The mutable SceneUpdate animators write into during one step (later writes win). */

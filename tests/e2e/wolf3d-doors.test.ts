@@ -2,8 +2,9 @@
  * Wolfenstein 3D's doors in the page (headless Chromium, WebGPU on SwiftShader): E1L1 of the
  * shareware (read in place; skipped where absent) opened by link, in walk mode at the player's
  * start, the cell at tile (29, 57) facing east. Its door, a vertical door at tile (32, 57), spans
- * world x 2048–2112 (tiles are 64 units); walking east, the walker comes in front of it, the door
- * slides open and the walker goes through, past the door tile's far edge, and on. Frames are cheap:
+ * world x 2048–2112 (tiles are 64 units), its panel in the tile's middle. A walking player opens doors
+ * with the use key, as in the game: walking east, the closed door stops the walker; E opens it, and
+ * walking on takes the walker through, past the door tile's far edge. Frames are cheap:
  * a tiny image and the normals debug view instead of path tracing.
  */
 import { existsSync } from 'node:fs';
@@ -35,7 +36,7 @@ describe.skipIf(!SHAREWARE)('Wolfenstein 3D doors in the page', () => {
 
   const x = (page: Page) => page.evaluate(() => window.lantern.camera!.position[0]);
 
-  it("walks out of E1L1's cell through its door, which opens as the walker comes to it", async () => {
+  it("walks out of E1L1's cell: the closed door stops the walker, E opens it, and the walker goes through", async () => {
     const page = await browser.newPage({ viewport: { width: 320, height: 200 } });
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
@@ -47,7 +48,14 @@ describe.skipIf(!SHAREWARE)('Wolfenstein 3D doors in the page', () => {
     await page.click('#play');
     await page.waitForFunction(() => window.lantern.state === 'playing', undefined, { timeout: 60_000 });
 
-    // East, into the door tile and out of its far side: only an open door lets the walker there.
+    // East until the closed door stops the walker: it may not enter the door's tile.
+    await page.keyboard.down('KeyW');
+    await expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(32 * TILE - RADIUS - 2);
+    await page.waitForTimeout(1500);
+    await page.keyboard.up('KeyW');
+    expect(await x(page)).toBeLessThan(32 * TILE);
+    // E opens it (0.91 s); walking on, the walker goes through the door tile and out of its far side.
+    await page.keyboard.press('KeyE');
     await page.keyboard.down('KeyW');
     await expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(33 * TILE + RADIUS);
     await page.keyboard.up('KeyW');
