@@ -451,6 +451,12 @@ export interface Scene {
   readonly walkMap?: WalkMap;
   /** What moves (scene/dynamics.ts; played by scene/world.ts). Absent: a frozen scene. */
   readonly dynamics?: SceneDynamics;
+  /**
+   * A tile map's own grid, as a hint for the uniform-grid traversal (bvh/grid.ts, setting `accel`):
+   * the corner of cell (0, 0, 0), one cell's size on each axis, and the cells on each axis (a
+   * Wolfenstein map: 64 × 1 × 64 tiles). Absent: the grid's resolution is chosen from the primitives.
+   */
+  readonly tileGrid?: { readonly origin: Vec3; readonly cellSize: Vec3; readonly dims: readonly [number, number, number] };
   /** What the loader had to work around (a missing texture, no light so a default sky): shown once to the user. */
   readonly warnings?: readonly string[];
 }
