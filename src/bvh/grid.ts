@@ -148,31 +148,43 @@ function hintedResolution(hint: NonNullable<Scene['tileGrid']>, world: number[] 
  * triangle's normal (the plane crosses the box), and the nine cross products of box and triangle edges.
  */
 export function triangleOverlapsBox(p: ArrayLike<number>, o: number, c0: Vec3, h: Vec3): boolean {
-  const [cx, cy, cz] = c0, [hx, hy, hz] = h;
+  return overlaps(p, o, c0[0], c0[1], c0[2], h[0], h[1], h[2]);
+}
+
+/** The separating-axis test with scalars only (it runs once per candidate cell of every triangle). */
+function overlaps(p: ArrayLike<number>, o: number, cx: number, cy: number, cz: number, hx: number, hy: number, hz: number): boolean {
   const ax = p[o]! - cx, ay = p[o + 1]! - cy, az = p[o + 2]! - cz;
   const bx = p[o + 3]! - cx, by = p[o + 4]! - cy, bz = p[o + 5]! - cz;
   const qx = p[o + 6]! - cx, qy = p[o + 7]! - cy, qz = p[o + 8]! - cz;
   if (Math.min(ax, bx, qx) > hx || Math.max(ax, bx, qx) < -hx) return false;
   if (Math.min(ay, by, qy) > hy || Math.max(ay, by, qy) < -hy) return false;
   if (Math.min(az, bz, qz) > hz || Math.max(az, bz, qz) < -hz) return false;
-  const separates = (nx: number, ny: number, nz: number): boolean => {
-    const p0 = nx * ax + ny * ay + nz * az, p1 = nx * bx + ny * by + nz * bz, p2 = nx * qx + ny * qy + nz * qz;
-    const r = hx * Math.abs(nx) + hy * Math.abs(ny) + hz * Math.abs(nz);
-    return Math.min(p0, p1, p2) > r || Math.max(p0, p1, p2) < -r;
-  };
-  const edges = [
-    [bx - ax, by - ay, bz - az],
-    [qx - bx, qy - by, qz - bz],
-    [ax - qx, ay - qy, az - qz],
-  ] as const;
-  const [e0, e1] = edges;
-  // The triangle's plane.
-  if (separates(e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0])) return false;
-  // Box axis × edge: x × e = (0, -ez, ey), y × e = (ez, 0, -ex), z × e = (-ey, ex, 0).
-  for (const [ex, ey, ez] of edges) {
-    if (separates(0, -ez, ey) || separates(ez, 0, -ex) || separates(-ey, ex, 0)) return false;
-  }
-  return true;
+  // Edges.
+  const e0x = bx - ax, e0y = by - ay, e0z = bz - az;
+  const e1x = qx - bx, e1y = qy - by, e1z = qz - bz;
+  const e2x = ax - qx, e2y = ay - qy, e2z = az - qz;
+  // The triangle's plane: n · a against the box's projected radius.
+  const nx = e0y * e1z - e0z * e1y, ny = e0z * e1x - e0x * e1z, nz = e0x * e1y - e0y * e1x;
+  if (Math.abs(nx * ax + ny * ay + nz * az) > hx * Math.abs(nx) + hy * Math.abs(ny) + hz * Math.abs(nz)) return false;
+  // Box axis × edge: x × e = (0, -ez, ey), y × e = (ez, 0, -ex), z × e = (-ey, ex, 0); for each, the
+  // three vertices' projections against the box's radius on that axis.
+  return (
+    axisOverlaps(0, -e0z, e0y, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(e0z, 0, -e0x, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(-e0y, e0x, 0, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(0, -e1z, e1y, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(e1z, 0, -e1x, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(-e1y, e1x, 0, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(0, -e2z, e2y, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(e2z, 0, -e2x, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz) &&
+    axisOverlaps(-e2y, e2x, 0, ax, ay, az, bx, by, bz, qx, qy, qz, hx, hy, hz)
+  );
+}
+
+function axisOverlaps(nx: number, ny: number, nz: number, ax: number, ay: number, az: number, bx: number, by: number, bz: number, qx: number, qy: number, qz: number, hx: number, hy: number, hz: number): boolean {
+  const p0 = nx * ax + ny * ay + nz * az, p1 = nx * bx + ny * by + nz * bz, p2 = nx * qx + ny * qy + nz * qz;
+  const r = hx * Math.abs(nx) + hy * Math.abs(ny) + hz * Math.abs(nz);
+  return !(Math.min(p0, p1, p2) > r || Math.max(p0, p1, p2) < -r);
 }
 
 /**
@@ -216,9 +228,12 @@ export function buildGrid(positions: Float32Array, kinds: Uint8Array | undefined
     const n = dims[k]!;
     return [Math.min(n - 1, Math.max(0, a)), Math.min(n - 1, Math.max(0, b))];
   };
-  // Two passes over the same cells: count, then fill.
+  // One pass collects (cell, leaf) pairs; a counting sort by cell then lays them out, leaves
+  // ascending within a cell (they were collected in leaf order).
+  let pairCells = new Uint32Array(Math.max(16, leafToSource.length * 4)), pairLeaves = new Uint32Array(pairCells.length);
+  let itemTotal = 0;
   const counts = new Uint32Array(cellTotal);
-  const visit = (leaf: number, put: (cell: number) => void) => {
+  for (let leaf = 0; leaf < leafToSource.length; leaf++) {
     const src = leafToSource[leaf]!;
     const [x0, x1] = cellRange(src, 0), [y0, y1] = cellRange(src, 1), [z0, z1] = cellRange(src, 2);
     const triangle = (kinds ? kinds[src]! : PRIMITIVE_KIND.triangle) === PRIMITIVE_KIND.triangle;
@@ -227,21 +242,26 @@ export function buildGrid(positions: Float32Array, kinds: Uint8Array | undefined
       for (let y = y0; y <= y1; y++) {
         for (let x = x0; x <= x1; x++) {
           if (triangle && !single) {
-            const c: Vec3 = [lo[0] + (x + 0.5) * cs[0], lo[1] + (y + 0.5) * cs[1], lo[2] + (z + 0.5) * cs[2]];
-            if (!triangleOverlapsBox(positions, src * 9, c, half) || onlyGrazes(positions, src * 9, c, cs, pad)) continue;
+            const cx = lo[0] + (x + 0.5) * cs[0], cy = lo[1] + (y + 0.5) * cs[1], cz = lo[2] + (z + 0.5) * cs[2];
+            if (!overlaps(positions, src * 9, cx, cy, cz, half[0], half[1], half[2]) || onlyGrazes(positions, src * 9, [cx, cy, cz], cs, pad)) continue;
           }
-          put(x + nx * (y + ny * z));
+          if (itemTotal === pairCells.length) {
+            if (itemTotal >= GRID_MAX_ITEMS) throw new LanternError(`the grid lists more than ${GRID_MAX_ITEMS} primitive entries over ${nx} × ${ny} × ${nz} cells: too large primitives for a uniform grid`, "Use the BVH (accel 'bvh')");
+            const grow = (a: Uint32Array) => {
+              const b = new Uint32Array(a.length * 2);
+              b.set(a);
+              return b;
+            };
+            pairCells = grow(pairCells);
+            pairLeaves = grow(pairLeaves);
+          }
+          const cell = x + nx * (y + ny * z);
+          pairCells[itemTotal] = cell;
+          pairLeaves[itemTotal++] = leaf;
+          counts[cell]!++;
         }
       }
     }
-  };
-  let itemTotal = 0;
-  for (let leaf = 0; leaf < leafToSource.length; leaf++) {
-    visit(leaf, (cell) => {
-      counts[cell]!++;
-      itemTotal++;
-    });
-    if (itemTotal > GRID_MAX_ITEMS) throw new LanternError(`the grid lists more than ${GRID_MAX_ITEMS} primitive entries over ${nx} × ${ny} × ${nz} cells: too large primitives for a uniform grid`, "Use the BVH (accel 'bvh')");
   }
   const cellStart = new Uint32Array(cellTotal);
   let emptyCells = 0, maxItems = 0;
@@ -253,7 +273,7 @@ export function buildGrid(positions: Float32Array, kinds: Uint8Array | undefined
   }
   const items = new Uint32Array(itemTotal);
   const fill = cellStart.slice();
-  for (let leaf = 0; leaf < leafToSource.length; leaf++) visit(leaf, (cell) => (items[fill[cell]!++] = leaf));
+  for (let i = 0; i < itemTotal; i++) items[fill[pairCells[i]!]!++] = pairLeaves[i]!;
   const nonEmpty = cellTotal - emptyCells;
   return {
     lo, hi, cellSize: cs, dims, cellStart, cellCount: counts, items, leafToSource,
