@@ -29,11 +29,11 @@ function soupCase(count: number, seed: number, scale: number): Case {
   return { positions, kinds: undefined, bvh, grid: buildGrid(positions, undefined, bvh.triIndices) };
 }
 
-function tileCase(hinted: boolean, tile = 2): Case {
+function tileCase(hinted: boolean, tile = 2, subdivideTiles = true): Case {
   const scene = tileMapScene({ n: 32, tile, seed: 3 });
   const tris = flattenTriangles(hinted ? scene : { ...scene, tileGrid: undefined });
   const bvh = buildBvh(tris.positions, {}, tris.kinds);
-  return { positions: tris.positions, kinds: tris.kinds, bvh, grid: buildGrid(tris.positions, tris.kinds, bvh.triIndices, hinted ? scene.tileGrid : undefined) };
+  return { positions: tris.positions, kinds: tris.kinds, bvh, grid: buildGrid(tris.positions, tris.kinds, bvh.triIndices, hinted ? scene.tileGrid : undefined, { subdivideTiles }) };
 }
 
 /** Rays of every awkward kind over the grid's box. */
@@ -131,14 +131,27 @@ describe('grid traversal equals the BVH oracle', () => {
     }
   });
 
-  it('a tile map on its own grid (64-style hint), walls listed only where they are', () => {
-    const c = tileCase(true);
+  it('a tile map on its own grid, one cell a tile (the 64 × 1 × 64 hint as given), walls listed only where they are', () => {
+    const c = tileCase(true, 2, false);
     expect(c.grid.stats.source).toBe('tile map');
     expect(c.grid.dims).toEqual([32, 1, 32]);
     expect(agree(c, raysFor(c, 4000, 11))).toBeGreaterThan(2000);
     // A tile holds its own floor, ceiling and at most four wall faces (plus neighbours' faces on its
     // edges): a wall quad is not listed in every cell its box touches beyond that.
     expect(c.grid.stats.maxItems).toBeLessThanOrEqual(12);
+  });
+
+  it('a tile map on its tiles split into sub-cells (the default), still on the tile lattice', () => {
+    const c = tileCase(true);
+    expect(c.grid.stats.source).toBe('tile map');
+    // Whole sub-cells per tile on each axis: tile edges are cell boundaries.
+    [2, 2.5, 2].forEach((tile, k) => {
+      const split = tile / c.grid.cellSize[k]!;
+      expect(Math.abs(split - Math.round(split))).toBeLessThan(1e-5);
+      expect(c.grid.lo[k]! / c.grid.cellSize[k]! - Math.round(c.grid.lo[k]! / c.grid.cellSize[k]!)).toBeCloseTo(0, 5);
+    });
+    expect(c.grid.stats.cells).toBeGreaterThan(32 * 32);
+    expect(agree(c, raysFor(c, 3000, 12))).toBeGreaterThan(1500);
   });
 
   it('a tile map on an automatic grid, and with a non-integer tile size', () => {
@@ -168,7 +181,7 @@ describe('grid traversal equals the BVH oracle', () => {
     }
     const positions = new Float32Array(quads);
     const bvh = buildBvh(positions);
-    const grid = buildGrid(positions, undefined, bvh.triIndices, { origin: [0, -1, -1], cellSize: [1, 2, 2], dims: [16, 1, 1] });
+    const grid = buildGrid(positions, undefined, bvh.triIndices, { origin: [0, -1, -1], cellSize: [1, 2, 2], dims: [16, 1, 1] }, { subdivideTiles: false });
     const r = traceGrid(grid, positions, { origin: [0.25, 0.1, 0.2], direction: [1, 0, 0] });
     expect(r.hit?.t).toBeCloseTo(1.25, 6);
     expect(r.nodesVisited).toBe(2);

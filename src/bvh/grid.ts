@@ -38,6 +38,14 @@ export const GRID_MAX_CELLS = 1 << 22;
 /** The most items (cell × primitive entries) a grid may list (4 bytes each: 256 MiB). */
 export const GRID_MAX_ITEMS = 1 << 26;
 
+export interface GridOptions {
+  /**
+   * Split a tile map's cells into whole sub-cells near the automatic rule's size (default), or keep
+   * one cell per tile.
+   */
+  readonly subdivideTiles?: boolean;
+}
+
 export interface GridStats {
   readonly buildMs: number;
   /** Where the resolution came from. */
@@ -94,6 +102,14 @@ function worldBox(boxes: Float32Array, leaves: Uint32Array): number[] | undefine
   return b;
 }
 
+/** The side of the automatic rule's cubic cells over `world` for n primitives. */
+function cubicCellSize(world: readonly number[], n: number): number {
+  const extent = [0, 1, 2].map((k) => world[k + 3]! - world[k]!);
+  const largest = Math.max(...extent, 1e-6);
+  const sized = extent.map((e) => Math.max(e, largest * 1e-3));
+  return Math.cbrt((sized[0]! * sized[1]! * sized[2]!) / Math.max(1, GRID_CELLS_PER_PRIMITIVE * n));
+}
+
 /** Cells of size `cs` about `world` (≈ λ·n of them, cubic), at most GRID_MAX_CELLS. */
 function automaticResolution(world: number[], n: number): Resolution {
   const extent = [0, 1, 2].map((k) => world[k + 3]! - world[k]!);
@@ -122,13 +138,18 @@ function checkHint(hint: NonNullable<Scene['tileGrid']>): void {
 }
 
 /** The hint's cells, widened by whole cells until they cover the world box; undefined when that would be too many. */
-function hintedResolution(hint: NonNullable<Scene['tileGrid']>, world: number[] | undefined): Resolution | undefined {
+function hintedResolution(hint: NonNullable<Scene['tileGrid']>, world: number[] | undefined, n: number, subdivide: boolean): Resolution | undefined {
   checkHint(hint);
-  const cellSize = hint.cellSize.map(f) as unknown as Vec3;
+  // Each tile split into whole sub-cells near the automatic rule's cubic size (walls on tile edges
+  // stay on cell boundaries), where the tiles are coarser than that.
+  const box = world ?? [hint.origin[0], hint.origin[1], hint.origin[2], ...hint.origin.map((o, k) => o + hint.dims[k]! * hint.cellSize[k]!)];
+  const target = subdivide ? cubicCellSize(box, n) : Infinity;
+  const split = hint.cellSize.map((c) => Math.max(1, Math.round(c / target)));
+  const cellSize = hint.cellSize.map((c, k) => f(c / split[k]!)) as unknown as Vec3;
   const lo: number[] = [], dims: number[] = [];
   for (let k = 0; k < 3; k++) {
     const cs = cellSize[k]!;
-    let o = hint.origin[k]!, d = hint.dims[k]!;
+    let o = hint.origin[k]!, d = hint.dims[k]! * split[k]!;
     if (world) {
       const below = Math.max(0, Math.ceil((o - world[k]!) / cs));
       o -= below * cs;
@@ -209,11 +230,11 @@ function onlyGrazes(p: ArrayLike<number>, o: number, c: Vec3, cs: Vec3, pad: Vec
  * The grid over the static world: `leafToSource` is the static BVH's triIndices (leaf position →
  * primitive of `positions`, the scene's flattened list); `hint` a tile map's own grid.
  */
-export function buildGrid(positions: Float32Array, kinds: Uint8Array | undefined, leafToSource: Uint32Array, hint?: Scene['tileGrid']): Grid {
+export function buildGrid(positions: Float32Array, kinds: Uint8Array | undefined, leafToSource: Uint32Array, hint?: Scene['tileGrid'], options: GridOptions = {}): Grid {
   const t0 = performance.now();
   const boxes = computeTriangleBoxes(positions, kinds);
   const world = worldBox(boxes, leafToSource);
-  const res = (hint ? hintedResolution(hint, world) : undefined) ?? (world ? automaticResolution(world, leafToSource.length) : { lo: [0, 0, 0] as Vec3, cellSize: [1, 1, 1] as Vec3, dims: [1, 1, 1] as const, source: 'automatic' as const });
+  const res = (hint ? hintedResolution(hint, world, leafToSource.length, options.subdivideTiles ?? true) : undefined) ?? (world ? automaticResolution(world, leafToSource.length) : { lo: [0, 0, 0] as Vec3, cellSize: [1, 1, 1] as Vec3, dims: [1, 1, 1] as const, source: 'automatic' as const });
   const { lo, cellSize: cs, dims } = res;
   const [nx, ny, nz] = dims;
   const cellTotal = nx * ny * nz;
