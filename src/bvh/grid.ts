@@ -353,6 +353,26 @@ function walk(grid: Grid, r: ReturnType<typeof prepareRay>, tBest: number, visit
   }
 }
 
+/** Leaves a walk remembers having tested (GRID_MAILBOX_SIZE in shaders/scene/grid.wgsl). */
+export const GRID_MAILBOX_SIZE = 8;
+
+/**
+ * The mailbox of Amanatides & Woo: a primitive spanning several cells is tested once per ray. A ring
+ * of the last GRID_MAILBOX_SIZE leaves tested; skipping a repeat changes nothing (its test against a
+ * smaller best distance can only miss again, and a hit is already the best), so this saves work only.
+ */
+class Mailbox {
+  private readonly ring = new Int32Array(GRID_MAILBOX_SIZE).fill(-1);
+  private next = 0;
+  /** Whether `leaf` was tested already; if not, remembers it. */
+  seen(leaf: number): boolean {
+    for (let k = 0; k < GRID_MAILBOX_SIZE; k++) if (this.ring[k] === leaf) return true;
+    this.ring[this.next] = leaf;
+    this.next = (this.next + 1) % GRID_MAILBOX_SIZE;
+    return false;
+  }
+}
+
 /**
  * Closest hit through the grid, with the counts of traverse.ts (nodesVisited: cells visited, 0 when
  * the ray misses the grid box; trianglesTested: primitive tests run). A cell's primitives are tested
@@ -362,6 +382,7 @@ function walk(grid: Grid, r: ReturnType<typeof prepareRay>, tBest: number, visit
  */
 export function traceGrid(grid: Grid, positions: Float32Array, ray: Ray, kinds?: Uint8Array): ClosestTrace {
   const r = prepareRay(ray);
+  const box = new Mailbox();
   const bary: Barycentrics = { u: 0, v: 0 };
   let tBest = r.tMax, bestLeaf = -1, bestU = 0, bestV = 0, tested = 0;
   const { cellStart, cellCount, items, leafToSource } = grid;
@@ -369,6 +390,7 @@ export function traceGrid(grid: Grid, positions: Float32Array, ray: Ray, kinds?:
     const first = cellStart[cell]!, end = first + cellCount[cell]!;
     for (let i = first; i < end; i++) {
       const leaf = items[i]!;
+      if (box.seen(leaf)) continue;
       tested++;
       const t = intersectPrimitive(positions, kinds, leafToSource[leaf]!, r, r.tMin, tBest, bary);
       if (t < tBest) {
@@ -387,12 +409,14 @@ export function traceGrid(grid: Grid, positions: Float32Array, ray: Ray, kinds?:
 /** Any hit at tMin < t < tMax through the grid (shadow rays): the first accepted test ends the walk. */
 export function traceGridAny(grid: Grid, positions: Float32Array, ray: Ray, kinds?: Uint8Array): AnyTrace {
   const r = prepareRay(ray);
+  const box = new Mailbox();
   const bary: Barycentrics = { u: 0, v: 0 };
   let found = false, tested = 0;
   const { cellStart, cellCount, items, leafToSource } = grid;
   const cells = walk(grid, r, r.tMax, (cell, tExit) => {
     const first = cellStart[cell]!, end = first + cellCount[cell]!;
     for (let i = first; i < end; i++) {
+      if (box.seen(items[i]!)) continue;
       tested++;
       if (intersectPrimitive(positions, kinds, leafToSource[items[i]!]!, r, r.tMin, r.tMax, bary) < r.tMax) {
         found = true;

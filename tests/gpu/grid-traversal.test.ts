@@ -121,7 +121,7 @@ async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: read
 }
 
 const SCENES: [string, () => Scene][] = [
-  ['a tile map on its own 32 × 1 × 32 grid', () => tileMapScene({ n: 32, seed: 5 })],
+  ['a tile map on its own grid (32 × 32 tiles split into sub-cells)', () => tileMapScene({ n: 32, seed: 5 })],
   ['a tile map with a moving door and ball (the top level after the grid)', () => tileMapScene({ n: 24, seed: 9, moving: true })],
   ['a random soup on an automatic grid', () => soupScene('soup', randomSoup(1500, 7), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 })],
   ['moving instances over a static soup', movingTestScene],

@@ -1,5 +1,5 @@
 // The static world traced through its uniform grid: the 3D-DDA of Amanatides & Woo ("A Fast Voxel
-// Traversal Algorithm for Ray Tracing", 1987), closest and any hit. The CPU oracle is bvh/grid.ts
+// Traversal Algorithm for Ray Tracing", 1987), closest and any hit, with its mailbox. The CPU oracle is bvh/grid.ts
 // (traceGrid, traceGridAny), step for step. Expects the scene bindings (group 0): the grid lives in
 // bvh_nodes from record scene_info.grid_base (gpu/pack/scene-pack.ts packGrid: a two-record header,
 // cell ranges two words a cell, items one word each: leaf positions of the static world, so a hit is
@@ -107,6 +107,29 @@ fn grid_step(h: GridHeader, walk: ptr<function, GridWalk>, axis: u32, origin: ve
   return true;
 }
 
+// The mailbox of Amanatides & Woo: the last eight leaves tested (bvh/grid.ts GRID_MAILBOX_SIZE), so
+// a primitive spanning several cells is tested once per ray. Two vectors shifted on insertion (no
+// dynamically indexed array: it stays in registers). Skipping a repeat changes no result.
+struct Mailbox {
+  newer: vec4u,
+  older: vec4u,
+}
+
+fn empty_mailbox() -> Mailbox {
+  return Mailbox(vec4u(NO_TRIANGLE), vec4u(NO_TRIANGLE));
+}
+
+// Whether `leaf` was tested already on this walk; if not, remembers it.
+fn mailbox_seen(box: ptr<function, Mailbox>, leaf: u32) -> bool {
+  let l = vec4u(leaf);
+  if (any((*box).newer == l) || any((*box).older == l)) {
+    return true;
+  }
+  (*box).older = vec4u((*box).newer.w, (*box).older.xyz);
+  (*box).newer = vec4u(leaf, (*box).newer.xyz);
+  return false;
+}
+
 fn grid_cell_index(h: GridHeader, cell: vec3i) -> u32 {
   let c = vec3u(cell);
   return c.x + h.dims.x * (c.y + h.dims.y * c.z);
@@ -121,6 +144,7 @@ fn grid_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
     return vec2u(0u);
   }
   var tested = 0u;
+  var seen = empty_mailbox();
   loop {
     walk.visited += 1u;
     let axis = grid_axis(walk.next);
@@ -128,6 +152,9 @@ fn grid_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
     let range = grid_cell(h, grid_cell_index(h, walk.cell));
     for (var i = range.x; i < range.x + range.y; i++) {
       let leaf = grid_item(h, i);
+      if (mailbox_seen(&seen, leaf)) {
+        continue;
+      }
       let tri = triangles_hot[leaf];
       let r = intersect_primitive(origin, direction, tri, t_min, (*hit).t);
       tested += 1u;
@@ -149,12 +176,16 @@ fn grid_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
   if (walk.visited == GRID_MISSED) {
     return false;
   }
+  var seen = empty_mailbox();
   loop {
     let axis = grid_axis(walk.next);
     let t_exit = walk.next[axis];
     let range = grid_cell(h, grid_cell_index(h, walk.cell));
     for (var i = range.x; i < range.x + range.y; i++) {
       let leaf = grid_item(h, i);
+      if (mailbox_seen(&seen, leaf)) {
+        continue;
+      }
       let tri = triangles_hot[leaf];
       let r = intersect_primitive(origin, direction, tri, t_min, t_max);
       if (r.x < t_max && accept_hit(tri, leaf, r.yz)) {
