@@ -154,7 +154,8 @@ function hintedResolution(hint: NonNullable<Scene['tileGrid']>, world: number[] 
       const below = Math.max(0, Math.ceil((o - world[k]!) / cs));
       o -= below * cs;
       d += below;
-      d += Math.max(0, Math.ceil((world[k + 3]! - (o + d * cs)) / cs));
+      // Up to a ten-thousandth of a cell short is no new layer: the box's top is raised to the world's (buildGrid).
+      d += Math.max(0, Math.ceil((world[k + 3]! - (o + d * cs)) / cs - 1e-4));
     }
     lo.push(f(o));
     dims.push(d);
@@ -238,7 +239,8 @@ export function buildGrid(positions: Float32Array, kinds: Uint8Array | undefined
   const { lo, cellSize: cs, dims } = res;
   const [nx, ny, nz] = dims;
   const cellTotal = nx * ny * nz;
-  const hi = [0, 1, 2].map((k) => f(lo[k]! + dims[k]! * cs[k]!)) as unknown as Vec3;
+  // The box's top: the last cells' far faces, raised to the world box where rounding left them short.
+  const hi = [0, 1, 2].map((k) => Math.max(f(lo[k]! + dims[k]! * cs[k]!), world ? world[k + 3]! : -Infinity)) as unknown as Vec3;
   // The margin each cell is widened by: a ten-thousandth of a cell, and a few f32 ulps of the coordinates.
   const magnitude = [0, 1, 2].map((k) => Math.max(Math.abs(lo[k]!), Math.abs(hi[k]!)));
   const pad = [0, 1, 2].map((k) => 1e-4 * cs[k]! + 1e-6 * magnitude[k]!) as unknown as Vec3;
