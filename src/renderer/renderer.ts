@@ -39,7 +39,7 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
-import { editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
@@ -473,7 +473,13 @@ export class Renderer {
     if (culling) this.configureTileCulling();
     // Another acceleration structure for the static world: built and uploaded in the background
     // (frames trace the current one meanwhile); accelSettled() waits for it.
-    if (accel && this.prepared) this.accelPending = this.upload(withAccel(this.prepared, next.accel));
+    if (accel && this.prepared) {
+      // One switch at a time, each to the accel set by then (a quick bvh → grid → bvh ends on the BVH).
+      this.accelPending = this.accelPending
+        .catch(() => undefined)
+        .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
+      this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
+    }
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();
