@@ -92,7 +92,8 @@ fn trace_closest(ray: Ray) -> Hit {
   var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0, 0u);
   set_alpha_salt(ray);
   if (BVH_COUNT_WORK) {
-    bvh_work = TraversalWork(1u, 0u, NO_NODE);
+    // Through the grid, the count is of cells (none when the ray misses the grid) plus top-level nodes.
+    bvh_work = TraversalWork(select(1u, 0u, STATIC_ACCEL_GRID), 0u, NO_NODE);
   }
   var local = traversal_ray(ray, 0u);
   if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u)) {
