@@ -14,7 +14,8 @@ import { buildBvh, type Bvh } from './build.ts';
 import { refitBvh } from './refit.ts';
 import { buildTlas, type Tlas } from './tlas.ts';
 import { f32Down, f32Up } from './triangle-boxes.ts';
-import { traceClosest, type Hit } from './traverse.ts';
+import { traceClosest, type ClosestTrace, type Hit } from './traverse.ts';
+import { traceGrid, type Grid } from './grid.ts';
 import { intersectAabb, prepareRay, T_MISS, type Ray } from './ray.ts';
 import { IDENTITY, invertAffine, transformDirection, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { flattenTriangles, PRIMITIVE_FLOATS, type TriangleList } from '../scene/triangles.ts';
@@ -166,12 +167,14 @@ export interface SceneHit {
 /**
  * The CPU oracle of two-level traversal: the top level visited near child first, each instance's
  * bottom level traced with the ray in its object space (t is preserved: the direction is transformed,
- * not normalised). Without levels, the static world alone.
+ * not normalised). Without levels, the static world alone. With `grid` (bvh/grid.ts), the static world
+ * is traced through it instead of its BVH (the same records: the grid lists the BVH's leaves).
  */
-export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh, levels: SceneLevels | undefined, ray: Ray): SceneHit | null {
+export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh, levels: SceneLevels | undefined, ray: Ray, grid?: Grid): SceneHit | null {
   const tMax = ray.tMax ?? T_MISS;
+  const traceStatic = (r: Ray): ClosestTrace => (grid ? traceGrid(grid, triangles.positions, r, triangles.kinds) : traceClosest(staticBvh, triangles.positions, r, triangles.kinds));
   if (!levels) {
-    const r = traceClosest(staticBvh, triangles.positions, ray, triangles.kinds);
+    const r = traceStatic(ray);
     return r.hit ? { ...pick(r.hit), triangle: r.hit.triangle, instance: 0, nodesVisited: r.nodesVisited } : null;
   }
   let best: SceneHit | null = null;
@@ -179,7 +182,7 @@ export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh
   let nodes = 0;
   const traceInstance = (g: number) => {
     if (g === 0) {
-      const r = traceClosest(staticBvh, triangles.positions, { ...ray, tMax: bestT }, triangles.kinds);
+      const r = traceStatic({ ...ray, tMax: bestT });
       nodes += r.nodesVisited;
       if (r.hit) {
         bestT = r.hit.t;

@@ -168,6 +168,7 @@ export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
   environment: 'SCENE_HAS_ENVIRONMENT',
   analyticPrimitives: 'SCENE_HAS_ANALYTIC_PRIMITIVES',
   instances: 'SCENE_HAS_INSTANCES',
+  staticGrid: 'STATIC_ACCEL_GRID',
 };
 
 /**
@@ -218,8 +219,8 @@ export class SceneKernels {
   }
 }
 
-export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false });
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticGrid: false });
 /** The features every path-tracing entry point compiles by. */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances'];
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid'];
 /** The features of passes that only trace (debug views, ray buffers). */
-export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances'];
+export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticGrid'];

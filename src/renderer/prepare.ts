@@ -5,6 +5,7 @@
  */
 import { buildLevels, buildStaticBvh, buildTopLevel, refitMeshBlas, type MeshBlas, type SceneLevels } from '../bvh/levels.ts';
 import { refitBvh } from '../bvh/refit.ts';
+import { buildGrid, type Accel, type Grid } from '../bvh/grid.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import type { Bvh } from '../bvh/types.ts';
 import { packEnvironment } from '../gpu/pack/environment-pack.ts';
@@ -27,6 +28,8 @@ export interface PreparedScene {
   readonly bvh: Bvh;
   /** The two-level structure, for scenes with moving instances (bvh/levels.ts). */
   readonly levels?: SceneLevels;
+  /** The static world's uniform grid (bvh/grid.ts), when it is traced through one (accel 'grid'); it lists `bvh`'s leaves. */
+  readonly grid?: Grid;
   readonly packed: PackedScene;
   /** The meshes as loaded, of those morphed since (SceneUpdate.morphWeights apply to these). */
   readonly restMeshes?: ReadonlyMap<number, Mesh>;
@@ -37,8 +40,17 @@ export interface PreparedScene {
 /** The CPU stages of preparation, in order, for progress reports. */
 export const PREPARE_STAGES = ['flattening primitives', 'building the BVH', 'packing for the GPU'] as const;
 
+export interface PrepareOptions {
+  /** How the static world is traced (the setting `accel`): its BVH (the default) or a uniform grid over the same leaves. */
+  readonly accel?: Accel;
+}
+
+/** The static world's grid for `accel`, over the leaves of `bvh`. */
+const gridFor = (scene: Scene, triangles: TriangleList, bvh: Bvh, accel: Accel | undefined): Grid | undefined =>
+  accel === 'grid' ? buildGrid(triangles.positions, triangles.kinds, bvh.triIndices, scene.tileGrid) : undefined;
+
 /** Prepares `scene`; `onStage` hears of each stage as it begins (a worker reports progress with it). */
-export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STAGES)[number]) => void): PreparedScene {
+export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STAGES)[number]) => void, options: PrepareOptions = {}): PreparedScene {
   validateScene(scene);
   const t0 = performance.now();
   onStage?.(PREPARE_STAGES[0]);
@@ -47,11 +59,27 @@ export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STA
   onStage?.(PREPARE_STAGES[1]);
   const bvh = buildStaticBvh(scene, triangles);
   const levels = buildLevels(scene, bvh);
+  const grid = gridFor(scene, triangles, bvh, options.accel);
   const t2 = performance.now();
   onStage?.(PREPARE_STAGES[2]);
-  const packed = packScene(scene, triangles, bvh, undefined, levels);
+  const packed = packScene(scene, triangles, bvh, undefined, levels, grid);
   const t3 = performance.now();
-  return { scene, triangles, bvh, ...(levels ? { levels } : {}), packed, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+  return { scene, triangles, bvh, ...(levels ? { levels } : {}), ...(grid ? { grid } : {}), packed, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+}
+
+/** The accel a prepared scene was prepared for. */
+export const accelOf = (prepared: PreparedScene): Accel => (prepared.grid ? 'grid' : 'bvh');
+
+/**
+ * The scene prepared for another accel: the grid built over the same static BVH (or dropped) and the
+ * geometry packed again around the materials already packed. The same scene when nothing changes.
+ */
+export function withAccel(prepared: PreparedScene, accel: Accel): PreparedScene {
+  if (accelOf(prepared) === accel) return prepared;
+  const { grid: _, ...rest } = prepared;
+  const grid = gridFor(prepared.scene, prepared.triangles, prepared.bvh, accel);
+  const packed = packGeometry(prepared.scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, prepared.packed.environment, prepared.levels, grid);
+  return { ...rest, ...(grid ? { grid } : {}), packed };
 }
 
 
@@ -136,10 +164,12 @@ export function updateGeometry(prepared: PreparedScene, poses: ReadonlyMap<numbe
       for (const m of morphWeights.keys()) if (blas.has(m)) blas.set(m, refitMeshBlas(moved, blas.get(m)!, meshes[m]!));
       nextLevels = { ...levels, blas, ...buildTopLevel(moved, bvh, levels.dynamic, blas) };
     }
+    // The grid is built again over the moved static world (its cells are not refitted).
+    const grid = prepared.grid ? gridFor(moved, triangles, bvh, 'grid') : undefined;
     const t1 = performance.now();
-    const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment, nextLevels);
+    const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment, nextLevels, grid);
     const t2 = performance.now();
-    const next: PreparedScene = { ...prepared, scene: moved, triangles, bvh, ...(nextLevels ? { levels: nextLevels } : {}), packed, restMeshes, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
+    const next: PreparedScene = { ...prepared, scene: moved, triangles, bvh, ...(nextLevels ? { levels: nextLevels } : {}), ...(grid ? { grid } : {}), packed, restMeshes, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
     return { prepared: next, writes: GEOMETRY_BUFFERS.map((name) => ({ name, offset: 0, data: packed[name] })), attributes: true, ms: { refit: t1 - t0, tlas: nextLevels?.tlasMs ?? 0, pack: t2 - t1 } };
   }
 
@@ -196,7 +226,7 @@ function powerMayChange(before: Scene, after: Scene, ii: number, prepared: Prepa
  */
 export function withPreparedEnvironment(prepared: PreparedScene, environment: Environment): PreparedScene {
   const scene = withEnvironment(prepared.scene, environment);
-  const packed = packGeometry(scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, packEnvironment(environment), prepared.levels);
+  const packed = packGeometry(scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, packEnvironment(environment), prepared.levels, prepared.grid);
   return { ...prepared, scene, packed };
 }
 
@@ -244,6 +274,6 @@ export function editMaterials(prepared: PreparedScene, edits: ReadonlyMap<number
     ? base
     : rescaled
       ? { ...base, ...rescaled }
-      : packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels);
+      : packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels, prepared.grid);
   return { prepared: { ...prepared, scene: edited, packed }, lightsChanged, textureRefsChanged };
 }

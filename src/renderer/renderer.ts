@@ -40,7 +40,7 @@ import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
 import { Denoiser } from './denoiser.ts';
 import { Hybrid } from './hybrid.ts';
-import { editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
@@ -191,7 +191,8 @@ export class Renderer {
 
   /** Uploads a scene (prepared here unless given prepared) and frees the previous one. Uses its camera. */
   async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
-    const prepared = 'packed' in scene ? scene : prepareScene(scene);
+    const accel = this.settingsValue.accel;
+    const prepared = withAccel('packed' in scene ? scene : prepareScene(scene, undefined, { accel }), accel);
     await this.upload(prepared);
     void this.setSelection(undefined);
     this.setCamera(prepared.scene.camera);
@@ -460,13 +461,30 @@ export class Renderer {
     this.resetAccumulation();
   }
 
+  private accelPending: Promise<void> = Promise.resolve();
+
+  /** Resolves once the scene is traced through the structure the `accel` setting names (rejects if building it failed). */
+  accelSettled(): Promise<void> {
+    return this.accelPending;
+  }
+
   /** Applies changed settings; those that change the estimate restart accumulation. */
   updateSettings(changes: Partial<RenderSettings>): void {
     const next = validateSettings({ ...this.settingsValue, ...changes });
     const restart = ESTIMATE_SETTINGS.some((k) => next[k] !== this.settingsValue[k]);
     const culling = next.tileCulling !== this.settingsValue.tileCulling;
+    const accel = next.accel !== this.settingsValue.accel;
     this.settingsValue = next;
     if (culling) this.configureTileCulling();
+    // Another acceleration structure for the static world: built and uploaded in the background
+    // (frames trace the current one meanwhile); accelSettled() waits for it.
+    if (accel && this.prepared) {
+      // One switch at a time, each to the accel set by then (a quick bvh → grid → bvh ends on the BVH).
+      this.accelPending = this.accelPending
+        .catch(() => undefined)
+        .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
+      this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
+    }
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();

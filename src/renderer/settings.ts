@@ -5,6 +5,7 @@
  * constants by position (passes/variants.ts says which); a unit test keeps the two in step.
  */
 import type { Scene, Torch } from '../scene/types.ts';
+import { ACCELS } from '../bvh/grid.ts';
 import {
   boolean, choice, color, defaultsOf, flattenSchema, integer, integerOrUnlimited, number, numberOrAuto, optional, validateAgainst,
   type SettingEntry, type SettingGroup, type SettingsOf, type SettingsPatch,
@@ -108,6 +109,10 @@ export const RENDER_SETTINGS = {
   tileCulling: boolean({
     name: 'tile culling', description: 'walk-map scenes (the dungeon): trace only what lies within 10 m of the tile the camera stands on, one BVH per tile precomputed and swapped as the camera steps (an approximation: farther lights and walls vanish)', words: ['0', '1'], default: false,
     cli: { flag: '--tile-culling', switch: true }, link: 'tile-cull', restarts: true, panel: { folder: 'render', label: 'tile culling' },
+  }),
+  accel: choice(ACCELS, {
+    name: 'accel', description: "how the static world is traced: its BVH, or a uniform grid (3D-DDA; a tile map's own 64 × 64 tiles where the scene has them)", default: 'bvh',
+    cli: { flag: '--accel', argument: '<structure>' }, link: 'accel', restarts: true, panel: { folder: 'render', label: 'acceleration' },
   }),
   wireframeLevel: choice(WIREFRAME_LEVELS, {
     name: 'wireframe level', description: "wireframe view: the static world's BVH boxes, or the top level's (over the moving instances: doors, lifts, sprites)", default: 'static',

@@ -11,6 +11,7 @@
  * Precomputation reuses the full scene's packed materials and environment, so a tile costs only its
  * geometry (flatten, BVH build, geometry packing). Pure (no GPU): it runs in a worker or a test.
  */
+import { buildGrid } from '../bvh/grid.ts';
 import { buildLevels, buildStaticBvh } from '../bvh/levels.ts';
 import { packGeometry } from '../gpu/pack/scene-pack.ts';
 import type { Vec3 } from '../math/vec3.ts';
@@ -65,10 +66,12 @@ export function prepareTile(full: PreparedScene, grid: TileGrid, tile: number, d
   const bvh = buildStaticBvh(scene, triangles);
   const levels = buildLevels(scene, bvh);
   const t2 = performance.now();
-  const packed = packGeometry(scene, triangles, bvh, full.packed.packedMaterials, full.packed.environment, levels);
+  // Traced as the full scene is (its pipelines walk a grid where it has one).
+  const tileGrid = full.grid ? buildGrid(triangles.positions, triangles.kinds, bvh.triIndices, full.scene.tileGrid) : undefined;
+  const packed = packGeometry(scene, triangles, bvh, full.packed.packedMaterials, full.packed.environment, levels, tileGrid);
   const t3 = performance.now();
   // The full scene's features: the pipelines compiled for it serve every tile (a superset is always correct).
-  return { scene, triangles, bvh, ...(levels ? { levels } : {}), packed: { ...packed, features: full.packed.features }, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+  return { scene, triangles, bvh, ...(levels ? { levels } : {}), ...(tileGrid ? { grid: tileGrid } : {}), packed: { ...packed, features: full.packed.features }, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
 }
 
 export class TileCulledScenes {

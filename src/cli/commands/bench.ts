@@ -83,6 +83,7 @@ async function bench(sceneArg: string, o: BenchOptions, context: CliContext): Pr
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), adjustScene(o.levels, o.billboards));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
+  await renderer.accelSettled();
   if (renderer.settings.spectral) await renderer.enableSpectral();
   if (renderer.settings.spectral && o.kernel === 'specialised') throw new LanternError('--kernel specialised compiles RGB kernels: spectral mode runs the generic ones', 'Drop --spectral or --kernel specialised');
   // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.

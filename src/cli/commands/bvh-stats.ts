@@ -5,6 +5,7 @@ import { bvhStats, formatBvhStats } from '../../bvh/stats.ts';
 import { reflectModule, structLayout } from '../../gpu/wgsl/reflect.ts';
 import { describePrimitives, flattenTriangles, type TriangleList } from '../../scene/triangles.ts';
 import { buildLevels, buildStaticBvh } from '../../bvh/levels.ts';
+import { buildGrid, describeGrid } from '../../bvh/grid.ts';
 import type { Bvh } from '../../bvh/types.ts';
 import type { Scene } from '../../scene/types.ts';
 import { validateScene } from '../../scene/validate.ts';
@@ -31,13 +32,19 @@ function levelStats(scene: Scene, list: TriangleList) {
     walk(0, 0);
     return deepest;
   };
+  // The uniform grid `--accel grid` traces the static world through (bvh/grid.ts), over the same leaves.
+  const grid = buildGrid(list.positions, list.kinds, staticBvh.triIndices, scene.tileGrid);
   return {
+    grid,
     moving: levels?.dynamic.length ?? 0,
     static: { primitives: staticBvh.triIndices.length, nodes: s.nodeCount, maxDepth: s.maxDepth, sahCost: s.sahCost },
     blas: { meshes: blas.length, primitives: blas.reduce((n, b) => n + b.triangles.count, 0), nodes: blas.reduce((n, b) => n + b.bvh.stats.nodeCount, 0), maxDepth: Math.max(0, ...blas.map((b) => b.bvh.stats.maxDepth)) },
     tlas: levels ? { instances: levels.dynamic.length + 1, nodes: levels.tlas.nodeCount - 1, maxDepth: depthOf(levels.tlas), buildMs: levels.tlasMs } : { instances: 1, nodes: 0, maxDepth: 0, buildMs: performance.now() - t0 },
   };
 }
+
+/** GPU bytes of a grid as gpu/pack/scene-pack.ts packGrid writes it: a 64-byte header, 8 bytes a cell, 4 an item. */
+const gridBytes = (grid: ReturnType<typeof buildGrid>) => 64 + 8 * grid.stats.cells + 4 * grid.stats.items;
 
 /** GPU bytes of one primitive: its hot (traversal) and cold (shading) records, from the WGSL structs. */
 function triangleBytes(): number {
@@ -66,7 +73,9 @@ export function registerBvhStats(program: Command, context: CliContext): void {
       });
       const twoLevel = levelStats(scene, list);
       if (options.json) {
-        context.print(JSON.stringify({ scene: scene.name, triangles: list.kindCounts.triangle, spheres: list.kindCounts.sphere, capsules: list.kindCounts.capsule, primitives: count, triangleBytes: perTriangle, layouts: layouts.map((l) => l.stats), levels: twoLevel }, null, 2));
+        const { grid, ...levels } = twoLevel;
+        const gridJson = { dims: grid.dims, cellSize: grid.cellSize, lo: grid.lo, hi: grid.hi, ...grid.stats, gpuBytes: gridBytes(grid) };
+        context.print(JSON.stringify({ scene: scene.name, triangles: list.kindCounts.triangle, spheres: list.kindCounts.sphere, capsules: list.kindCounts.capsule, primitives: count, triangleBytes: perTriangle, layouts: layouts.map((l) => l.stats), levels, grid: gridJson }, null, 2));
         return;
       }
       const lines = [`${scene.name}: ${describePrimitives(list)} (${perTriangle} GPU bytes each)`];
@@ -83,6 +92,7 @@ export function registerBvhStats(program: Command, context: CliContext): void {
           `  top level: ${twoLevel.tlas.instances} instances, ${twoLevel.tlas.nodes} nodes, depth ${twoLevel.tlas.maxDepth}, built in ${twoLevel.tlas.buildMs.toFixed(3)} ms`,
         );
       }
+      lines.push(`static world as a uniform grid (--accel grid): ${describeGrid(twoLevel.grid)}, ${(gridBytes(twoLevel.grid) / 1024).toFixed(1)} KiB on the GPU`);
       context.print(lines.join('\n'));
     }),
   );

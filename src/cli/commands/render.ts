@@ -68,6 +68,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;
   renderer.setCamera(cameraWithLens(camera, o, { scene: prepared.scene, ...(target ? { target } : {}), centreDistance: (c) => centreFocusDistance(prepared, c) }));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
+  await renderer.accelSettled();
   const s = renderer.settings;
   if (s.spectral) await renderer.enableSpectral();
   // A moving scene as it is at --time, seen from this camera (billboards turn toward it). Frame mode

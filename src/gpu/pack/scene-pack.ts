@@ -7,6 +7,7 @@
  * becomes `features`, from which the pipelines' override constants are chosen.
  */
 import type { Bvh } from '../../bvh/types.ts';
+import type { Grid } from '../../bvh/grid.ts';
 import { tlasCapacity, type Tlas } from '../../bvh/tlas.ts';
 import { determinant3, IDENTITY, invertAffine, normalMatrix, type Mat4 } from '../../math/mat4.ts';
 import { meshScene, type SceneLevels } from '../../bvh/levels.ts';
@@ -35,6 +36,8 @@ export interface SceneFeatures {
   readonly analyticPrimitives: boolean;
   /** Moving instances: the two-level BVH (bvh/levels.ts). */
   readonly instances: boolean;
+  /** The static world is traced through its uniform grid (bvh/grid.ts) rather than its BVH. */
+  readonly staticGrid: boolean;
 }
 
 /** The group-0 resources, keyed by their WGSL variable names. */
@@ -113,9 +116,9 @@ export interface PackOptions {
   readonly maxTextureSide: number;
 }
 
-export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }, levels?: SceneLevels): PackedScene {
+export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }, levels?: SceneLevels, grid?: Grid): PackedScene {
   const packedMaterials = packMaterials(scene, sceneLayouts(), options.maxTextureSide);
-  return packGeometry(scene, triangles, bvh, packedMaterials, undefined, levels);
+  return packGeometry(scene, triangles, bvh, packedMaterials, undefined, levels, grid);
 }
 
 /**
@@ -138,6 +141,8 @@ export interface PackedLayout {
   /** The top level's slots at the end of bvh_nodes (rewritten whenever an instance moves). */
   readonly tlasBase: number;
   readonly tlasCapacity: number;
+  /** The static world's grid after the top level (packGrid), when the scene is traced through one; else 0. */
+  readonly gridBase: number;
 }
 
 /**
@@ -148,15 +153,18 @@ export interface PackedLayout {
  * With `levels` (a scene with moving instances) the arrays hold the static world, then each moving
  * mesh's object-space primitives and bottom level, then the top level (bvh/levels.ts).
  */
-export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials, packedEnvironment?: PackedEnvironment, levels?: SceneLevels): PackedScene {
+export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials, packedEnvironment?: PackedEnvironment, levels?: SceneLevels, grid?: Grid): PackedScene {
   const layouts = sceneLayouts();
   const parts: PrimitivePart[] = [{ scene, triangles, bvh, worldLights: true }];
   for (const [m, blas] of levels?.blas ?? []) parts.push({ scene: meshScene(scene, m), triangles: blas.triangles, bvh: blas.bvh, worldLights: false });
   const tlasCapacityValue = levels ? tlasCapacity(levels.dynamic.length + 1) : 0;
-  const nodeTotal = parts.reduce((n, p) => n + p.bvh.nodeCount, 0) + tlasCapacityValue;
+  const treeTotal = parts.reduce((n, p) => n + p.bvh.nodeCount, 0) + tlasCapacityValue;
+  const gridWords = grid ? packGrid(grid, treeTotal, layouts.node.strideWords) : undefined;
+  const nodeTotal = treeTotal + (gridWords ? gridWords.length / layouts.node.strideWords : 0);
   const primTotal = parts.reduce((n, p) => n + p.bvh.triIndices.length, 0);
 
   const nodes = new StructArray(layouts.node, Math.max(nodeTotal, 1));
+  if (gridWords) nodes.u32.set(gridWords, treeTotal * layouts.node.strideWords);
   const hot = new StructArray(layouts.hot, Math.max(primTotal, 1));
   const shading = new StructArray(layouts.shading, Math.max(primTotal, 1));
   const lights: LightList = { leaves: [], powers: [], instances: [] };
@@ -176,7 +184,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
     nodeBase += part.bvh.nodeCount;
     leafBase += part.bvh.triIndices.length;
   });
-  const layout: PackedLayout = { meshes, tlasBase: nodeBase, tlasCapacity: tlasCapacityValue };
+  const layout: PackedLayout = { meshes, tlasBase: nodeBase, tlasCapacity: tlasCapacityValue, gridBase: grid ? treeTotal : 0 };
   if (levels) {
     writeTlasNodes(nodes, levels.tlas, layout.tlasBase, layout.tlasBase);
     const dynamic = dynamicLights(scene, triangles, levels, layout, packedMaterials);
@@ -192,7 +200,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
   const triangleAttributes = packTriangleAttributes(parts, primTotal, packedMaterials.needsVertexAttributes);
   const environment = packedEnvironment ?? packEnvironment(scene.environment ?? { kind: 'none' });
   const packedLights = packSceneLights(scene, bvh, levels, lights, environment, layouts);
-  const info = sceneInfo(layouts, primTotal, nodeTotal, packedLights, levels ? layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1, bvh.triIndices.length === 0);
+  const info = sceneInfo(layouts, primTotal, nodeTotal, packedLights, levels ? layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1, bvh.triIndices.length === 0, layout.gridBase);
 
   return {
     scene_info: info,
@@ -227,6 +235,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
       environment: packedLights.environmentSelectPmf > 0 || packedLights.sunSelectPmf > 0,
       analyticPrimitives: triangles.kindCounts.sphere + triangles.kindCounts.capsule > 0,
       instances: levels !== undefined,
+      staticGrid: grid !== undefined,
     },
     totalLightPower: packedLights.totalPower,
     warnings: [...packedMaterials.warnings, ...packedLights.warnings, ...warnings],
@@ -283,7 +292,7 @@ function packSceneLights(scene: Scene, bvh: Bvh, levels: SceneLevels | undefined
   );
 }
 
-function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number, nodeCount: number, lights: ReturnType<typeof packLights>, tlasRoot: number, instanceCount: number, staticWorldEmpty: boolean): ArrayBuffer {
+function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number, nodeCount: number, lights: ReturnType<typeof packLights>, tlasRoot: number, instanceCount: number, staticWorldEmpty: boolean, gridBase: number): ArrayBuffer {
   const info = new StructArray(layouts.sceneInfo, 1);
   info.u32Field('triangle_count')(0, primitives);
   info.u32Field('node_count')(0, nodeCount);
@@ -294,6 +303,7 @@ function sceneInfo(layouts: ReturnType<typeof sceneLayouts>, primitives: number,
   info.u32Field('tlas_root')(0, tlasRoot);
   info.u32Field('instance_count')(0, instanceCount);
   info.u32Field('static_world_empty')(0, staticWorldEmpty ? 1 : 0);
+  info.u32Field('grid_base')(0, gridBase);
   return info.bytes;
 }
 
@@ -311,7 +321,7 @@ export function repackLights(scene: Scene, triangles: TriangleList, bvh: Bvh, le
   const packedLights = packSceneLights(scene, bvh, levels, lights, packed.environment, layouts);
   const spheres = own.leaves.filter((leaf) => triangles.kinds[bvh.triIndices[leaf]!] === PRIMITIVE_KIND.sphere).length + dynamic.spheres;
   return {
-    scene_info: sceneInfo(layouts, packed.counts.triangles, packed.counts.nodes, packedLights, levels ? packed.layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1, bvh.triIndices.length === 0),
+    scene_info: sceneInfo(layouts, packed.counts.triangles, packed.counts.nodes, packedLights, levels ? packed.layout.tlasBase : 0, levels ? levels.dynamic.length + 1 : 1, bvh.triIndices.length === 0, packed.layout.gridBase),
     light_slots: packedLights.lightSlots,
     punctual_lights: packedLights.punctualLights,
     totalLightPower: packedLights.totalPower,
@@ -365,6 +375,39 @@ function triangleTwiceArea(p: Float32Array, o: number): number {
   const e1x = p[o + 3]! - ax, e1y = p[o + 4]! - ay, e1z = p[o + 5]! - az;
   const e2x = p[o + 6]! - ax, e2y = p[o + 7]! - ay, e2z = p[o + 8]! - az;
   return Math.hypot(e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x);
+}
+
+/**
+ * The static world's grid (bvh/grid.ts) as node-sized records of u32 words, to live from record
+ * `base` of bvh_nodes (shaders/scene/grid.wgsl reads it; no binding of its own: the real-time passes
+ * use every storage buffer a browser gives a stage). `strideWords` words a record (8):
+ * - record base: lo xyz (f32 bits), dims x, hi xyz (f32 bits), dims y — a BvhNode's aabb_min,
+ *   left_first, aabb_max, tri_count;
+ * - record base + 1: cell size xyz (f32 bits), dims z, the first word of the cell ranges, the first
+ *   word of the items, 0, 0 (word indices from record 0 of bvh_nodes);
+ * - the cell ranges: per cell its first item and its count, two words, four cells a record;
+ * - the items: leaf positions of the static world (records of triangles_hot), one word each.
+ */
+export function packGrid(grid: Grid, base: number, strideWords: number): Uint32Array {
+  const cells = grid.cellStart.length;
+  const cellRecords = Math.ceil((2 * cells) / strideWords), itemRecords = Math.max(1, Math.ceil(grid.items.length / strideWords));
+  const words = new Uint32Array((2 + cellRecords + itemRecords) * strideWords);
+  const f32 = new Float32Array(words.buffer);
+  const cellsWord = (base + 2) * strideWords, itemsWord = (base + 2 + cellRecords) * strideWords;
+  f32.set(grid.lo, 0);
+  words[3] = grid.dims[0];
+  f32.set(grid.hi, 4);
+  words[7] = grid.dims[1];
+  f32.set(grid.cellSize, 8);
+  words[11] = grid.dims[2];
+  words[12] = cellsWord;
+  words[13] = itemsWord;
+  for (let c = 0; c < cells; c++) {
+    words[2 * strideWords + 2 * c] = grid.cellStart[c]!;
+    words[2 * strideWords + 2 * c + 1] = grid.cellCount[c]!;
+  }
+  words.set(grid.items, (2 + cellRecords) * strideWords);
+  return words;
 }
 
 /**

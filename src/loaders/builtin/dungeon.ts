@@ -272,6 +272,8 @@ export function dungeonScene(): Scene {
     torch: DOOM_TORCH,
     metersPerUnit: DUNGEON_METERS_PER_UNIT,
     walkMap: walkMap(lines),
+    // The tile map as the grid traversal's cells (x along columns, z along rows; one cell of wall height).
+    tileGrid: { origin: [0, 0, 0], cellSize: [DUNGEON_TILE, DUNGEON_HEIGHT, DUNGEON_TILE], dims: [map.columns, 1, map.rows] },
     dynamics: { paths: [path] },
   };
 }

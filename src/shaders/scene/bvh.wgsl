@@ -9,12 +9,16 @@
 // leaves are instances: the ray enters each instance's object space (its direction transformed, not
 // normalised, so t is the same in both spaces) and its bottom level is traced from its root. The
 // hit then says which instance; the primitive records are read through scene/instances.
+//
+// With STATIC_ACCEL_GRID (scene/grid.wgsl) the static world is walked through its uniform grid
+// instead of its tree, then the top level runs as above, pruned by the grid's hit.
 
 #import scene/hit-filter
 #import scene/bindings
 #import scene/intersect
 #import scene/materials
 #import scene/instances
+#import scene/grid
 
 // Whether trace_closest counts its work into bvh_work. A pipeline constant, off by default: the path
 // tracer's traversal compiles without the counters; only passes/debug-view turns them on.
@@ -67,7 +71,7 @@ fn traversal_ray(ray: Ray, instance: u32) -> TraversalRay {
 // Where a traversal starts (node, instance): the static world's root, or the top level's when the ray
 // misses the static world (or it is empty); node NO_NODE when it misses both before t.
 fn traversal_start(local: TraversalRay, t: f32) -> vec2u {
-  let static_world = !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
+  let static_world = !STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
   if (static_world && node_entry(0u, local.origin, local.inv_dir, t) != T_MISS) {
     return vec2u(0u, 0u);
   }
@@ -88,9 +92,18 @@ fn trace_closest(ray: Ray) -> Hit {
   var hit = Hit(ray.t_max, NO_TRIANGLE, 0.0, 0.0, 0u);
   set_alpha_salt(ray);
   if (BVH_COUNT_WORK) {
-    bvh_work = TraversalWork(1u, 0u, NO_NODE);
+    // Through the grid, the count is of cells (none when the ray misses the grid) plus top-level nodes.
+    bvh_work = TraversalWork(select(1u, 0u, STATIC_ACCEL_GRID), 0u, NO_NODE);
   }
   var local = traversal_ray(ray, 0u);
+  if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u)) {
+    // The static world through its grid: cells count as nodes. The leaf views (leaf size, BVH
+    // depth) have no leaf to show for a grid hit and show the root's.
+    let work = grid_closest(local.origin, local.direction, local.inv_dir, ray.t_min, &hit);
+    if (BVH_COUNT_WORK) {
+      bvh_work = TraversalWork(work.x, work.y, select(NO_NODE, 0u, hit.triangle != NO_TRIANGLE));
+    }
+  }
   let start = traversal_start(local, hit.t);
   if (start.x == NO_NODE) {
     return hit;
@@ -98,7 +111,7 @@ fn trace_closest(ray: Ray) -> Hit {
   var node = start.x;
   var instance = start.y;
   var leave_at = 0u;
-  if (BVH_COUNT_WORK) {
+  if (BVH_COUNT_WORK && !STATIC_ACCEL_GRID) {
     bvh_work.nodes_visited = 0u;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
@@ -191,6 +204,9 @@ fn trace_closest(ray: Ray) -> Hit {
 fn trace_any(ray: Ray) -> bool {
   set_alpha_salt(ray);
   var local = traversal_ray(ray, 0u);
+  if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) && grid_any(local.origin, local.direction, local.inv_dir, ray.t_min, ray.t_max)) {
+    return true;
+  }
   let start = traversal_start(local, ray.t_max);
   if (start.x == NO_NODE) {
     return false;

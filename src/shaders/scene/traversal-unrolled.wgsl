@@ -10,6 +10,10 @@
 #import scene/materials
 #import scene/specialised-primitives
 
+// Declared for the scene features' constants (gpu/kernel.ts FEATURE_CONSTANTS): an unrolled scene
+// tests every primitive and has no grid to walk.
+override STATIC_ACCEL_GRID: bool = false;
+
 // The one intersection routine every primitive goes through: scene/intersect's intersect_primitive,
 // which reads the kind (triangle, sphere, capsule) from the record's flags; with the record constant,
 // the compiler keeps only that kind's test. vec3f(t, u, v), or t = T_MISS.

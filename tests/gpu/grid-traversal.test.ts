@@ -1,0 +1,247 @@
+/**
+ * The grid traversal on the GPU (scene/grid.wgsl inside scene/bvh.wgsl's trace_closest and
+ * trace_any, STATIC_ACCEL_GRID) against the CPU oracle (bvh/levels.ts traceScene with the grid,
+ * bvh/grid.ts), with and without moving instances; and a tile scene rendered through the grid and
+ * through the BVH with the same seed gives the same image. The GPU computes in f32 and the oracle in
+ * f64: distances agree to a relative tolerance, and a different primitive is accepted only where it
+ * is a genuine tie (the oracle hits it at the same distance) or the ray grazes an edge.
+ */
+import { describe, expect, it } from 'vitest';
+import { tileMapScene } from '../../src/bvh/grid-test-scenes.ts';
+import { traceScene } from '../../src/bvh/levels.ts';
+import { intersectPrimitive, prepareRay } from '../../src/bvh/ray.ts';
+import { makeRandom, movingTestScene, randomSoup, soupScene } from '../../src/bvh/test-scenes.ts';
+import { cameraBasis } from '../../src/gpu/view.ts';
+import { ComputeKernel, FEATURE_CONSTANTS, TRAVERSAL_FEATURES } from '../../src/gpu/kernel.ts';
+import { readBuffer } from '../../src/gpu/readback.ts';
+import { SceneResources } from '../../src/gpu/scene-resources.ts';
+import { linkWgsl } from '../../src/gpu/wgsl/linker.ts';
+import { reflectLinked } from '../../src/gpu/wgsl/reflect.ts';
+import type { Vec3 } from '../../src/math/vec3.ts';
+import { packRays } from '../../src/passes/trace-rays-pass.ts';
+import { prepareScene, type PreparedScene } from '../../src/renderer/prepare.ts';
+import type { Scene } from '../../src/scene/types.ts';
+import { SHADER_MODULES } from '../../src/shaders/index.ts';
+import { storageBuffer, outputBuffer } from './compute.ts';
+import { testGpu } from './gpu-context.ts';
+import { renderScene } from './scene-render.ts';
+import { traceGrid } from '../../src/bvh/grid.ts';
+import { builtinScene } from '../../src/loaders/builtin/index.ts';
+import { Renderer } from '../../src/renderer/renderer.ts';
+
+// Closest and any hit of each ray, through the scene's kernels as the renderer compiles them.
+const KERNEL = `
+#import scene/bvh
+
+struct GridTestHit {
+  t: f32,
+  source: u32,
+  u: f32,
+  v: f32,
+  any: u32,
+}
+
+@group(2) @binding(0) var<storage, read> rays: array<Ray>;
+@group(2) @binding(1) var<storage, read_write> out: array<GridTestHit>;
+
+@compute @workgroup_size(64)
+fn grid_test(@builtin(global_invocation_id) id: vec3u) {
+  let i = id.x;
+  if (i >= arrayLength(&rays)) {
+    return;
+  }
+  let hit = trace_closest(rays[i]);
+  var source = NO_TRIANGLE;
+  if (hit.triangle != NO_TRIANGLE) {
+    source = world_shading(hit.instance, hit.triangle).source_index;
+  }
+  out[i] = GridTestHit(hit.t, source, hit.u, hit.v, select(0u, 1u, trace_any(rays[i])));
+}
+`;
+
+interface TestRay {
+  readonly origin: Vec3;
+  readonly direction: Vec3;
+  readonly tMin: number;
+  readonly tMax: number;
+}
+
+const NO_TRIANGLE = 0xffffffff;
+const EDGE = 1e-3;
+
+/** Pixel rays from the camera, random rays from inside the world (some along the axes, some short), rays into the moving instances. */
+function makeRays(prepared: PreparedScene, size: number): TestRay[] {
+  const b = cameraBasis(prepared.scene.camera, 1);
+  const rays: TestRay[] = [];
+  const far = 1e30;
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const nx = (2 * (x + 0.5)) / size - 1, ny = 1 - (2 * (y + 0.5)) / size;
+      const d = [0, 1, 2].map((k) => b.forward[k]! + nx * b.right[k]! + ny * b.up[k]!);
+      rays.push({ origin: b.position, direction: d as unknown as Vec3, tMin: 0, tMax: far });
+    }
+  }
+  const boxes = prepared.levels?.boxes ?? prepared.bvh.bounds.subarray(0, 6);
+  const lo = [0, 1, 2].map((k) => prepared.grid!.lo[k]!), hi = [0, 1, 2].map((k) => prepared.grid!.hi[k]!);
+  const rnd = makeRandom(17);
+  const inside = () => [0, 1, 2].map((k) => lo[k]! + rnd() * (hi[k]! - lo[k]!)) as unknown as Vec3;
+  for (let i = 0; i < 768; i++) {
+    let d: Vec3 = [rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 2 - 1];
+    if (i % 16 === 0) d = [[1, 0, 0], [0, -1, 0], [0, 0, 1]][i % 3] as unknown as Vec3;
+    const short = i % 4 === 1;
+    rays.push({ origin: inside(), direction: d, tMin: 0, tMax: short ? rnd() * 3 : far });
+  }
+  for (let g = 1; prepared.levels && g < boxes.length / 6; g++) {
+    for (let i = 0; i < 128; i++) {
+      const o = inside();
+      const target = [0, 1, 2].map((k) => boxes[g * 6 + k]! + rnd() * (boxes[g * 6 + 3 + k]! - boxes[g * 6 + k]!));
+      rays.push({ origin: o, direction: [target[0]! - o[0], target[1]! - o[1], target[2]! - o[2]], tMin: 0, tMax: far });
+    }
+  }
+  return rays.map((r) => ({ ...r, origin: r.origin.map(Math.fround) as unknown as Vec3, direction: r.direction.map(Math.fround) as unknown as Vec3, tMax: Math.fround(r.tMax) }));
+}
+
+async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: readonly TestRay[]) {
+  const constants: Record<string, number> = {};
+  for (const name of TRAVERSAL_FEATURES) constants[FEATURE_CONSTANTS[name]] = prepared.packed.features[name] ? 1 : 0;
+  const sources = new Map(SHADER_MODULES);
+  sources.set('tests/grid-test', KERNEL);
+  const kernel = await ComputeKernel.create(device, { module: reflectLinked(linkWgsl('tests/grid-test', sources)), entryPoint: 'grid_test', constants });
+  const scene = await SceneResources.upload(device, prepared.packed, prepared.scene.name);
+  const rayBuffer = storageBuffer(device, 'grid test rays', packRays(rays.map((r) => ({ origin: r.origin, direction: r.direction, tMin: r.tMin, tMax: r.tMax }))));
+  const out = outputBuffer(device, 'grid test hits', rays.length * 20);
+  const encoder = device.createCommandEncoder();
+  const pass = encoder.beginComputePass();
+  kernel.dispatch(pass, { 0: kernel.bindGroup(0, scene.bindings), 2: kernel.bindGroup(2, { rays: rayBuffer, out }) }, Math.ceil(rays.length / 64));
+  pass.end();
+  device.queue.submit([encoder.finish()]);
+  const raw = await readBuffer(device, out);
+  rayBuffer.destroy();
+  out.destroy();
+  scene.destroy();
+  const f = new Float32Array(raw), u = new Uint32Array(raw);
+  return rays.map((_, i) => ({ t: f[i * 5]!, tri: u[i * 5 + 1]!, u: f[i * 5 + 2]!, v: f[i * 5 + 3]!, any: u[i * 5 + 4] === 1 }));
+}
+
+const SCENES: [string, () => Scene][] = [
+  ['a tile map on its own grid (32 × 32 tiles split into sub-cells)', () => tileMapScene({ n: 32, seed: 5 })],
+  ['a tile map with a moving door and ball (the top level after the grid)', () => tileMapScene({ n: 24, seed: 9, moving: true })],
+  ['a random soup on an automatic grid', () => soupScene('soup', randomSoup(1500, 7), { position: [0, 0, -30], forward: [0, 0, 1], up: [0, 1, 0], vfovDegrees: 50 })],
+  ['moving instances over a static soup', movingTestScene],
+];
+
+describe('GPU grid traversal equals the CPU oracle', () => {
+  it.each(SCENES)('%s', async (_, make) => {
+    const { device } = await testGpu();
+    const prepared = prepareScene(make(), undefined, { accel: 'grid' });
+    expect(prepared.packed.features.staticGrid).toBe(true);
+    const rays = makeRays(prepared, 32);
+    const gpu = await traceOnGpu(device, prepared, rays);
+    const { positions, kinds } = prepared.triangles;
+    let exact = 0, ties = 0, grazing = 0, hits = 0;
+    const failures: string[] = [];
+    rays.forEach((ray, i) => {
+      const cpu = traceScene(prepared.scene, prepared.triangles, prepared.bvh, prepared.levels, ray, prepared.grid);
+      const g = gpu[i]!;
+      const onEdge = (u: number, v: number, prim: number) => kinds[prim] !== 0 || Math.min(u, v, 1 - u - v) < EDGE;
+      // Any hit is whether the closest hit exists.
+      if (g.any !== (g.tri !== NO_TRIANGLE) && !(cpu && onEdge(cpu.u, cpu.v, cpu.triangle))) failures.push(`ray ${i}: any ${g.any}, closest ${g.tri === NO_TRIANGLE ? 'miss' : g.tri}`);
+      if (cpu) hits++;
+      if (!cpu || g.tri === NO_TRIANGLE) {
+        if (!cpu && g.tri === NO_TRIANGLE) exact++;
+        else if (cpu && onEdge(cpu.u, cpu.v, cpu.triangle)) grazing++;
+        else if (!cpu && onEdge(g.u, g.v, g.tri)) grazing++;
+        else failures.push(`ray ${i}: cpu ${cpu ? `hit ${cpu.triangle} at ${cpu.t}` : 'miss'}, gpu ${g.tri === NO_TRIANGLE ? 'miss' : `hit ${g.tri} at ${g.t}`}`);
+        return;
+      }
+      const relative = Math.abs(g.t - cpu.t) / Math.max(cpu.t, 1e-3);
+      if (g.tri === cpu.triangle && relative < 1e-4) {
+        exact++;
+        return;
+      }
+      const tAlt = intersectPrimitive(positions, kinds, g.tri, prepareRay(ray), 0, 3e38, { u: 0, v: 0 });
+      if (Math.abs(tAlt - cpu.t) / Math.max(cpu.t, 1e-3) < 1e-4 || (onEdge(cpu.u, cpu.v, cpu.triangle) && relative < 1e-3)) ties++;
+      else failures.push(`ray ${i}: cpu ${cpu.triangle} at ${cpu.t}, gpu ${g.tri} at ${g.t} (oracle has it at ${tAlt})`);
+    });
+    console.log(`${rays.length} rays: ${hits} hits, ${exact} exact, ${ties} ties, ${grazing} grazing`);
+    expect(failures.slice(0, 10)).toEqual([]);
+    expect(hits).toBeGreaterThan(rays.length / 6);
+    expect(ties + grazing).toBeLessThan(0.01 * rays.length);
+    if (prepared.levels) {
+      const moving = new Set(prepared.levels.dynamic);
+      expect(gpu.filter((g) => g.tri !== NO_TRIANGLE && moving.has(prepared.triangles.instanceIds[g.tri]!)).length).toBeGreaterThan(30);
+    }
+  });
+});
+
+describe('rendering through the grid', () => {
+  it('a tile scene renders the same image through the grid as through the BVH (same seed)', async () => {
+    const scene = tileMapScene({ n: 12, seed: 4, moving: true });
+    const options = { width: 12, height: 12, spp: 2, maxBounces: 2, seed: 3 };
+    const bvh = await renderScene(scene, options);
+    const grid = await renderScene(scene, options, async (r) => {
+      r.updateSettings({ accel: 'grid' });
+      await r.accelSettled();
+      expect(r.scene?.grid).toBeDefined();
+    });
+    let worst = 0, sum = 0;
+    for (let i = 0; i < bvh.radiance.length; i++) {
+      worst = Math.max(worst, Math.abs(bvh.radiance[i]! - grid.radiance[i]!));
+      sum += bvh.radiance[i]!;
+    }
+    console.log(`grid vs bvh render: worst difference ${worst}, mean radiance ${sum / bvh.radiance.length}`);
+    expect(sum / bvh.radiance.length).toBeGreaterThan(0.05);
+    expect(worst).toBeLessThan(1e-3);
+  });
+});
+
+describe('the heat map through the grid', () => {
+  it('counts the cells and primitive tests the grid oracle counts for each pixel-centre ray', async () => {
+    const W = 48, H = 36;
+    const renderer = await Renderer.create(await testGpu());
+    try {
+      renderer.updateSettings({ accel: 'grid' });
+      const prepared = await renderer.setScene(builtinScene('bvh-teaching'));
+      expect(prepared.grid).toBeDefined();
+      await renderer.resize(W, H);
+      renderer.updateSettings({ debugLayout: 'replace', debugView: 'heat-nodes' });
+      const heat = await renderer.readDebugValues();
+      const b = cameraBasis(prepared.scene.camera, W / H);
+      const r = (v: Vec3): Vec3 => v.map(Math.fround) as unknown as Vec3;
+      const basis = { position: r(b.position), right: r(b.right), up: r(b.up), forward: r(b.forward) };
+      // view/bindings.wgsl camera_ray through a point of the image, turned by (dx, dy) in ndc.
+      const ray = (px: number, py: number, dx: number, dy: number) => {
+        const nx = (2 * px) / W - 1 + dx, ny = (2 * py) / H - 1 + dy;
+        const d = [0, 1, 2].map((k) => basis.forward[k]! + nx * basis.right[k]! - ny * basis.up[k]!);
+        const len = Math.hypot(...d);
+        return { origin: basis.position, direction: d.map((v) => Math.fround(v / len)) as unknown as Vec3 };
+      };
+      let exact = 0, unstable = 0;
+      const failures: string[] = [];
+      for (let y = 0; y < H; y++) {
+        for (let x = 0; x < W; x++) {
+          const i = y * W + x;
+          const key = `${heat[i * 4]},${heat[i * 4 + 1]}`;
+          // Where turning the ray a little changes the oracle's counts, it grazes a cell boundary or an edge: either count is right.
+          const counts = [0, 1e-6, -1e-6, 1e-5, -1e-5, 3e-4, -3e-4].flatMap((t) => [[t, 0], [0, t]]).map(([dx, dy]) => {
+            const c = traceGrid(prepared.grid!, prepared.triangles.positions, ray(x + 0.5, y + 0.5, dx!, dy!), prepared.triangles.kinds);
+            return `${c.nodesVisited},${c.trianglesTested}`;
+          });
+          if (counts.every((c) => c === counts[0])) {
+            if (key === counts[0]) exact++;
+            else failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts[0]}`);
+          } else {
+            unstable++;
+            if (!counts.includes(key)) failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts.join(' | ')}`);
+          }
+        }
+      }
+      expect(failures.slice(0, 10)).toEqual([]);
+      expect(unstable).toBeLessThan(0.05 * W * H);
+      expect(exact + unstable).toBe(W * H);
+      expect(new Set(Array.from({ length: W * H }, (_, i) => heat[i * 4]!)).size).toBeGreaterThan(5);
+    } finally {
+      renderer.destroy();
+    }
+  });
+});
