@@ -42,7 +42,7 @@ describe('the settings schema', () => {
     // Optional settings have no default: absent means "the scene's own".
     expect(DEFAULT_SETTINGS.torch).toEqual({ enabled: true });
     expect(Object.isFrozen(DEFAULT_SETTINGS) && Object.isFrozen(DEFAULT_SETTINGS.torch)).toBe(true);
-    expect([...ESTIMATE_SETTINGS].sort()).toEqual(['accel', 'lightSampling', 'maxBounces', 'seed', 'spectral', 'tileCulling', 'torch']);
+    expect([...ESTIMATE_SETTINGS].sort()).toEqual(['accel', 'hybrid', 'lightSampling', 'maxBounces', 'recipe', 'seed', 'spectral', 'tileCulling', 'torch']);
   });
 
   it('merges a nested patch into its group and leaves the rest alone', () => {
