@@ -2,7 +2,7 @@
  * The hybrid frame recipe (Renderer.renderFrame with settings.recipe = 'hybrid'):
  *
  *   raster (visibility + depth, Halton (2, 3) jitter) → resolve (guide, motion) → shade (emission,
- *   direct light with shadow rays, reflections; diffuse weight) → GI at gi_scale (+ à-trous ×k on
+ *   direct light: light samples with shadow rays + a BSDF ray, MIS; diffuse weight) → reflect → GI at gi_scale (+ à-trous ×k on
  *   the GI target) → compose (joint bilateral upsampling of GI) → TAA → the output the tone mapper reads
  *
  * The raster pass decides what each pixel sees; every other pass reconstructs the exact ray hit
@@ -118,7 +118,7 @@ export class Hybrid {
   private constructor(
     private readonly device: GPUDevice,
     private readonly raster: HybridRasterPass,
-    private readonly kernels: { readonly resolve: TracingKernels; readonly shade: TracingKernels; readonly gi: TracingKernels },
+    private readonly kernels: { readonly resolve: TracingKernels; readonly shade: TracingKernels; readonly reflect: TracingKernels; readonly gi: TracingKernels },
     private readonly compose: ImagePass<UniformValues>,
     private readonly taa: ImagePass<UniformValues>,
     private readonly atrous: ImagePass<UniformValues>,
@@ -128,16 +128,17 @@ export class Hybrid {
 
   static async create(device: GPUDevice): Promise<Hybrid> {
     const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, { CAPTURE_PRIMARY: 1 });
-    const [raster, resolve, shade, gi, compose, taa, atrous] = await Promise.all([
+    const [raster, resolve, shade, reflect, gi, compose, taa, atrous] = await Promise.all([
       HybridRasterPass.create(device),
       traced('hybrid_resolve'),
       traced('hybrid_shade'),
+      traced('hybrid_reflect'),
       traced('hybrid_gi'),
       ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_compose', 'compose'),
       ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_taa', 'taa'),
       ImagePass.create(device, 'passes/atrous', 'atrous_step', 'a-trous (GI)', GI_FILTER_ITERATIONS),
     ]);
-    return new Hybrid(device, raster, { resolve, shade, gi }, compose, taa, atrous, new UniformParams(device, 'passes/path-trace'), new UniformParams(device, MODULE, 'hybrid'));
+    return new Hybrid(device, raster, { resolve, shade, reflect, gi }, compose, taa, atrous, new UniformParams(device, 'passes/path-trace'), new UniformParams(device, MODULE, 'hybrid'));
   }
 
   /** Compiles the variants a scene with these features needs. */
@@ -190,6 +191,7 @@ export class Hybrid {
     const key = b.guide;
     this.kernels.resolve.dispatch(encoder, 'resolve', r.scene, r.view, key, targets, tile, false, r.timer);
     this.kernels.shade.dispatch(encoder, 'shade', r.scene, r.view, key, targets, tile, false, r.timer);
+    if (h.reflections && r.scene.features.generalMaterials && s.maxBounces > 0) this.kernels.reflect.dispatch(encoder, 'reflect', r.scene, r.view, key, targets, tile, false, r.timer);
     const useGi = s.maxBounces > 0 && h.giBounces > 0;
     if (useGi) {
       this.kernels.gi.dispatch(encoder, 'GI', r.scene, r.view, key, targets, { x: 0, y: 0, width: b.giWidth, height: b.giHeight }, false, r.timer);

@@ -23,6 +23,8 @@ export interface FrameModeOptions {
   readonly frames?: number;
   /** --mode: the hybrid recipe is a real-time recipe, always rendered in frame mode. */
   readonly mode?: string;
+  /** Seconds of frames rendered and thrown away first, so that the GPU's clocks are up when timing starts. */
+  readonly warmup?: number;
 }
 
 export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
@@ -56,6 +58,15 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   if (renderer.settings.recipe === 'hybrid') await renderer.enableHybrid();
   else await renderer.enableRealTime();
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
+  if (o.warmup) {
+    // A GPU idle a moment ago runs its first frames at low clocks: light recipes would be timed there.
+    renderer.setCamera(path ? cameraAt(path, frameTime(path, 0, frames), base) : base);
+    for (const until = performance.now() + o.warmup * 1000; performance.now() < until; ) {
+      renderer.renderFrame(spp);
+      await renderer.finish();
+    }
+    renderer.resetHistory();
+  }
   const samples = new Map<string, number[]>();
   const changes: number[] = [];
   let previous: Float32Array | undefined;

@@ -54,6 +54,7 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)')
     .option('--time <seconds>', "the moment of a moving scene to render (Doom's animated textures and lights, the dungeon's phantom); frame mode: the first frame's", numberOption('--time', 0, 1e6), 0)
     .option('--fps <n>', 'frame mode without --path: frames per second of scene time', numberOption('--fps', 0.001, 1000), 30)
+    .option('--warmup <seconds>', 'frame mode: render frames for this long first and throw them away, so that the GPU clocks are up when the timed frames start', numberOption('--warmup', 0, 60))
     .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
 }
 

@@ -8,19 +8,20 @@
 // - hybrid_resolve: the surface's normal and depth (the guide of the GI upsampling) and where it was
 //   in the previous frame (TAA's motion), per pixel;
 // - hybrid_shade: emission, direct light by next-event estimation (`light_samples` light samples per
-//   pixel, each with a shadow ray, plus the torch: soft shadows from area lights), and the reflection:
+//   pixel, each with a shadow ray, plus the torch: soft shadows from area lights) combined by MIS with
+//   one BSDF-sampled ray that finds emitters and the sky, and the weight of the diffuse lobe;
+// - hybrid_reflect (scenes with non-diffuse materials): the reflection, added to hybrid_shade's:
 //   one ray from the specular lobes (a mirror direction or a GGX sample of the visible normals, or
 //   through the glass), continued by the path tracer for `reflection_bounces`, weighted by the
-//   lobes' directional albedo (Fresnel included: no fixed mix); it also writes the weight of the
-//   diffuse lobe, (1 − E_layer(μo))·albedo;
+//   lobes' directional albedo (Fresnel included: no fixed mix);
 // - hybrid_gi: diffuse GI in a smaller target (`gi_scale` of the image per axis): each GI texel
 //   takes one pixel of its block (a different one every frame), traces `gi_samples` cosine-
 //   distributed paths of `gi_bounces` bounces and keeps what they gather beyond their first hit's
 //   own emission (direct light was counted by hybrid_shade), i.e. the cosine-weighted mean of the
 //   indirect radiance arriving there.
-// Emission a GI or glossy ray finds at its first hit is dropped because next-event estimation
-// already counted it (no double counting, no MIS needed); a mirror keeps it (NEE cannot see through
-// a delta lobe). Expects the scene (group 0) and view (group 1); group 2 adds the buffers.
+// Emission a GI or glossy reflection ray finds at its first hit is dropped because hybrid_shade's
+// direct light (NEE + its own BSDF ray, MIS-weighted) already counted it; a mirror's reflection keeps
+// it (neither NEE nor that BSDF ray, which skips delta lobes, can see it). Expects the scene (group 0) and view (group 1); group 2 adds the buffers.
 
 #import passes/path-trace
 #import view/projection
@@ -127,15 +128,34 @@ fn bsdf_cos(s: Shading, wo_world: vec3f, wi_world: vec3f) -> vec3f {
   return bsdf_eval(s.bsdf, wo, wi) * abs(wi.z);
 }
 
+// The solid-angle density with which bsdf_ray (below) picks wi_world (its non-delta lobes).
+fn bsdf_density(s: Shading, wo_world: vec3f, wi_world: vec3f) -> f32 {
+  if (!SCENE_HAS_GENERAL_MATERIALS) {
+    return cosine_hemisphere_pdf(dot(s.ns, wi_world));
+  }
+  let frame = orthonormal_basis(s.ns);
+  return bsdf_pdf(s.bsdf, to_local(frame, wo_world), to_local(frame, wi_world));
+}
+
+// The power heuristic for `count` light samples against one BSDF sample (Veach 1997, §9.2.4):
+// the weight of a light sample of density light_pdf, or (swapped) of the BSDF sample.
+fn light_weight(count: u32, light_pdf: f32, bsdf_pdf: f32) -> f32 {
+  let n = f32(count) * light_pdf;
+  return select(0.0, n * n / (n * n + bsdf_pdf * bsdf_pdf), n > 0.0);
+}
+
 struct Lighting {
   radiance: vec3f,
+  extension_rays: u32,
   shadow_rays: u32,
 }
 
 // Direct light: `count` samples of the scene's lights (area, punctual, environment) and one of the
-// torch, each with a shadow ray; weight 1 (nothing else in this recipe finds lights from here).
+// torch, each with a shadow ray, combined by multiple importance sampling with one BSDF-sampled ray
+// that counts the emitters and the sky it meets (bsdf_ray). Without the BSDF ray a point beside a
+// small, bright emitter (E1M1's lamps) would see rare huge light samples: fireflies.
 fn direct_light(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) -> Lighting {
-  var result = Lighting(vec3f(0.0), 0u);
+  var result = Lighting(vec3f(0.0), 0u, 0u);
   let settings = path_settings();
   if (scene_light_count() > 0u) {
     var sum = vec3f(0.0);
@@ -151,11 +171,15 @@ fn direct_light(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>
       let origin = spawn_point(s.surface, select(-s.ng, s.ng, dot(s.ng, light.direction) > 0.0));
       result.shadow_rays += 1u;
       if (!trace_any(Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-        sum += f * light.radiance / light.pdf;
+        let weight = select(light_weight(count, light.pdf, bsdf_density(s, wo_world, light.direction)), 1.0, light.delta);
+        sum += f * light.radiance * (weight / light.pdf);
       }
     }
     result.radiance += sum / f32(max(count, 1u));
   }
+  let found = bsdf_ray(s, wo_world, count, rng);
+  result.radiance += found.radiance;
+  result.extension_rays += found.extension_rays;
   let torch = sample_torch(settings.torch, settings.torch_position, s.surface.position, rng_next_2d(rng));
   if (torch.pdf > 0.0) {
     let f = bsdf_cos(s, wo_world, torch.direction);
@@ -166,6 +190,56 @@ fn direct_light(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>
         result.radiance += f * torch.radiance / torch.pdf;
       }
     }
+  }
+  return result;
+}
+
+// The BSDF half of direct light: one direction from the BSDF's non-delta lobes, traced to what it
+// meets first; an emitter seen from its emitting side, or the sky, counts with the MIS weight that
+// complements the light samples'. A delta lobe's sample is left to the reflection ray.
+fn bsdf_ray(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) -> Lighting {
+  var result = Lighting(vec3f(0.0), 0u, 0u);
+  var wi: vec3f;
+  var weight: vec3f;
+  var pdf: f32;
+  if (!SCENE_HAS_GENERAL_MATERIALS) {
+    wi = orthonormal_basis(s.ns) * sample_cosine_hemisphere(rng_next_2d(rng));
+    pdf = cosine_hemisphere_pdf(dot(wi, s.ns));
+    weight = s.bsdf.base_color;
+    if (dot(wi, s.ng) <= 0.0 || pdf <= 0.0) {
+      return result;
+    }
+  } else {
+    let frame = orthonormal_basis(s.ns);
+    let u3 = vec3f(rng_next_2d(rng), rng_next_f32(rng));
+    let b = bsdf_sample(s.bsdf, to_local(frame, wo_world), u3);
+    if (!b.valid || b.delta) {
+      return result;
+    }
+    wi = frame * b.wi;
+    if (dot(s.ng, wi) * b.wi.z <= 0.0) {
+      return result;
+    }
+    pdf = b.pdf;
+    weight = b.weight;
+  }
+  let origin = spawn_point(s.surface, select(-s.ng, s.ng, dot(s.ng, wi) > 0.0));
+  let ray = Ray(origin, 0.0, wi, T_MISS);
+  let hit = trace_closest(ray);
+  result.extension_rays = 1u;
+  if (hit.triangle == NO_TRIANGLE) {
+    if (SCENE_HAS_ENVIRONMENT) {
+      let seen = environment_radiance(wi) + sun_radiance(wi);
+      result.radiance = weight * seen * light_weight(1u, pdf, f32(count) * environment_light_pdf(wi));
+    }
+    return result;
+  }
+  let surface = surface_at(hit, ray);
+  let material = materials[surface.material];
+  let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, wi));
+  if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
+    let light_pdf = emitter_pdf(surface, material, origin, hit.t, cos_emitter);
+    result.radiance = weight * material_emission(material, surface.uv, wi) * light_weight(1u, pdf, f32(count) * light_pdf);
   }
   return result;
 }
@@ -272,7 +346,7 @@ fn hybrid_resolve(@builtin(global_invocation_id) id: vec3u) {
   if (hit.triangle == NO_TRIANGLE) {
     let previous = project_offset(hybrid.previous_camera, view.image_size, ray.direction);
     guide[index] = vec4f(-ray.direction, MISS_DEPTH);
-    motion[index] = vec4f(select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0), MISS_DEPTH, 0.0);
+    motion[index] = vec4f(select(vec2f(OFF_SCREEN), previous.xy - hybrid.jitter, previous.z > 0.0), MISS_DEPTH, 0.0);
     return;
   }
   let surface = surface_at(hit, ray);
@@ -280,7 +354,9 @@ fn hybrid_resolve(@builtin(global_invocation_id) id: vec3u) {
   let depth = dot(surface.position - view.camera.position, view.camera.forward);
   let previous = project_point(hybrid.previous_camera, view.image_size, previous_world_point(hit.instance, surface.position));
   guide[index] = vec4f(normal, depth);
-  motion[index] = vec4f(select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0), previous.z, 1.0);
+  // The sample sits at the pixel centre + jitter; the history holds pixel centres: take the jitter off,
+  // so that a still view fetches its history exactly and is not blurred a little more every frame.
+  motion[index] = vec4f(select(vec2f(OFF_SCREEN), previous.xy - hybrid.jitter, previous.z > 0.0), previous.z, 1.0);
 }
 
 @compute @workgroup_size(8, 8)
@@ -308,19 +384,42 @@ fn hybrid_shade(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocat
       if (s.material.kind != MATERIAL_KIND_EMISSIVE && params.max_bounces > 0u) {
         let direct = direct_light(s, -ray.direction, max(hybrid.light_samples, 1u), &rng);
         radiance += direct.radiance;
+        extension_rays += direct.extension_rays;
         shadow_rays += direct.shadow_rays;
-        let split = lobe_split(s.bsdf, to_local(orthonormal_basis(s.ns), -ray.direction));
-        weight = split.diffuse;
-        if (SCENE_HAS_GENERAL_MATERIALS && hybrid.reflections != 0u) {
-          let r = reflection(s, split, ray, &rng);
-          radiance += r.radiance;
-          extension_rays += r.extension_rays;
-          shadow_rays += r.shadow_rays;
-        }
+        weight = lobe_split(s.bsdf, to_local(orthonormal_basis(s.ns), -ray.direction)).diffuse;
       }
     }
     lit[index] = vec4f(select(vec3f(0.0), radiance, is_finite_vec3(radiance)), 1.0);
     diffuse_weight[index] = vec4f(weight, 1.0);
+    count_rays(extension_rays, shadow_rays);
+  }
+  end_ray_count(local);
+}
+
+// Reflections, a pass of their own after hybrid_shade (scenes with glossy, mirror or glass
+// materials, reflections on): kept apart so that neither kernel grows too large for the shader
+// compilers of software adapters.
+@compute @workgroup_size(8, 8)
+fn hybrid_reflect(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+  begin_ray_count(local);
+  let pixel = id.xy;
+  if (all(pixel < view.image_size)) {
+    let index = pixel.y * view.image_size.x + pixel.x;
+    let ray = pixel_ray(pixel);
+    let hit = pixel_hit(pixel, ray);
+    var extension_rays = 0u;
+    var shadow_rays = 0u;
+    if (hit.triangle != NO_TRIANGLE) {
+      let s = shading_at(hit, ray);
+      if (s.material.kind != MATERIAL_KIND_EMISSIVE && params.max_bounces > 0u) {
+        var rng = rng_seed(index, params.sample_index, params.seed ^ 0xbb67ae85u);
+        let split = lobe_split(s.bsdf, to_local(orthonormal_basis(s.ns), -ray.direction));
+        let r = reflection(s, split, ray, &rng);
+        lit[index] += vec4f(r.radiance, 0.0);
+        extension_rays += r.extension_rays;
+        shadow_rays += r.shadow_rays;
+      }
+    }
     count_rays(extension_rays, shadow_rays);
   }
   end_ray_count(local);
