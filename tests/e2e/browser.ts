@@ -5,7 +5,7 @@
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { chromium, type Browser } from 'playwright-core';
+import { chromium, type Browser, type Page } from 'playwright-core';
 import { build } from 'vite';
 import { startViewServer } from '../../src/cli/view-server.ts';
 
@@ -53,4 +53,14 @@ export async function servePage(files: readonly string[] = []): Promise<ServedPa
       rmSync(outDir, { recursive: true, force: true });
     },
   };
+}
+
+/** Drops files on the page as the browser delivers a drop: a DataTransfer of File objects on dragenter and drop events. */
+export async function dropFiles(page: Page, files: readonly { name: string; bytes: number[] }[]): Promise<void> {
+  await page.evaluate((list) => {
+    const data = new DataTransfer();
+    for (const f of list) data.items.add(new File([new Uint8Array(f.bytes)], f.name));
+    window.dispatchEvent(new DragEvent('dragenter', { dataTransfer: data, cancelable: true }));
+    window.dispatchEvent(new DragEvent('drop', { dataTransfer: data, cancelable: true }));
+  }, files);
 }

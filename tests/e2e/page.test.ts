@@ -10,7 +10,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { decodePng } from '../../src/image/png.ts';
 import { squareRoomsWad } from '../../src/loaders/doom/test-wad.ts';
-import { launchBrowser, servePage, type ServedPage } from './browser.ts';
+import { dropFiles, launchBrowser, servePage, type ServedPage } from './browser.ts';
 
 let browser: Browser;
 let served: ServedPage;
@@ -397,12 +397,7 @@ describe('the page', () => {
     const before = await settledImage(page, 2);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     // A drop as the browser delivers it: a DataTransfer of File objects on a drop event.
-    await page.evaluate((list) => {
-      const data = new DataTransfer();
-      for (const f of list) data.items.add(new File([new Uint8Array(f.bytes)], f.name));
-      window.dispatchEvent(new DragEvent('dragenter', { dataTransfer: data, cancelable: true }));
-      window.dispatchEvent(new DragEvent('drop', { dataTransfer: data, cancelable: true }));
-    }, files);
+    await dropFiles(page, files);
     await waitNewScene(page, loads);
     expect(await page.locator('#drop-zone').isHidden()).toBe(true);
     expect(await page.locator('#scene option:checked').textContent()).toBe('Duck.gltf');

@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
-import { launchBrowser, servePage, type ServedPage } from './browser.ts';
+import { dropFiles, launchBrowser, servePage, type ServedPage } from './browser.ts';
 
 const SHAREWARE = ['../shared/assets/wolf3d-shareware', '/work/shared/assets/wolf3d-shareware'].map((d) => join(import.meta.dirname, '../..', d)).concat('/work/shared/assets/wolf3d-shareware').find((d) => existsSync(join(d, 'GAMEMAPS.WL1')));
 if (!SHAREWARE) console.warn('the Wolfenstein 3D shareware files are absent: the page tests use files written by the test instead');
@@ -20,15 +20,6 @@ function gameFiles(): { name: string; bytes: number[] }[] {
   if (SHAREWARE) return ['MAPHEAD.WL1', 'GAMEMAPS.WL1', 'VSWAP.WL1'].map((name) => ({ name, bytes: [...readFileSync(join(SHAREWARE, name))] }));
   const t = testGameFiles();
   return [t.maphead, t.gamemaps, t.vswap].map((f) => ({ name: f.name, bytes: [...f.bytes] }));
-}
-
-async function drop(page: Page, files: { name: string; bytes: number[] }[]): Promise<void> {
-  await page.evaluate((list) => {
-    const data = new DataTransfer();
-    for (const f of list) data.items.add(new File([new Uint8Array(f.bytes)], f.name));
-    window.dispatchEvent(new DragEvent('dragenter', { dataTransfer: data, cancelable: true }));
-    window.dispatchEvent(new DragEvent('drop', { dataTransfer: data, cancelable: true }));
-  }, files);
 }
 
 let browser: Browser;
@@ -65,7 +56,7 @@ describe('Wolfenstein 3D and the hybrid recipe in the page', () => {
     const { page, errors } = await open('scene=cornell&scale=0.05');
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     const files = gameFiles();
-    await drop(page, files);
+    await dropFiles(page, files);
     await page.waitForFunction((n) => window.lantern.sceneLoads > n && !window.lantern.loading, loads, { timeout: 120_000 });
     expect(await page.evaluate(() => window.lantern.scene)).toMatch(/E1L1/);
     await playUntil(page, 1);
@@ -82,7 +73,7 @@ describe('Wolfenstein 3D and the hybrid recipe in the page', () => {
     // A truncated GAMEMAPS: one line naming the file, and the level keeps rendering.
     const before = await page.evaluate(() => window.lantern.sceneLoads);
     const truncated = files.map((f) => (/GAMEMAPS/i.test(f.name) ? { name: f.name, bytes: f.bytes.slice(0, Math.floor(f.bytes.length / 3)) } : f));
-    await drop(page, truncated);
+    await dropFiles(page, truncated);
     await expect.poll(() => messageText(page), { timeout: 60_000 }).toMatch(/GAMEMAPS/);
     const message = (await messageText(page)) ?? '';
     expect(message.trim().split('\n')).toHaveLength(1);

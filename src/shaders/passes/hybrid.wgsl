@@ -144,7 +144,8 @@ fn light_weight(count: u32, light_pdf: f32, bsdf_pdf: f32) -> f32 {
   return select(0.0, n * n / (n * n + bsdf_pdf * bsdf_pdf), n > 0.0);
 }
 
-struct Lighting {
+// Light a pass gathered, and the rays it took.
+struct Gathered {
   radiance: vec3f,
   extension_rays: u32,
   shadow_rays: u32,
@@ -154,8 +155,8 @@ struct Lighting {
 // torch, each with a shadow ray, combined by multiple importance sampling with one BSDF-sampled ray
 // that counts the emitters and the sky it meets (bsdf_ray). Without the BSDF ray a point beside a
 // small, bright emitter (E1M1's lamps) would see rare huge light samples: fireflies.
-fn direct_light(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) -> Lighting {
-  var result = Lighting(vec3f(0.0), 0u, 0u);
+fn direct_light(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) -> Gathered {
+  var result = Gathered(vec3f(0.0), 0u, 0u);
   let settings = path_settings();
   if (scene_light_count() > 0u) {
     var sum = vec3f(0.0);
@@ -197,8 +198,8 @@ fn direct_light(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>
 // The BSDF half of direct light: one direction from the BSDF's non-delta lobes, traced to what it
 // meets first; an emitter seen from its emitting side, or the sky, counts with the MIS weight that
 // complements the light samples'. A delta lobe's sample is left to the reflection ray.
-fn bsdf_ray(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) -> Lighting {
-  var result = Lighting(vec3f(0.0), 0u, 0u);
+fn bsdf_ray(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) -> Gathered {
+  var result = Gathered(vec3f(0.0), 0u, 0u);
   var wi: vec3f;
   var weight: vec3f;
   var pdf: f32;
@@ -267,17 +268,11 @@ fn lobe_split(p: BsdfParams, wo: vec3f) -> LobeSplit {
   return LobeSplit(diffuse, single + multiple, l.glass, l.alpha, l.is_delta);
 }
 
-struct Reflection {
-  radiance: vec3f,
-  extension_rays: u32,
-  shadow_rays: u32,
-}
-
 // One ray from the specular lobes, continued by the path tracer. For the glass lobe, reflection or
 // transmission is chosen by Fresnel (so each carries its own weight); otherwise the reflected
 // direction about a GGX visible normal (the mirror direction when smooth).
-fn reflection(s: Shading, split: LobeSplit, ray: Ray, rng: ptr<function, Rng>) -> Reflection {
-  var out = Reflection(vec3f(0.0), 0u, 0u);
+fn reflection(s: Shading, split: LobeSplit, ray: Ray, rng: ptr<function, Rng>) -> Gathered {
+  var out = Gathered(vec3f(0.0), 0u, 0u);
   let frame = orthonormal_basis(s.ns);
   let wo = to_local(frame, -ray.direction);
   let spec_weight = luminance(split.specular);
