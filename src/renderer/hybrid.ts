@@ -52,14 +52,25 @@ export function haltonJitter(frame: number): [number, number] {
   return [radicalInverse(i, 2) - 0.5, radicalInverse(i, 3) - 0.5];
 }
 
+/** Pixels per GI texel along each axis for a buffer scale (0.5 → blocks of 2 × 2). */
+export const giBlock = (scale: number): number => Math.max(1, Math.round(1 / scale));
+
 /** The GI target's size for an image and a buffer scale. */
 export function giSize(width: number, height: number, scale: number): [number, number] {
-  const block = Math.max(1, Math.round(1 / scale));
+  const block = giBlock(scale);
   return [Math.ceil(width / block), Math.ceil(height / block)];
 }
 
-/** The draws of the raster pass: the static world's primitives, then each moving instance's mesh. */
+const drawsOf = new WeakMap<PreparedScene, RasterDraw[]>();
+
+/** The draws of the raster pass: the static world's primitives, then each moving instance's mesh (made once per prepared scene). */
 export function rasterDraws(prepared: PreparedScene): RasterDraw[] {
+  let known = drawsOf.get(prepared);
+  if (!known) drawsOf.set(prepared, (known = makeRasterDraws(prepared)));
+  return known;
+}
+
+function makeRasterDraws(prepared: PreparedScene): RasterDraw[] {
   const draws: RasterDraw[] = [{ first: 0, count: prepared.bvh.triIndices.length, instance: 0 }];
   const levels = prepared.levels;
   if (!levels) return draws;
@@ -175,7 +186,7 @@ export class Hybrid {
       previous_camera: cameraUniform(previousCamera, aspect),
       jitter,
       gi_size: [b.giWidth, b.giHeight],
-      gi_scale: b.giWidth / b.width,
+      gi_scale: 1 / giBlock(h.giScale),
       frame_index: this.frameIndex,
       light_samples: h.lightSamples,
       gi_bounces: h.giBounces,
@@ -198,7 +209,7 @@ export class Hybrid {
       if (h.giFilter) this.encodeGiFilter(encoder, b, r.timer);
     }
 
-    const composeValues = { gi_size: [b.giWidth, b.giHeight], gi_scale: b.giWidth / b.width, use_gi: useGi ? 1 : 0, min_blend: h.taa ? TAA_MIN_BLEND : 1, use_history: this.historyValid ? 1 : 0 };
+    const composeValues = { gi_size: [b.giWidth, b.giHeight], gi_scale: 1 / giBlock(h.giScale), use_gi: useGi ? 1 : 0, min_blend: h.taa ? TAA_MIN_BLEND : 1, use_history: this.historyValid ? 1 : 0 };
     this.compose.write(composeValues);
     this.taa.write(composeValues);
     const previousHistory = b.histories[1 - this.parity]!, history = b.histories[this.parity]!;
@@ -278,7 +289,7 @@ export class Hybrid {
 
 /** Bytes per pixel the hybrid recipe holds at a GI scale (docs/hybrid.md's memory line). */
 export function hybridBytesPerPixel(scale: number): number {
-  const block = Math.max(1, Math.round(1 / scale));
+  const block = giBlock(scale);
   // guide, motion, lit, diffuse weight, composed, two histories, output; visibility (8) and depth (4); three GI buffers per block.
   return 8 * VEC4_BYTES + 8 + 4 + (3 * VEC4_BYTES) / (block * block);
 }
