@@ -1,17 +1,22 @@
 import { defineConfig } from 'vitest/config';
 
-// Three projects, one `npm test`:
+// Three projects, one `npm test`, run one after another (sequence.groupOrder):
 // - unit: pure TypeScript beside the code it tests (src/**/*.test.ts), no GPU, and the layering check
-//         over src/ (tests/architecture).
-// - gpu:  WebGPU through Dawn on SwiftShader (tests/gpu), one file at a time: SwiftShader already
-//         uses every core, so running GPU files in parallel only makes each one slower.
-// - e2e:  the built page in headless Chromium (tests/e2e) and the built CLI as a user runs it (tests/cli).
+//         over src/ (tests/architecture). Two files at a time: they are single-threaded CPU work.
+// - gpu:  WebGPU through Dawn on SwiftShader (tests/gpu), one file at a time: SwiftShader's threads
+//         already use every core. Not isolated: every file runs in one process, so they share one device
+//         (tests/gpu/gpu-context.ts), on which a pipeline already compiled by an earlier file costs
+//         nothing again; compiling WGSL on SwiftShader is most of many tests.
+// - e2e:  the built page in headless Chromium (tests/e2e) and the built CLI as a user runs it
+//         (tests/cli), two files at a time: their renders are tiny, and most of their time is shader
+//         compiles, one thread each (a page's in Chromium's GPU process, a CLI run's in its own). The
+//         page and the CLI are built once for all of them (tests/e2e/global-setup.ts).
 export default defineConfig({
   test: {
     projects: [
       {
         extends: true,
-        test: { name: 'unit', include: ['src/**/*.test.ts', 'tests/architecture/**/*.test.ts'], testTimeout: 60_000 },
+        test: { name: 'unit', include: ['src/**/*.test.ts', 'tests/architecture/**/*.test.ts'], testTimeout: 60_000, maxWorkers: 2 },
       },
       {
         extends: true,
@@ -19,6 +24,8 @@ export default defineConfig({
           name: 'gpu',
           include: ['tests/gpu/**/*.test.ts'],
           fileParallelism: false,
+          isolate: false,
+          sequence: { groupOrder: 1 },
           testTimeout: 300_000,
           hookTimeout: 120_000,
         },
@@ -28,7 +35,9 @@ export default defineConfig({
         test: {
           name: 'e2e',
           include: ['tests/e2e/**/*.test.ts', 'tests/cli/**/*.test.ts'],
-          fileParallelism: false,
+          maxWorkers: 2,
+          sequence: { groupOrder: 2 },
+          globalSetup: ['tests/e2e/global-setup.ts'],
           testTimeout: 300_000,
           hookTimeout: 180_000,
         },

@@ -10,7 +10,8 @@
  *
  * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera, lens,
  * selection and live GPU resources, and reads the estimate with its sample count; the canvas
- * carries data-state and data-samples, so scripts can wait for frames.
+ * carries data-state and data-samples, so scripts can wait for frames, and data-first-frame-ms (the
+ * milliseconds from the first Play to its first frame, also in the panel's GPU folder).
  */
 import { LanternError } from '../errors.ts';
 import { BUILTIN_SCENES, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
@@ -86,6 +87,7 @@ function showViewer(v: Viewer): void {
   const s = v.stats;
   canvas.dataset.state = v.state;
   canvas.dataset.samples = String(s.samples);
+  if (s.firstFrameMs !== undefined) canvas.dataset.firstFrameMs = s.firstFrameMs.toFixed(1);
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
   playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
   const hidden = document.hidden && v.state === 'playing' ? ' · paused while the tab is hidden' : '';
@@ -378,6 +380,7 @@ await viewer.updateSettings({
   ...(linked.scale !== undefined ? { scale: linked.scale } : {}),
   ...(linked.accumulate !== undefined ? { accumulate: linked.accumulate } : {}),
   ...(linked.animate !== undefined ? { animate: linked.animate } : {}),
+  ...(linked.convergeWhenStill !== undefined ? { convergeWhenStill: linked.convergeWhenStill } : {}),
   // The torch's other settings are the scene's business: they are applied once it is loaded.
   render: { ...linkedRenderSettings(linked), ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}) },
 });
@@ -411,6 +414,8 @@ declare global {
     lantern: {
       readonly state: string;
       readonly samples: number;
+      /** What the canvas shows: 'frame' (real time), 'converged' (a still view's progressive estimate) or 'progressive'. */
+      readonly display: string;
       readonly scene: string;
       readonly loading: boolean;
       readonly sceneLoads: number;
@@ -420,6 +425,8 @@ declare global {
       /** The camera's thin lens (undefined: a pinhole). */
       readonly lens: ThinLens | undefined;
       readonly gpuResources: ResourceCount;
+      /** Milliseconds from the first Play to its first frame done on the GPU (undefined before). */
+      readonly firstFrameMs: number | undefined;
       /** The tracing kernels in use: 'generic', or 'specialised' once the scene has gone a second without edits. */
       readonly kernel: string;
       readonly link: string;
@@ -437,6 +444,9 @@ window.lantern = {
   },
   get samples() {
     return viewer.stats.samples;
+  },
+  get display() {
+    return viewer.stats.display;
   },
   get scene() {
     return viewer.stats.sceneName;
@@ -463,6 +473,9 @@ window.lantern = {
   },
   get kernel() {
     return viewer.stats.kernel;
+  },
+  get firstFrameMs() {
+    return viewer.stats.firstFrameMs;
   },
   get link() {
     return viewLink();

@@ -5,7 +5,7 @@ import { numberBindingLimits, PANEL_SETTINGS } from './panel-settings.ts';
 describe('the panel', () => {
   it('shows the settings it showed before the schema, the spectral switch and the wireframe level', () => {
     expect(PANEL_SETTINGS.map((e) => e.id).sort()).toEqual(
-      ['accel', 'clampK', 'debugLayout', 'debugView', 'denoise', 'denoiseView', 'exposureStops', 'heatMax', 'historyCap', 'hybrid.giBounces', 'hybrid.giFilter', 'hybrid.giSamples', 'hybrid.giScale', 'hybrid.lightSamples', 'hybrid.reflectionBounces', 'hybrid.reflections', 'hybrid.taa', 'maxBounces', 'recipe', 'spectral', 'temporal', 'toneMapper', 'torch.color', 'torch.enabled', 'torch.intensity', 'torch.range', 'tileCulling', 'wireframeDepth', 'wireframeLevel'].sort(),
+      ['accel', 'clampK', 'debugLayout', 'debugView', 'denoise', 'denoiseView', 'exposureStops', 'heatMax', 'historyCap', 'hybrid.giBounces', 'hybrid.giFilter', 'hybrid.giSamples', 'hybrid.giScale', 'hybrid.lightSamples', 'hybrid.reflectionBounces', 'hybrid.reflections', 'hybrid.taa', 'integrator', 'maxBounces', 'recipe', 'sampler', 'spectral', 'temporal', 'toneMapper', 'torch.color', 'torch.enabled', 'torch.intensity', 'torch.range', 'tileCulling', 'wireframeDepth', 'wireframeLevel'].sort(),
     );
   });
 

@@ -16,7 +16,7 @@ import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-setti
 import { fNumberForAperture, focalLengthForFov } from '../scene/lens.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
-import type { Viewer } from './viewer.ts';
+import type { Viewer, ViewerDisplay } from './viewer.ts';
 import { MaterialPanel } from './material-panel.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
 import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, type EnvironmentChoice, type EnvironmentChoiceKind } from './environment-choice.ts';
@@ -38,6 +38,9 @@ function unreachable(spec: never): never {
   throw new Error(`unhandled setting type ${(spec as { type: string }).type}`);
 }
 
+/** What the 'showing' read-out says for each kind of image on the canvas. */
+const DISPLAY_NAMES: Record<ViewerDisplay, string> = { frame: 'real-time frame', converged: 'still: progressive estimate', progressive: 'progressive estimate' };
+
 export class SettingsPanel {
   private readonly pane: Pane;
   private readonly params = {
@@ -45,6 +48,7 @@ export class SettingsPanel {
     scale: 1,
     accumulate: true,
     animate: true,
+    convergeWhenStill: true,
     fov: 60,
     mode: 'fly' as MoveMode,
     // The thin lens: aperture radius and focus distance in scene units (aperture 0: a pinhole).
@@ -58,7 +62,7 @@ export class SettingsPanel {
   /** The render settings' panel values by setting id (a colour as {r, g, b}; 'auto' as 0). */
   private readonly settingParams: Record<string, unknown> = {};
   private depthBinding?: SliderInputBindingApi;
-  private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, rays: '', image: '', scene: '', gpuMemory: '', kernel: '' };
+  private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, shows: '', rays: '', image: '', scene: '', gpuMemory: '', kernel: '', firstFrame: '' };
   /** The Environment folder's values; the map is the last HDR file opened (kept while another kind is shown). */
   private readonly environment: EnvironmentChoice = { ...DEFAULT_ENVIRONMENT_CHOICE };
   private environmentMap?: EnvironmentImage;
@@ -110,6 +114,8 @@ export class SettingsPanel {
       hybrid: this.pane.addFolder({ title: 'Hybrid recipe', expanded: false }),
       debug: this.pane.addFolder({ title: 'Debug views', expanded: false }),
     };
+    // Before the filters' own settings: whether a still view hands over to the exact progressive estimate.
+    folders.denoise.addBinding(p, 'convergeWhenStill', { label: 'converge when still' }).on('change', (e) => this.apply({ convergeWhenStill: e.value }));
     for (const entry of PANEL_SETTINGS) this.addSettingBinding(folders[entry.spec.panel!.folder], entry);
     this.fitDepthSlider();
 
@@ -119,11 +125,13 @@ export class SettingsPanel {
     numbers.addBinding(m, 'frame', { label: 'frame', readonly: true });
     numbers.addBinding(m, 'gpu', { label: 'GPU passes', readonly: true, multiline: true, rows: 10 });
     numbers.addBinding(m, 'spp', { label: 'samples/pixel', readonly: true, format: (v) => v.toFixed(0) });
+    numbers.addBinding(m, 'shows', { label: 'showing', readonly: true });
     numbers.addBinding(m, 'rays', { label: 'rays/s', readonly: true });
     numbers.addBinding(m, 'image', { label: 'image', readonly: true });
     numbers.addBinding(m, 'scene', { label: 'scene', readonly: true, multiline: true, rows: 2 });
     numbers.addBinding(m, 'gpuMemory', { label: 'GPU memory', readonly: true });
     numbers.addBinding(m, 'kernel', { label: 'kernel', readonly: true });
+    numbers.addBinding(m, 'firstFrame', { label: 'Play to first frame', readonly: true });
 
     const output = this.pane.addFolder({ title: 'Output' });
     output.addButton({ title: 'Screenshot (PNG)' }).on('click', () => actions.screenshot());
@@ -294,6 +302,7 @@ export class SettingsPanel {
     p.scale = s.scale;
     p.accumulate = s.accumulate;
     p.animate = s.animate;
+    p.convergeWhenStill = s.convergeWhenStill;
     Object.assign(this.environment, choiceOfEnvironment(this.viewer.environment, this.environment));
     if (this.environment.kind === 'map' && this.viewer.environment?.kind === 'map') this.environmentMap = this.viewer.environment.image;
     const c = this.viewer.controller;
@@ -417,11 +426,13 @@ export class SettingsPanel {
     const total = s.gpuPasses.reduce((t, p) => t + p.ms, 0);
     m.gpu = s.gpuPasses.length > 0 ? [...s.gpuPasses.map((p) => `${p.name}: ${p.ms.toFixed(2)} ms`), `total: ${total.toFixed(2)} ms`].join('\n') : s.adapter ? 'no timestamp queries on this adapter' : '–';
     m.spp = s.samples;
+    m.shows = DISPLAY_NAMES[s.display];
     m.rays = s.raysPerSecond > 0 ? `${(s.raysPerSecond / 1e6).toFixed(1)} M` : '–';
     m.image = s.width > 0 ? `${s.width}×${s.height}` : '–';
     m.scene = s.sceneName ? `${s.sceneName}\n${s.triangles.toLocaleString('en')} triangles · ${s.bvhNodes.toLocaleString('en')} BVH nodes` : '–';
     m.gpuMemory = s.adapter ? `${(s.gpuResources.bytes / 2 ** 20).toFixed(1)} MiB in ${s.gpuResources.buffers} buffers, ${s.gpuResources.textures} textures` : '–';
     m.kernel = s.adapter ? (s.kernel === 'specialised' ? 'specialised to the scene' : 'generic') : '–';
+    m.firstFrame = s.firstFrameMs !== undefined ? `${s.firstFrameMs.toFixed(0)} ms` : '–';
   }
 
   private fitDepthSlider(): void {

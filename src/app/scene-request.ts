@@ -8,7 +8,8 @@ import { LanternError } from '../errors.ts';
 import { builtinScene, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { formatById, type NamedBytes, type OpenedScene, type ResolveSibling, type ScenePart } from '../loaders/registry.ts';
 import { normalizeRelativePath } from './dropped-files.ts';
-import { prepareScene, PREPARE_STAGES, type PreparedScene } from '../renderer/prepare.ts';
+import { prepareSceneAsync, PREPARE_STAGES, type PreparedScene } from '../renderer/prepare.ts';
+import type { BvhWorkerPool } from '../bvh/build-parallel.ts';
 import type { Scene } from '../scene/types.ts';
 
 export type { NamedBytes };
@@ -58,7 +59,11 @@ const STAGE_FRACTIONS: Record<string, number> = { [LOAD_STAGE]: 0.05, [PREPARE_S
 export class SceneRequests {
   private opened?: OpenedScene;
 
-  constructor(private readonly fetchFile: FetchFile = () => Promise.resolve(undefined)) {}
+  /** `bvhPool`: workers for the BVH build (bvh/build-parallel.ts; the same tree), none in tests. */
+  constructor(
+    private readonly fetchFile: FetchFile = () => Promise.resolve(undefined),
+    private readonly bvhPool: () => BvhWorkerPool | undefined = () => undefined,
+  ) {}
 
   /** Opens a file set; throws a LanternError naming a file that is not what its format expects. */
   async openFiles(request: OpenFilesRequest): Promise<FileSetSummary> {
@@ -82,7 +87,7 @@ export class SceneRequests {
     // Loaders report through onWarning or in Scene.warnings (the glTF loader's missing textures):
     // both reach the page, each once.
     for (const w of scene.warnings ?? []) if (!warnings.includes(w)) warnings.push(w);
-    const prepared = prepareScene(scene, (stage) => onProgress(stage, STAGE_FRACTIONS[stage] ?? 0));
+    const prepared = await prepareSceneAsync(scene, (stage) => onProgress(stage, STAGE_FRACTIONS[stage] ?? 0), { bvhPool: this.bvhPool() });
     onProgress('done', 1);
     return { prepared, warnings, loadMs: performance.now() - t0 };
   }

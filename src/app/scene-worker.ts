@@ -6,6 +6,7 @@
 import { LanternError } from '../errors.ts';
 import { loadEnvironmentImage } from '../loaders/environment-image.ts';
 import { SceneRequests, transferables } from './scene-request.ts';
+import { webBvhPool } from './bvh-workers.ts';
 import type { WorkerReply, WorkerRequest } from './scene-protocol.ts';
 
 /** Siblings of a served file (a glTF's textures), fetched beside it; a 404 is a missing file, not an error. */
@@ -16,7 +17,8 @@ async function fetchFile(url: string): Promise<Uint8Array | undefined> {
   return new Uint8Array(await response.arrayBuffer());
 }
 
-const requests = new SceneRequests(fetchFile);
+// BVH build workers, started by the first scene big enough to use them.
+const requests = new SceneRequests(fetchFile, webBvhPool);
 const post = (reply: WorkerReply, transfer: Transferable[] = []) => (self as unknown as Worker).postMessage(reply, transfer);
 
 self.onmessage = async (event: MessageEvent<WorkerRequest>) => {

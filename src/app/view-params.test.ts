@@ -17,6 +17,7 @@ describe('view parameters', () => {
       scale: 0.5,
       accumulate: false,
       animate: false,
+      convergeWhenStill: false,
       toneMapper: 'reinhard',
       exposureStops: -1.5,
       debugView: 'wireframe',

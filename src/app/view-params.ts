@@ -6,7 +6,8 @@
  *   wad=<url>[&wad=<url>…]&map=E1M1    a Doom map from WAD files the server offers (IWAD first)
  *   ply=<url>                          a PLY mesh the server offers
  *                                      (the scene parameters: loaders/scene-link.ts, from the registry)
- *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1
+ *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1  anim=0|1
+ *   converge=0|1                       converge when still (ViewerSettings.convergeWhenStill)
  *   aperture=<radius>  focus=<distance>  the camera's thin lens, scene units (aperture 0: a pinhole;
  *                                      a link with only one of them takes the other from the scene's
  *                                      lens, or focuses on what lies at the image centre;
@@ -49,6 +50,8 @@ export type ViewParams = RenderSettingsPatch & {
   readonly accumulate?: boolean;
   /** Whether the scene's clock runs (ViewerSettings.animate). */
   readonly animate?: boolean;
+  /** Whether a still real-time view converges progressively (ViewerSettings.convergeWhenStill). */
+  readonly convergeWhenStill?: boolean;
   /** The sky that replaces the scene's environment: sun elevation and azimuth (degrees), turbidity. */
   readonly sky?: SkyParams;
   /** Multiplies the sky's radiance. */
@@ -132,6 +135,8 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   if (acc !== null) view.accumulate = acc !== '0';
   const anim = params.get('anim');
   if (anim !== null) view.animate = anim !== '0';
+  const converge = params.get('converge');
+  if (converge !== null) view.convergeWhenStill = converge !== '0';
   const skyRaw = params.get('sky');
   if (skyRaw !== null) {
     const values = skyRaw.split(',').map(Number);
@@ -177,6 +182,7 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
   if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
   if (view.animate !== undefined) p.set('anim', view.animate ? '1' : '0');
+  if (view.convergeWhenStill !== undefined) p.set('converge', view.convergeWhenStill ? '1' : '0');
   if (view.sky) p.set('sky', [view.sky.elevation, view.sky.azimuth, view.sky.turbidity].map(round).join(','));
   if (view.envIntensity !== undefined) p.set('env-intensity', String(round(view.envIntensity)));
   for (const m of view.materials ?? []) p.append(MATERIAL_LINK_PARAM, formatMaterialOverride(m));

@@ -56,15 +56,24 @@ export interface ViewerSettings {
    * toward the camera and the use key still works (its doors move when the clock runs again).
    */
   readonly animate: boolean;
+  /**
+   * Converge when still: while a real-time recipe runs and neither the camera nor the world has changed
+   * since the last frame, the exact progressive estimate accumulates beside the real-time frames and
+   * takes over the display once it holds CONVERGE_HANDOFF_SAMPLES per pixel; the next move hands back.
+   */
+  readonly convergeWhenStill: boolean;
   readonly render: RenderSettings;
 }
 
+/** Samples per pixel the progressive estimate needs before it replaces a still view's denoised frame (about the denoiser's gain at 1 spp: docs/denoise.md). */
+export const CONVERGE_HANDOFF_SAMPLES = 64;
+
 /**
- * Progressive accumulation by default; turning on temporal reprojection or the spatial filter
- * switches to the real-time frame chain (renderer/denoiser.ts), which holds about 320 bytes per
- * pixel of G-buffer and history, so it is the user's choice.
+ * The real-time chain by default (temporal reprojection and the à-trous filter: renderer/denoiser.ts),
+ * converging progressively whenever the view holds still; turning both filters off gives plain
+ * progressive accumulation.
  */
-export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, render: { ...DEFAULT_SETTINGS, temporal: false, denoise: false } });
+export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, convergeWhenStill: true, render: DEFAULT_SETTINGS });
 
 /** Whether these settings ask for a real-time recipe: the denoiser's chain (temporal and/or spatial) or the hybrid recipe. */
 export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise' | 'recipe'>) => s.temporal || s.denoise || s.recipe === 'hybrid';
@@ -83,8 +92,13 @@ export interface PassTime {
   readonly ms: number;
 }
 
+/** What the canvas shows: a real-time frame, the progressive estimate of a still real-time view, or progressive rendering. */
+export type ViewerDisplay = 'frame' | 'converged' | 'progressive';
+
 export interface ViewerStats {
+  /** Samples per pixel behind the image shown (real-time frames count their frames' samples). */
   readonly samples: number;
+  readonly display: ViewerDisplay;
   readonly framesPerSecond: number;
   /** Wall-clock milliseconds between the last two frames. */
   readonly frameMs: number;
@@ -100,6 +114,11 @@ export interface ViewerStats {
   readonly gpuResources: ResourceCount;
   /** The tracing kernels in use: generic, or specialised to the scene once it has gone a second without edits. */
   readonly kernel: KernelKind;
+  /**
+   * Milliseconds from the first Play to the first frame done on the GPU: acquiring the GPU, compiling
+   * what the first frame needs, uploading the scene, the frame itself. Undefined until then.
+   */
+  readonly firstFrameMs: number | undefined;
 }
 
 export interface ViewerHooks {
@@ -144,9 +163,14 @@ export class Viewer {
   /** The loaded scene's own environment, for going back to it. */
   private sceneEnvironment?: Environment;
   private losses: number[] = [];
+  /** When the first Play was pressed, until its first frame is done (then firstFrameMs holds the wait). */
+  private playedAt?: number;
+  private firstFrameMs?: number;
   private legendValue?: DebugLegend;
   /** Real-time frames since the estimate last restarted (scene, settings, size). */
   private realTimeFrames = 0;
+  /** What the last frame put on screen: a real-time frame, or the progressive estimate (progressive mode, or a still view converged). */
+  private displaying: ViewerDisplay = 'progressive';
   private legendAt = 0;
   private expectingLoss = false;
   private disposed = false;
@@ -203,7 +227,8 @@ export class Viewer {
     const rays = f.slice(1).reduce((n, x) => n + x.rays, 0);
     const packed = this.loaded?.prepared.packed.counts;
     return {
-      samples: isRealTime(this.settings.render) ? this.realTimeFrames * this.settings.samplesPerFrame : (this.renderer?.sampleCount ?? 0),
+      samples: this.displaying === 'frame' ? this.realTimeFrames * this.settings.samplesPerFrame : (this.renderer?.sampleCount ?? 0),
+      display: this.displaying,
       framesPerSecond: span > 0 ? (f.length - 1) / span : 0,
       frameMs: f.length > 1 ? f[f.length - 1]!.at - f[f.length - 2]!.at : 0,
       gpuPasses: this.gpuPasses,
@@ -216,6 +241,7 @@ export class Viewer {
       adapter: this.gpu?.adapterName ?? '',
       gpuResources: this.gpu?.resources.count ?? { buffers: 0, textures: 0, bytes: 0 },
       kernel: this.renderer?.kernel ?? 'generic',
+      firstFrameMs: this.firstFrameMs,
     };
   }
 
@@ -223,6 +249,7 @@ export class Viewer {
   async play(): Promise<void> {
     if (this.state === 'playing' || this.state === 'starting' || this.state === 'failed') return;
     if (!this.renderer) {
+      this.playedAt ??= performance.now();
       this.setState('starting');
       await this.start();
     }
@@ -540,7 +567,7 @@ export class Viewer {
   /** The linear radiance (the estimate, or the denoised frame) as EXR bytes: float32 RGB, before exposure and tone mapping. */
   async radianceExr(): Promise<Uint8Array> {
     const renderer = this.requireRenderer();
-    const { width, height, radiance } = isRealTime(this.settings.render) && this.realTimeFrames > 0 ? await renderer.readFrame() : await renderer.readAccumulation();
+    const { width, height, radiance } = this.displaying === 'frame' && this.realTimeFrames > 0 ? await renderer.readFrame() : await renderer.readAccumulation();
     return encodeExr(width, height, radiance);
   }
 
@@ -556,6 +583,7 @@ export class Viewer {
       scale: s.scale,
       accumulate: s.accumulate,
       ...(s.animate ? {} : { animate: false }),
+      ...(s.convergeWhenStill ? {} : { convergeWhenStill: false }),
       ...Object.fromEntries(LINKED_RENDER_SETTINGS.map((k) => [k, s.render[k]])),
       ...linkOfEnvironment(this.environmentOverride),
       ...(this.materialEdits.size > 0 ? { materials: this.materialOverrides } : {}),
@@ -590,14 +618,15 @@ export class Viewer {
     const context = this.canvas.getContext('webgpu');
     if (!context) throw new LanternError('the canvas has no WebGPU context', 'Reload the page; if it persists, the browser has WebGPU disabled');
     context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
-    const renderer = await Renderer.create(gpu);
+    // What the first frame needs and nothing more, compiled side by side: the path tracer for the
+    // loaded scene alone (its upload overlaps the compile), the tone mapper and the present pass;
+    // then whatever the settings ask for (debug views, a real-time recipe, spectral), together.
+    const s = this.settings.render;
+    const renderer = await Renderer.create(gpu, { presentation: true, ...(this.loaded ? { features: this.loaded.prepared.packed.features } : {}) });
     // The renderer's idle policy: kernels specialised to the scene once it has gone this long without an
     // edit. Not on SwiftShader (a CPU): compiling them there takes minutes of the CPU the page runs on.
     if (!/swiftshader/i.test(gpu.adapterName)) renderer.setIdleSpecialisation(SPECIALISE_AFTER_IDLE_MS);
-    await renderer.enablePresentation();
-    if (this.settings.render.debugView !== 'none') await renderer.enableDebugViews();
-    await enableRecipe(renderer, this.settings.render);
-    if (this.settings.render.spectral) await renderer.enableSpectral();
+    await Promise.all([s.debugView !== 'none' ? renderer.enableDebugViews() : undefined, enableRecipe(renderer, s), s.spectral ? renderer.enableSpectral() : undefined]);
     this.realTimeFrames = 0;
     renderer.updateSettings(this.settings.render);
     this.gpu = gpu;
@@ -675,7 +704,10 @@ export class Viewer {
         return;
       }
       try {
-        await this.renderFrame(renderer, context, Math.min(0.1, (now - this.lastFrame) / 1000));
+        // An animation frame's time is when the frame began, which precedes loop()'s performance.now()
+        // when the main thread was busy past a frame boundary (a scene upload on a loaded CPU): the
+        // first step would go back in time, and World.advance refuses a negative dt.
+        await this.renderFrame(renderer, context, Math.min(0.1, Math.max(0, (now - this.lastFrame) / 1000)));
       } catch (e) {
         this.looping = false;
         // A frame cut short by a lost device is the loss handler's business, not a failure.
@@ -729,10 +761,27 @@ export class Viewer {
     if (debugOnly) {
       // Nothing to trace: the debug view is drawn by present().
     } else if (isRealTime(render)) {
-      // The real-time chain keeps its own history across camera moves (reprojection).
-      renderer.renderFrame(this.settings.samplesPerFrame, timer);
-      this.realTimeFrames++;
-    } else renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
+      // The real-time chain keeps its own history across camera moves (reprojection). A view that held
+      // still since the last frame (no reset of the estimate: camera, world, settings) also adds to the
+      // exact progressive estimate, which is shown once it has enough samples.
+      const spf = this.settings.samplesPerFrame;
+      const still = this.settings.convergeWhenStill && !fresh && this.realTimeFrames > 0;
+      if (still && renderer.sampleCount >= CONVERGE_HANDOFF_SAMPLES) {
+        renderer.accumulate(spf, undefined, timer);
+        this.displaying = 'converged';
+      } else {
+        renderer.renderFrame(spf, timer);
+        this.realTimeFrames++;
+        if (still) {
+          renderer.accumulate(spf);
+          renderer.show('frame');
+        }
+        this.displaying = 'frame';
+      }
+    } else {
+      renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
+      this.displaying = 'progressive';
+    }
     renderer.present(context.getCurrentTexture(), timer);
     // Reading the counters waits for the frame (one frame in flight) and counts its rays exactly.
     const counts = await renderer.readRayCounts();
@@ -747,6 +796,7 @@ export class Viewer {
     }
     this.frames.push({ at: performance.now(), rays });
     if (this.frames.length > STATS_WINDOW) this.frames.shift();
+    if (this.playedAt !== undefined && this.firstFrameMs === undefined) this.firstFrameMs = performance.now() - this.playedAt;
   }
 }
 

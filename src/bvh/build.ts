@@ -27,7 +27,7 @@ export const DEFAULT_BVH_BUILD_OPTIONS: BvhBuildOptions = Object.freeze({
   maxDepth: 60,
 });
 
-function resolveOptions(partial: Partial<BvhBuildOptions>): BvhBuildOptions {
+export function resolveBvhOptions(partial: Partial<BvhBuildOptions>): BvhBuildOptions {
   const o = { ...DEFAULT_BVH_BUILD_OPTIONS, ...partial };
   const bad = (what: string): never => {
     throw new LanternError(`invalid BVH build option: ${what}`);
@@ -56,49 +56,131 @@ const Split = { Leaf: 0, Binned: 1, Small: 2, Middle: 3 } as const;
  * Candidate planes: nodes of more than SMALL_NODE_MAX triangles bin centroids into `bins` slabs per
  * axis spanning the node's box (the centroid bounds when that finds nothing); smaller nodes score
  * every gap between sorted centroids exactly (sah-small.ts).
+ *
+ * Every decision about a node depends only on its own triangles (their boxes, in the order the
+ * partitions above left them), its box and its depth, never on when it is built: that is what lets
+ * build-parallel.ts build subtrees elsewhere and get this exact tree.
  */
 export function buildBvh(positions: Float32Array, options: Partial<BvhBuildOptions> = {}, kinds?: Uint8Array): Bvh {
   const startMs = performance.now();
-  const opts = resolveOptions(options);
+  const opts = resolveBvhOptions(options);
   /** Primitive boxes, permuted in step with `index` so every node's primitives are contiguous in it. */
   const work = computeTriangleBoxes(positions, kinds);
-  const workBits = new Uint32Array(work.buffer, work.byteOffset, work.length);
   const n = work.length / 6;
   if (n === 0) throw new LanternError('cannot build a BVH over zero triangles');
-  const Ct = opts.traversalCost, Ci = opts.intersectionCost;
-
-  // A binary tree whose leaves hold >= 1 triangle has at most 2n-1 nodes; +1 for the unused slot 1.
-  const slots = 2 * n;
-  const bounds = new Float32Array(slots * 6);
-  const leftFirst = new Uint32Array(slots);
-  const triCount = new Uint32Array(slots);
   const index = new Uint32Array(n);
   for (let i = 0; i < n; i++) index[i] = i;
+  const tree = newTree(2 * n);
+  rangeBox(work, 0, n, tree.bounds, 0);
+  const totals = newTotals();
+  buildSubtree(new NodeSplitter(opts, work, index), tree, 0, 0, n, 0, totals);
+  return finishBvh(tree, totals, index, n, startMs);
+}
 
+/** Node arrays of a tree being built: slot 0 the root, slot 1 the unused inverted box, pairs from 2. */
+export interface TreeArrays {
+  readonly bounds: Float32Array;
+  readonly leftFirst: Uint32Array;
+  readonly triCount: Uint32Array;
+}
+
+/** Node arrays for `slots` nodes, slot 1 already holding its inverted but finite box. */
+export function newTree(slots: number): TreeArrays {
+  const bounds = new Float32Array(slots * 6);
   // Slot 1: inverted but finite box, so it never hits and never feeds an infinity to the GPU.
   bounds.fill(F32_MAX, 6, 9);
   bounds.fill(-F32_MAX, 9, 12);
-  rangeBox(work, 0, n, bounds, 0);
+  return { bounds, leftFirst: new Uint32Array(slots), triCount: new Uint32Array(slots) };
+}
 
+/** What the build loop counts as it goes; `next` is the next free slot (children come in pairs). */
+export interface BuildTotals {
+  next: number;
+  leafCount: number;
+  maxDepth: number;
+  leafDepthSum: number;
+  /** SAH cost sums, area-weighted and (for a zero-area root) unweighted, in build (preorder) order. */
+  sahWeighted: number;
+  sahUnweighted: number;
+}
+
+export const newTotals = (): BuildTotals => ({ next: 2, leafCount: 0, maxDepth: 0, leafDepthSum: 0, sahWeighted: 0, sahUnweighted: 0 });
+
+/** The tree's arrays trimmed to the slots used, with its statistics. */
+export function finishBvh(tree: TreeArrays, totals: BuildTotals, index: Uint32Array, n: number, startMs: number): Bvh {
+  const rootArea = halfAreaAt(tree.bounds, 0);
+  const nodeCount = totals.next;
+  // Copies, so that larger scratch allocations (2n slots) can be freed; arrays of the right size as they are.
+  const fit = <T extends Float32Array | Uint32Array>(a: T, length: number): T => (a.length === length ? a : (a.slice(0, length) as T));
+  return {
+    nodeCount,
+    bounds: fit(tree.bounds, nodeCount * 6),
+    leftFirst: fit(tree.leftFirst, nodeCount),
+    triCount: fit(tree.triCount, nodeCount),
+    triIndices: index,
+    stats: {
+      buildMs: performance.now() - startMs,
+      nodeCount: nodeCount - 1,
+      leafCount: totals.leafCount,
+      maxDepth: totals.maxDepth,
+      meanLeafDepth: totals.leafDepthSum / totals.leafCount,
+      sahCost: rootArea > 0 ? totals.sahWeighted / rootArea : totals.sahUnweighted,
+      triangleCount: n,
+    },
+  };
+}
+
+/** The split search and partition of one node, over one working range of boxes and indices. */
+export class NodeSplitter {
+  readonly opts: BvhBuildOptions;
+  readonly work: Float32Array;
+  readonly workBits: Uint32Array;
+  readonly index: Uint32Array;
+  readonly binner: SahBinner;
+  readonly small = new SmallSahSplitter();
+  /** The binning range of the current node: min xyz, max xyz in centroid (min + max) units. */
+  readonly range = new Float64Array(6);
+
+  constructor(opts: BvhBuildOptions, work: Float32Array, index: Uint32Array) {
+    this.opts = opts;
+    this.work = work;
+    this.workBits = new Uint32Array(work.buffer, work.byteOffset, work.length);
+    this.index = index;
+    this.binner = new SahBinner(opts.bins);
+  }
+}
+
+/**
+ * Builds the subtree under `root` (whose box is already in tree.bounds) over work/index[first,
+ * first + count) at `depth`, allocating child pairs from totals.next on. Leaves store
+ * `leafBase + first`, so a range copied out of a bigger array can store its leaves' places in that
+ * array. With `defer`, a popped node for which it returns true is left untouched (no leaf, no
+ * children, no statistics) for someone else to build; build-parallel.ts uses that for the top levels.
+ */
+export function buildSubtree(
+  s: NodeSplitter, tree: TreeArrays, root: number, first0: number, count0: number, depth0: number, totals: BuildTotals,
+  leafBase = 0, defer?: (node: number, first: number, count: number, depth: number) => boolean,
+): void {
+  const { opts, work, workBits, index, binner, small, range } = s;
+  const { bounds, leftFirst, triCount } = tree;
+  const Ct = opts.traversalCost, Ci = opts.intersectionCost;
   // Work stack of (node, first, count, depth). Each split pops one node and pushes its two
   // children, so from the bottom up the depths strictly increase except for the sibling pair on
-  // top: at most D + 2 entries for a tree of depth D <= min(maxDepth, n - 1).
-  const stack = new Uint32Array((Math.min(opts.maxDepth, n) + 2) * 4);
-  stack[2] = n;
+  // top: at most D + 2 entries for a tree of depth D <= min(maxDepth, count - 1).
+  const stack = new Uint32Array((Math.min(opts.maxDepth, count0) + 2) * 4);
+  stack[0] = root;
+  stack[1] = first0;
+  stack[2] = count0;
+  stack[3] = depth0;
   let sp = 1;
-  let next = 2;
-
-  const binner = new SahBinner(opts.bins);
-  const small = new SmallSahSplitter();
-  /** The binning range of the current node: min xyz, max xyz in centroid (min + max) units. */
-  const range = new Float64Array(6);
-  let leafCount = 0, maxDepth = 0, leafDepthSum = 0;
-  // SAH cost sums, area-weighted and (for a zero-area root) unweighted.
-  let sahWeighted = 0, sahUnweighted = 0;
+  let next = totals.next;
+  let leafCount = totals.leafCount, maxDepth = totals.maxDepth, leafDepthSum = totals.leafDepthSum;
+  let sahWeighted = totals.sahWeighted, sahUnweighted = totals.sahUnweighted;
 
   while (sp > 0) {
     sp--;
     const node = stack[sp * 4]!, first = stack[sp * 4 + 1]!, count = stack[sp * 4 + 2]!, depth = stack[sp * 4 + 3]!;
+    if (defer !== undefined && defer(node, first, count, depth)) continue;
     const end = first + count;
     const area = halfAreaAt(bounds, node);
     if (depth > maxDepth) maxDepth = depth;
@@ -133,7 +215,7 @@ export function buildBvh(positions: Float32Array, options: Partial<BvhBuildOptio
     }
 
     if (how === Split.Leaf) {
-      leftFirst[node] = first;
+      leftFirst[node] = leafBase + first;
       triCount[node] = count;
       leafCount++;
       leafDepthSum += depth;
@@ -179,29 +261,12 @@ export function buildBvh(positions: Float32Array, options: Partial<BvhBuildOptio
     stack[r + 7] = depth + 1;
     sp += 2;
   }
-
-  const rootArea = halfAreaAt(bounds, 0);
-  const nodeCount = next;
-  // Copies, so the 2n-slot scratch allocations can be freed.
-  const usedBounds = bounds.slice(0, nodeCount * 6);
-  const usedLeftFirst = leftFirst.slice(0, nodeCount);
-  const usedTriCount = triCount.slice(0, nodeCount);
-  return {
-    nodeCount,
-    bounds: usedBounds,
-    leftFirst: usedLeftFirst,
-    triCount: usedTriCount,
-    triIndices: index,
-    stats: {
-      buildMs: performance.now() - startMs,
-      nodeCount: nodeCount - 1,
-      leafCount,
-      maxDepth,
-      meanLeafDepth: leafDepthSum / leafCount,
-      sahCost: rootArea > 0 ? sahWeighted / rootArea : sahUnweighted,
-      triangleCount: n,
-    },
-  };
+  totals.next = next;
+  totals.leafCount = leafCount;
+  totals.maxDepth = maxDepth;
+  totals.leafDepthSum = leafDepthSum;
+  totals.sahWeighted = sahWeighted;
+  totals.sahUnweighted = sahUnweighted;
 }
 
 function copyBox(box: Float64Array, bounds: Float32Array, node: number): void {
@@ -209,7 +274,7 @@ function copyBox(box: Float64Array, bounds: Float32Array, node: number): void {
 }
 
 /** Exact box of work[start..end) into out[outOff..outOff+6). */
-function rangeBox(work: Float32Array, start: number, end: number, out: Float32Array, outOff: number): void {
+export function rangeBox(work: Float32Array, start: number, end: number, out: Float32Array, outOff: number): void {
   let x0 = Infinity, y0 = Infinity, z0 = Infinity, x1 = -Infinity, y1 = -Infinity, z1 = -Infinity;
   for (let b = start * 6, bEnd = end * 6; b < bEnd; b += 6) {
     if (work[b]! < x0) x0 = work[b]!;

@@ -23,8 +23,8 @@ import type { AnyTrace, ClosestTrace } from './traverse.ts';
 import { computeTriangleBoxes } from './triangle-boxes.ts';
 import { PRIMITIVE_KIND } from '../scene/triangles.ts';
 
-/** How the static world is traced: its BVH, or its uniform grid (the setting `accel`). */
-export const ACCELS = ['bvh', 'grid'] as const;
+/** How the static world is traced: its BVH, its uniform grid, or a wide tree collapsed from its BVH (bvh/wide.ts) (the setting `accel`). */
+export const ACCELS = ['bvh', 'grid', 'bvh4', 'cwbvh'] as const;
 export type Accel = (typeof ACCELS)[number];
 
 /**

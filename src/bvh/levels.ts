@@ -16,6 +16,7 @@ import { buildTlas, type Tlas } from './tlas.ts';
 import { f32Down, f32Up } from './triangle-boxes.ts';
 import { traceClosest, type ClosestTrace, type Hit } from './traverse.ts';
 import { traceGrid, type Grid } from './grid.ts';
+import { traceWide, type WideBvh } from './wide.ts';
 import { intersectAabb, prepareRay, T_MISS, type Ray } from './ray.ts';
 import { IDENTITY, invertAffine, transformDirection, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { flattenTriangles, PRIMITIVE_FLOATS, type TriangleList } from '../scene/triangles.ts';
@@ -64,21 +65,33 @@ export function refitMeshBlas(scene: Scene, blas: MeshBlas, mesh: Mesh): MeshBla
  * `triangles.positions` as a single-level BVH does.
  */
 export function buildStaticBvh(scene: Scene, triangles: TriangleList): Bvh {
+  const input = staticPrimitives(scene, triangles);
+  return input ? withSourceIndices(buildBvh(input.positions, {}, input.kinds), input.keep) : emptyBvh();
+}
+
+/** `buildStaticBvh` with another builder (build-parallel.ts's, on workers); the same tree. */
+export async function buildStaticBvhWith(scene: Scene, triangles: TriangleList, build: (positions: Float32Array, kinds: Uint8Array) => Promise<Bvh>): Promise<Bvh> {
+  const input = staticPrimitives(scene, triangles);
+  return input ? withSourceIndices(await build(input.positions, input.kinds), input.keep) : emptyBvh();
+}
+
+/** The primitives of the static world, and which entries of the whole list they are (absent: all); undefined when there are none. */
+function staticPrimitives(scene: Scene, triangles: TriangleList): { positions: Float32Array; kinds: Uint8Array; keep?: number[] } | undefined {
   const moving = scene.instances.map((inst) => inst.moves === true);
-  if (!moving.some(Boolean)) return buildBvh(triangles.positions, {}, triangles.kinds);
+  if (!moving.some(Boolean)) return { positions: triangles.positions, kinds: triangles.kinds };
   const keep: number[] = [];
   for (let t = 0; t < triangles.count; t++) if (!moving[triangles.instanceIds[t]!]) keep.push(t);
-  if (keep.length === 0) return emptyBvh();
+  if (keep.length === 0) return undefined;
   const positions = new Float32Array(keep.length * PRIMITIVE_FLOATS);
   const kinds = new Uint8Array(keep.length);
   keep.forEach((t, i) => {
     positions.set(triangles.positions.subarray(t * PRIMITIVE_FLOATS, (t + 1) * PRIMITIVE_FLOATS), i * PRIMITIVE_FLOATS);
     kinds[i] = triangles.kinds[t]!;
   });
-  const bvh = buildBvh(positions, {}, kinds);
-  const triIndices = bvh.triIndices.map((i) => keep[i]!);
-  return { ...bvh, triIndices };
+  return { positions, kinds, keep };
 }
+
+const withSourceIndices = (bvh: Bvh, keep: number[] | undefined): Bvh => (keep ? { ...bvh, triIndices: bvh.triIndices.map((i) => keep[i]!) } : bvh);
 
 /** The static world of a scene where everything moves: a root leaf of nothing, its box inverted (no ray enters it). */
 export function emptyBvh(): Bvh {
@@ -167,12 +180,14 @@ export interface SceneHit {
 /**
  * The CPU oracle of two-level traversal: the top level visited near child first, each instance's
  * bottom level traced with the ray in its object space (t is preserved: the direction is transformed,
- * not normalised). Without levels, the static world alone. With `grid` (bvh/grid.ts), the static world
- * is traced through it instead of its BVH (the same records: the grid lists the BVH's leaves).
+ * not normalised). Without levels, the static world alone. With `accel` (a grid, bvh/grid.ts, or a wide
+ * tree, bvh/wide.ts), the static world is traced through it instead of its BVH (the same records: both
+ * index the BVH's leaves).
  */
-export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh, levels: SceneLevels | undefined, ray: Ray, grid?: Grid): SceneHit | null {
+export function traceScene(scene: Scene, triangles: TriangleList, staticBvh: Bvh, levels: SceneLevels | undefined, ray: Ray, accel?: Grid | WideBvh): SceneHit | null {
   const tMax = ray.tMax ?? T_MISS;
-  const traceStatic = (r: Ray): ClosestTrace => (grid ? traceGrid(grid, triangles.positions, r, triangles.kinds) : traceClosest(staticBvh, triangles.positions, r, triangles.kinds));
+  const traceStatic = (r: Ray): ClosestTrace =>
+    accel === undefined ? traceClosest(staticBvh, triangles.positions, r, triangles.kinds) : 'layout' in accel ? traceWide(accel, triangles.positions, r, triangles.kinds) : traceGrid(accel, triangles.positions, r, triangles.kinds);
   if (!levels) {
     const r = traceStatic(ray);
     return r.hit ? { ...pick(r.hit), triangle: r.hit.triangle, instance: 0, nodesVisited: r.nodesVisited } : null;

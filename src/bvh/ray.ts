@@ -67,9 +67,11 @@ export function prepareRay(ray: Ray): PreparedRay {
  */
 export function intersectAabb(bounds: ArrayLike<number>, node: number, ray: PreparedRay, tBest: number): number {
   const b = node * 6;
-  const tx0 = (bounds[b]! - ray.ox) * ray.ix, tx1 = (bounds[b + 3]! - ray.ox) * ray.ix;
-  const ty0 = (bounds[b + 1]! - ray.oy) * ray.iy, ty1 = (bounds[b + 4]! - ray.oy) * ray.iy;
-  const tz0 = (bounds[b + 2]! - ray.oz) * ray.iz, tz1 = (bounds[b + 5]! - ray.oz) * ray.iz;
+  // As the GPU computes it: bound · inv − origin · inv (one fma per slab there).
+  const ox = ray.ox * ray.ix, oy = ray.oy * ray.iy, oz = ray.oz * ray.iz;
+  const tx0 = bounds[b]! * ray.ix - ox, tx1 = bounds[b + 3]! * ray.ix - ox;
+  const ty0 = bounds[b + 1]! * ray.iy - oy, ty1 = bounds[b + 4]! * ray.iy - oy;
+  const tz0 = bounds[b + 2]! * ray.iz - oz, tz1 = bounds[b + 5]! * ray.iz - oz;
   const tNear = Math.max(Math.max(Math.min(tx0, tx1), Math.min(ty0, ty1)), Math.min(tz0, tz1));
   const tFar = Math.min(Math.min(Math.max(tx0, tx1), Math.max(ty0, ty1)), Math.max(tz0, tz1));
   return tNear <= tFar && tFar >= 0 && tNear < tBest ? tNear : T_MISS;

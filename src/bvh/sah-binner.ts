@@ -71,7 +71,14 @@ export class SahBinner {
     this.cost = Infinity;
     if (!anyAxis) return false;
 
-    this.counts.fill(0);
+    const counts = this.counts, box = this.binBox;
+    counts.fill(0);
+    // Empty bins start inverted, so the loop below needs no first-triangle case; the sweeps and
+    // sideBox only read bins whose count is non-zero.
+    for (let m = 0; m < 18 * B; m += 6) {
+      box[m] = Infinity; box[m + 1] = Infinity; box[m + 2] = Infinity;
+      box[m + 3] = -Infinity; box[m + 4] = -Infinity; box[m + 5] = -Infinity;
+    }
     const ox = this.origin[0]!, oy = this.origin[1]!, oz = this.origin[2]!;
     const sx = this.scale[0]!, sy = this.scale[1]!, sz = this.scale[2]!;
     const last = B - 1;
@@ -85,9 +92,30 @@ export class SahBinner {
       if (kx > last) kx = last;
       if (ky > last) ky = last;
       if (kz > last) kz = last;
-      this.addToBin(kx, x0, y0, z0, x1, y1, z1);
-      this.addToBin(B + ky, x0, y0, z0, x1, y1, z1);
-      this.addToBin(2 * B + kz, x0, y0, z0, x1, y1, z1);
+      ky += B;
+      kz += 2 * B;
+      counts[kx] = counts[kx]! + 1; counts[ky] = counts[ky]! + 1; counts[kz] = counts[kz]! + 1;
+      let m = kx * 6;
+      if (x0 < box[m]!) box[m] = x0;
+      if (y0 < box[m + 1]!) box[m + 1] = y0;
+      if (z0 < box[m + 2]!) box[m + 2] = z0;
+      if (x1 > box[m + 3]!) box[m + 3] = x1;
+      if (y1 > box[m + 4]!) box[m + 4] = y1;
+      if (z1 > box[m + 5]!) box[m + 5] = z1;
+      m = ky * 6;
+      if (x0 < box[m]!) box[m] = x0;
+      if (y0 < box[m + 1]!) box[m + 1] = y0;
+      if (z0 < box[m + 2]!) box[m + 2] = z0;
+      if (x1 > box[m + 3]!) box[m + 3] = x1;
+      if (y1 > box[m + 4]!) box[m + 4] = y1;
+      if (z1 > box[m + 5]!) box[m + 5] = z1;
+      m = kz * 6;
+      if (x0 < box[m]!) box[m] = x0;
+      if (y0 < box[m + 1]!) box[m + 1] = y0;
+      if (z0 < box[m + 2]!) box[m + 2] = z0;
+      if (x1 > box[m + 3]!) box[m + 3] = x1;
+      if (y1 > box[m + 4]!) box[m + 4] = y1;
+      if (z1 > box[m + 5]!) box[m + 5] = z1;
     }
     for (let a = 0; a < 3; a++) if (this.scale[a]! > 0) this.sweep(a);
     if (this.axis < 0) return false;

@@ -101,8 +101,8 @@ const mib = (bytes: number): string => `${(bytes / (1024 * 1024)).toFixed(1)} Mi
  *   leaf sizes: 1:160,416 2:279,196 ... (mean 1.82)
  *   node memory: 29.3 MiB (35.2 bytes/triangle); built in 1,140 ms
  */
-export function formatBvhStats(bvh: Bvh, options: BvhStatsOptions = {}): string {
-  const s = bvhStats(bvh, options);
+export function formatBvhStats(bvh: Bvh, options: BvhStatsOptions = {}, stats?: BvhStats): string {
+  const s = stats ?? bvhStats(bvh, options);
   const shown = 8;
   const sizes = s.leafSizeHistogram.slice(1, shown + 1).map((n, i) => `${i + 1}:${int(n)}`);
   const larger = s.leafSizeHistogram.slice(shown + 1).reduce((a, b) => a + b, 0);

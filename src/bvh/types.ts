@@ -39,6 +39,8 @@ export interface BvhBuildStats {
    */
   readonly sahCost: number;
   readonly triangleCount: number;
+  /** Worker threads that built it (build-parallel.ts); absent when it was built on the calling thread alone. */
+  readonly workers?: number;
 }
 
 export interface Bvh {

@@ -3,7 +3,9 @@
  * applied over the scene's own camera. For Doom maps, scene coordinates are (x, height, −y) of the
  * map's (x, y, height).
  */
+import type { Command } from 'commander';
 import { LanternError } from '../errors.ts';
+import { numberListOption, numberOption } from './options.ts';
 import { sub, length, cross, type Vec3 } from '../math/vec3.ts';
 import type { Camera } from '../scene/types.ts';
 
@@ -19,4 +21,11 @@ export function cameraFromOptions(base: Camera, look?: number[], fov?: number): 
   }
   if (fov !== undefined) camera = { ...camera, vfovDegrees: fov };
   return camera;
+}
+
+/** `--camera` and `--fov`, as render and bench take them. */
+export function withCameraOptions(command: Command): Command {
+  return command
+    .option('--camera <px,py,pz,tx,ty,tz>', 'camera position and look-at target in scene coordinates (Doom maps: x, height, -y)', numberListOption('--camera', [6]))
+    .option('--fov <degrees>', 'vertical field of view', numberOption('--fov', 1, 179));
 }

@@ -8,6 +8,7 @@ import { existsSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { acquireGpu, type GpuContext } from '../gpu/device.ts';
 import { LanternError } from '../errors.ts';
+import type { StageListener } from '../gpu/stage-log.ts';
 
 export const SWIFTSHADER_ICD = '/usr/lib/chromium/vk_swiftshader_icd.json';
 
@@ -46,6 +47,8 @@ export interface NodeGpuOptions {
   readonly onNote?: (note: string) => void;
   /** Use SwiftShader even where a GPU exists (tests: identical results on every machine). */
   readonly forceSwiftShader?: boolean;
+  /** Hears how long each step took: loading Dawn, the adapter, the device (start-up timelines). */
+  readonly onStage?: StageListener;
 }
 
 /**
@@ -54,21 +57,37 @@ export interface NodeGpuOptions {
  */
 const DEFAULT_DAWN_OPTIONS = ['disable-dawn-features=timestamp_quantization'];
 
+/**
+ * Extra Dawn options from the environment, space-separated (LANTERN_DAWN_OPTIONS, e.g.
+ * 'enable-dawn-features=disable_robustness'): for measuring what a Dawn toggle changes.
+ */
+function environmentDawnOptions(): string[] {
+  return (process.env.LANTERN_DAWN_OPTIONS ?? '').split(/\s+/).filter((o) => o !== '');
+}
+
 export async function acquireNodeGpu(options: NodeGpuOptions = {}): Promise<GpuContext> {
+  const t0 = performance.now();
   const { create } = await loadDawn();
-  const dawnOptions = [...DEFAULT_DAWN_OPTIONS, ...(options.dawnOptions ?? [])];
+  options.onStage?.({ stage: 'load Dawn', startMs: t0, endMs: performance.now() });
+  const dawnOptions = [...DEFAULT_DAWN_OPTIONS, ...(options.dawnOptions ?? []), ...environmentDawnOptions()];
   // The Vulkan loader complains on every start without it.
   process.env.XDG_RUNTIME_DIR ??= tmpdir();
   const driverChosen = process.env.VK_ICD_FILENAMES !== undefined || process.env.VK_DRIVER_FILES !== undefined;
+  const stages = options.onStage ? { onStage: options.onStage } : {};
   if (options.forceSwiftShader) useSwiftShader();
   else if (!driverChosen) {
-    const adapter = await createInstance(create, dawnOptions).requestAdapter({ powerPreference: 'high-performance' });
-    if (!adapter && existsSync(SWIFTSHADER_ICD)) {
+    // Where a GPU answers, its adapter is the one to use: no second instance, no second enumeration.
+    const t1 = performance.now();
+    const instance = createInstance(create, dawnOptions);
+    const adapter = await instance.requestAdapter({ powerPreference: 'high-performance' });
+    options.onStage?.({ stage: 'adapter', startMs: t1, endMs: performance.now() });
+    if (adapter) return acquireGpu(instance, { adapter, ...stages });
+    if (existsSync(SWIFTSHADER_ICD)) {
       useSwiftShader();
       options.onNote?.('no GPU adapter found; rendering on the CPU with SwiftShader (slow)');
     }
   }
-  return acquireGpu(createInstance(create, dawnOptions));
+  return acquireGpu(createInstance(create, dawnOptions), stages);
 }
 
 function useSwiftShader(): void {

@@ -2,6 +2,8 @@
  * The `lantern` command line. The only code (with the rest of src/cli) that touches node:*; it drives
  * the same Renderer as the browser page.
  */
+// First: it notes when the bundle started to run (the start-up timeline of `render --timings`).
+import { bundleEvaluated } from './process-clock.ts';
 import { Command } from 'commander';
 import { registerBench } from './commands/bench.ts';
 import { registerBvhStats } from './commands/bvh-stats.ts';
@@ -12,25 +14,34 @@ import { registerRender } from './commands/render.ts';
 import { registerTextures } from './commands/textures.ts';
 import { registerView } from './commands/view.ts';
 import { createCliContext } from './context.ts';
+import { isSceneThread, runSceneThread } from './scene-thread.ts';
 
-const program = new Command();
-const context = createCliContext(() => Boolean(program.opts().verbose));
+bundleEvaluated();
 
-program
-  .name('lantern')
-  .description('Lantern: a WebGPU path tracer, headless')
-  .option('-v, --verbose', 'show stack traces and details on errors')
-  .showHelpAfterError('(run with --help for usage)');
+// The same bundle started as a worker loads a scene for the main thread (scene-thread.ts).
+if (isSceneThread()) await runSceneThread();
+else await runCommand();
 
-registerRender(program, context);
-registerBench(program, context);
-registerInfo(program, context);
-registerBvhStats(program, context);
-registerConvert(program, context);
-registerTextures(program, context);
-registerView(program, context);
-registerDiff(program, context);
+async function runCommand(): Promise<void> {
+  const program = new Command();
+  const context = createCliContext(() => Boolean(program.opts().verbose));
 
-await program.parseAsync(process.argv);
-// Dawn keeps native threads alive; leave as soon as the command is done.
-process.exit(process.exitCode ?? 0);
+  program
+    .name('lantern')
+    .description('Lantern: a WebGPU path tracer, headless')
+    .option('-v, --verbose', 'show stack traces and details on errors')
+    .showHelpAfterError('(run with --help for usage)');
+
+  registerRender(program, context);
+  registerBench(program, context);
+  registerInfo(program, context);
+  registerBvhStats(program, context);
+  registerConvert(program, context);
+  registerTextures(program, context);
+  registerView(program, context);
+  registerDiff(program, context);
+
+  await program.parseAsync(process.argv);
+  // Dawn keeps native threads alive; leave as soon as the command is done.
+  process.exit(process.exitCode ?? 0);
+}

@@ -13,6 +13,7 @@ import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts
 import { describeSceneArguments, formatByName, formatOfFolder, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
 import type { Scene } from '../scene/types.ts';
 import { readFileOrExplain, readJsonFile } from './read-files.ts';
+import type { Timeline } from './timeline.ts';
 
 export const DRAGON_ALIAS = 'dragon';
 
@@ -118,15 +119,19 @@ export interface OpenedFiles {
 }
 
 /** Reads the named files and opens them with the format their bytes (or, failing that, names) say. */
-export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'files' }>): Promise<OpenedFiles> {
+export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'files' }>, timeline?: Timeline): Promise<OpenedFiles> {
+  const t0 = performance.now();
   const files = argument.paths.map((path) => {
     const bytes = readFileOrExplain(path);
     // The file's own name, so that messages about its contents say which file.
     return { path, name: argument.displayName ?? basename(path), bytes, head: bytes };
   });
+  timeline?.end('scene: read files', t0);
   const { format, files: ordered } = formatOfSet(files);
   if (argument.part && !format.part) throw new LanternError(`'${argument.paths.join('+')}#${argument.part}': ${format.description} hold one scene each, there is nothing to pick with '#'`);
+  const t1 = performance.now();
   const opened = await format.open({ files: ordered, resolve: siblingsOf(ordered[0]!.path) });
+  timeline?.end('scene: open', t1);
   // The listed name, so that what is loaded, printed and linked (`lantern view`) is the canonical one.
   const part = argument.part && !opened.parts.some((p) => p.name === argument.part) ? (opened.partNamed?.(argument.part) ?? argument.part) : argument.part;
   if (part && format.part && !opened.parts.some((p) => p.name === part)) {
@@ -135,11 +140,15 @@ export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'f
   return { format, opened, files: ordered, ...(part ? { part } : {}) };
 }
 
-export async function loadSceneArgument(arg: string, options: SceneLoadOptions = {}): Promise<Scene> {
+/** `timeline` hears of reading, opening and building the scene. */
+export async function loadSceneArgument(arg: string, options: SceneLoadOptions = {}, timeline?: Timeline): Promise<Scene> {
   const argument = parseSceneArgument(arg);
-  if (argument.kind === 'builtin') return builtinScene(argument.name);
-  const { opened, part } = await openSceneFiles(argument);
-  return opened.scene(part, loadOptions(options));
+  if (argument.kind === 'builtin') return timeline ? timeline.time('scene: build', () => Promise.resolve(builtinScene(argument.name))) : builtinScene(argument.name);
+  const { opened, part } = await openSceneFiles(argument, timeline);
+  const t0 = performance.now();
+  const scene = await opened.scene(part, loadOptions(options));
+  timeline?.end('scene: build', t0);
+  return scene;
 }
 
 /** The loaders' options from the CLI's (the light table is read from its file here). */

@@ -1,15 +1,20 @@
 /**
  * What every GPU command starts with: load the scene, acquire a device (noting a SwiftShader
- * fallback), create the renderer and upload the scene.
+ * fallback), create the renderer and upload the scene. The scene loads on a worker thread, and the
+ * path tracer's bindings are parsed on another (scene-thread.ts), while this one starts the GPU and
+ * reflects the path tracer; then the path tracer is compiled for that scene alone.
  */
-import { prepareScene, type PreparedScene } from '../renderer/prepare.ts';
-import { withEnvironment } from '../scene/environment-override.ts';
+import type { PreparedScene } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import { Renderer } from '../renderer/renderer.ts';
 import type { Scene } from '../scene/types.ts';
+import { observeStages } from '../gpu/stage-log.ts';
+import { bsdfTableData } from '../gpu/pack/bsdf-tables.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
-import { loadSceneArgument, sceneLoadOptions } from './scene-source.ts';
+import { loadPreparedInThread, reflectBindingsInThread } from './scene-thread.ts';
+import { PATH_TRACE_ENTRY, PATH_TRACE_MODULE } from '../passes/path-trace-pass.ts';
+import type { Timeline } from './timeline.ts';
 
 export interface Session {
   readonly renderer: Renderer;
@@ -17,16 +22,31 @@ export interface Session {
   readonly loadMs: number;
 }
 
-/** `adjust` changes the loaded scene before it is prepared (bench --levels). */
-export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene): Promise<Session> {
-  const t0 = performance.now();
-  const loaded = await loadSceneArgument(sceneArg, sceneLoadOptions(sceneOptions, note));
-  const lit = environment ? withEnvironment(loaded, environment) : loaded;
-  const scene = adjust ? adjust(lit) : lit;
-  const prepared = prepareScene(scene);
-  const loadMs = performance.now() - t0;
-  const gpu = await acquireNodeGpu({ onNote: note });
-  const renderer = await Renderer.create(gpu);
+/** `adjust` changes the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step. */
+export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
+  const loading = loadPreparedInThread(sceneArg, note, sceneOptions, environment, adjust, timeline);
+  // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
+  loading.catch(() => undefined);
+  // The path tracer's second parse (its bindings) on a thread of its own; never fails (see there).
+  const bindings = reflectBindingsInThread(PATH_TRACE_MODULE, [PATH_TRACE_ENTRY], GPUShaderStage.COMPUTE, timeline);
+  let renderer: Renderer | undefined;
+  try {
+    const gpu = await acquireNodeGpu({ onNote: note, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
+    if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
+    // The tone mapper compiles and the path tracer is reflected while the scene loads; then only
+    // the variant this scene needs compiles, and the scene uploads.
+    const features = Promise.all([loading, bindings]).then(([{ prepared }]) => prepared.packed.features);
+    const creating = Renderer.create(gpu, { features });
+    // While the threads work: the BSDF tables every scene upload binds (computed once per process).
+    const t0 = performance.now();
+    bsdfTableData();
+    timeline?.end('BSDF tables', t0);
+    renderer = await creating;
+  } catch (e) {
+    await loading;
+    throw e;
+  }
+  const { prepared, loadMs } = await loading;
   await renderer.setScene(prepared);
   return { renderer, prepared, loadMs };
 }

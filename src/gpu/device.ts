@@ -6,6 +6,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { ResourceCounter } from './resource-count.ts';
+import type { StageListener } from './stage-log.ts';
 
 export interface GpuContext {
   readonly device: GPUDevice;
@@ -47,12 +48,22 @@ export function adapterName(info: GPUAdapterInfo): string {
 
 export async function acquireGpu(
   gpu: GPU | undefined,
-  options: { powerPreference?: GPUPowerPreference; onUncapturedError?: (message: string) => void } = {},
+  options: {
+    powerPreference?: GPUPowerPreference;
+    onUncapturedError?: (message: string) => void;
+    /** An adapter already requested from `gpu` (Node asks once to see whether there is a GPU at all). */
+    adapter?: GPUAdapter;
+    /** Hears how long the adapter and the device took (start-up timelines). */
+    onStage?: StageListener;
+  } = {},
 ): Promise<GpuContext> {
   if (!gpu) {
     throw new LanternError('WebGPU is not available here', 'Use a browser with WebGPU (Chrome or Edge 113+, Safari 26+, Firefox 141+ on Windows) or run the CLI');
   }
-  const adapter = await gpu.requestAdapter({ powerPreference: options.powerPreference ?? 'high-performance' });
+  const t0 = performance.now();
+  const adapter = options.adapter ?? (await gpu.requestAdapter({ powerPreference: options.powerPreference ?? 'high-performance' }));
+  const t1 = performance.now();
+  if (!options.adapter) options.onStage?.({ stage: 'adapter', startMs: t0, endMs: t1 });
   if (!adapter) {
     throw new LanternError('no WebGPU adapter found', 'Check the GPU driver (Vulkan on Linux); without a GPU install Chromium\'s SwiftShader with `apt-get install chromium`');
   }
@@ -64,6 +75,7 @@ export async function acquireGpu(
     requiredFeatures: hasTimestamps ? ['timestamp-query'] : [],
     requiredLimits,
   });
+  options.onStage?.({ stage: 'device', startMs: t1, endMs: performance.now() });
   device.onuncapturederror = (event: GPUUncapturedErrorEvent) => {
     const message = `WebGPU error: ${event.error.message}`;
     if (options.onUncapturedError) options.onUncapturedError(message);

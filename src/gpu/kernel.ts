@@ -5,15 +5,31 @@
  */
 import { LanternError } from '../errors.ts';
 import type { SceneFeatures } from './pack/scene-pack.ts';
+import { reportStage, timedStage } from './stage-log.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
-import { entryPointBindings, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
+import { bindingsKnown, entryPointBindings, isReflected, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
+
+/**
+ * Does the CPU part of making kernels of `module` ahead of time (linking and reflection, cached),
+ * e.g. while the scene whose variant is wanted still loads; reported to the device's stage log.
+ */
+export function reflectKernel(device: GPUDevice, module: string): void {
+  const t0 = performance.now();
+  if (isReflected(module)) return;
+  reflectModule(module);
+  reportStage(device, { stage: `reflect ${module}`, startMs: t0, endMs: performance.now() });
+}
 
 export type NamedResource = GPUBuffer | GPUTextureView | GPUSampler | GPUBufferBinding;
 
 const isBuffer = (r: NamedResource): r is GPUBuffer => typeof (r as GPUBuffer).mapAsync === 'function';
 
 /** Compiles a linked shader, throwing a LanternError that points every error at its module and line. */
-export async function compileShader(device: GPUDevice, linked: LinkedShader): Promise<GPUShaderModule> {
+export function compileShader(device: GPUDevice, linked: LinkedShader): Promise<GPUShaderModule> {
+  return timedStage(device, `shader ${linked.entry}`, () => compileModule(device, linked));
+}
+
+async function compileModule(device: GPUDevice, linked: LinkedShader): Promise<GPUShaderModule> {
   const module = device.createShaderModule({ label: linked.entry, code: linked.code });
   const info = await module.getCompilationInfo();
   const errors = info.messages.filter((m) => m.type === 'error');
@@ -96,19 +112,28 @@ export class ComputeKernel extends BindGroupFactory {
   }
 
   static async create(device: GPUDevice, options: KernelOptions): Promise<ComputeKernel> {
+    const reflectStart = performance.now();
+    const first = typeof options.module === 'string' && !isReflected(options.module);
     const shader = typeof options.module === 'string' ? reflectModule(options.module) : options.module;
+    if (first) reportStage(device, { stage: `reflect ${shader.linked.entry}`, startMs: reflectStart, endMs: performance.now() });
     const label = `${shader.linked.entry}:${options.entryPoint}`;
+    const parse = !bindingsKnown(shader, [options.entryPoint], GPUShaderStage.COMPUTE);
+    const bindingsStart = performance.now();
     const slots = entryPointBindings(shader, [options.entryPoint], GPUShaderStage.COMPUTE);
+    if (parse) reportStage(device, { stage: `bindings ${label}`, startMs: bindingsStart, endMs: performance.now() });
     const module = await (options.cacheModule === false ? compileShader(device, shader.linked) : cachedModule(device, shader));
     const layouts = createBindGroupLayouts(device, label, slots);
     const layout = device.createPipelineLayout({ label, bindGroupLayouts: layouts });
     let pipeline: GPUComputePipeline;
     try {
-      pipeline = await device.createComputePipelineAsync({
-        label,
-        layout,
-        compute: { module, entryPoint: options.entryPoint, ...(options.constants ? { constants: options.constants } : {}) },
-      });
+      const constants = options.constants ?? {};
+      const detail = Object.entries(constants).map(([k, v]) => `${k}=${v}`).join(' ');
+      pipeline = await timedStage(
+        device,
+        `pipeline ${label}`,
+        () => device.createComputePipelineAsync({ label, layout, compute: { module, entryPoint: options.entryPoint, constants } }),
+        detail,
+      );
     } catch (e) {
       throw new LanternError(`could not create the compute pipeline ${label}: ${(e as Error).message}`, undefined, { cause: e });
     }
@@ -117,6 +142,17 @@ export class ComputeKernel extends BindGroupFactory {
 
   /** Records a dispatch. `groups` maps group index to bind group; groups with no bindings get an empty one. */
   dispatch(pass: GPUComputePassEncoder, groups: Readonly<Record<number, GPUBindGroup>>, x: number, y = 1, z = 1): void {
+    this.bind(pass, groups);
+    pass.dispatchWorkgroups(x, y, z);
+  }
+
+  /** Records a dispatch whose workgroup counts are three u32 at `offset` of `args` (written by an earlier dispatch). */
+  dispatchIndirect(pass: GPUComputePassEncoder, groups: Readonly<Record<number, GPUBindGroup>>, args: GPUBuffer, offset: number): void {
+    this.bind(pass, groups);
+    pass.dispatchWorkgroupsIndirect(args, offset);
+  }
+
+  private bind(pass: GPUComputePassEncoder, groups: Readonly<Record<number, GPUBindGroup>>): void {
     pass.setPipeline(this.pipeline);
     for (let g = 0; g < this.layouts.length; g++) {
       const given = groups[g];
@@ -124,7 +160,6 @@ export class ComputeKernel extends BindGroupFactory {
       else if (this.namesIn(g).length === 0) pass.setBindGroup(g, this.emptyGroup(g));
       else throw new Error(`${this.label}: bind group ${g} (${this.namesIn(g).join(', ')}) was not given`);
     }
-    pass.dispatchWorkgroups(x, y, z);
   }
 
   private emptyGroup(g: number): GPUBindGroup {
@@ -169,6 +204,9 @@ export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
   analyticPrimitives: 'SCENE_HAS_ANALYTIC_PRIMITIVES',
   instances: 'SCENE_HAS_INSTANCES',
   staticGrid: 'STATIC_ACCEL_GRID',
+  staticBvh4: 'STATIC_ACCEL_BVH4',
+  staticCwbvh: 'STATIC_ACCEL_CWBVH',
+  shallowStack: 'BVH_SHALLOW_STACK',
 };
 
 /**
@@ -187,10 +225,16 @@ export class SceneKernels {
     private readonly extraConstants: Record<string, number> = {},
   ) {}
 
-  /** Creates the set and compiles the variant of a plain scene (diffuse, opaque, no lights but emitters), so errors surface at once. */
-  static async create(device: GPUDevice, base: Omit<KernelOptions, 'constants'>, features: readonly (keyof SceneFeatures)[], extraConstants: Record<string, number> = {}): Promise<SceneKernels> {
+  /**
+   * Creates the set and compiles the variant of a plain scene (diffuse, opaque, no lights but
+   * emitters), so errors surface at once. With `first`, the features of the scene about to be
+   * rendered, that variant alone starts compiling instead and the set is returned at once: the
+   * scene's prepare() awaits it and reports its errors; no plain variant is compiled for nothing.
+   */
+  static async create(device: GPUDevice, base: Omit<KernelOptions, 'constants'>, features: readonly (keyof SceneFeatures)[], extraConstants: Record<string, number> = {}, first?: SceneFeatures): Promise<SceneKernels> {
     const kernels = new SceneKernels(device, base, features, extraConstants);
-    await kernels.prepare(PLAIN_SCENE);
+    if (first) kernels.prepare(first).catch(() => undefined); // prepare(first) again reports a failure
+    else await kernels.prepare(PLAIN_SCENE);
     return kernels;
   }
 
@@ -219,8 +263,8 @@ export class SceneKernels {
   }
 }
 
-export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticGrid: false });
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticGrid: false, staticBvh4: false, staticCwbvh: false, shallowStack: false });
 /** The features every path-tracing entry point compiles by. */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid'];
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];
 /** The features of passes that only trace (debug views, ray buffers). */
-export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticGrid'];
+export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];

@@ -1,5 +1,6 @@
 import { encode } from 'fast-png';
 import { zlibSync } from 'fflate';
+import { deflateSync } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
 import { LanternError } from '../errors.ts';
 import { decodePng, encodePng } from './png.ts';
@@ -42,6 +43,23 @@ describe('PNG', () => {
     const image = decodePng(file);
     expect([image.width, image.height]).toEqual([width, height]);
     expect(image.data).toEqual(rgba);
+  });
+
+  it('round-trips through any zlib (Node\'s native one, as the CLI passes), with valid CRCs', () => {
+    const rgba = randomBytes(33 * 7 * 4, 3);
+    for (const level of [0, 1, 6]) {
+      const image = decodePng(encodePng(33, 7, rgba, (raw) => deflateSync(raw, { level })));
+      expect(image.data).toEqual(rgba);
+    }
+  });
+
+  it('filters rows by their left neighbours: a horizontal ramp compresses to a fraction of its pixels', () => {
+    const width = 128, height = 16;
+    const rgba = new Uint8Array(width * height * 4);
+    for (let i = 0; i < width * height; i++) rgba.set([2 * (i % width), (3 * i) % 256, 255 - (i % width), 255], 4 * i);
+    const file = encodePng(width, height, rgba);
+    expect(decodePng(file).data).toEqual(rgba);
+    expect(file.length).toBeLessThan(rgba.length / 50);
   });
 
   it('converts grey, grey+alpha, RGB and 16-bit images to 8-bit RGBA', () => {

@@ -1,5 +1,10 @@
-/** 8-bit RGBA PNG in and out, over fast-png, for tone-mapped output and reference images. */
-import { convertIndexedToRgb, decode, encode, type DecodedPng } from 'fast-png';
+/**
+ * 8-bit RGBA PNG in and out: written here (one IDAT of Sub-filtered rows; the zlib step may be
+ * Node's native one, which the CLI passes), read with fast-png, for tone-mapped output and reference
+ * images. PNG: https://www.w3.org/TR/png/ (chunks §5, filters §7.3 and §9).
+ */
+import { convertIndexedToRgb, decode, type DecodedPng } from 'fast-png';
+import { zlibSync } from 'fflate';
 import { LanternError } from '../errors.ts';
 
 export interface RgbaImage {
@@ -9,14 +14,73 @@ export interface RgbaImage {
   readonly data: Uint8Array;
 }
 
-export function encodePng(width: number, height: number, rgba: Uint8Array): Uint8Array {
+/** Compresses bytes into a zlib stream (RFC 1950: header, deflate data, Adler-32). */
+export type Zlib = (raw: Uint8Array) => Uint8Array;
+
+/** fflate at level 3: portable (the page, the exporters); the CLI passes Node's native zlib instead. */
+const portableZlib: Zlib = (raw) => zlibSync(raw, { level: 3 });
+
+const SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
+/** Filter type 1 (Sub): each byte minus the same channel of the pixel to its left; smooth images shrink. */
+const FILTER_SUB = 1;
+
+export function encodePng(width: number, height: number, rgba: Uint8Array, zlib: Zlib = portableZlib): Uint8Array {
   if (!(Number.isInteger(width) && Number.isInteger(height) && width > 0 && height > 0)) {
     throw new LanternError(`cannot write a PNG of ${width}×${height} pixels`);
   }
   if (rgba.length !== width * height * 4) {
     throw new LanternError(`cannot write a PNG: ${rgba.length} bytes given for ${width}×${height} RGBA pixels (${width * height * 4} expected)`);
   }
-  return encode({ width, height, data: rgba, channels: 4, depth: 8 });
+  const stride = width * 4;
+  const filtered = new Uint8Array((stride + 1) * height);
+  for (let y = 0; y < height; y++) {
+    const row = y * stride, out = y * (stride + 1) + 1;
+    filtered[out - 1] = FILTER_SUB;
+    for (let i = 0; i < 4; i++) filtered[out + i] = rgba[row + i]!;
+    for (let i = 4; i < stride; i++) filtered[out + i] = rgba[row + i]! - rgba[row + i - 4]!;
+  }
+  const ihdr = new Uint8Array(13);
+  const header = new DataView(ihdr.buffer);
+  header.setUint32(0, width);
+  header.setUint32(4, height);
+  ihdr.set([8, 6, 0, 0, 0], 8); // 8 bits, RGBA; deflate, adaptive filtering, no interlace
+  const chunks = [chunk('IHDR', ihdr), chunk('IDAT', zlib(filtered)), chunk('IEND', new Uint8Array(0))];
+  const file = new Uint8Array(SIGNATURE.length + chunks.reduce((n, c) => n + c.length, 0));
+  file.set(SIGNATURE);
+  let at = SIGNATURE.length;
+  for (const c of chunks) {
+    file.set(c, at);
+    at += c.length;
+  }
+  return file;
+}
+
+/** Length, type, data, CRC-32 of type and data. */
+function chunk(type: string, data: Uint8Array): Uint8Array {
+  const out = new Uint8Array(12 + data.length);
+  const view = new DataView(out.buffer);
+  view.setUint32(0, data.length);
+  for (let i = 0; i < 4; i++) out[4 + i] = type.charCodeAt(i);
+  out.set(data, 8);
+  view.setUint32(8 + data.length, crc32(out, 4, 8 + data.length));
+  return out;
+}
+
+let crcTable: Uint32Array | undefined;
+
+/** CRC-32 (ISO 3309, as PNG uses it) of bytes[start, end). */
+function crc32(bytes: Uint8Array, start: number, end: number): number {
+  if (!crcTable) {
+    crcTable = new Uint32Array(256);
+    for (let n = 0; n < 256; n++) {
+      let c = n;
+      for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+      crcTable[n] = c >>> 0;
+    }
+  }
+  let c = 0xffffffff;
+  for (let i = start; i < end; i++) c = crcTable[(c ^ bytes[i]!) & 255]! ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
 }
 
 /**

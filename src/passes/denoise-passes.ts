@@ -1,7 +1,9 @@
 /**
  * The denoiser's image passes, each the TypeScript twin of its WGSL module: temporal accumulation
- * (shaders/passes/temporal.wgsl), the à-trous iterations (shaders/passes/atrous.wgsl) and the output
- * (shaders/passes/denoise-output.wgsl). Each is an ImagePass; what differs is its parameters.
+ * (shaders/passes/temporal.wgsl), the à-trous iterations over packed records
+ * (shaders/passes/denoise-atrous.wgsl; `atrousParams` also serves the hybrid recipe's vec4f twin,
+ * shaders/passes/atrous.wgsl) and the output (shaders/passes/denoise-output.wgsl). Each is an
+ * ImagePass; what differs is its parameters.
  */
 import { DENOISE_VIEWS, type DenoiseView } from './variants.ts';
 import { ImagePass } from './image-pass.ts';
@@ -18,8 +20,6 @@ export interface TemporalValues {
   /** 0: no clamp. */
   readonly clampK: number;
   readonly useHistory: boolean;
-  /** The camera is where it was in the previous frame (first-hit emission is averaged only then). */
-  readonly stillCamera: boolean;
 }
 
 export interface DenoisePasses {
@@ -31,7 +31,7 @@ export interface DenoisePasses {
 export async function createDenoisePasses(device: GPUDevice): Promise<DenoisePasses> {
   const [temporal, atrous, output] = await Promise.all([
     ImagePass.create(device, 'passes/temporal', 'temporal_accumulate', 'temporal'),
-    ImagePass.create(device, 'passes/atrous', 'atrous_step', 'a-trous', ATROUS_STEPS.length),
+    ImagePass.create(device, 'passes/denoise-atrous', 'denoise_atrous_step', 'a-trous', ATROUS_STEPS.length),
     ImagePass.create(device, 'passes/denoise-output', 'denoise_output', 'denoise output'),
   ]);
   return { temporal, atrous, output };
@@ -44,7 +44,6 @@ export const temporalParams = (t: TemporalValues): UniformValues => ({
   history_cap: Number.isFinite(t.historyCap) ? t.historyCap : NO_CAP,
   clamp_k: t.clampK,
   use_history: t.useHistory ? 1 : 0,
-  still_camera: t.stillCamera ? 1 : 0,
 });
 
 export const atrousParams = (iteration: number): UniformValues => ({
@@ -53,6 +52,70 @@ export const atrousParams = (iteration: number): UniformValues => ({
   sigma_normal: ATROUS_SIGMAS.normal,
   sigma_depth: ATROUS_SIGMAS.depth,
 });
+
+/** Where an iteration's illumination pairs are: bound array (a: the frame scratch, b: the colour history or the previous moments), words stride · pixel + offset. */
+export interface PairRegion {
+  readonly array: 'a' | 'b';
+  readonly stride: number;
+  readonly offset: number;
+}
+
+/** One à-trous iteration of the real-time chain: what `b` is bound to, its source, its result. */
+export interface AtrousIteration {
+  readonly b: 'history' | 'previous-moments';
+  readonly source: PairRegion;
+  /** 'output': remodulate and write the frame's linear output over the frame scratch (`a`). */
+  readonly result: PairRegion | 'output';
+  /** Also copy the source's own pairs into the colour history (`b`): the history without feedback. */
+  readonly copyHistory: boolean;
+}
+
+const SCRATCH_LOW: PairRegion = { array: 'a', stride: 4, offset: 0 };
+/** Words 2–3 of the frame scratch: where the temporal pass leaves its output (FRAME_TEMPORAL). */
+const SCRATCH_HIGH: PairRegion = { array: 'a', stride: 4, offset: 2 };
+const IN_B: PairRegion = { array: 'b', stride: 2, offset: 0 };
+
+/**
+ * The five iterations' buffers. With feedback (SVGF §4) the first writes the colour history, which
+ * the temporal pass has finished reading, and the next ones read it from there; without, the first
+ * copies the temporal output into the history unfiltered. Both then ping-pong between the two halves
+ * of the frame scratch, pass through the previous frame's moments (read by the temporal pass, free
+ * until the next frame writes them) and end in the output, which overwrites the frame scratch: no
+ * buffer of the chain is allocated for one iteration alone.
+ */
+export function atrousSchedule(feedback: boolean): readonly AtrousIteration[] {
+  return feedback
+    ? [
+        { b: 'history', source: SCRATCH_HIGH, result: IN_B, copyHistory: false },
+        { b: 'history', source: IN_B, result: SCRATCH_LOW, copyHistory: false },
+        { b: 'history', source: SCRATCH_LOW, result: SCRATCH_HIGH, copyHistory: false },
+        { b: 'previous-moments', source: SCRATCH_HIGH, result: IN_B, copyHistory: false },
+        { b: 'previous-moments', source: IN_B, result: 'output', copyHistory: false },
+      ]
+    : [
+        { b: 'history', source: SCRATCH_HIGH, result: SCRATCH_LOW, copyHistory: true },
+        { b: 'history', source: SCRATCH_LOW, result: SCRATCH_HIGH, copyHistory: false },
+        { b: 'history', source: SCRATCH_HIGH, result: SCRATCH_LOW, copyHistory: false },
+        { b: 'previous-moments', source: SCRATCH_LOW, result: IN_B, copyHistory: false },
+        { b: 'previous-moments', source: IN_B, result: 'output', copyHistory: false },
+      ];
+}
+
+/** Parameters of the real-time chain's iteration i (shaders/passes/denoise-atrous.wgsl). */
+export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): UniformValues => {
+  const result = it.result === 'output' ? SCRATCH_LOW : it.result;
+  return {
+    ...atrousParams(iteration),
+    source_array: it.source.array === 'a' ? 0 : 1,
+    source_stride: it.source.stride,
+    source_offset: it.source.offset,
+    result_array: result.array === 'a' ? 0 : 1,
+    result_stride: result.stride,
+    result_offset: result.offset,
+    // ATROUS_PLAIN, ATROUS_COPY_HISTORY, ATROUS_OUTPUT.
+    mode: it.result === 'output' ? 2 : it.copyHistory ? 1 : 0,
+  };
+};
 
 export const denoiseOutputParams = (view: DenoiseView, fullHistory: number, depthScale: number): UniformValues => ({
   view_mode: DENOISE_VIEWS.indexOf(view),

@@ -1,7 +1,7 @@
 /**
- * The real-time frame's path tracer (entry path_trace_frame of shaders/passes/path-trace-frame.wgsl,
- * which imports passes/path-trace): `samples` paths per pixel written, not added, as demodulated
- * radiance, plus the G-buffer. Compiled with CAPTURE_PRIMARY = 1, so the progressive kernel
+ * The real-time frame's path tracer (entries frame_gbuffer then path_trace_frame of
+ * shaders/passes/path-trace-frame.wgsl, which imports passes/path-trace): the G-buffer of the pixel
+ * centres, then `samples` paths per pixel written, not added, as demodulated radiance. Compiled with CAPTURE_PRIMARY = 1, so the progressive kernel
  * (PathTracePass, CAPTURE_PRIMARY = 0) is untouched by the G-buffer writes.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -14,14 +14,14 @@ import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/path-trace-frame';
 
-/** What the frame kernel writes. */
+/** What the frame kernel writes (the records of shaders/denoise/gbuffer.wgsl). */
 export interface FrameTarget {
-  /** vec4f per pixel: the frame's mean demodulated radiance. */
-  readonly frameRadiance: GPUBuffer;
-  /** GBufferTexel per pixel (shaders/denoise/gbuffer.wgsl). */
-  readonly gbuffer: GPUBuffer;
-  /** vec4f per pixel: normal and linear depth, the à-trous filter's guide. */
-  readonly guide: GPUBuffer;
+  /** Four words per pixel (FRAME_*): demodulated radiance (rgb9e5), motion, depth seen from the previous camera. */
+  readonly scratch: GPUBuffer;
+  /** SurfaceTexel per pixel: the pixel-centre surface (normal, linear depth, id). */
+  readonly surface: GPUBuffer;
+  /** FrameTexel per pixel: mean albedo and kept first-hit emission of the samples. */
+  readonly frameRecords: GPUBuffer;
   /** The renderer's ray counters (as PathTraceTarget's): extension and shadow rays are added. */
   readonly rayCounters: GPUBuffer;
 }
@@ -30,20 +30,25 @@ export class PathTraceFramePass {
   private constructor(
     /** Its kernels: the generic variants and, once the renderer specialises, the scene's own. */
     readonly kernels: TracingKernels,
+    /** The G-buffer pass before it (entry frame_gbuffer): generic variants only, RGB only. */
+    private readonly gbufferKernels: TracingKernels,
     private readonly params: UniformParams<UniformValues>,
     private readonly frame: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<PathTraceFramePass> {
-    const kernels = await TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1 });
-    return new PathTraceFramePass(kernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
+    const [kernels, gbufferKernels] = await Promise.all([
+      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1 }),
+      TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }),
+    ]);
+    return new PathTraceFramePass(kernels, gbufferKernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
   }
 
-  prepare(features: SceneFeatures, spectral = false): Promise<void> {
-    return this.kernels.prepare(features, spectral);
+  async prepare(features: SceneFeatures, spectral = false): Promise<void> {
+    await Promise.all([this.kernels.prepare(features, spectral), this.gbufferKernels.prepare(features)]);
   }
 
-  /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
+  /** Writes the parameters now (queue.writeBuffer): submit before encoding again. `gbufferOnly`: the G-buffer pass alone (the wavefront traces the samples). */
   encode(
     encoder: GPUCommandEncoder,
     scene: SceneResources,
@@ -52,11 +57,14 @@ export class PathTraceFramePass {
     target: FrameTarget,
     d: PathTraceDispatch,
     timer?: GpuTimer,
+    gbufferOnly = false,
   ): void {
     this.params.write(pathTraceParams(d));
     this.frame.write({ previous_camera: cameraUniform(previousCamera, view.width / view.height) });
-    const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_radiance: target.frameRadiance, gbuffer: target.gbuffer, guide: target.guide, ray_counters: target.rayCounters });
-    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.gbuffer, targets, d.tile, d.spectral ?? false, timer);
+    const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters });
+    // The G-buffer first: the path kernel then reads the centre's id and filtered emission.
+    this.gbufferKernels.dispatch(encoder, 'frame G-buffer', scene, view, target.surface, targets, d.tile, false, timer);
+    if (!gbufferOnly) this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.surface, targets, d.tile, d.spectral ?? false, timer);
   }
 
   destroy(): void {

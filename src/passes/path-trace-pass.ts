@@ -1,11 +1,11 @@
 /** The path tracer dispatch (shaders/passes/path-trace.wgsl): adds samples to the accumulation buffer. */
-import { SceneKernels, TRACING_FEATURES, type ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
+import { reflectKernel, SceneKernels, TRACING_FEATURES, type ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { compileSpecialised, type SceneSpecialisation, type SpecialisedKernel } from '../gpu/specialisation.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
-import { LIGHT_SAMPLING, type LightSampling } from './variants.ts';
+import { LIGHT_SAMPLING, SAMPLERS, type LightSampling, type Sampler } from './variants.ts';
 import type { Torch } from '../scene/types.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
@@ -26,11 +26,14 @@ export function pathTraceParams(d: PathTraceDispatch): UniformValues {
     max_bounces: d.maxBounces,
     seed: d.seed >>> 0,
     light_sampling: LIGHT_SAMPLING.indexOf(d.lightSampling),
+    sampler: SAMPLERS.indexOf(d.sampler),
     torch: torchUniform(d.torch),
   };
 }
 
 export const PATH_TRACE_MODULE = 'passes/path-trace';
+/** The progressive path tracer's entry point in PATH_TRACE_MODULE. */
+export const PATH_TRACE_ENTRY = 'path_trace';
 const MODULE = PATH_TRACE_MODULE;
 /** Must match @workgroup_size of path_trace (and path_trace_frame). */
 const WORKGROUP = 8;
@@ -50,6 +53,8 @@ export interface PathTraceDispatch {
   readonly maxBounces: number;
   readonly seed: number;
   readonly lightSampling: LightSampling;
+  /** Where the random numbers come from (settings.sampler). */
+  readonly sampler: Sampler;
   /** The torch at the camera, if any. */
   readonly torch?: Torch;
   /** Trace four wavelengths per path (the SPECTRAL variant of lib/spectrum.wgsl; prepare it first). */
@@ -87,9 +92,10 @@ export class TracingKernels {
     private readonly extraConstants: Record<string, number>,
   ) {}
 
-  static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}): Promise<TracingKernels> {
+  /** `first`: the features of the scene to compile for at once (SceneKernels.create; default a plain scene's). */
+  static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}, first?: SceneFeatures): Promise<TracingKernels> {
     const base = { module, entryPoint };
-    return new TracingKernels(device, await SceneKernels.create(device, base, TRACING_FEATURES, extraConstants), base, extraConstants);
+    return new TracingKernels(device, await SceneKernels.create(device, base, TRACING_FEATURES, extraConstants, first), base, extraConstants);
   }
 
   /** Compiles this entry point specialised to a frozen scene (gpu/specialisation.ts), asynchronously; it is not used until useSpecialised. */
@@ -144,8 +150,19 @@ export class PathTracePass {
     private readonly params: UniformParams<UniformValues>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<PathTracePass> {
-    return new PathTracePass(await TracingKernels.create(device, MODULE, 'path_trace'), new UniformParams(device, MODULE));
+  /**
+   * `first`: the features of the scene about to be rendered, if known (its variant is compiled instead
+   * of a plain scene's), or a promise of them: the module is reflected while it is pending.
+   */
+  static async create(device: GPUDevice, first?: SceneFeatures | Promise<SceneFeatures>): Promise<PathTracePass> {
+    reflectKernel(device, MODULE);
+    const params = new UniformParams(device, MODULE);
+    try {
+      return new PathTracePass(await TracingKernels.create(device, MODULE, PATH_TRACE_ENTRY, {}, await first), params);
+    } catch (e) {
+      params.destroy();
+      throw e;
+    }
   }
 
   prepare(features: SceneFeatures, spectral = false): Promise<void> {

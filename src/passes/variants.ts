@@ -1,6 +1,6 @@
 /**
  * The closed variant sets of the passes, mirroring WGSL constants by position: TONEMAP_* in
- * shaders/lib/color.wgsl, LIGHT_SAMPLING_* in shaders/integrator/path.wgsl, DEBUG_VIEW_* and
+ * shaders/lib/color.wgsl, LIGHT_SAMPLING_* in shaders/integrator/path.wgsl, SAMPLER_* in shaders/lib/random.wgsl, DEBUG_VIEW_* and
  * DEBUG_LAYOUT_* in shaders/lib/debug-views.wgsl, DENOISE_VIEW_* in shaders/passes/denoise-output.wgsl
  * (a unit test keeps them in step). Here, below the renderer, because the passes map them to those
  * constants; renderer/settings.ts re-exports them as render settings.
@@ -12,6 +12,14 @@ export type ToneMapper = (typeof TONE_MAPPERS)[number];
 /** 'bsdf': BSDF sampling only (emitters found by chance). 'mis': next-event estimation + BSDF sampling, combined by MIS. */
 export const LIGHT_SAMPLING = ['bsdf', 'mis'] as const;
 export type LightSampling = (typeof LIGHT_SAMPLING)[number];
+
+/**
+ * Where the path tracers' random numbers come from (SAMPLER_* in shaders/lib/random.wgsl): 'random',
+ * a PCG stream per pixel and sample (white noise); 'sobol', an Owen-scrambled Sobol sequence per
+ * pixel, its pixels ranked in a scrambled Morton order so that a frame's error is blue noise.
+ */
+export const SAMPLERS = ['random', 'sobol'] as const;
+export type Sampler = (typeof SAMPLERS)[number];
 
 /**
  * What the debug views show instead of (or beside, or over) the rendered image: BVH work per primary

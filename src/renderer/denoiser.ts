@@ -2,10 +2,14 @@
  * The real-time frame recipe (Renderer.renderFrame):
  *
  *   path trace (N spp, demodulated radiance + G-buffer) → temporal (reprojected history, variance)
- *     → à-trous ×5 (steps 1, 2, 4, 8, 16) → output (remodulate, or a debug view) → tone map
+ *     → à-trous ×5 (steps 1, 2, 4, 8, 16; the last remodulates) → tone map
+ *     (without the filter, or for a debug view: → output pass → tone map)
  *
- * after SVGF (Schied et al. 2017). The Denoiser owns the per-pixel buffers, ping-pongs the G-buffer
- * and the history between frames, and remembers the camera of the previous frame, so moving the
+ * after SVGF (Schied et al. 2017), with its feedback: the first à-trous iteration's output is the
+ * colour history. The Denoiser owns the per-pixel buffers (72 bytes a pixel in all, bufferSizes():
+ * packed records, and buffers shared by passes whose lifetimes do not overlap, atrousSchedule),
+ * ping-pongs the surface records and the moments between frames, and remembers the camera of the
+ * previous frame, so moving the
  * camera (Renderer.setCamera) keeps the history: it is reprojected, not thrown away. Temporal off
  * still runs the temporal pass without history, which then only estimates the variance spatially;
  * spatial off skips the à-trous iterations.
@@ -14,16 +18,20 @@ import { LanternError } from '../errors.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
-import { ATROUS_STEPS, atrousParams, createDenoisePasses, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
+import { atrousSchedule, createDenoisePasses, denoiseAtrousParams, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
-import { PathTraceFramePass } from '../passes/path-trace-frame-pass.ts';
+import { PathTraceFramePass, type FrameTarget } from '../passes/path-trace-frame-pass.ts';
+import { WavefrontFramePass } from '../passes/wavefront-frame-pass.ts';
+import { readBuffer } from '../gpu/readback.ts';
 import type { TracingKernels } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
-import type { RenderSettings } from './settings.ts';
+import type { Integrator, RenderSettings } from './settings.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 
-/** Bytes of one vec4f per pixel. */
-const VEC4_BYTES = 16;
+/** Bytes of the frame scratch per pixel: four words (FRAME_* of shaders/denoise/gbuffer.wgsl), at the end the output vec4f. */
+const SCRATCH_BYTES = 16;
+/** Bytes of an illumination pair (f16 rgb, f16 σ): the colour history's texel. */
+const PAIR_BYTES = 8;
 
 function structSize(name: string): number {
   const def = reflectModule('denoise/gbuffer').defs.structs[name];
@@ -31,31 +39,36 @@ function structSize(name: string): number {
   return def.size;
 }
 
+/** One buffer of the real-time chain and its bytes per pixel. */
+export interface DenoiserBufferSize {
+  readonly label: string;
+  readonly bytesPerPixel: number;
+}
+
 interface Buffers {
   readonly width: number;
   readonly height: number;
-  readonly frameRadiance: GPUBuffer;
-  /** Normal and depth of the current frame (vec4f), read by the à-trous iterations. */
-  readonly guide: GPUBuffer;
-  /** [current, previous] swap every frame, as do the histories. */
-  readonly gbuffers: readonly [GPUBuffer, GPUBuffer];
-  readonly histories: readonly [GPUBuffer, GPUBuffer];
-  /** The temporal pass's output (illumination + variance), the first à-trous input. */
-  readonly temporalOut: GPUBuffer;
-  readonly filterA: GPUBuffer;
-  readonly filterB: GPUBuffer;
-  /** Linear radiance (vec4f), what the tone mapper and readFrame read. */
-  readonly output: GPUBuffer;
-  /** Bind groups per parity (which G-buffer is current). */
+  /**
+   * Four words per pixel reused through the frame: the path tracer's radiance and motion, the
+   * temporal output, two à-trous ping-pong pairs, and at the end the linear output (vec4f) that the
+   * tone mapper and readFrame read.
+   */
+  readonly scratch: GPUBuffer;
+  /** The pixel-centre surface records, [current, previous]: they swap every frame, as do the moments. */
+  readonly surfaces: readonly [GPUBuffer, GPUBuffer];
+  /** The current frame's albedo and emission (FrameTexel). */
+  readonly frameRecords: GPUBuffer;
+  readonly moments: readonly [GPUBuffer, GPUBuffer];
+  /** The colour history (illumination pairs): written by the first à-trous iteration (feedback) or the output pass. */
+  readonly history: GPUBuffer;
+  /** Bind groups per parity (which surface record is current). */
   readonly groups: readonly ParityGroups[];
 }
 
 interface ParityGroups {
   readonly temporal: Record<number, GPUBindGroup>;
   readonly atrous: readonly Record<number, GPUBindGroup>[];
-  /** Output pass reading the à-trous result [0] or the temporal result [1]. */
-  readonly outputFiltered: Record<number, GPUBindGroup>;
-  readonly outputUnfiltered: Record<number, GPUBindGroup>;
+  readonly output: Record<number, GPUBindGroup>;
 }
 
 export interface FrameRequest {
@@ -72,8 +85,32 @@ export interface FrameRequest {
   readonly timer?: GpuTimer;
 }
 
+/** The raw output of a frame's path tracing (before any filter), as the frame kernels write it, unpacked. */
+export interface FrameTrace {
+  readonly width: number;
+  readonly height: number;
+  /** vec4f per pixel: mean demodulated radiance, 1. */
+  readonly radiance: Float32Array;
+  /** SurfaceTexel per pixel (shaders/denoise/gbuffer.wgsl), raw bytes: the pixel-centre surface. */
+  readonly gbuffer: ArrayBuffer;
+  /** vec4f per pixel: normal, linear depth (the surface records unpacked). */
+  readonly guide: Float32Array;
+  /** rgb per pixel: mean first-hit albedo and kept first-hit emission of the samples. */
+  readonly albedo: Float32Array;
+  readonly emission: Float32Array;
+  /** Which integrator traced it. */
+  readonly integrator: Integrator;
+}
+
 export class Denoiser {
   private buffers?: Buffers;
+  /** The wavefront frame path tracer, made by enableWavefront (settings.integrator = 'wavefront'). */
+  private wavefront?: WavefrontFramePass;
+  private wavefrontPending?: Promise<WavefrontFramePass>;
+  /** Every (features, spectral) the frame kernels were prepared for, so a wavefront made later compiles them too. */
+  private readonly preparedFor = new Map<string, { readonly features: SceneFeatures; readonly spectral: boolean }>();
+  private readonly wavefrontReady = new Set<string>();
+  private lastIntegrator: Integrator = 'megakernel';
   private previousCamera?: Camera;
   private parity = 0;
   private sampleIndex = 0;
@@ -91,8 +128,45 @@ export class Denoiser {
   }
 
   /** Compiles the frame path tracer's variant for a scene with these features. */
-  prepare(features: SceneFeatures, spectral = false): Promise<void> {
-    return this.frame.prepare(features, spectral);
+  async prepare(features: SceneFeatures, spectral = false): Promise<void> {
+    this.preparedFor.set(featureKey(features, spectral), { features, spectral });
+    await Promise.all([this.frame.prepare(features, spectral), this.wavefront ? this.prepareWavefront(this.wavefront, features, spectral) : undefined]);
+  }
+
+  /**
+   * Compiles the wavefront frame path tracer for every scene prepared so far and later. Until it is
+   * ready for a frame's scene, frames asking for it are traced by the megakernel (frameIntegrator says which ran).
+   */
+  async enableWavefront(): Promise<void> {
+    if (!this.wavefrontPending) {
+      this.wavefrontPending = WavefrontFramePass.create(this.device).then(async (w) => {
+        await Promise.all([...this.preparedFor.values()].map((p) => this.prepareWavefront(w, p.features, p.spectral)));
+        this.wavefront = w;
+        return w;
+      });
+      this.wavefrontPending.catch(() => (this.wavefrontPending = undefined));
+    }
+    await this.wavefrontPending;
+  }
+
+  private async prepareWavefront(w: WavefrontFramePass, features: SceneFeatures, spectral: boolean): Promise<void> {
+    await w.prepare(features, spectral);
+    this.wavefrontReady.add(featureKey(features, spectral));
+  }
+
+  /** The wavefront frame path tracer, once enableWavefront made it (the renderer specialises it with the other tracing kernels). */
+  get wavefrontPass(): WavefrontFramePass | undefined {
+    return this.wavefront;
+  }
+
+  /** Which integrator traced the last frame. */
+  get frameIntegrator(): Integrator {
+    return this.lastIntegrator;
+  }
+
+  /** Bytes of the wavefront's own buffers now (path state, queues), beyond the frame's outputs; 0 until it traced a frame. */
+  get wavefrontAllocatedBytes(): number {
+    return this.wavefront?.allocatedBytes ?? 0;
   }
 
   /** The frame path tracer's kernels (the renderer specialises them with the progressive ones). */
@@ -100,9 +174,22 @@ export class Denoiser {
     return this.frame.kernels;
   }
 
-  /** The chain's linear output of the last frame (vec4f per pixel), if a frame was rendered. */
+  /** The chain's linear output of the last frame (vec4f per pixel, over the frame scratch), if a frame was rendered. */
   get output(): GPUBuffer | undefined {
-    return this.buffers?.output;
+    return this.buffers?.scratch;
+  }
+
+  /** The buffers of the real-time chain as allocated now (empty before the first frame), with their bytes per pixel. */
+  bufferSizes(): readonly DenoiserBufferSize[] {
+    const b = this.buffers;
+    if (!b) return [];
+    const pixels = b.width * b.height;
+    return [b.scratch, ...b.surfaces, b.frameRecords, ...b.moments, b.history].map((buffer) => ({ label: buffer.label, bytesPerPixel: buffer.size / pixels }));
+  }
+
+  /** Bytes per pixel of everything the real-time chain allocates (bufferSizes); 0 before the first frame. */
+  bytesPerPixel(): number {
+    return this.bufferSizes().reduce((sum, b) => sum + b.bytesPerPixel, 0);
   }
 
   /** Forgets the history: the next frame starts from its own samples alone. */
@@ -119,37 +206,81 @@ export class Denoiser {
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
     const still = sameCamera(previousCamera, r.camera);
-    const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex: this.sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
-    const target = { frameRadiance: b.frameRadiance, gbuffer: b.gbuffers[this.parity]!, guide: b.guide, rayCounters: r.rayCounters };
-    this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer);
+    this.encodeTrace(encoder, r, b, this.sampleIndex);
 
     const unlimited = s.historyCap === 'unlimited';
+    // A still camera with no cap converges without limit: nothing to clamp against, and no feedback
+    // (the filtered colour fed back frame after frame would blur what is meant to converge).
+    const converging = unlimited && still;
     this.passes.temporal.write(temporalParams({
       historyCap: unlimited ? Infinity : (s.historyCap as number),
-      // A still camera with no cap converges without limit: nothing to clamp against.
-      clampK: unlimited && still ? 0 : s.clampK,
+      clampK: converging ? 0 : s.clampK,
       useHistory: s.temporal && this.historyValid,
-      stillCamera: still,
     }));
     this.passes.temporal.encode(encoder, groups.temporal, b.width, b.height, r.timer);
-    if (s.denoise) {
-      ATROUS_STEPS.forEach((_, i) => {
-        this.passes.atrous.write(atrousParams(i), i);
+    // Debug views show the unfiltered records: the filter is skipped for them.
+    if (s.denoise && s.denoiseView === 'output') {
+      atrousSchedule(!converging).forEach((it, i) => {
+        this.passes.atrous.write(denoiseAtrousParams(i, it), i);
         this.passes.atrous.encode(encoder, groups.atrous[i]!, b.width, b.height, r.timer, `a-trous ${i + 1}`);
       });
+    } else {
+      const fullHistory = unlimited ? 256 : (s.historyCap as number);
+      this.passes.output.write(denoiseOutputParams(s.denoiseView, fullHistory, r.depthScale));
+      this.passes.output.encode(encoder, groups.output, b.width, b.height, r.timer);
     }
-    const fullHistory = unlimited ? 256 : (s.historyCap as number);
-    this.passes.output.write(denoiseOutputParams(s.denoiseView, fullHistory, r.depthScale));
-    this.passes.output.encode(encoder, s.denoise ? groups.outputFiltered : groups.outputUnfiltered, b.width, b.height, r.timer);
 
     this.sampleIndex = (this.sampleIndex + r.samples) >>> 0;
     this.previousCamera = r.camera;
     this.historyValid = true;
   }
 
+  /**
+   * One frame's path tracing alone (settings.integrator), with the random streams of frame
+   * `sampleIndex`: no filter runs and the history is kept, but the current G-buffer and the frame
+   * scratch (where the last frame's output was) are overwritten.
+   * For timing the integrators (bench) and comparing them (readTrace); returns which one traced.
+   */
+  encodeTraceOnly(encoder: GPUCommandEncoder, r: FrameRequest, sampleIndex: number, breakdown = false): Integrator {
+    return this.encodeTrace(encoder, r, this.ensureBuffers(r.view), sampleIndex, breakdown);
+  }
+
+  /** The raw output of the last encodeTraceOnly, once it is submitted (encodeFrame reuses the radiance words for its output). */
+  async readTrace(): Promise<FrameTrace> {
+    const b = this.buffers;
+    if (!b) throw new Error('Denoiser: no frame traced yet');
+    const [scratch, gbuffer, records] = await Promise.all([readBuffer(this.device, b.scratch), readBuffer(this.device, b.surfaces[this.parity]!), readBuffer(this.device, b.frameRecords)]);
+    const pixels = b.width * b.height;
+    const words = new Uint32Array(scratch), surface = new DataView(gbuffer), frame = new Uint32Array(records);
+    const radiance = new Float32Array(pixels * 4), guide = new Float32Array(pixels * 4), albedo = new Float32Array(pixels * 3), emission = new Float32Array(pixels * 3);
+    const surfaceBytes = structSize('SurfaceTexel');
+    for (let i = 0; i < pixels; i++) {
+      radiance.set([...unpackRgb9e5(words[4 * i]!), 1], 4 * i);
+      const depth = surface.getFloat32(i * surfaceBytes, true);
+      guide.set([...unpackOctahedral(surface.getUint32(i * surfaceBytes + 4, true)), depth], 4 * i);
+      albedo.set(unpackRgb9e5(frame[2 * i]!), 3 * i);
+      emission.set(unpackRgb9e5(frame[2 * i + 1]!), 3 * i);
+    }
+    return { width: b.width, height: b.height, radiance, gbuffer, guide, albedo, emission, integrator: this.lastIntegrator };
+  }
+
+  private encodeTrace(encoder: GPUCommandEncoder, r: FrameRequest, b: Buffers, sampleIndex: number, breakdown = false): Integrator {
+    const s = r.settings;
+    const previousCamera = this.previousCamera ?? r.camera;
+    const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
+    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters };
+    const wavefront = s.integrator === 'wavefront' && this.wavefrontReady.has(featureKey(r.scene.features, s.spectral)) ? this.wavefront : undefined;
+    // The pixel-centre G-buffer is the frame kernel's own pass for both integrators.
+    this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, wavefront !== undefined);
+    if (wavefront) wavefront.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, breakdown);
+    this.lastIntegrator = wavefront ? 'wavefront' : 'megakernel';
+    return this.lastIntegrator;
+  }
+
   destroy(): void {
     this.destroyBuffers();
     this.frame.destroy();
+    this.wavefront?.destroy();
     for (const p of Object.values(this.passes)) p.destroy();
   }
 
@@ -160,44 +291,60 @@ export class Denoiser {
     this.resetHistory();
     const pixels = width * height;
     const limits = this.device.limits;
-    const gbufferBytes = pixels * structSize('GBufferTexel');
-    const historyBytes = pixels * structSize('HistoryTexel');
-    const largest = Math.max(gbufferBytes, historyBytes);
+    const largest = pixels * SCRATCH_BYTES;
     if (largest > limits.maxStorageBufferBindingSize || largest > limits.maxBufferSize) {
-      throw new LanternError(`image ${width}×${height} is too large for the real-time denoiser on this GPU (its G-buffer needs ${(largest / 2 ** 20).toFixed(0)} MiB in one buffer)`);
+      throw new LanternError(`image ${width}×${height} is too large for the real-time denoiser on this GPU (its output needs ${(largest / 2 ** 20).toFixed(0)} MiB in one buffer)`);
     }
-    const make = (label: string, size: number) => this.device.createBuffer({ label, size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
-    const gbuffers = [make('g-buffer 0', gbufferBytes), make('g-buffer 1', gbufferBytes)] as const;
-    const histories = [make('history 0', historyBytes), make('history 1', historyBytes)] as const;
-    const frameRadiance = make('frame radiance', pixels * VEC4_BYTES);
-    const guide = make('a-trous guide', pixels * VEC4_BYTES);
-    const temporalOut = make('temporal output', pixels * VEC4_BYTES);
-    const filterA = make('a-trous A', pixels * VEC4_BYTES);
-    const filterB = make('a-trous B', pixels * VEC4_BYTES);
-    const output = make('denoised radiance', pixels * VEC4_BYTES);
-    // Iteration i reads chain[i] and writes chain[i + 1]; the last result is in filterA.
-    const chain = [temporalOut, filterA, filterB, filterA, filterB, filterA];
-    const { temporal, atrous, output: out } = this.passes;
+    const make = (label: string, size: number) => this.device.createBuffer({ label, size: pixels * size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
+    const surfaceBytes = structSize('SurfaceTexel'), momentBytes = structSize('MomentsTexel');
+    const scratch = make('frame scratch and output', SCRATCH_BYTES);
+    const surfaces = [make('surface records 0', surfaceBytes), make('surface records 1', surfaceBytes)] as const;
+    const frameRecords = make('frame records', structSize('FrameTexel'));
+    const moments = [make('moments 0', momentBytes), make('moments 1', momentBytes)] as const;
+    const history = make('colour history', PAIR_BYTES);
+    const { temporal, atrous, output } = this.passes;
+    const schedule = atrousSchedule(true);
     const groups = [0, 1].map((p): ParityGroups => {
-      const gbuffer = gbuffers[p]!, history = histories[p]!;
-      const outputGroups = (illumination: GPUBuffer) => out.bindGroups(view, { gbuffer, history, filter_input: temporalOut, illumination, output });
+      const surface = surfaces[p]!, previousMoments = moments[1 - p]!;
       return {
-        temporal: temporal.bindGroups(view, { frame_radiance: frameRadiance, gbuffer, previous_gbuffer: gbuffers[1 - p]!, previous_history: histories[1 - p]!, history, filter_input: temporalOut }),
-        atrous: ATROUS_STEPS.map((_, i) => atrous.bindGroups(view, { guide, filter_source: chain[i]!, filter_result: chain[i + 1]! }, i)),
-        outputFiltered: outputGroups(chain[ATROUS_STEPS.length]!),
-        outputUnfiltered: outputGroups(temporalOut),
+        temporal: temporal.bindGroups(view, { frame_scratch: scratch, surface_records: surface, previous_surface_records: surfaces[1 - p]!, history, previous_moments: previousMoments, moments: moments[p]! }),
+        // Both schedules bind the same buffers to each iteration (atrousSchedule): only their parameters differ.
+        atrous: schedule.map((it, i) => atrous.bindGroups(view, { surface_records: surface, frame_records: frameRecords, a: scratch, b: it.b === 'history' ? history : previousMoments }, i)),
+        output: output.bindGroups(view, { surface_records: surface, frame_records: frameRecords, moments: moments[p]!, frame_scratch: scratch, history }),
       };
     });
-    this.buffers = { width, height, frameRadiance, guide, gbuffers, histories, temporalOut, filterA, filterB, output, groups };
+    this.buffers = { width, height, scratch, surfaces, frameRecords, moments, history, groups };
     return this.buffers;
   }
 
   private destroyBuffers(): void {
     const b = this.buffers;
     if (!b) return;
-    for (const buffer of [b.frameRadiance, b.guide, ...b.gbuffers, ...b.histories, b.temporalOut, b.filterA, b.filterB, b.output]) buffer.destroy();
+    for (const buffer of [b.scratch, ...b.surfaces, b.frameRecords, ...b.moments, b.history]) buffer.destroy();
     this.buffers = undefined;
   }
+}
+
+/** rgb9e5 (shaders/denoise/gbuffer.wgsl pack_rgb9e5) to three floats. */
+export function unpackRgb9e5(p: number): [number, number, number] {
+  const scale = 2 ** ((p >>> 27) - 24);
+  return [(p & 511) * scale, ((p >>> 9) & 511) * scale, ((p >>> 18) & 511) * scale];
+}
+
+/** An octahedral normal of two snorm16 (shaders/denoise/gbuffer.wgsl pack_normal) to a unit vector. */
+export function unpackOctahedral(p: number): [number, number, number] {
+  const snorm = (v: number) => Math.max(((v << 16) >> 16) / 32767, -1);
+  let x = snorm(p & 0xffff), y = snorm(p >>> 16);
+  const z = 1 - Math.abs(x) - Math.abs(y);
+  const t = Math.max(-z, 0);
+  x += x >= 0 ? -t : t;
+  y += y >= 0 ? -t : t;
+  const l = Math.hypot(x, y, z);
+  return [x / l, y / l, z / l];
+}
+
+function featureKey(features: SceneFeatures, spectral: boolean): string {
+  return `${JSON.stringify(Object.entries(features).sort(([a], [b]) => a.localeCompare(b)))}${spectral ? ' spectral' : ''}`;
 }
 
 /** Whether two cameras see the same image: pose, field of view and lens (a refocus is a change: the history is clamped, not trusted). */

@@ -3,9 +3,11 @@
  * BVH build and packing. Pure (no GPU, no DOM), so it can run in a worker; the Renderer uploads the
  * result.
  */
-import { buildLevels, buildStaticBvh, buildTopLevel, refitMeshBlas, type MeshBlas, type SceneLevels } from '../bvh/levels.ts';
+import { buildBvhParallel, type BvhWorkerPool } from '../bvh/build-parallel.ts';
+import { buildLevels, buildStaticBvh, buildStaticBvhWith, buildTopLevel, refitMeshBlas, type MeshBlas, type SceneLevels } from '../bvh/levels.ts';
 import { refitBvh } from '../bvh/refit.ts';
 import { buildGrid, type Accel, type Grid } from '../bvh/grid.ts';
+import { buildWideBvh, WIDE_LAYOUTS, type WideBvh, type WideLayout } from '../bvh/wide.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import type { Bvh } from '../bvh/types.ts';
 import { packEnvironment } from '../gpu/pack/environment-pack.ts';
@@ -30,6 +32,8 @@ export interface PreparedScene {
   readonly levels?: SceneLevels;
   /** The static world's uniform grid (bvh/grid.ts), when it is traced through one (accel 'grid'); it lists `bvh`'s leaves. */
   readonly grid?: Grid;
+  /** The static world's wide tree (bvh/wide.ts), when it is traced through one (accel 'bvh4' or 'cwbvh'); collapsed from `bvh`. */
+  readonly wide?: WideBvh;
   readonly packed: PackedScene;
   /** The meshes as loaded, of those morphed since (SceneUpdate.morphWeights apply to these). */
   readonly restMeshes?: ReadonlyMap<number, Mesh>;
@@ -45,30 +49,54 @@ export interface PrepareOptions {
   readonly accel?: Accel;
 }
 
-/** The static world's grid for `accel`, over the leaves of `bvh`. */
-const gridFor = (scene: Scene, triangles: TriangleList, bvh: Bvh, accel: Accel | undefined): Grid | undefined =>
-  accel === 'grid' ? buildGrid(triangles.positions, triangles.kinds, bvh.triIndices, scene.tileGrid) : undefined;
+/** The static world's structure for `accel` besides its BVH: a grid over the leaves of `bvh`, or a wide tree collapsed from it (none for 'bvh'). */
+export function staticAccelFor(scene: Scene, triangles: TriangleList, bvh: Bvh, accel: Accel | undefined): { readonly grid?: Grid; readonly wide?: WideBvh } {
+  if (accel === 'grid') return { grid: buildGrid(triangles.positions, triangles.kinds, bvh.triIndices, scene.tileGrid) };
+  if ((WIDE_LAYOUTS as readonly string[]).includes(accel ?? '')) return { wide: buildWideBvh(bvh, accel as WideLayout) };
+  return {};
+}
+
+/** What gpu/pack/scene-pack.ts packGeometry packs after the trees for the static world. */
+export const staticAccelOf = (p: { readonly grid?: Grid; readonly wide?: WideBvh }): Grid | WideBvh | undefined => p.grid ?? p.wide;
 
 /** Prepares `scene`; `onStage` hears of each stage as it begins (a worker reports progress with it). */
 export function prepareScene(scene: Scene, onStage?: (stage: (typeof PREPARE_STAGES)[number]) => void, options: PrepareOptions = {}): PreparedScene {
+  const { triangles, t0, t1 } = flattenStage(scene, onStage);
+  return packStage(scene, triangles, buildStaticBvh(scene, triangles), t0, t1, onStage, options);
+}
+
+/**
+ * `prepareScene` with the static world's BVH built on `bvhPool`'s workers (bvh/build-parallel.ts:
+ * the same tree, sooner on a big scene); without a pool, or for a small scene, it is built here.
+ */
+export async function prepareSceneAsync(scene: Scene, onStage?: (stage: (typeof PREPARE_STAGES)[number]) => void, options: PrepareOptions & { readonly bvhPool?: BvhWorkerPool } = {}): Promise<PreparedScene> {
+  const { triangles, t0, t1 } = flattenStage(scene, onStage);
+  const bvh = await buildStaticBvhWith(scene, triangles, (positions, kinds) => buildBvhParallel(positions, {}, kinds, options.bvhPool));
+  return packStage(scene, triangles, bvh, t0, t1, onStage, options);
+}
+
+function flattenStage(scene: Scene, onStage: ((stage: (typeof PREPARE_STAGES)[number]) => void) | undefined) {
   validateScene(scene);
   const t0 = performance.now();
   onStage?.(PREPARE_STAGES[0]);
   const triangles = flattenTriangles(scene);
   const t1 = performance.now();
   onStage?.(PREPARE_STAGES[1]);
-  const bvh = buildStaticBvh(scene, triangles);
+  return { triangles, t0, t1 };
+}
+
+function packStage(scene: Scene, triangles: TriangleList, bvh: Bvh, t0: number, t1: number, onStage: ((stage: (typeof PREPARE_STAGES)[number]) => void) | undefined, options: PrepareOptions): PreparedScene {
   const levels = buildLevels(scene, bvh);
-  const grid = gridFor(scene, triangles, bvh, options.accel);
+  const accel = staticAccelFor(scene, triangles, bvh, options.accel);
   const t2 = performance.now();
   onStage?.(PREPARE_STAGES[2]);
-  const packed = packScene(scene, triangles, bvh, undefined, levels, grid);
+  const packed = packScene(scene, triangles, bvh, undefined, levels, staticAccelOf(accel));
   const t3 = performance.now();
-  return { scene, triangles, bvh, ...(levels ? { levels } : {}), ...(grid ? { grid } : {}), packed, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+  return { scene, triangles, bvh, ...(levels ? { levels } : {}), ...accel, packed, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
 }
 
 /** The accel a prepared scene was prepared for. */
-export const accelOf = (prepared: PreparedScene): Accel => (prepared.grid ? 'grid' : 'bvh');
+export const accelOf = (prepared: PreparedScene): Accel => (prepared.grid ? 'grid' : (prepared.wide?.layout ?? 'bvh'));
 
 /**
  * The scene prepared for another accel: the grid built over the same static BVH (or dropped) and the
@@ -76,10 +104,10 @@ export const accelOf = (prepared: PreparedScene): Accel => (prepared.grid ? 'gri
  */
 export function withAccel(prepared: PreparedScene, accel: Accel): PreparedScene {
   if (accelOf(prepared) === accel) return prepared;
-  const { grid: _, ...rest } = prepared;
-  const grid = gridFor(prepared.scene, prepared.triangles, prepared.bvh, accel);
-  const packed = packGeometry(prepared.scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, prepared.packed.environment, prepared.levels, grid);
-  return { ...rest, ...(grid ? { grid } : {}), packed };
+  const { grid: _, wide: _wide, ...rest } = prepared;
+  const built = staticAccelFor(prepared.scene, prepared.triangles, prepared.bvh, accel);
+  const packed = packGeometry(prepared.scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, prepared.packed.environment, prepared.levels, staticAccelOf(built));
+  return { ...rest, ...built, packed };
 }
 
 
@@ -164,12 +192,12 @@ export function updateGeometry(prepared: PreparedScene, poses: ReadonlyMap<numbe
       for (const m of morphWeights.keys()) if (blas.has(m)) blas.set(m, refitMeshBlas(moved, blas.get(m)!, meshes[m]!));
       nextLevels = { ...levels, blas, ...buildTopLevel(moved, bvh, levels.dynamic, blas) };
     }
-    // The grid is built again over the moved static world (its cells are not refitted).
-    const grid = prepared.grid ? gridFor(moved, triangles, bvh, 'grid') : undefined;
+    // The grid or wide tree is built again over the moved static world (its cells are not refitted; the wide boxes are collapsed from the refitted BVH).
+    const accel = staticAccelFor(moved, triangles, bvh, accelOf(prepared));
     const t1 = performance.now();
-    const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment, nextLevels, grid);
+    const packed = packGeometry(moved, triangles, bvh, prepared.packed.packedMaterials, prepared.packed.environment, nextLevels, staticAccelOf(accel));
     const t2 = performance.now();
-    const next: PreparedScene = { ...prepared, scene: moved, triangles, bvh, ...(nextLevels ? { levels: nextLevels } : {}), ...(grid ? { grid } : {}), packed, restMeshes, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
+    const next: PreparedScene = { ...prepared, scene: moved, triangles, bvh, ...(nextLevels ? { levels: nextLevels } : {}), ...accel, packed, restMeshes, timings: { flattenMs: 0, bvhMs: t1 - t0, packMs: t2 - t1 } };
     return { prepared: next, writes: GEOMETRY_BUFFERS.map((name) => ({ name, offset: 0, data: packed[name] })), attributes: true, ms: { refit: t1 - t0, tlas: nextLevels?.tlasMs ?? 0, pack: t2 - t1 } };
   }
 
@@ -226,7 +254,7 @@ function powerMayChange(before: Scene, after: Scene, ii: number, prepared: Prepa
  */
 export function withPreparedEnvironment(prepared: PreparedScene, environment: Environment): PreparedScene {
   const scene = withEnvironment(prepared.scene, environment);
-  const packed = packGeometry(scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, packEnvironment(environment), prepared.levels, prepared.grid);
+  const packed = packGeometry(scene, prepared.triangles, prepared.bvh, prepared.packed.packedMaterials, packEnvironment(environment), prepared.levels, staticAccelOf(prepared));
   return { ...prepared, scene, packed };
 }
 
@@ -274,6 +302,6 @@ export function editMaterials(prepared: PreparedScene, edits: ReadonlyMap<number
     ? base
     : rescaled
       ? { ...base, ...rescaled }
-      : packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels, prepared.grid);
+      : packGeometry(edited, prepared.triangles, prepared.bvh, packedMaterials, prepared.packed.environment, prepared.levels, staticAccelOf(prepared));
   return { prepared: { ...prepared, scene: edited, packed }, lightsChanged, textureRefsChanged };
 }

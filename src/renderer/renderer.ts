@@ -20,6 +20,7 @@ import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
 import { withErrorScope } from '../gpu/device.ts';
+import { timedStage } from '../gpu/stage-log.ts';
 import { createBufferWithData, readBuffer, readTexture4x8 } from '../gpu/readback.ts';
 import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
 import { packInstances } from '../gpu/pack/scene-pack.ts';
@@ -38,15 +39,16 @@ import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
-import { Denoiser } from './denoiser.ts';
+import { Denoiser, type DenoiserBufferSize, type FrameTrace } from './denoiser.ts';
 import { Hybrid } from './hybrid.ts';
 import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
-import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type RenderSettings } from './settings.ts';
+import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
 import { primaryRay, ViewUniform } from '../gpu/view.ts';
 import { describeSpecialisation, specialiseScene, type SpecialiseOptions } from '../gpu/specialisation.ts';
 import { LIGHT_SAMPLING } from '../passes/variants.ts';
+import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;
@@ -157,10 +159,24 @@ export class Renderer {
     private debugViews?: DebugViews,
   ) {}
 
-  static async create(gpu: GpuContext): Promise<Renderer> {
+  /**
+   * Compiles the path tracer and the tone mapper, side by side. `features`: those of the scene that
+   * setScene will get (PackedScene.features), where the caller knows them: the path tracer variant
+   * for that scene alone starts compiling, and setScene awaits it (and reports its errors). Without,
+   * a plain scene's variant is compiled here, so errors show at once, and setScene compiles the
+   * scene's. `features` may be a promise (a scene still loading elsewhere): the path tracer is
+   * reflected meanwhile, and the tone mapper compiled. `presentation`: the browser's present pass
+   * too (enablePresentation), compiled alongside.
+   */
+  static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: boolean } = {}): Promise<Renderer> {
     const { device } = gpu;
-    const [pathTrace, tonemap] = await Promise.all([PathTracePass.create(device), TonemapPass.create(device)]);
-    return new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap);
+    // The small passes first: they compile while the path tracer is reflected and its scene awaited.
+    const [tonemap, present, pathTrace] = await Promise.all([
+      TonemapPass.create(device),
+      options.presentation ? PresentPass.create(device) : undefined,
+      PathTracePass.create(device, options.features),
+    ]);
+    return new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap, present);
   }
 
   get device(): GPUDevice {
@@ -219,11 +235,19 @@ export class Renderer {
   /** Compiles what the scene needs, then uploads it and frees the previous one (a failure leaves the old scene). */
   private async upload(prepared: PreparedScene): Promise<void> {
     const features = prepared.packed.features;
-    await Promise.all([
+    const compiling = Promise.all([
       this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
       ...(this.spectralEnabled ? [this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)] : []),
     ]);
-    const resources = await SceneResources.upload(this.device, prepared.packed, prepared.scene.name);
+    // The scene uploads while the GPU driver compiles (its threads, not this one).
+    const uploading = timedStage(this.device, 'upload scene', () => SceneResources.upload(this.device, prepared.packed, prepared.scene.name));
+    const [compiled, uploaded] = await Promise.allSettled([compiling, uploading]);
+    if (compiled.status === 'rejected') {
+      if (uploaded.status === 'fulfilled') uploaded.value.destroy();
+      throw compiled.reason;
+    }
+    if (uploaded.status === 'rejected') throw uploaded.reason;
+    const resources = uploaded.value;
     this.resources?.destroy();
     this.resources = resources;
     this.prepared = prepared;
@@ -476,6 +500,8 @@ export class Renderer {
     const accel = next.accel !== this.settingsValue.accel;
     this.settingsValue = next;
     if (culling) this.configureTileCulling();
+    // The wavefront frame path tracer is compiled in the background; frames use the megakernel until it is ready.
+    if (next.integrator === 'wavefront' && this.denoiser) this.enableWavefront().catch((e: unknown) => (this.wavefrontError = e));
     // Another acceleration structure for the static world: built and uploaded in the background
     // (frames trace the current one meanwhile); accelSettled() waits for it.
     if (accel && this.prepared) {
@@ -499,6 +525,11 @@ export class Renderer {
    */
   get kernel(): KernelKind {
     return this.resources && this.pathTrace.kernels.isSpecialised(this.resources) ? 'specialised' : 'generic';
+  }
+
+  /** Which kernels the wavefront frame path tracer runs now: generic until specialised with the others (requestSpecialisation). */
+  get wavefrontKernel(): KernelKind {
+    return this.resources && this.denoiser?.wavefrontPass?.isSpecialised(this.resources) ? 'specialised' : 'generic';
   }
 
   /** What the specialised kernels in use were compiled for, and how long that took. */
@@ -534,11 +565,13 @@ export class Renderer {
     const s = this.settingsValue;
     const spec = specialiseScene(prepared.packed, prepared.scene.name, { maxBounces: s.maxBounces, lightSampling: LIGHT_SAMPLING.indexOf(s.lightSampling) }, options);
     const sets = [this.pathTrace.kernels, ...(this.denoiser ? [this.denoiser.frameKernels] : [])];
+    const wavefront = this.denoiser?.wavefrontPass;
     const t0 = performance.now();
-    const compiled = await Promise.all(sets.map((k) => k.compileSpecialised(spec)));
+    const [compiled, wavefrontKernels] = await Promise.all([Promise.all(sets.map((k) => k.compileSpecialised(spec))), wavefront?.compileSpecialised(spec)]);
     const compileMs = performance.now() - t0;
     if (epoch !== this.specialisationEpoch || resources !== this.resources) return undefined;
     sets.forEach((k, i) => k.useSpecialised({ scene: resources, kernel: compiled[i]!.kernel }));
+    if (wavefront && wavefrontKernels) wavefront.useSpecialised({ scene: resources, kernels: wavefrontKernels });
     this.specialisationValue = { compileMs, description: describeSpecialisation(spec), unrolled: spec.unrolled !== undefined, primitiveCount: spec.primitiveCount };
     return this.specialisationValue;
   }
@@ -554,6 +587,7 @@ export class Renderer {
     this.specialisationValue = undefined;
     this.pathTrace.kernels.useSpecialised(undefined);
     this.denoiser?.frameKernels.useSpecialised(undefined);
+    this.denoiser?.wavefrontPass?.useSpecialised(undefined);
     this.scheduleSpecialisation();
   }
 
@@ -642,7 +676,7 @@ export class Renderer {
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, torch, spectral: s.spectral };
+      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, torch, spectral: s.spectral };
       this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
@@ -662,14 +696,82 @@ export class Renderer {
     await Promise.all([this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)]);
   }
 
-  /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output). */
+  /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output; the wavefront one where settings.integrator asks for it). */
   async enableRealTime(): Promise<void> {
     const created = !this.denoiser;
     this.denoiser ??= await Denoiser.create(this.device);
     if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
+    if (this.settingsValue.integrator === 'wavefront') await this.enableWavefront();
     // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
     // frame kernel): specialise again with it.
     if (created) this.invalidateSpecialisation();
+  }
+
+  /** The error of the last background compile of the wavefront path tracer, if it failed (frames stay on the megakernel). */
+  wavefrontError?: unknown;
+
+  /**
+   * Compiles the wavefront frame path tracer (settings.integrator = 'wavefront') for this and every
+   * later scene; enableRealTime first. Until it is ready, frames are traced by the megakernel.
+   */
+  async enableWavefront(): Promise<void> {
+    if (!this.denoiser) throw new Error('Renderer: enableRealTime() before enableWavefront()');
+    const created = !this.denoiser.wavefrontPass;
+    await this.denoiser.enableWavefront();
+    this.wavefrontError = undefined;
+    // Specialised kernels are compiled for every tracing pass at once (one under way lacks the wavefront's): specialise again with it.
+    if (created) this.invalidateSpecialisation();
+  }
+
+  /** Which path tracer traced the last real-time frame (settings.integrator, or the megakernel while the wavefront compiles). */
+  get frameIntegrator(): Integrator {
+    return this.denoiser?.frameIntegrator ?? 'megakernel';
+  }
+
+  /** Bytes per pixel of the real-time denoising chain's buffers, each and in all (Denoiser.bufferSizes; empty until a frame). */
+  get denoiserMemory(): { readonly bytesPerPixel: number; readonly buffers: readonly DenoiserBufferSize[] } {
+    return { bytesPerPixel: this.denoiser?.bytesPerPixel() ?? 0, buffers: this.denoiser?.bufferSizes() ?? [] };
+  }
+
+  /** Bytes the wavefront path tracer's own buffers hold (path state and queues; 0 until it traced a frame). */
+  get wavefrontBytes(): number {
+    return this.denoiser?.wavefrontAllocatedBytes ?? 0;
+  }
+
+  /**
+   * The path tracing of one real-time frame alone, by settings.integrator: `samples` paths per pixel
+   * with the random streams of frame `sampleIndex` (default 0), no filter, the history kept. With a
+   * timer its passes are timed ('frame G-buffer' and 'path trace (frame)' for the megakernel;
+   * 'frame G-buffer' and 'path trace (wavefront)' for the wavefront);
+   * `breakdown` times the wavefront's stages apart instead (WavefrontFramePass.encode names them).
+   * For timing the two integrators (bench) and comparing them (readFrameTrace). Returns which traced.
+   */
+  traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
+    const { resources, targets } = this.ready();
+    const s = this.settingsValue;
+    if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before traceFrame()');
+    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
+    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
+    const torch = effectiveTorch(this.prepared?.scene, s.torch);
+    this.settleInstances();
+    const encoder = this.device.createCommandEncoder({ label: 'real-time frame path tracing' });
+    const integrator = this.denoiser.encodeTraceOnly(encoder, {
+      scene: resources, view: this.view, camera: this.cameraValue, settings: s, samples, rayCounters: targets.rayCounters, depthScale: this.sceneSize(),
+      ...(torch ? { torch } : {}), ...(options.timer ? { timer: options.timer } : {}),
+    }, options.sampleIndex ?? 0, options.breakdown ?? false);
+    options.timer?.resolve(encoder);
+    this.device.queue.submit([encoder.finish()]);
+    return integrator;
+  }
+
+  /**
+   * The raw output of the last traceFrame: demodulated radiance, G-buffer, guide, albedo, emission
+   * (after renderFrame the radiance words hold the frame's output instead: the chain reuses them).
+   * traceFrame overwrites the shown frame's output likewise.
+   */
+  readFrameTrace(): Promise<FrameTrace> {
+    if (!this.denoiser) throw new Error('Renderer: enableRealTime() before readFrameTrace()');
+    return this.denoiser.readTrace();
   }
 
   /**
@@ -741,6 +843,15 @@ export class Renderer {
   /** The linear output of the last real-time frame, of whichever recipe made it. */
   private frameOutput(): GPUBuffer | undefined {
     return this.frameRecipe === 'hybrid' ? this.hybrid?.output : this.denoiser?.output;
+  }
+
+  /**
+   * Chooses what present() and readImage() show: the progressive estimate or the last real-time frame
+   * (by default, whichever was rendered last). The viewer renders both while a still view converges.
+   */
+  show(image: 'accumulation' | 'frame'): void {
+    if (image === 'frame' && !this.frameOutput()) throw new Error('Renderer: renderFrame() before show(\'frame\')');
+    this.shown = image;
   }
 
   /** Drops the real-time history: the next frame starts from its own samples. */

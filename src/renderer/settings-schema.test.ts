@@ -32,7 +32,7 @@ describe('the settings schema', () => {
       'torch.range': ['--torch-range', 'torch-range'], debugView: ['--debug', 'debug'], debugLayout: ['--debug-layout', 'layout'],
       wireframeDepth: ['--wireframe-depth', 'depth'], heatMax: ['--heat-max', 'heat-max'], temporal: ['--temporal', 'temporal'],
       denoise: ['--denoise', 'denoise'], clampK: ['--clamp-k', 'clamp-k'], historyCap: ['--history-cap', 'history-cap'], denoiseView: ['--denoise-view', 'denoise-view'],
-      seed: ['--seed', undefined], lightSampling: ['--light-sampling', undefined],
+      seed: ['--seed', undefined], lightSampling: ['--light-sampling', undefined], sampler: ['--sampler', 'sampler'],
     });
   });
 
@@ -42,7 +42,7 @@ describe('the settings schema', () => {
     // Optional settings have no default: absent means "the scene's own".
     expect(DEFAULT_SETTINGS.torch).toEqual({ enabled: true });
     expect(Object.isFrozen(DEFAULT_SETTINGS) && Object.isFrozen(DEFAULT_SETTINGS.torch)).toBe(true);
-    expect([...ESTIMATE_SETTINGS].sort()).toEqual(['accel', 'hybrid', 'lightSampling', 'maxBounces', 'recipe', 'seed', 'spectral', 'tileCulling', 'torch']);
+    expect([...ESTIMATE_SETTINGS].sort()).toEqual(['accel', 'hybrid', 'integrator', 'lightSampling', 'maxBounces', 'recipe', 'sampler', 'seed', 'spectral', 'tileCulling', 'torch']);
   });
 
   it('merges a nested patch into its group and leaves the rest alone', () => {

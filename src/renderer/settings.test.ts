@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { SHADER_MODULES } from '../shaders/index.ts';
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, LIGHT_SAMPLING, TONE_MAPPERS, validateSettings, type RenderSettings } from './settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, LIGHT_SAMPLING, SAMPLERS, TONE_MAPPERS, validateSettings, type RenderSettings } from './settings.ts';
 
 /** The u32 constants named PREFIX_* in a WGSL module, by name. */
 function wgslConstants(module: string, prefix: string): Map<string, number> {
@@ -18,6 +18,7 @@ describe('closed lists mirror their WGSL constants by position', () => {
     ['debug layouts', DEBUG_LAYOUTS, 'lib/debug-views', 'DEBUG_LAYOUT'],
     ['tone mappers', TONE_MAPPERS, 'lib/color', 'TONEMAP'],
     ['light sampling', LIGHT_SAMPLING, 'integrator/path', 'LIGHT_SAMPLING'],
+    ['samplers', SAMPLERS, 'lib/random', 'SAMPLER'],
   ] as const)('%s', (_, names, module, prefix) => {
     const constants = wgslConstants(module, prefix);
     expect(constants.size).toBe(names.length);

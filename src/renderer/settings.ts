@@ -12,9 +12,9 @@ import {
 } from './settings-schema.ts';
 
 // The closed lists live beside the passes that turn them into WGSL constants (passes sit below the renderer).
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS, WIREFRAME_LEVELS } from '../passes/variants.ts';
-export { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, TONE_MAPPERS } from '../passes/variants.ts';
-export type { DebugLayout, DebugView, DenoiseView, LightSampling, ToneMapper } from '../passes/variants.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, SAMPLERS, TONE_MAPPERS, WIREFRAME_LEVELS } from '../passes/variants.ts';
+export { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, SAMPLERS, TONE_MAPPERS } from '../passes/variants.ts';
+export type { DebugLayout, DebugView, DenoiseView, LightSampling, Sampler, ToneMapper } from '../passes/variants.ts';
 
 /** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
 export const MAX_WIREFRAME_DEPTH = 64;
@@ -22,6 +22,10 @@ export const MAX_WIREFRAME_DEPTH = 64;
 /** The frame recipes (settings.recipe): the path tracer, or the hybrid raster + ray-traced recipe (renderer/hybrid.ts). */
 export const RENDER_MODES = ['path', 'hybrid'] as const;
 export type RenderMode = (typeof RENDER_MODES)[number];
+
+/** The real-time frame's path tracers (settings.integrator): one thread per path, or kernels over queues of paths (passes/wavefront-frame-pass.ts). */
+export const INTEGRATORS = ['megakernel', 'wavefront'] as const;
+export type Integrator = (typeof INTEGRATORS)[number];
 
 /** Frames of temporal history: a cap, or no cap (a still camera then converges like progressive rendering). */
 export type HistoryCap = number | 'unlimited';
@@ -40,6 +44,10 @@ export const RENDER_SETTINGS = {
   recipe: choice(RENDER_MODES, {
     name: 'recipe', description: "the frame recipe: 'path' traces every pixel's path (progressive, or the real-time denoiser's chain); 'hybrid' rasterises the first hit and ray-traces direct light with shadows, diffuse GI at --gi-scale and reflections, then TAA (docs/hybrid.md)", default: 'path',
     cli: { flag: '--mode', argument: '<path|hybrid>' }, link: 'recipe', restarts: true, panel: { folder: 'render', label: 'recipe' },
+  }),
+  integrator: choice(INTEGRATORS, {
+    name: 'integrator', description: "frame mode: the path tracer of the real-time frame: one thread follows each path (megakernel), or extend, shade and shadow kernels over compacted queues of paths (wavefront; same image up to rounding)", default: 'megakernel',
+    cli: { flag: '--integrator', argument: '<megakernel|wavefront>' }, link: 'integrator', restarts: true, panel: { folder: 'render', label: 'integrator' },
   }),
   maxBounces: integer({
     name: 'bounces', description: 'maximum bounces per path (0: emitters only, 1: direct light, ...)', min: 0, max: MAX_BOUNCES_LIMIT, default: 8,
@@ -62,6 +70,10 @@ export const RENDER_SETTINGS = {
   spectral: boolean({
     name: 'spectral', description: 'spectral rendering: four wavelengths per path (hero wavelength), RGB lifted to spectra, glass disperses (docs/spectral.md)', words: ['0', '1'], default: false,
     cli: { flag: '--spectral', switch: true }, link: 'spectral', restarts: true, panel: { folder: 'render', label: 'spectral' },
+  }),
+  sampler: choice(SAMPLERS, {
+    name: 'sampler', description: "where the path tracers' random numbers come from: 'sobol', an Owen-scrambled Sobol sequence per pixel (its samples stratified, also across real-time frames) with neighbouring pixels given stratified points, so that a frame's error is blue noise the denoiser removes well; 'random', independent PCG numbers (white noise)", default: 'sobol',
+    cli: { flag: '--sampler', argument: '<sobol|random>' }, link: 'sampler', restarts: true, panel: { folder: 'render', label: 'sampler' },
   }),
   seed: integer({
     name: 'seed', description: 'seed of every random stream (same seed, scene and settings: same image)', min: 0, max: 0xffffffff, default: 1,
@@ -111,7 +123,7 @@ export const RENDER_SETTINGS = {
     cli: { flag: '--tile-culling', switch: true }, link: 'tile-cull', restarts: true, panel: { folder: 'render', label: 'tile culling' },
   }),
   accel: choice(ACCELS, {
-    name: 'accel', description: "how the static world is traced: its BVH, or a uniform grid (3D-DDA; a tile map's own 64 × 64 tiles where the scene has them)", default: 'bvh',
+    name: 'accel', description: "how the static world is traced: its BVH, a uniform grid (3D-DDA; a tile map's own 64 × 64 tiles where the scene has them), or a wide BVH collapsed from its BVH (bvh4: 4 fp32 child boxes a node; cwbvh: 8 children a node in 80 bytes, 8-bit boxes)", default: 'bvh',
     cli: { flag: '--accel', argument: '<structure>' }, link: 'accel', restarts: true, panel: { folder: 'render', label: 'acceleration' },
   }),
   wireframeLevel: choice(WIREFRAME_LEVELS, {
@@ -133,7 +145,7 @@ export const RENDER_SETTINGS = {
   historyCap: integerOrUnlimited({
     name: 'history cap', description: "frame mode: longest temporal history in frames ('unlimited' also lifts the clamp while the camera is still)", min: 1, max: MAX_HISTORY_CAP, default: 32,
     cli: { flag: '--history-cap', argument: '<n|unlimited>' }, link: 'history-cap', restarts: false,
-    panel: { folder: 'denoise', label: 'history cap', step: 1, slider: [1, 256], unlimitedLabel: 'converge when still' },
+    panel: { folder: 'denoise', label: 'history cap', step: 1, slider: [1, 256], unlimitedLabel: 'unlimited' },
   }),
   denoiseView: choice(DENOISE_VIEWS, {
     name: 'denoise view', description: 'frame mode: what the real-time chain shows', default: 'output',

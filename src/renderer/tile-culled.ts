@@ -12,6 +12,7 @@
  * geometry (flatten, BVH build, geometry packing). Pure (no GPU): it runs in a worker or a test.
  */
 import { buildGrid } from '../bvh/grid.ts';
+import { buildWideBvh } from '../bvh/wide.ts';
 import { buildLevels, buildStaticBvh } from '../bvh/levels.ts';
 import { packGeometry } from '../gpu/pack/scene-pack.ts';
 import type { Vec3 } from '../math/vec3.ts';
@@ -68,10 +69,11 @@ export function prepareTile(full: PreparedScene, grid: TileGrid, tile: number, d
   const t2 = performance.now();
   // Traced as the full scene is (its pipelines walk a grid where it has one).
   const tileGrid = full.grid ? buildGrid(triangles.positions, triangles.kinds, bvh.triIndices, full.scene.tileGrid) : undefined;
-  const packed = packGeometry(scene, triangles, bvh, full.packed.packedMaterials, full.packed.environment, levels, tileGrid);
+  const tileWide = full.wide ? buildWideBvh(bvh, full.wide.layout) : undefined;
+  const packed = packGeometry(scene, triangles, bvh, full.packed.packedMaterials, full.packed.environment, levels, tileGrid ?? tileWide);
   const t3 = performance.now();
   // The full scene's features: the pipelines compiled for it serve every tile (a superset is always correct).
-  return { scene, triangles, bvh, ...(levels ? { levels } : {}), ...(tileGrid ? { grid: tileGrid } : {}), packed: { ...packed, features: full.packed.features }, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
+  return { scene, triangles, bvh, ...(levels ? { levels } : {}), ...(tileGrid ? { grid: tileGrid } : {}), ...(tileWide ? { wide: tileWide } : {}), packed: { ...packed, features: full.packed.features }, timings: { flattenMs: t1 - t0, bvhMs: t2 - t1, packMs: t3 - t2 } };
 }
 
 export class TileCulledScenes {

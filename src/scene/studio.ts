@@ -149,3 +149,21 @@ function quad(name: string, centre: Vec3, a: Vec3, b: Vec3, materialId: number):
   };
 }
 
+
+/** The meshes studioScene adds after the model's, in order. */
+const STUDIO_MESH_NAMES = ['studio floor', 'studio key light', 'studio fill light'];
+
+/**
+ * The model alone, without the studio's floor and lights (the camera kept): what a benchmark that
+ * measures the bare mesh traces. Undefined when `scene` is not a studio scene.
+ */
+export function withoutStudio(scene: Scene): Scene | undefined {
+  const n = scene.meshes.length - STUDIO_MESH_NAMES.length;
+  if (n < 1 || !STUDIO_MESH_NAMES.every((name, k) => scene.meshes[n + k]!.name === name)) return undefined;
+  return {
+    ...scene,
+    meshes: scene.meshes.slice(0, n),
+    instances: scene.instances.filter((inst) => inst.mesh < n),
+    materials: scene.materials.slice(0, scene.materials.length - STUDIO_MESH_NAMES.length),
+  };
+}

@@ -7,29 +7,23 @@ import { spawn, spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { build } from 'vite';
+import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import { decodeExr } from '../../src/image/exr.ts';
 import { decodePng } from '../../src/image/png.ts';
 import { squareRoomWad } from '../../src/loaders/doom/test-wad.ts';
+import { randomSoup } from '../../src/bvh/test-scenes.ts';
 
 let dir: string;
 let cli: string;
 
-let binDir: string;
-
 beforeAll(async () => {
   dir = mkdtempSync(join(tmpdir(), 'lantern-cli-'));
-  // Inside the project, so that the bundle resolves `webgpu` from node_modules as an installed CLI does.
-  mkdirSync(join('node_modules', '.cache'), { recursive: true });
-  binDir = mkdtempSync(join('node_modules', '.cache', 'lantern-cli-test-'));
-  await build({ configFile: 'vite.cli.config.ts', logLevel: 'error', build: { outDir: binDir, sourcemap: false } });
-  cli = join(binDir, 'lantern.mjs');
+  // Built once for the e2e project (tests/e2e/global-setup.ts).
+  cli = inject('lanternCli');
 });
 
 afterAll(() => {
   rmSync(dir, { recursive: true, force: true });
-  rmSync(binDir, { recursive: true, force: true });
 });
 
 function lantern(args: string[], env: Record<string, string> = {}) {
@@ -116,9 +110,33 @@ describe('lantern bvh-stats', () => {
     expect(layout.sahCost).toBeGreaterThan(0);
     expect(layout.nodeBytesPerTriangle).toBeCloseTo(((layout.nodeCount + 1) * 32) / 32, 9);
     expect(layout.buildMs).toBeGreaterThan(0);
+    // The wide trees (bvh/wide.ts) over the same leaves: fewer nodes, a lower SAH cost.
+    expect(stats.layouts.map((l: { name: string }) => l.name)).toEqual(['binary-sah', 'bvh4', 'cwbvh', 'bvh4-greedy', 'cwbvh-greedy']);
+    for (const wide of stats.layouts.slice(1)) {
+      expect(wide).toMatchObject({ triangleCount: 32, leafCount: layout.leafCount });
+      expect(wide.nodeCount).toBeLessThan(layout.nodeCount / 2);
+      expect(wide.sahCost).toBeLessThan(layout.sahCost);
+    }
     const text = lantern(['bvh-stats', 'bvh-teaching']);
     expect(text.stdout).toMatch(/^bvh-teaching: 2,508 triangles/);
     expect(text.stdout).toMatch(/binary-sah: binary BVH.*\n.*SAH cost [\d.]+\n.*leaf sizes: .*\n.*bytes\/triangle.*built in/);
+  });
+
+  it('--threads builds the same tree on worker threads (bvh/build-parallel.ts) and times both builds', () => {
+    // 6,000 random triangles: halves split again by the workers into subtrees of at most 2,048.
+    const soup = randomSoup(6_000, 4);
+    const lines = ['ply', 'format ascii 1.0', `element vertex ${soup.length / 3}`, 'property float x', 'property float y', 'property float z', `element face ${soup.length / 9}`, 'property list uchar int vertex_indices', 'end_header'];
+    for (let v = 0; v < soup.length; v += 3) lines.push(`${soup[v]} ${soup[v + 1]} ${soup[v + 2]}`);
+    for (let t = 0; t < soup.length / 9; t++) lines.push(`3 ${3 * t} ${3 * t + 1} ${3 * t + 2}`);
+    const file = join(dir, 'soup.ply');
+    writeFileSync(file, lines.join('\n'));
+    const r = lantern(['bvh-stats', file, '--threads', '2', '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const { build, layouts } = JSON.parse(r.stdout);
+    expect(build).toMatchObject({ threads: 2, identical: true, sahCost: layouts[0].sahCost });
+    for (const ms of [build.singleMs, build.parallelMs, build.parallelFirstMs]) expect(ms).toBeGreaterThan(0);
+    const one = lantern(['bvh-stats', file, '--threads', '1']);
+    expect(one.stdout).toMatch(/binary-SAH build: [\d.]+ ms on one thread; no parallel build/);
   });
 });
 
@@ -171,6 +189,8 @@ describe('bad input', () => {
     [['render', 'cornell', '--debug', 'wireframe', '--wireframe-depth', '99'], /--wireframe-depth must be a whole number from 0 to 64/],
     [['render', 'cornell', '--debug', 'heat-nodes', '--heat-max', '0'], /--heat-max must be a positive number or 'auto'/],
     [['bvh-stats', 'nope'], /unknown scene 'nope'/],
+    [['bvh-stats', 'cornell', '--builder', 'cpu,fast'], /--builder takes a comma-separated list of cpu, gpu; got 'cpu,fast'/],
+    [['bvh-stats', 'cornell', '--bare'], /--bare takes the mesh out of its studio: 'cornell' is not a PLY mesh/],
     [['render', 'cornell', '--sky', '100,0'], /--sky: the sun's elevation must be from -90 to 90 degrees, not 100/],
     [['render', 'cornell', '--sky', '30'], /--sky/],
     [['render', 'cornell', '--env', 'nowhere.hdr'], /--env: cannot read 'nowhere\.hdr'/],
@@ -181,6 +201,9 @@ describe('bad input', () => {
     [['render', 'cornell', '--focus-distance', '500'], /--focus-distance needs a lens, and the camera of 'cornell' is a pinhole/],
     [['bench', 'cornell', '--kernel', 'fast'], /--kernel must be one of generic, specialised, not 'fast'/],
     [['bench', 'cornell', '--unroll-limit', '8'], /--unroll-limit applies to the specialised kernel only/],
+    [['bench', 'cornell', '--ray-order', 'hilbert'], /--ray-order must be one of tiles, scanline, not 'hilbert'/],
+    [['bench', 'cornell', '--protocol', 'tinybvh-closeup'], /--protocol traces a bare mesh: 'cornell' is not a PLY mesh/],
+    [['bench'], /bench needs a scene/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);
@@ -254,6 +277,18 @@ describe('lantern info and bench', () => {
     expect(b.pathTracing.raysPerPath).toBeGreaterThan(1);
     expect(b.bvh.nodes).toBe(33);
     expect(b.kernel).toEqual({ kind: 'generic' });
+    // tinybvh's diffuse rays: one per primary hit. Rows instead of tiles trace the same rays in
+    // another order (so the same hits), and --camera moves the view.
+    expect(b).toMatchObject({ rayOrder: 'tiles', warmups: 5, repeats: 1 });
+    expect(b.primary.rays).toBe(32 * 32);
+    expect(b.diffuse.rays).toBe(Math.round(b.primary.hitFraction * 32 * 32));
+    expect(b.primary.hitFraction).toBeGreaterThan(0.8);
+    const rows = JSON.parse(lantern(['bench', 'cornell', '-W', '32', '-H', '32', '-r', '1', '--warmups', '0', '--ray-order', 'scanline', '--no-path-tracing', '--json']).stdout);
+    expect(rows).toMatchObject({ rayOrder: 'scanline', primary: { rays: 1024, hitFraction: b.primary.hitFraction }, diffuse: { rays: b.diffuse.rays } });
+    expect(rows.pathTracing).toBeUndefined();
+    const away = JSON.parse(lantern(['bench', 'cornell', '-W', '32', '-H', '32', '-r', '1', '--warmups', '0', '--no-path-tracing', '--camera', '278,273,-800,278,273,-1800', '--json']).stdout);
+    expect(away.primary.hitFraction).toBe(0);
+    expect(away.diffuse.rays).toBe(0);
   });
 
   it('bench --kernel specialised times the kernels specialised to the scene and reports their compile time', () => {
@@ -296,12 +331,39 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     expect(r.stderr).toMatch(/--skill must be from 1 to 5, not 6/);
   });
 
-  it('renders a map from the player start', () => {
+  it('renders a map from the player start, with the start-up timeline from process start to the PNG', () => {
     const png = join(dir, 'e1m1.png');
-    const r = lantern(['render', `${FREEDOOM1}#E1M1`, '-W', '32', '-H', '20', '-s', '1', '-b', '2', '--out', png, '--json']);
+    const r = lantern(['render', `${FREEDOOM1}#E1M1`, '-W', '32', '-H', '20', '-s', '1', '-b', '2', '--out', png, '--json', '--timings']);
     expect(r.code, r.rawStderr).toBe(0);
-    expect(JSON.parse(r.stdout)).toMatchObject({ scene: 'E1M1', width: 32, height: 20 });
+    const report = JSON.parse(r.stdout);
+    expect(report).toMatchObject({ scene: 'E1M1', width: 32, height: 20 });
     expect(decodePng(readFileSync(png)).width).toBe(32);
+
+    const { totalMs, spans } = report.timeline as { totalMs: number; spans: { stage: string; startMs: number; endMs: number }[] };
+    const at = (stage: string) => {
+      const span = spans.find((s) => s.stage.startsWith(stage));
+      expect(span, `the timeline has no '${stage}'`).toBeDefined();
+      return span!;
+    };
+    for (const s of spans) {
+      expect(s.startMs).toBeGreaterThanOrEqual(0);
+      expect(s.endMs).toBeGreaterThanOrEqual(s.startMs);
+      expect(s.endMs).toBeLessThanOrEqual(totalMs);
+    }
+    // Each step starts after the one it waits for ends: Node and the bundle, the device, the scene
+    // (its features choose the path tracer's variant), the compile, the upload, the frame, the PNG.
+    const chain = [
+      ['node start + bundle parse', 'bundle evaluated'], ['bundle evaluated', 'device'], ['device', 'pipeline passes/path-trace:path_trace'],
+      ['prepare: pack', 'pipeline passes/path-trace:path_trace'], ['pipeline passes/path-trace:path_trace', 'first dispatch'], ['upload scene', 'first dispatch'],
+      ['first dispatch', 'tone map + read back'], ['tone map + read back', 'PNG encode'], ['PNG encode', 'PNG write'],
+    ];
+    for (const [before, after] of chain) expect(at(before!).endMs, `${before} ends before ${after} starts`).toBeLessThanOrEqual(at(after!).startMs);
+    expect(at('PNG write').endMs).toBe(totalMs);
+    expect(at('scene: build').startMs).toBeGreaterThan(0);
+    // The scene loaded on a thread of its own; only the kernels this render runs were compiled, the
+    // path tracer once (for this map's features, not a plain scene's first).
+    expect(spans.some((s) => s.stage === 'scene thread: result received')).toBe(true);
+    expect(spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort()).toEqual(['pipeline passes/path-trace:path_trace', 'pipeline passes/tonemap:tonemap_image']);
   });
 
   it('converts a map to a .glb', () => {

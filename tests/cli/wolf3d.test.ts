@@ -7,20 +7,16 @@ import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { build } from 'vite';
+import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
 
 let dir: string;
-let binDir: string;
 let cli: string;
 
 beforeAll(async () => {
   dir = mkdtempSync(join(tmpdir(), 'lantern-wolf3d-'));
-  mkdirSync(join('node_modules', '.cache'), { recursive: true });
-  binDir = mkdtempSync(join('node_modules', '.cache', 'lantern-cli-test-'));
-  await build({ configFile: 'vite.cli.config.ts', logLevel: 'error', build: { outDir: binDir, sourcemap: false } });
-  cli = join(binDir, 'lantern.mjs');
+  // Built once for the e2e project (tests/e2e/global-setup.ts).
+  cli = inject('lanternCli');
   const game = testGameFiles({ maps: 3 });
   mkdirSync(join(dir, 'game'));
   for (const f of [game.maphead, game.gamemaps, game.vswap]) writeFileSync(join(dir, 'game', f.name), f.bytes);
@@ -33,7 +29,6 @@ beforeAll(async () => {
 
 afterAll(() => {
   rmSync(dir, { recursive: true, force: true });
-  rmSync(binDir, { recursive: true, force: true });
 });
 
 function lantern(args: string[]) {

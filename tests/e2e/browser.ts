@@ -1,12 +1,10 @@
 /**
  * Headless Chromium with WebGPU on SwiftShader (Debian's `chromium` package), driven by
- * playwright-core, and the production page built fresh and served by `lantern view`'s server.
+ * playwright-core, and the production page (built once per run: global-setup.ts) served by
+ * `lantern view`'s server.
  */
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
 import { chromium, type Browser, type Page } from 'playwright-core';
-import { build } from 'vite';
+import { inject } from 'vitest';
 import { startViewServer } from '../../src/cli/view-server.ts';
 
 export const CHROMIUM = process.env.LANTERN_CHROMIUM ?? '/usr/bin/chromium';
@@ -38,19 +36,16 @@ export interface ServedPage {
 }
 
 /**
- * Builds the page into a temporary folder and serves it, with `files`, on a free local port through
- * the same server `lantern view` uses.
+ * Serves the page (built once for the e2e project by tests/e2e/global-setup.ts), with `files`, on a
+ * free local port through the same server `lantern view` uses.
  */
 export async function servePage(files: readonly string[] = []): Promise<ServedPage> {
-  const outDir = mkdtempSync(join(tmpdir(), 'lantern-page-'));
-  await build({ logLevel: 'warn', build: { outDir, emptyOutDir: true } });
-  const server = await startViewServer({ appDir: outDir, files, port: 0 });
+  const server = await startViewServer({ appDir: inject('lanternPage'), files, port: 0 });
   return {
     url: server.url,
     fileUrls: server.fileUrls,
     async close() {
       await server.close();
-      rmSync(outDir, { recursive: true, force: true });
     },
   };
 }
@@ -63,4 +58,92 @@ export async function dropFiles(page: Page, files: readonly { name: string; byte
     window.dispatchEvent(new DragEvent('dragenter', { dataTransfer: data, cancelable: true }));
     window.dispatchEvent(new DragEvent('drop', { dataTransfer: data, cancelable: true }));
   }, files);
+}
+
+/** The last lines a page printed (console and uncaught errors), kept per page for reports on a timeout. */
+const pageLogs = new WeakMap<Page, string[]>();
+const LOG_LINES = 40;
+
+/**
+ * Keeps the page's console output and uncaught errors (the last 40 lines) so that a wait that times
+ * out can say what the page was doing (waitForPage). Call it before `goto`.
+ */
+export function watchPage(page: Page): void {
+  if (pageLogs.has(page)) return;
+  const log: string[] = [];
+  pageLogs.set(page, log);
+  const keep = (line: string) => {
+    log.push(`${(performance.now() / 1000).toFixed(1)} s ${line}`);
+    if (log.length > LOG_LINES) log.shift();
+  };
+  page.on('console', (m) => keep(`console.${m.type()}: ${m.text()}`));
+  page.on('pageerror', (e) => keep(`pageerror: ${e.stack ?? e.message}`));
+  page.on('crash', () => keep('the page crashed'));
+}
+
+/** The page's state as the test hook and the page show it, for a failure report. */
+export async function pageState(page: Page): Promise<string> {
+  try {
+    const state = await page.evaluate(() => {
+      const l = window.lantern;
+      const hook = l
+        ? { state: l.state, samples: l.samples, scene: l.scene, loading: l.loading, sceneLoads: l.sceneLoads, firstFrameMs: l.firstFrameMs, kernel: l.kernel, gpuResources: l.gpuResources }
+        : 'window.lantern is not set';
+      const play = document.getElementById('play') as HTMLButtonElement | null;
+      const message = document.getElementById('message');
+      return {
+        lantern: hook,
+        hidden: document.hidden,
+        visibilityState: document.visibilityState,
+        play: play ? { text: play.textContent, disabled: play.disabled } : 'no #play',
+        message: message && !message.hidden ? `${message.dataset.kind ?? ''}: ${message.textContent ?? ''}` : '',
+        canvas: { ...(document.getElementById('view')?.dataset ?? {}) },
+      };
+    });
+    return JSON.stringify(state, null, 1);
+  } catch (e) {
+    return `(the page's state could not be read: ${(e as Error).message})`;
+  }
+}
+
+/** What the page is doing now, for a failure's message: its state (pageState) and its last console lines (watchPage). */
+export async function pageReport(page: Page): Promise<string> {
+  const log = pageLogs.get(page);
+  const lines = log ? (log.length > 0 ? log.join('\n') : '(nothing printed)') : '(not watched: call watchPage before goto)';
+  return `the page now:\n${await pageState(page)}\nits last console lines:\n${lines}`;
+}
+
+/** Runs `wait` (a waitForFunction, an expect.poll); a failure is rethrown with the page's report (pageReport) appended. */
+export async function withPageReport<T>(page: Page, what: string, wait: () => Promise<T>): Promise<T> {
+  try {
+    return await wait();
+  } catch (e) {
+    throw new Error(`${(e as Error).message.split('\n')[0]}\nwaiting for ${what}; ${await pageReport(page)}`, { cause: e });
+  }
+}
+
+/** page.waitForFunction, and on a timeout (or any failure) an error that carries the page's report (pageReport). */
+export async function waitForPage<Arg extends string | number | boolean | undefined>(page: Page, fn: (arg: Arg) => unknown, arg: Arg, timeout: number, what = 'the page'): Promise<void> {
+  await withPageReport(page, what, () => page.waitForFunction(fn as (arg: unknown) => unknown, arg as unknown, { timeout }));
+}
+
+/**
+ * Waits until the viewer holds `samples` samples, failing at once (with the page's state and console)
+ * if it stops with an error instead of waiting out the timeout.
+ */
+export async function waitForSamples(page: Page, samples: number, timeout: number): Promise<void> {
+  await waitForPage(page, (n) => window.lantern.samples >= n || window.lantern.state === 'failed', samples, timeout, `${samples} samples`);
+  if ((await page.evaluate(() => window.lantern.state)) === 'failed') throw new Error(`the viewer failed while waiting for ${samples} samples; ${await pageReport(page)}`);
+}
+
+/**
+ * Makes every animation frame's time `ms` older than the browser gives it, before the page's scripts
+ * run: what a main thread busy past a frame boundary sees (the frame's time precedes work done just
+ * before the request), deterministically. Frames keep their spacing.
+ */
+export async function lagAnimationFrames(page: Page, ms: number): Promise<void> {
+  await page.addInitScript((lag) => {
+    const request = window.requestAnimationFrame.bind(window);
+    window.requestAnimationFrame = (callback) => request((time) => callback(time - lag));
+  }, ms);
 }

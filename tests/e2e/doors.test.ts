@@ -9,7 +9,7 @@
 import { existsSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
-import { launchBrowser, servePage, type ServedPage } from './browser.ts';
+import { lagAnimationFrames, launchBrowser, servePage, waitForPage, watchPage, withPageReport, type ServedPage } from './browser.ts';
 
 const FREEDOOM1 = '/usr/share/games/doom/freedoom1.wad';
 const present = existsSync(FREEDOOM1);
@@ -40,15 +40,18 @@ describe.skipIf(!present)('Doom doors in the page', () => {
     const page = await browser.newPage({ viewport: { width: 320, height: 200 } });
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
+    watchPage(page);
+    // Frame times older than Play, as a loaded machine gives them (the first step must not go back in time).
+    await lagAnimationFrames(page, 50);
     // 92 units south of the door (room floor −128, eye at −87), facing north (yaw 0 looks along −z).
     await page.goto(`${served.url}?wad=${served.fileUrls[0]}&map=E1M1&mode=walk&cam=832,-87,-420,0,0&scale=0.05&debug=normals&layout=replace`);
-    await page.waitForFunction(() => window.lantern && !window.lantern.loading && window.lantern.scene === 'E1M1', undefined, { timeout: 120_000 });
+    await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene === 'E1M1', undefined, 120_000, 'the map');
     await page.click('#play');
-    await page.waitForFunction(() => window.lantern.state === 'playing', undefined, { timeout: 60_000 });
+    await waitForPage(page, () => window.lantern.state === 'playing', undefined, 60_000, 'Play');
 
     // Walk north into the closed door until the walker stops: one radius short of its face.
     await page.keyboard.down('KeyW');
-    await expect.poll(() => z(page), { timeout: 60_000, interval: 200 }).toBeLessThan(NEAR_FACE + RADIUS + 1);
+    await withPageReport(page, 'the walker', () => expect.poll(() => z(page), { timeout: 60_000, interval: 200 }).toBeLessThan(NEAR_FACE + RADIUS + 1));
     await page.waitForTimeout(1000);
     await page.keyboard.up('KeyW');
     const stopped = await z(page);
@@ -57,7 +60,7 @@ describe.skipIf(!present)('Doom doors in the page', () => {
     // E opens it (2 units a tic: 1.8 s to the top); pressing on, the walker passes the far face.
     await page.keyboard.press('KeyE');
     await page.keyboard.down('KeyW');
-    await expect.poll(() => z(page), { timeout: 90_000, interval: 200 }).toBeLessThan(FAR_FACE - RADIUS);
+    await withPageReport(page, 'the walker', () => expect.poll(() => z(page), { timeout: 90_000, interval: 200 }).toBeLessThan(FAR_FACE - RADIUS));
     await page.keyboard.up('KeyW');
     expect(errors).toEqual([]);
     await page.close();

@@ -9,7 +9,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { parseViewParams } from '../../src/app/view-params.ts';
 import { decodePng } from '../../src/image/png.ts';
-import { launchBrowser, servePage, type ServedPage } from './browser.ts';
+import { launchBrowser, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
 
 let browser: Browser;
 let served: ServedPage;
@@ -53,14 +53,15 @@ async function openPage(query: string): Promise<{ page: Page; errors: string[] }
   const page = await browser.newPage({ viewport: VIEWPORT });
   const errors: string[] = [];
   page.on('pageerror', (e) => errors.push(e.message));
+  watchPage(page);
   await page.goto(`${served.url}?${query}`);
-  await page.waitForFunction(() => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, { timeout: 60_000 });
+  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, 'the first scene');
   return { page, errors };
 }
 
 async function playUntil(page: Page, samples: number): Promise<void> {
   if ((await page.evaluate(() => window.lantern.state)) !== 'playing') await page.click('#play');
-  await page.waitForFunction((n) => window.lantern.samples >= n, samples, { timeout: 120_000 });
+  await waitForSamples(page, samples, 120_000);
 }
 
 /** Pixels of the canvas in the selection outline's orange (1, 0.55, 0.1). */

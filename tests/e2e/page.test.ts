@@ -10,7 +10,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { decodePng } from '../../src/image/png.ts';
 import { squareRoomsWad } from '../../src/loaders/doom/test-wad.ts';
-import { dropFiles, launchBrowser, servePage, type ServedPage } from './browser.ts';
+import { dropFiles, launchBrowser, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
 
 let browser: Browser;
 let served: ServedPage;
@@ -52,6 +52,7 @@ async function open(query: string): Promise<{ page: Page; errors: string[] }> {
   const page = await browser.newPage({ viewport: VIEWPORT });
   const errors: string[] = [];
   page.on('pageerror', (e) => errors.push(e.message));
+  watchPage(page);
   await page.goto(`${served.url}?${query}`);
   await waitLoaded(page);
   return { page, errors };
@@ -66,12 +67,12 @@ async function renderPixels(page: Page): Promise<number> {
 }
 
 async function waitLoaded(page: Page, scene?: string): Promise<void> {
-  await page.waitForFunction((s) => window.lantern && !window.lantern.loading && window.lantern.scene !== '' && (!s || window.lantern.scene === s), scene, { timeout: 60_000 });
+  await waitForPage(page, (s) => window.lantern && !window.lantern.loading && window.lantern.scene !== '' && (!s || window.lantern.scene === s), scene, 60_000, `the scene ${scene ?? ''} loaded`);
 }
 
 async function playUntil(page: Page, samples: number): Promise<void> {
   if ((await page.evaluate(() => window.lantern.state)) !== 'playing') await page.click('#play');
-  await page.waitForFunction((n) => window.lantern.samples >= n, samples, { timeout: 120_000 });
+  await waitForSamples(page, samples, 120_000);
 }
 
 /** The glTF sample models shared between worktrees (../shared/assets/gltf): tests that need them skip without them. */
@@ -101,7 +102,7 @@ async function settledImage(page: Page, samples: number) {
 
 /** Waits until a scene other than `before` is shown and loaded. */
 async function waitNewScene(page: Page, before: number): Promise<void> {
-  await page.waitForFunction((n) => window.lantern.sceneLoads > n && !window.lantern.loading, before, { timeout: 120_000 });
+  await waitForPage(page, (n) => window.lantern.sceneLoads > n && !window.lantern.loading, before, 120_000, 'a new scene');
 }
 
 const canvasImage = async (page: Page) => decodePng(await page.locator('#view').screenshot());
@@ -117,8 +118,15 @@ describe('the page', () => {
     expect(await page.evaluate(() => window.lantern.samples)).toBe(0);
     expect(await page.evaluate(() => window.lantern.gpuResources.buffers)).toBe(0);
     expect(await page.locator('#view').getAttribute('data-state')).toBe('idle');
+    expect(await page.evaluate(() => window.lantern.firstFrameMs)).toBeUndefined();
+    expect(await page.locator('#view').getAttribute('data-first-frame-ms')).toBeNull();
 
     await playUntil(page, 8);
+    // Play to first frame: reported once the first frame is done, in the hook, on the canvas and in the GPU panel.
+    const firstFrameMs = await page.evaluate(() => window.lantern.firstFrameMs);
+    expect(firstFrameMs).toBeGreaterThan(0);
+    expect(Number(await page.locator('#view').getAttribute('data-first-frame-ms'))).toBeCloseTo(firstFrameMs!, 0);
+    await expect.poll(() => page.getByText('Play to first frame').count()).toBe(1);
     // The renderer's idle specialisation is off on SwiftShader (its compile would take minutes of the page's CPU).
     await page.waitForTimeout(1200);
     expect(await page.evaluate(() => window.lantern.kernel)).toBe('generic');
@@ -224,7 +232,8 @@ describe('the page', () => {
   });
 
   it('gives back every GPU buffer over 20 scene loads', async () => {
-    const { page, errors } = await open('scene=cornell&scale=0.05');
+    // Progressive (the real-time chain's buffers would follow the image size too: resource-count.test.ts covers the renderer's).
+    const { page, errors } = await open('scene=cornell&scale=0.05&temporal=0&denoise=0');
     await playUntil(page, 1);
     await page.click('#play');
     // Let the frame in flight finish: its read-back buffer lives until the read completes.
@@ -276,28 +285,38 @@ describe('the page', () => {
     await page.close();
   });
 
-  it('runs the real-time denoised chain from the panel and keeps it while the camera moves', async () => {
+  it('starts in the real-time denoised chain, keeps it while the camera moves, converges when still, and goes progressive from the panel', async () => {
     const { page, errors } = await open('scene=cornell&scale=0.1');
     await playUntil(page, 2);
-    const before = await page.evaluate(() => window.lantern.gpuResources.bytes);
-    await page.locator('.tp-lblv', { hasText: 'temporal' }).locator('.tp-ckbv_w').click();
-    await page.locator('.tp-lblv', { hasText: 'spatial' }).locator('.tp-ckbv_w').click();
-    await expect.poll(() => page.evaluate(() => window.lantern.samples), { timeout: 10_000 }).toBeLessThan(3);
-    await playUntil(page, 4);
-    // The G-buffer and history now exist on the GPU.
-    expect(await page.evaluate(() => window.lantern.gpuResources.bytes)).toBeGreaterThan(before);
+    expect(await page.evaluate(() => window.lantern.display)).toBe('frame');
+    expect(await page.evaluate(() => window.lantern.link)).toMatch(/temporal=1&denoise=1/);
     await page.keyboard.down('KeyA');
     await page.waitForTimeout(300);
     await page.keyboard.up('KeyA');
     const frames = await page.evaluate(() => window.lantern.samples);
     await playUntil(page, frames + 3);
+    // Still: the exact progressive estimate takes over once it holds 64 samples per pixel.
+    await page.waitForFunction(() => window.lantern.display === 'converged', undefined, { timeout: 120_000 });
+    expect(await page.evaluate(() => window.lantern.samples)).toBeGreaterThanOrEqual(64);
     await page.click('#play');
     const img = await canvasImage(page);
-    const left = meanRgb(img, 0.03, 0.12, 0.3, 0.7);
+    // The camera stepped left: the red wall is in from the left edge.
+    const left = meanRgb(img, 0.17, 0.27, 0.3, 0.7);
     const right = meanRgb(img, 0.88, 0.97, 0.3, 0.7);
     expect(left[0]).toBeGreaterThan(1.5 * left[1]);
     expect(right[1]).toBeGreaterThan(1.2 * right[0]);
-    expect(await page.evaluate(() => window.lantern.link)).toMatch(/temporal=1&denoise=1/);
+    await page.click('#play');
+    // A move hands back to the real-time frames.
+    await page.keyboard.down('KeyD');
+    await page.waitForTimeout(300);
+    await page.keyboard.up('KeyD');
+    await expect.poll(() => page.evaluate(() => window.lantern.display), { timeout: 40_000 }).toBe('frame');
+
+    // Both filters off from the panel: progressive accumulation, restarted.
+    await page.locator('.tp-lblv', { hasText: 'temporal' }).locator('.tp-ckbv_w').click();
+    await page.locator('.tp-lblv', { hasText: 'spatial' }).locator('.tp-ckbv_w').click();
+    await expect.poll(() => page.evaluate(() => window.lantern.display), { timeout: 40_000 }).toBe('progressive');
+    expect(await page.evaluate(() => window.lantern.link)).toMatch(/temporal=0&denoise=0/);
     expect(errors).toEqual([]);
     await page.close();
   });

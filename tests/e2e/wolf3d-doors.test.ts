@@ -11,7 +11,7 @@ import { existsSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
-import { launchBrowser, servePage, type ServedPage } from './browser.ts';
+import { lagAnimationFrames, launchBrowser, servePage, waitForPage, watchPage, withPageReport, type ServedPage } from './browser.ts';
 
 const SHAREWARE = ['../shared/assets/wolf3d-shareware', '/work/shared/assets/wolf3d-shareware'].find((d) => ['MAPHEAD.WL1', 'GAMEMAPS.WL1', 'VSWAP.WL1'].every((f) => existsSync(join(d, f))));
 if (!SHAREWARE) console.warn('skipped: the Wolfenstein 3D shareware files are absent (../shared/assets/wolf3d-shareware)');
@@ -40,24 +40,27 @@ describe.skipIf(!SHAREWARE)('Wolfenstein 3D doors in the page', () => {
     const page = await browser.newPage({ viewport: { width: 320, height: 200 } });
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
+    watchPage(page);
+    // Frame times older than Play, as a loaded machine gives them (the first step must not go back in time).
+    await lagAnimationFrames(page, 50);
     const files = served.fileUrls.map((u) => `wolf=${u}`).join('&');
     await page.goto(`${served.url}?${files}&map=E1L1&mode=walk&scale=0.05&debug=normals&layout=replace`);
-    await page.waitForFunction(() => window.lantern && !window.lantern.loading && /E1L1/.test(window.lantern.scene), undefined, { timeout: 120_000 });
+    await waitForPage(page, () => window.lantern && !window.lantern.loading && /E1L1/.test(window.lantern.scene), undefined, 120_000, 'the map');
     // The start: the cell's middle, west of the door.
     expect(await x(page)).toBeCloseTo(29.5 * TILE, 0);
     await page.click('#play');
-    await page.waitForFunction(() => window.lantern.state === 'playing', undefined, { timeout: 60_000 });
+    await waitForPage(page, () => window.lantern.state === 'playing', undefined, 60_000, 'Play');
 
     // East until the closed door stops the walker: it may not enter the door's tile.
     await page.keyboard.down('KeyW');
-    await expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(32 * TILE - RADIUS - 2);
+    await withPageReport(page, 'the walker', () => expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(32 * TILE - RADIUS - 2));
     await page.waitForTimeout(1500);
     await page.keyboard.up('KeyW');
     expect(await x(page)).toBeLessThan(32 * TILE);
     // E opens it (0.91 s); walking on, the walker goes through the door tile and out of its far side.
     await page.keyboard.press('KeyE');
     await page.keyboard.down('KeyW');
-    await expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(33 * TILE + RADIUS);
+    await withPageReport(page, 'the walker', () => expect.poll(() => x(page), { timeout: 120_000, interval: 200 }).toBeGreaterThan(33 * TILE + RADIUS));
     await page.keyboard.up('KeyW');
     expect(errors).toEqual([]);
     await page.close();

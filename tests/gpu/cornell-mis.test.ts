@@ -13,6 +13,14 @@ import { testGpu } from './gpu-context.ts';
 
 const SIZE = 32;
 const BLOCK = 8;
+/**
+ * Samples per pixel: BSDF sampling gets 4× NEE's (its variance is ~100× higher). Every bound below is
+ * in standard errors measured from the renders themselves, so fewer samples widen it honestly: at 128
+ * and 512 (256 and 1024 before) the whole image's 4.5σ is about 5 % of its mean (measured at 64 and
+ * 256: ±0.0017 and ±0.0018 on a mean of 0.156), and a bias beyond it fails.
+ */
+const NEE_SPP = 128;
+const BSDF_SPP = 512;
 const prepared = prepareScene(builtinScene('cornell'));
 
 async function render(lightSampling: LightSampling, spp: number): Promise<Accumulation> {
@@ -41,9 +49,9 @@ function regionStats(a: Accumulation, pixels: number[]): { mean: number; se: num
 describe('Cornell box: NEE + MIS versus BSDF sampling', () => {
   it('converge to the same image, NEE with much lower variance', async () => {
     const t0 = performance.now();
-    const nee = await render('mis', 256);
+    const nee = await render('mis', NEE_SPP);
     const t1 = performance.now();
-    const bsdf = await render('bsdf', 1024);
+    const bsdf = await render('bsdf', BSDF_SPP);
     const t2 = performance.now();
     console.log(`render times: nee ${(t1 - t0).toFixed(0)} ms, bsdf ${(t2 - t1).toFixed(0)} ms`);
 
@@ -62,8 +70,10 @@ describe('Cornell box: NEE + MIS versus BSDF sampling', () => {
       const sigma = Math.hypot(a.se, b.se);
       expect(Math.abs(a.mean - b.mean), `region of ${px.length} px: ${a.mean} vs ${b.mean} ± ${sigma}`).toBeLessThan(4.5 * sigma + 1e-4);
     }
-    const whole = { nee: regionStats(nee, all).mean, bsdf: regionStats(bsdf, all).mean };
-    expect(Math.abs(whole.nee - whole.bsdf) / whole.bsdf).toBeLessThan(0.03);
+    // The whole image is the first region above (4.5σ); a fixed 3 % bound here was 3.8σ at 256 and
+    // 1024 spp and would be 2.7σ (a false alarm in 150 runs) at these counts.
+    const whole = { nee: regionStats(nee, all), bsdf: regionStats(bsdf, all) };
+    console.log(`whole image: nee ${whole.nee.mean.toFixed(4)} ± ${whole.nee.se.toFixed(4)}, bsdf ${whole.bsdf.mean.toFixed(4)} ± ${whole.bsdf.se.toFixed(4)}`);
 
     // Per-sample variance, median over pixels (pixels on the light's edge carry the same large
     // pixel-filter variance under both strategies and would swamp a mean): NEE finds the small light
@@ -73,7 +83,7 @@ describe('Cornell box: NEE + MIS versus BSDF sampling', () => {
       return v[v.length >> 1]!;
     };
     const ratio = medianVariance(bsdf) / medianVariance(nee);
-    console.log(`image mean: nee ${whole.nee.toFixed(4)}, bsdf ${whole.bsdf.toFixed(4)}; variance ratio bsdf/nee ${ratio.toFixed(1)}`);
+    console.log(`image mean: nee ${whole.nee.mean.toFixed(4)}, bsdf ${whole.bsdf.mean.toFixed(4)}; variance ratio bsdf/nee ${ratio.toFixed(1)}`);
     // Measured on SwiftShader: ~107 at 6 bounces (~1160 for direct light alone).
     expect(ratio).toBeGreaterThan(20);
   });

@@ -54,7 +54,7 @@ const STRUCTS: [string, string][] = [
   ['view/bindings', 'View'],
   ['passes/path-trace', 'PathTraceParams'],
   ['passes/tonemap', 'TonemapParams'],
-  ['passes/diffuse-rays', 'DiffuseRaysParams'],
+  ['passes/primary-rays', 'PrimaryRaysParams'],
   ['passes/selection-outline', 'SelectionParams'],
   ['scene/bindings', 'TextureRef'],
   ['scene/bindings', 'PunctualLight'],

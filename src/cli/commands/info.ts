@@ -1,7 +1,8 @@
 /** `lantern info <scene>`: what a scene holds and how its BVH came out; for a file of several scenes (a WAD), its parts. */
 import type { Command } from 'commander';
 import { formatBvhStats } from '../../bvh/stats.ts';
-import { prepareScene, type PreparedScene } from '../../renderer/prepare.ts';
+import { prepareSceneAsync, type PreparedScene } from '../../renderer/prepare.ts';
+import { nodeBvhPool } from '../bvh-workers.ts';
 import type { CliContext } from '../context.ts';
 import { withSceneOptions, type SceneOptionValues } from '../options.ts';
 import { builtinScene } from '../../loaders/builtin/index.ts';
@@ -32,7 +33,7 @@ export function registerInfo(program: Command, context: CliContext): void {
           }
           loaded = await opened.scene(part, sceneOptions);
         }
-        const prepared = prepareScene(loaded);
+        const prepared = await prepareSceneAsync(loaded, undefined, { bvhPool: nodeBvhPool() });
         const loadMs = performance.now() - t0;
         const { scene, triangles, bvh, packed } = prepared;
         const summary = sceneSummary(prepared);

@@ -4,9 +4,9 @@ import type { Command } from 'commander';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
-import { cameraFromOptions } from '../camera-option.ts';
+import { cameraFromOptions, withCameraOptions } from '../camera-option.ts';
 import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
-import { integerOption, numberListOption, numberOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
+import { integerOption, numberOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
 import type { KernelKind } from '../../renderer/renderer.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
@@ -16,6 +16,8 @@ import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
 import { World } from '../../scene/world.ts';
+import { processSpans } from '../process-clock.ts';
+import { Timeline } from '../timeline.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
 interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
@@ -31,6 +33,7 @@ interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOption
   lightTable?: string;
   skill?: number;
   json?: boolean;
+  timings?: boolean;
   kernel: KernelKind;
 }
 
@@ -40,16 +43,15 @@ export function registerRender(program: Command, context: CliContext): void {
     .description('render a scene to a PNG (tone-mapped sRGB) and/or an EXR (linear radiance)')
     .argument('<scene>', sceneHelp());
   withKernelOption(
-    withLensOptions(withSettingOptions(withEnvironmentOptions(withSceneOptions(withImageOptions(command, { width: 512, height: 512 }))))),
+    withLensOptions(withSettingOptions(withEnvironmentOptions(withSceneOptions(withCameraOptions(withImageOptions(command, { width: 512, height: 512 })))))),
     'generic',
     'specialised compiles kernels for this scene while rendering starts with the generic ones and switches when they are ready (the same estimate); it pays on long renders on a GPU (docs/perf.md)',
   )
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
     .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)')
-    .option('--camera <px,py,pz,tx,ty,tz>', 'camera position and look-at target in scene coordinates (Doom maps: x, height, -y)', numberListOption('--camera', [6]))
-    .option('--fov <degrees>', 'vertical field of view', numberOption('--fov', 1, 179))
     .option('--json', 'print what was done as JSON')
+    .option('--timings', 'report where the time went from process start to the written image (stderr; with --json, as "timeline")')
     .option('--frames <n>', 'frame mode: frames to render, --spp samples each; with more than one, --out and --exr name folders', integerOption('--frames', 1, 100_000))
     .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)')
     .option('--time <seconds>', "the moment of a moving scene to render (Doom's animated textures and lights, the dungeon's phantom); frame mode: the first frame's", numberOption('--time', 0, 1e6), 0)
@@ -63,7 +65,10 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   checkLensOptions(o);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o));
+  const timeline = o.timings ? new Timeline() : undefined;
+  for (const span of timeline ? processSpans() : []) timeline!.add(span);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), undefined, timeline);
+  const setUp = performance.now();
   await renderer.resize(o.width, o.height);
   const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
   const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;
@@ -79,12 +84,17 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   const debug = s.debugView !== 'none';
   // A debug view that replaces the image needs no path tracing.
   const spp = debug && s.debugLayout === 'replace' ? 0 : o.spp;
+  timeline?.end('image + camera + settings', setUp);
 
   if (isFrameMode(o)) {
     if (o.kernel === 'specialised') context.note('frame mode renders with the generic kernels (--kernel specialised applies to progressive renders)');
     const camera = renderer.camera!;
     const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
-    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...result };
+    // The integrator that traced the frames (the path recipe's --integrator), and what the wavefront's own buffers hold.
+    const integrator = s.recipe === 'path' ? { integrator: renderer.frameIntegrator, ...(renderer.frameIntegrator === 'wavefront' ? { wavefrontBytes: renderer.wavefrontBytes } : {}) } : {};
+    // The real-time chain's memory (the path recipe's): bytes per pixel in all and per buffer.
+    const memory = s.recipe === 'path' ? { denoiserBytesPerPixel: renderer.denoiserMemory.bytesPerPixel, denoiserBuffers: renderer.denoiserMemory.buffers } : {};
+    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, ...integrator, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...memory, ...result };
     const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
     context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${o.spp} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
     renderer.destroy();
@@ -96,9 +106,13 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   // kernels until the compile is ready (frame mode above keeps the generic ones).
   const specialising = o.kernel === 'specialised' && spp > 0 ? renderer.requestSpecialisation() : undefined;
   let specialisedAt: number | undefined;
+  const renderStart = performance.now();
+  let firstDispatch = false;
   const { seconds } = await renderProgressive(renderer, {
     spp,
     onProgress: (done) => {
+      if (!firstDispatch) timeline?.end(`first dispatch (${done} spp)`, renderStart);
+      firstDispatch = true;
       bar?.update(done);
       if (specialisedAt === undefined && renderer.kernel === 'specialised') specialisedAt = done;
     },
@@ -106,9 +120,10 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   bar?.stop();
   // Wait for a compile still under way (it must not outlive the device); a render that ends first used the generic kernels throughout.
   const specialisation = specialising ? await specialising : undefined;
+  timeline?.end(`render (${spp} spp)`, renderStart);
 
-  const rays = await renderer.readRayCounts();
-  if (png) await writePng(renderer, png);
+  const rays = timeline ? await timeline.time('read ray counts', () => renderer.readRayCounts()) : await renderer.readRayCounts();
+  if (png) await writePng(renderer, png, timeline);
   if (o.exr) await (debug ? writeDebugExr(renderer, o.exr) : writeExr(renderer, o.exr));
   const legend = debug ? await renderer.debugLegend() : undefined;
   const total = rays.extension + rays.shadow;
@@ -133,7 +148,9 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     },
     ...(legend ? { debug: { view: legend.view, layout: s.debugLayout, label: legend.label, ...(legend.scale ? { scale: { min: legend.scale.min, max: legend.scale.max, auto: legend.scale.auto } } : {}) } } : {}),
     outputs: { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) },
+    ...(timeline ? { timeline: timeline.toJSON() } : {}),
   };
+  if (timeline && !o.json) process.stderr.write(`${timeline.format()}\n`);
   if (o.json) {
     context.print(JSON.stringify(report, null, 2));
   } else {

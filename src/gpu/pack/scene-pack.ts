@@ -8,6 +8,7 @@
  */
 import type { Bvh } from '../../bvh/types.ts';
 import type { Grid } from '../../bvh/grid.ts';
+import { packWide, type WideBvh } from '../../bvh/wide.ts';
 import { tlasCapacity, type Tlas } from '../../bvh/tlas.ts';
 import { determinant3, IDENTITY, invertAffine, normalMatrix, type Mat4 } from '../../math/mat4.ts';
 import { meshScene, type SceneLevels } from '../../bvh/levels.ts';
@@ -38,7 +39,19 @@ export interface SceneFeatures {
   readonly instances: boolean;
   /** The static world is traced through its uniform grid (bvh/grid.ts) rather than its BVH. */
   readonly staticGrid: boolean;
+  /** The static world is traced through its BVH4 (bvh/wide.ts) rather than its binary BVH. */
+  readonly staticBvh4: boolean;
+  /** The static world is traced through its compressed 8-wide BVH (bvh/wide.ts). */
+  readonly staticCwbvh: boolean;
+  /**
+   * No traversal can hold more than SHALLOW_STACK_ENTRIES on its stack (no moving instances, and the
+   * static tree at most that deep): the kernels use the shorter stack (shaders/scene/bvh.wgsl).
+   */
+  readonly shallowStack: boolean;
 }
+
+/** shaders/scene/bvh.wgsl's BVH_SHALLOW_STACK_SIZE: a traversal at depth d holds at most d entries. */
+export const SHALLOW_STACK_ENTRIES = 32;
 
 /** The group-0 resources, keyed by their WGSL variable names. */
 export interface PackedScene {
@@ -116,7 +129,7 @@ export interface PackOptions {
   readonly maxTextureSide: number;
 }
 
-export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }, levels?: SceneLevels, grid?: Grid): PackedScene {
+export function packScene(scene: Scene, triangles: TriangleList, bvh: Bvh, options: PackOptions = { maxTextureSide: 8192 }, levels?: SceneLevels, grid?: Grid | WideBvh): PackedScene {
   const packedMaterials = packMaterials(scene, sceneLayouts(), options.maxTextureSide);
   return packGeometry(scene, triangles, bvh, packedMaterials, undefined, levels, grid);
 }
@@ -141,7 +154,7 @@ export interface PackedLayout {
   /** The top level's slots at the end of bvh_nodes (rewritten whenever an instance moves). */
   readonly tlasBase: number;
   readonly tlasCapacity: number;
-  /** The static world's grid after the top level (packGrid), when the scene is traced through one; else 0. */
+  /** The static world's grid (packGrid) or wide tree (bvh/wide.ts packWide) after the top level, when the scene is traced through one; else 0. */
   readonly gridBase: number;
 }
 
@@ -153,13 +166,15 @@ export interface PackedLayout {
  * With `levels` (a scene with moving instances) the arrays hold the static world, then each moving
  * mesh's object-space primitives and bottom level, then the top level (bvh/levels.ts).
  */
-export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials, packedEnvironment?: PackedEnvironment, levels?: SceneLevels, grid?: Grid): PackedScene {
+export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, packedMaterials: PackedMaterials, packedEnvironment?: PackedEnvironment, levels?: SceneLevels, accel?: Grid | WideBvh): PackedScene {
   const layouts = sceneLayouts();
   const parts: PrimitivePart[] = [{ scene, triangles, bvh, worldLights: true }];
   for (const [m, blas] of levels?.blas ?? []) parts.push({ scene: meshScene(scene, m), triangles: blas.triangles, bvh: blas.bvh, worldLights: false });
   const tlasCapacityValue = levels ? tlasCapacity(levels.dynamic.length + 1) : 0;
   const treeTotal = parts.reduce((n, p) => n + p.bvh.nodeCount, 0) + tlasCapacityValue;
-  const gridWords = grid ? packGrid(grid, treeTotal, layouts.node.strideWords) : undefined;
+  // The static world's grid or wide tree: `grid` is whichever it is traced through.
+  const grid = accel && !('layout' in accel) ? accel : undefined, wide = accel && 'layout' in accel ? accel : undefined;
+  const gridWords = grid ? packGrid(grid, treeTotal, layouts.node.strideWords) : wide ? packWide(wide, treeTotal, layouts.node.strideWords) : undefined;
   const nodeTotal = treeTotal + (gridWords ? gridWords.length / layouts.node.strideWords : 0);
   const primTotal = parts.reduce((n, p) => n + p.bvh.triIndices.length, 0);
 
@@ -184,7 +199,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
     nodeBase += part.bvh.nodeCount;
     leafBase += part.bvh.triIndices.length;
   });
-  const layout: PackedLayout = { meshes, tlasBase: nodeBase, tlasCapacity: tlasCapacityValue, gridBase: grid ? treeTotal : 0 };
+  const layout: PackedLayout = { meshes, tlasBase: nodeBase, tlasCapacity: tlasCapacityValue, gridBase: accel ? treeTotal : 0 };
   if (levels) {
     writeTlasNodes(nodes, levels.tlas, layout.tlasBase, layout.tlasBase);
     const dynamic = dynamicLights(scene, triangles, levels, layout, packedMaterials);
@@ -236,6 +251,9 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
       analyticPrimitives: triangles.kindCounts.sphere + triangles.kindCounts.capsule > 0,
       instances: levels !== undefined,
       staticGrid: grid !== undefined,
+      staticBvh4: wide?.layout === 'bvh4',
+      staticCwbvh: wide?.layout === 'cwbvh',
+      shallowStack: levels === undefined && bvh.stats.maxDepth <= SHALLOW_STACK_ENTRIES,
     },
     totalLightPower: packedLights.totalPower,
     warnings: [...packedMaterials.warnings, ...packedLights.warnings, ...warnings],

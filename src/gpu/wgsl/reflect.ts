@@ -84,6 +84,9 @@ export interface ReflectedShader {
 
 const reflectedCache = new Map<string, ReflectedShader>();
 
+/** Whether reflectModule(entry) has been done already (start-up timelines report the first, costly one). */
+export const isReflected = (entry: string): boolean => reflectedCache.has(entry);
+
 /** Links and reflects a module of src/shaders once per process. */
 export function reflectModule(entry: string): ReflectedShader {
   let r = reflectedCache.get(entry);
@@ -107,6 +110,34 @@ export interface BindingSlot {
   readonly name: string;
   readonly group: number;
   readonly entry: GPUBindGroupLayoutEntry;
+}
+
+/**
+ * wgsl_reflect's parse of a linked module, made once: the path tracer takes most of a second to
+ * parse, and each of its pipeline variants asks for its bindings.
+ */
+const parsed = new WeakMap<LinkedShader, WgslReflect>();
+function parsedModule(linked: LinkedShader): WgslReflect {
+  let reflect = parsed.get(linked);
+  if (!reflect) parsed.set(linked, (reflect = new WgslReflect(linked.code)));
+  return reflect;
+}
+
+/**
+ * Bindings worked out elsewhere from the same code (the CLI parses the path tracer on another
+ * thread while this one does other work), by module, code length, entry points and visibility.
+ */
+const provided = new Map<string, BindingSlot[][]>();
+const bindingsKey = (module: string, codeLength: number, entryPoints: readonly string[], visibility: GPUShaderStageFlags) => `${module}|${codeLength}|${entryPoints.join(',')}|${visibility}`;
+
+/** Whether entryPointBindings would answer without parsing (start-up timelines report the parse). */
+export function bindingsKnown(shader: Pick<ReflectedShader, 'linked'>, entryPoints: readonly string[], visibility: GPUShaderStageFlags): boolean {
+  return parsed.has(shader.linked) || provided.has(bindingsKey(shader.linked.entry, shader.linked.code.length, entryPoints, visibility));
+}
+
+/** Hands entryPointBindings a result worked out elsewhere from a module's code (`codeLength` long), so that it need not parse it here. */
+export function provideEntryPointBindings(module: string, codeLength: number, entryPoints: readonly string[], visibility: GPUShaderStageFlags, slots: BindingSlot[][]): void {
+  provided.set(bindingsKey(module, codeLength, entryPoints, visibility), slots);
 }
 
 const TEXTURE_SAMPLE_TYPES: Record<string, GPUTextureSampleType> = { f32: 'float', u32: 'uint', i32: 'sint' };
@@ -156,8 +187,10 @@ function layoutEntry(v: VariableInfo, visibility: GPUShaderStageFlags): GPUBindG
  * wgsl_reflect's call-graph analysis decides "uses"; if it ever missed one, pipeline creation fails
  * loudly with "binding doesn't exist in the layout", never silently.
  */
-export function entryPointBindings(shader: ReflectedShader, entryPoints: readonly string[], visibility: GPUShaderStageFlags): BindingSlot[][] {
-  const reflect = new WgslReflect(shader.linked.code);
+export function entryPointBindings(shader: Pick<ReflectedShader, 'linked'>, entryPoints: readonly string[], visibility: GPUShaderStageFlags): BindingSlot[][] {
+  const known = provided.get(bindingsKey(shader.linked.entry, shader.linked.code.length, entryPoints, visibility));
+  if (known) return known;
+  const reflect = parsedModule(shader.linked);
   const all = [...reflect.entry.compute, ...reflect.entry.vertex, ...reflect.entry.fragment];
   const groups: BindingSlot[][] = [];
   const seen = new Set<string>();

@@ -48,7 +48,11 @@ override CAPTURE_PRIMARY: bool = false;
 struct PrimaryHit {
   albedo: vec3f,
   emission: vec3f,
+  // Material index of the first hit (NO_PRIMARY_ID for a miss): the frame kernel keeps a sample's
+  // own emission only where this differs from the pixel-centre surface's.
+  id: u32,
 }
+const NO_PRIMARY_ID: u32 = 0xffffffffu;
 var<private> primary: PrimaryHit;
 
 // What a path needs to know beyond the scene.
@@ -73,6 +77,43 @@ struct PathResult {
   shadow_rays: u32,
 }
 
+// Set only by the wavefront frame (shaders/wavefront/): path_step then records its shadow rays in
+// `deferred_shadows` for a later kernel to trace, instead of tracing them at once. The megakernel
+// leaves it false, so the branch is constant-folded away.
+override DEFER_SHADOW_RAYS: bool = false;
+
+// A path between bounces: everything trace_path carries from one bounce to the next.
+struct PathState {
+  // Radiance gathered so far, in the path's channels (channels_to_rgb turns it into RGB).
+  radiance: vec4f,
+  throughput: vec4f,
+  // Absorption coefficient of the medium the ray travels in (inside glass with a volume).
+  absorption: vec4f,
+  // The ray to extend the path with (t_min 0, t_max T_MISS).
+  ray: Ray,
+  // Solid-angle density of the BSDF sample that produced `ray` (unused for the camera ray), and
+  // whether it came from a delta lobe (then no light sample could have found what it hits).
+  last_bsdf_pdf: f32,
+  after_delta: bool,
+  // The ray cone (texture level of detail): width at the ray's origin and spread angle.
+  cone_width: f32,
+  cone_spread: f32,
+  // The random number that chose the path's wavelengths (spectral mode; spectrum_begin_path).
+  spectrum_u: f32,
+}
+
+// A shadow ray and what it adds to the path's radiance if nothing blocks it.
+struct ShadowRequest {
+  ray: Ray,
+  contribution: vec4f,
+}
+// The shadow rays of one path_step with DEFER_SHADOW_RAYS: [SHADOW_LIGHT] and [SHADOW_TORCH], each
+// present where its bit (1 << index) is set in deferred_shadow_mask.
+const SHADOW_LIGHT: u32 = 0u;
+const SHADOW_TORCH: u32 = 1u;
+var<private> deferred_shadows: array<ShadowRequest, 2>;
+var<private> deferred_shadow_mask: u32;
+
 // MIS weight of radiance found by a BSDF-sampled ray whose light-sampling density is light_pdf.
 fn bsdf_hit_weight(bounce: u32, use_nee: bool, after_delta: bool, bsdf_pdf: f32, light_pdf: f32) -> f32 {
   if (bounce == 0u || !use_nee || after_delta) {
@@ -87,215 +128,231 @@ fn channels_max(c: vec4f) -> f32 {
   return select(rgb, max(rgb, c.w), SPECTRAL);
 }
 
-fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathResult {
-  var result = PathResult(vec3f(0.0), 0u, 0u);
+// A camera path before its first bounce (draws the wavelengths in spectral mode).
+fn path_begin(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathState {
+  var u = 0.0;
   if (SPECTRAL) {
-    spectrum_begin_path(rng_next_f32(rng));
+    u = rng_next_f32(rng);
+    spectrum_begin_path(u);
   }
-  // Radiance gathered so far, in the path's channels (channels_to_rgb turns it into RGB).
-  var radiance = vec4f(0.0);
-  var ray = first_ray;
-  var throughput = lift(vec3f(1.0));
-  // Solid-angle density of the BSDF sample that produced `ray` (unused for the camera ray), and
-  // whether it came from a delta lobe (then no light sample could have found what it hits).
-  var last_bsdf_pdf = 0.0;
-  var after_delta = false;
-  // Absorption coefficient of the medium the ray travels in (inside glass with a volume).
-  var absorption = vec4f(0.0);
-  // The ray cone (texture level of detail): width at the ray's origin and spread angle.
-  var cone_width = 0.0;
-  var cone_spread = settings.pixel_spread;
-  let use_nee = settings.light_sampling == LIGHT_SAMPLING_MIS && scene_light_count() > 0u;
+  return PathState(vec4f(0.0), lift(vec3f(1.0)), vec4f(0.0), first_ray, 0.0, false, 0.0, settings.pixel_spread, u);
+}
+
+// Next-event estimation against the light table (use_nee) or punctual lights alone.
+fn path_uses_nee(settings: PathSettings) -> bool {
+  return settings.light_sampling == LIGHT_SAMPLING_MIS && scene_light_count() > 0u;
+}
+
+// A shadow ray of path_step: traced now (the megakernel), or deferred (the wavefront).
+fn path_shadow(state: ptr<function, PathState>, which: u32, ray: Ray, contribution: vec4f, result: ptr<function, PathResult>) {
+  if (DEFER_SHADOW_RAYS) {
+    deferred_shadows[which] = ShadowRequest(ray, contribution);
+    deferred_shadow_mask |= 1u << which;
+    return;
+  }
+  (*result).shadow_rays += 1u;
+  if (!trace_any(ray)) {
+    (*state).radiance += contribution;
+  }
+}
+
+// One bounce of a path whose ray (*state).ray has found `hit`: emission met there, light sampling
+// (shadow rays through path_shadow), the BSDF sample that sets the next ray, Russian roulette.
+// Returns whether the path goes on. trace_path's loop body, shared with the wavefront's shade kernel.
+fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<function, Rng>, settings: PathSettings, result: ptr<function, PathResult>) -> bool {
+  let ray = (*state).ray;
+  let use_nee = path_uses_nee(settings);
   // Punctual lights are not geometry: no BSDF ray finds them, so even BSDF-only sampling samples
   // them. It draws from the whole light table and keeps only punctual picks (dividing by their
   // selection probability keeps it unbiased); other lights are left to BSDF rays, weighted 1.
   let sample_lights = use_nee || (SCENE_HAS_PUNCTUAL_LIGHTS && scene_light_count() > 0u);
 
-  for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
-    let hit = trace_closest(ray);
-    result.extension_rays += 1u;
-    if (SCENE_HAS_GENERAL_MATERIALS && any(absorption > vec4f(0.0))) {
-      throughput *= exp(-absorption * min(hit.t, 1e30));
-    }
-    if (hit.triangle == NO_TRIANGLE) {
-      if (SCENE_HAS_ENVIRONMENT) {
-        var seen = environment_radiance(ray.direction) + sun_radiance(ray.direction);
-        let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, environment_light_pdf(ray.direction));
-        radiance += throughput * lift(seen) * weight;
-        if (CAPTURE_PRIMARY && bounce == 0u) {
-          primary = PrimaryHit(vec3f(1.0), channels_to_rgb(radiance));
-        }
-      }
-      break;
-    }
-    let surface = surface_at(hit, ray);
-    let material = materials[surface.material];
-    if (SCENE_HAS_GENERAL_MATERIALS) {
-      cone_width += cone_spread * hit.t;
-      texture_lod = texture_lod_at(surface, hit.triangle, cone_width, ray.direction);
-      if (textureDimensions(triangle_attributes).x > 1u) {
-        surface_uv1 = triangle_uv1(hit.triangle, stored_bary(hit));
+  if (SCENE_HAS_GENERAL_MATERIALS && any((*state).absorption > vec4f(0.0))) {
+    (*state).throughput *= exp(-(*state).absorption * min(hit.t, 1e30));
+  }
+  if (hit.triangle == NO_TRIANGLE) {
+    if (SCENE_HAS_ENVIRONMENT) {
+      var seen = environment_radiance(ray.direction) + sun_radiance(ray.direction);
+      let weight = bsdf_hit_weight(bounce, use_nee, (*state).after_delta, (*state).last_bsdf_pdf, environment_light_pdf(ray.direction));
+      (*state).radiance += (*state).throughput * lift(seen) * weight;
+      if (CAPTURE_PRIMARY && bounce == 0u) {
+        primary = PrimaryHit(vec3f(1.0), channels_to_rgb((*state).radiance), NO_PRIMARY_ID);
       }
     }
-
-    // Emission, seen only from the side the geometric normal faces (both, for two-sided emitters).
-    let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
-    if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
-      let weight = bsdf_hit_weight(bounce, use_nee, after_delta, last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
-      radiance += throughput * lift(material_emission(material, surface.uv, ray.direction)) * weight;
+    return false;
+  }
+  let surface = surface_at(hit, ray);
+  let material = materials[surface.material];
+  if (SCENE_HAS_GENERAL_MATERIALS) {
+    (*state).cone_width += (*state).cone_spread * hit.t;
+    texture_lod = texture_lod_at(surface, hit.triangle, (*state).cone_width, ray.direction);
+    if (textureDimensions(triangle_attributes).x > 1u) {
+      surface_uv1 = triangle_uv1(hit.triangle, stored_bary(hit));
     }
-    if (CAPTURE_PRIMARY && bounce == 0u) {
-      primary = PrimaryHit(material_albedo(material, surface.uv).rgb, channels_to_rgb(radiance));
-    }
-    if (bounce == settings.max_bounces || material.kind == MATERIAL_KIND_EMISSIVE) {
-      break;
+  }
+
+  // Emission, seen only from the side the geometric normal faces (both, for two-sided emitters).
+  let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
+  if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
+    let weight = bsdf_hit_weight(bounce, use_nee, (*state).after_delta, (*state).last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
+    (*state).radiance += (*state).throughput * lift(material_emission(material, surface.uv, ray.direction)) * weight;
+  }
+  if (CAPTURE_PRIMARY && bounce == 0u) {
+    primary = PrimaryHit(material_albedo(material, surface.uv).rgb, channels_to_rgb((*state).radiance), surface.material);
+  }
+  if (bounce == settings.max_bounces || material.kind == MATERIAL_KIND_EMISSIVE) {
+    return false;
+  }
+
+  if (!SCENE_HAS_GENERAL_MATERIALS) {
+    // Diffuse surfaces only: reflection on both sides, so turn both normals toward the ray.
+    let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
+    let ng = facing * surface.geometric_normal;
+    let ns = facing * surface.shading_normal;
+    let origin = spawn_point(surface, ng);
+    let albedo = material_albedo(material, surface.uv).rgb;
+    let brdf = albedo * INV_PI;
+
+    if (sample_lights) {
+      let light = sample_light(origin, rng_next_2d(rng), rng_next_2d(rng));
+      let cos_surface = dot(ns, light.direction);
+      if (light.pdf > 0.0 && (use_nee || light.delta) && cos_surface > 0.0 && dot(ng, light.direction) > 0.0) {
+        let weight = select(power_heuristic(light.pdf, cosine_hemisphere_pdf(cos_surface)), 1.0, light.delta);
+        path_shadow(state, SHADOW_LIGHT, Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+          (*state).throughput * lift(brdf) * lift(light.radiance) * (cos_surface * weight / light.pdf), result);
+      }
     }
 
-    if (!SCENE_HAS_GENERAL_MATERIALS) {
-      // Diffuse surfaces only: reflection on both sides, so turn both normals toward the ray.
-      let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
-      let ng = facing * surface.geometric_normal;
-      let ns = facing * surface.shading_normal;
-      let origin = spawn_point(surface, ng);
-      let albedo = material_albedo(material, surface.uv).rgb;
-      let brdf = albedo * INV_PI;
+    // The torch: next-event estimation only, so no MIS weight (BSDF rays never hit it).
+    let torch = sample_torch(settings.torch, settings.torch_position, origin, rng_next_2d(rng));
+    if (torch.pdf > 0.0) {
+      let cos_surface = dot(ns, torch.direction);
+      if (cos_surface > 0.0 && dot(ng, torch.direction) > 0.0) {
+        path_shadow(state, SHADOW_TORCH, Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+          (*state).throughput * lift(brdf) * lift(torch.radiance) * (cos_surface / torch.pdf), result);
+      }
+    }
 
+    // BSDF sampling: cosine-weighted, so brdf·cos/pdf is the albedo.
+    let wi = orthonormal_basis(ns) * sample_cosine_hemisphere(rng_next_2d(rng));
+    if (dot(wi, ng) <= 0.0) {
+      return false;
+    }
+    (*state).last_bsdf_pdf = cosine_hemisphere_pdf(dot(wi, ns));
+    (*state).throughput *= lift(albedo);
+    (*state).ray = Ray(origin, 0.0, wi, T_MISS);
+  } else if ((material.flags & MATERIAL_SCATTER_IN_PLANE) != 0u) {
+    // In-plane scattering (the prism's screen): f = albedo/2 per radian on the half circle of the
+    // plane ⟂ p facing the ray, sampled ∝ cos φ (pdf cos φ / 2), so the weight is the albedo. A delta
+    // across the plane: no light sampling, and emitters it finds count in full.
+    let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
+    let ng = facing * surface.geometric_normal;
+    let p = material.scatter_plane_normal;
+    let n_in = normalize(ng - dot(ng, p) * p);
+    let phi = asin(2.0 * rng_next_f32(rng) - 1.0);
+    let wi = cos(phi) * n_in + sin(phi) * cross(p, n_in);
+    (*state).throughput *= lift(material_albedo(material, surface.uv).rgb);
+    (*state).after_delta = true;
+    (*state).ray = Ray(spawn_point(surface, ng), 0.0, wi, T_MISS);
+  } else {
+    var bsdf = material_bsdf(material, surface.uv);
+    if (SPECTRAL && material_is_dispersive(material)) {
+      // The interface bends each wavelength its own way: trace the hero's (before light sampling,
+      // which evaluates the BSDF too).
+      bsdf.ior = material_ior_at(material, path_wavelengths.lambda.x);
+      (*state).throughput = spectrum_terminate_secondary((*state).throughput);
+    }
+    let front = dot(surface.geometric_normal, ray.direction) < 0.0;
+    var ng = surface.geometric_normal;
+    var ns = normal_mapped(surface, hit, material);
+    // Opaque reflectors are two-sided: their frame turns toward the ray. Interfaces keep their
+    // front (outside) side, and the BSDF sees wo.z < 0 from inside.
+    if (!front && material_is_two_sided_reflector(material, bsdf)) {
+      ng = -ng;
+      ns = -ns;
+    }
+    let frame = orthonormal_basis(ns);
+    let wo_world = -ray.direction;
+    let wo = vec3f(dot(wo_world, frame[0]), dot(wo_world, frame[1]), dot(wo_world, frame[2]));
+
+    if (bsdf_has_non_delta(bsdf)) {
       if (sample_lights) {
-        let light = sample_light(origin, rng_next_2d(rng), rng_next_2d(rng));
-        let cos_surface = dot(ns, light.direction);
-        if (light.pdf > 0.0 && (use_nee || light.delta) && cos_surface > 0.0 && dot(ng, light.direction) > 0.0) {
-          result.shadow_rays += 1u;
-          if (!trace_any(Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-            let weight = select(power_heuristic(light.pdf, cosine_hemisphere_pdf(cos_surface)), 1.0, light.delta);
-            radiance += throughput * lift(brdf) * lift(light.radiance) * (cos_surface * weight / light.pdf);
-          }
-        }
-      }
-
-      // The torch: next-event estimation only, so no MIS weight (BSDF rays never hit it).
-      let torch = sample_torch(settings.torch, settings.torch_position, origin, rng_next_2d(rng));
-      if (torch.pdf > 0.0) {
-        let cos_surface = dot(ns, torch.direction);
-        if (cos_surface > 0.0 && dot(ng, torch.direction) > 0.0) {
-          result.shadow_rays += 1u;
-          if (!trace_any(Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-            radiance += throughput * lift(brdf) * lift(torch.radiance) * (cos_surface / torch.pdf);
-          }
-        }
-      }
-
-      // BSDF sampling: cosine-weighted, so brdf·cos/pdf is the albedo.
-      let wi = orthonormal_basis(ns) * sample_cosine_hemisphere(rng_next_2d(rng));
-      if (dot(wi, ng) <= 0.0) {
-        break;
-      }
-      last_bsdf_pdf = cosine_hemisphere_pdf(dot(wi, ns));
-      throughput *= lift(albedo);
-      ray = Ray(origin, 0.0, wi, T_MISS);
-    } else if ((material.flags & MATERIAL_SCATTER_IN_PLANE) != 0u) {
-      // In-plane scattering (the prism's screen): f = albedo/2 per radian on the half circle of the
-      // plane ⟂ p facing the ray, sampled ∝ cos φ (pdf cos φ / 2), so the weight is the albedo. A delta
-      // across the plane: no light sampling, and emitters it finds count in full.
-      let facing = select(1.0, -1.0, dot(surface.geometric_normal, ray.direction) > 0.0);
-      let ng = facing * surface.geometric_normal;
-      let p = material.scatter_plane_normal;
-      let n_in = normalize(ng - dot(ng, p) * p);
-      let phi = asin(2.0 * rng_next_f32(rng) - 1.0);
-      let wi = cos(phi) * n_in + sin(phi) * cross(p, n_in);
-      throughput *= lift(material_albedo(material, surface.uv).rgb);
-      after_delta = true;
-      ray = Ray(spawn_point(surface, ng), 0.0, wi, T_MISS);
-    } else {
-      var bsdf = material_bsdf(material, surface.uv);
-      if (SPECTRAL && material_is_dispersive(material)) {
-        // The interface bends each wavelength its own way: trace the hero's (before light sampling,
-        // which evaluates the BSDF too).
-        bsdf.ior = material_ior_at(material, path_wavelengths.lambda.x);
-        throughput = spectrum_terminate_secondary(throughput);
-      }
-      let front = dot(surface.geometric_normal, ray.direction) < 0.0;
-      var ng = surface.geometric_normal;
-      var ns = normal_mapped(surface, hit, material);
-      // Opaque reflectors are two-sided: their frame turns toward the ray. Interfaces keep their
-      // front (outside) side, and the BSDF sees wo.z < 0 from inside.
-      if (!front && material_is_two_sided_reflector(material, bsdf)) {
-        ng = -ng;
-        ns = -ns;
-      }
-      let frame = orthonormal_basis(ns);
-      let wo_world = -ray.direction;
-      let wo = vec3f(dot(wo_world, frame[0]), dot(wo_world, frame[1]), dot(wo_world, frame[2]));
-
-      if (bsdf_has_non_delta(bsdf)) {
-        if (sample_lights) {
-          let light = sample_light(surface.position, rng_next_2d(rng), rng_next_2d(rng));
-          if (light.pdf > 0.0 && (use_nee || light.delta)) {
-            let wi_world = light.direction;
-            let wi = vec3f(dot(wi_world, frame[0]), dot(wi_world, frame[1]), dot(wi_world, frame[2]));
-            let side_g = dot(ng, wi_world);
-            // The shading and geometric normals must agree on the side of the light (no leaks).
-            if (side_g * wi.z > 0.0) {
-              let f = bsdf_eval(bsdf, wo, wi);
-              if (any(f > vec3f(0.0))) {
-                let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
-                result.shadow_rays += 1u;
-                if (!trace_any(Ray(origin, 0.0, wi_world, light.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-                  let weight = select(power_heuristic(light.pdf, bsdf_pdf(bsdf, wo, wi)), 1.0, light.delta);
-                  radiance += throughput * lift(f) * lift(light.radiance) * (abs(wi.z) * weight / light.pdf);
-                }
-              }
-            }
-          }
-        }
-        let torch = sample_torch(settings.torch, settings.torch_position, surface.position, rng_next_2d(rng));
-        if (torch.pdf > 0.0) {
-          let wi = vec3f(dot(torch.direction, frame[0]), dot(torch.direction, frame[1]), dot(torch.direction, frame[2]));
-          let side_g = dot(ng, torch.direction);
+        let light = sample_light(surface.position, rng_next_2d(rng), rng_next_2d(rng));
+        if (light.pdf > 0.0 && (use_nee || light.delta)) {
+          let wi_world = light.direction;
+          let wi = vec3f(dot(wi_world, frame[0]), dot(wi_world, frame[1]), dot(wi_world, frame[2]));
+          let side_g = dot(ng, wi_world);
+          // The shading and geometric normals must agree on the side of the light (no leaks).
           if (side_g * wi.z > 0.0) {
             let f = bsdf_eval(bsdf, wo, wi);
             if (any(f > vec3f(0.0))) {
               let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
-              result.shadow_rays += 1u;
-              if (!trace_any(Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)))) {
-                radiance += throughput * lift(f) * lift(torch.radiance) * (abs(wi.z) / torch.pdf);
-              }
+              let weight = select(power_heuristic(light.pdf, bsdf_pdf(bsdf, wo, wi)), 1.0, light.delta);
+              path_shadow(state, SHADOW_LIGHT, Ray(origin, 0.0, wi_world, light.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+                (*state).throughput * lift(f) * lift(light.radiance) * (abs(wi.z) * weight / light.pdf), result);
             }
           }
         }
       }
-
-      let u3 = vec3f(rng_next_2d(rng), rng_next_f32(rng));
-      let s = bsdf_sample(bsdf, wo, u3);
-      if (!s.valid) {
-        break;
+      let torch = sample_torch(settings.torch, settings.torch_position, surface.position, rng_next_2d(rng));
+      if (torch.pdf > 0.0) {
+        let wi = vec3f(dot(torch.direction, frame[0]), dot(torch.direction, frame[1]), dot(torch.direction, frame[2]));
+        let side_g = dot(ng, torch.direction);
+        if (side_g * wi.z > 0.0) {
+          let f = bsdf_eval(bsdf, wo, wi);
+          if (any(f > vec3f(0.0))) {
+            let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
+            path_shadow(state, SHADOW_TORCH, Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+              (*state).throughput * lift(f) * lift(torch.radiance) * (abs(wi.z) / torch.pdf), result);
+          }
+        }
       }
-      let wi_world = frame * s.wi;
-      let side_g = dot(ng, wi_world);
-      if (side_g * s.wi.z <= 0.0) {
-        break;
-      }
-      throughput *= lift(s.weight);
-      last_bsdf_pdf = s.pdf;
-      after_delta = s.delta;
-      if (!s.delta) {
-        let alpha = bsdf.roughness * bsdf.roughness;
-        cone_spread += select(2.0 * alpha, DIFFUSE_CONE_SPREAD, bsdf.kind == BSDF_DIFFUSE);
-      }
-      if (s.transmitted && (bsdf.thin_walled == 0u)) {
-        // Crossing the interface: entering from the front puts the ray inside the volume.
-        absorption = select(vec4f(0.0), lift(material.absorption), side_g < 0.0 && front);
-      }
-      ray = Ray(spawn_point(surface, select(-ng, ng, side_g > 0.0)), 0.0, wi_world, T_MISS);
     }
 
-    if (bounce + 1u >= ROULETTE_START_BOUNCE) {
-      let survive = min(channels_max(throughput), 0.95);
-      if (rng_next_f32(rng) >= survive) {
-        break;
-      }
-      throughput /= survive;
+    let u3 = vec3f(rng_next_2d(rng), rng_next_f32(rng));
+    let s = bsdf_sample(bsdf, wo, u3);
+    if (!s.valid) {
+      return false;
+    }
+    let wi_world = frame * s.wi;
+    let side_g = dot(ng, wi_world);
+    if (side_g * s.wi.z <= 0.0) {
+      return false;
+    }
+    (*state).throughput *= lift(s.weight);
+    (*state).last_bsdf_pdf = s.pdf;
+    (*state).after_delta = s.delta;
+    if (!s.delta) {
+      let alpha = bsdf.roughness * bsdf.roughness;
+      (*state).cone_spread += select(2.0 * alpha, DIFFUSE_CONE_SPREAD, bsdf.kind == BSDF_DIFFUSE);
+    }
+    if (s.transmitted && (bsdf.thin_walled == 0u)) {
+      // Crossing the interface: entering from the front puts the ray inside the volume.
+      (*state).absorption = select(vec4f(0.0), lift(material.absorption), side_g < 0.0 && front);
+    }
+    (*state).ray = Ray(spawn_point(surface, select(-ng, ng, side_g > 0.0)), 0.0, wi_world, T_MISS);
+  }
+
+  if (bounce + 1u >= ROULETTE_START_BOUNCE) {
+    let survive = min(channels_max((*state).throughput), 0.95);
+    if (rng_next_f32(rng) >= survive) {
+      return false;
+    }
+    (*state).throughput /= survive;
+  }
+  return true;
+}
+
+fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathResult {
+  var result = PathResult(vec3f(0.0), 0u, 0u);
+  var state = path_begin(first_ray, rng, settings);
+  for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
+    let hit = trace_closest(state.ray);
+    result.extension_rays += 1u;
+    if (!path_step(&state, hit, bounce, rng, settings, &result)) {
+      break;
     }
   }
-  result.radiance = channels_to_rgb(radiance);
+  result.radiance = channels_to_rgb(state.radiance);
   return result;
 }

@@ -316,7 +316,7 @@ fn reflection(s: Shading, split: LobeSplit, ray: Ray, rng: ptr<function, Rng>) -
   let wi_world = frame * wi;
   let below = dot(s.ng, wi_world) < 0.0;
   let origin = spawn_point(s.surface, select(s.ng, -s.ng, below));
-  primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
+  primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
   var settings = path_settings();
   settings.max_bounces = hybrid.reflection_bounces;
   let path = trace_path(Ray(origin, 0.0, normalize(wi_world), T_MISS), rng, settings);
@@ -461,7 +461,7 @@ fn hybrid_gi(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation
           if (dot(wi, g) <= 0.0) {
             continue;
           }
-          primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
+          primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
           let path = trace_path(Ray(spawn_point(s.surface, g), 0.0, wi, T_MISS), &rng, settings);
           let indirect = max(path.radiance - primary.emission, vec3f(0.0));
           sum += select(vec3f(0.0), indirect, is_finite_vec3(indirect));

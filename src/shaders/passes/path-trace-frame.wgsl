@@ -8,6 +8,9 @@
 // accumulation averages like any other noise (docs/denoise.md, "Depth of field"). Each sample's emission seen at its first hit is kept apart
 // (it needs no filtering) and the rest is divided by its first-hit albedo, so textures and lights are
 // not blurred by the spatial filter (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering", §4).
+// A sample's first-hit emission is replaced by the pixel's box-filtered emission at the centre hit
+// wherever the sample saw the same surface (centre_emission): lamp textures are then steady from the
+// first frame, and only the edges keep the samples' jitter.
 // Expects the scene (group 0) and view (group 1); group 2 adds the previous camera and the outputs.
 
 #import passes/path-trace
@@ -20,29 +23,120 @@ struct FrameParams {
 }
 
 @group(2) @binding(3) var<uniform> frame: FrameParams;
-// Per pixel: rgb = the frame's mean demodulated radiance; a = 1.
-@group(2) @binding(4) var<storage, read_write> frame_radiance: array<vec4f>;
-@group(2) @binding(5) var<storage, read_write> gbuffer: array<GBufferTexel>;
-// The à-trous filter's edge-stopping guide, apart from the 64-byte G-buffer records so that its 25
-// taps per pixel read 16 bytes each: xyz = normal, w = linear depth (as in GBufferTexel).
-@group(2) @binding(6) var<storage, read_write> guide: array<vec4f>;
+// Four words per pixel (denoise/gbuffer FRAME_*): the frame's mean demodulated radiance, the motion
+// and the depth seen from the previous camera. The denoiser reuses them after the temporal pass.
+@group(2) @binding(4) var<storage, read_write> frame_scratch: array<u32>;
+// The pixel-centre surface: the à-trous filter's edge-stopping guide and the next frame's reference.
+@group(2) @binding(5) var<storage, read_write> surface_records: array<SurfaceTexel>;
+// Mean albedo and emission of the samples (the centre's filtered emission in between, see below).
+@group(2) @binding(6) var<storage, read_write> frame_records: array<FrameTexel>;
 
-// The G-buffer record of the surface through the pixel centre (albedo and emission are filled in from the samples).
-fn centre_texel(pixel: vec2u) -> GBufferTexel {
+// The surface through the pixel centre and where it was in the previous frame.
+struct CentreTexel {
+  surface: SurfaceTexel,
+  // Previous image position − pixel centre, pixels; on_screen false: behind the previous camera.
+  motion: vec2f,
+  on_screen: bool,
+  // Linear depth seen from the previous camera (MISS_DEPTH for a miss).
+  previous_depth: f32,
+  // Emission seen through the pixel at this surface (centre_emission), 0 for a miss.
+  emission: vec3f,
+}
+
+// Sub-pixel points per axis over which centre_emission averages the emitting texture.
+const EMISSION_GRID: u32 = 4u;
+
+// The emission seen through the pixel on the centre hit's surface: the mean over EMISSION_GRID²
+// points of the pixel, where their rays meet the plane of the hit triangle (its uv extended over the
+// plane), so a lamp texture is box-filtered over the pixel's footprint as the converged image
+// averages it, without the jitter noise of the samples. 0 where the surface does not emit toward the
+// camera; one evaluation at the hit for spheres, capsules and untextured emitters.
+fn centre_emission(pixel: vec2u, hit: Hit, surface: Surface, ray: Ray) -> vec3f {
+  let material = materials[surface.material];
+  let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
+  if (!(cos_emitter > 0.0) || all(material.emission <= vec3f(0.0))) {
+    return vec3f(0.0);
+  }
+  // The grid does the filtering: read level 0.
+  texture_lod = -1e30;
+  if (surface.kind != 0u || material.emission_texture == NO_TEXTURE) {
+    return material_emission(material, surface.uv, ray.direction);
+  }
+  let tri = world_primitive(hit.instance, hit.triangle);
+  let shading = world_shading(hit.instance, hit.triangle);
+  let n = cross(tri.e1, tri.e2);
+  let d00 = dot(tri.e1, tri.e1);
+  let d01 = dot(tri.e1, tri.e2);
+  let d11 = dot(tri.e2, tri.e2);
+  let inv_det = 1.0 / max(d00 * d11 - d01 * d01, 1e-30);
+  var sum = vec3f(0.0);
+  for (var j = 0u; j < EMISSION_GRID; j++) {
+    for (var i = 0u; i < EMISSION_GRID; i++) {
+      let r = camera_ray(vec2f(pixel) + (vec2f(f32(i), f32(j)) + 0.5) / f32(EMISSION_GRID));
+      let denom = dot(r.direction, n);
+      var uv = surface.uv;
+      if (abs(denom) > 1e-12 * length(n)) {
+        let q = r.origin + (dot(tri.v0 - r.origin, n) / denom) * r.direction - tri.v0;
+        let a = dot(q, tri.e1);
+        let b = dot(q, tri.e2);
+        uv = shading_uv(shading, vec2f(d11 * a - d01 * b, d00 * b - d01 * a) * inv_det);
+      }
+      sum += material_emission(material, uv, r.direction);
+    }
+  }
+  return sum / f32(EMISSION_GRID * EMISSION_GRID);
+}
+
+fn centre_texel(pixel: vec2u) -> CentreTexel {
   let ray = camera_ray(vec2f(pixel) + 0.5);
   let hit = trace_closest(ray);
   if (hit.triangle == NO_TRIANGLE) {
     let previous = project_offset(frame.previous_camera, view.image_size, ray.direction);
-    let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
-    return GBufferTexel(-ray.direction, MISS_DEPTH, vec3f(1.0), NO_ID, vec3f(0.0), MISS_DEPTH, position);
+    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH, vec3f(0.0));
   }
   let surface = surface_at(hit, ray);
   let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
   // Where the point was: moved with its instance, seen by the previous camera.
   let previous = project_point(frame.previous_camera, view.image_size, previous_world_point(hit.instance, surface.position));
-  let position = select(vec2f(OFF_SCREEN), previous.xy, previous.z > 0.0);
   let depth = dot(surface.position - view.camera.position, view.camera.forward);
-  return GBufferTexel(normal, depth, vec3f(1.0), surface.material, vec3f(0.0), previous.z, position);
+  let emission = centre_emission(pixel, hit, surface, ray);
+  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z, emission);
+}
+
+// Writes the centre's records: the surface, the motion words and (for path_trace_frame to read)
+// the centre emission in the frame record.
+fn write_centre(pixel_index: u32, c: CentreTexel) {
+  surface_records[pixel_index] = c.surface;
+  frame_scratch[FRAME_WORDS * pixel_index + FRAME_MOTION] = pack_motion(c.motion, c.on_screen);
+  frame_scratch[FRAME_WORDS * pixel_index + FRAME_PREVIOUS_DEPTH] = pack_f16_pair(c.previous_depth, 0.0);
+}
+
+// A sample's first-hit emission as the pixel keeps it: the centre's filtered emission where the
+// sample saw the centre's surface (same material; a pinhole: with a lens the samples' defocus is
+// the truth), its own elsewhere (edges, misses).
+fn kept_emission(p: PrimaryHit, centre_id: u32, centre_emission: vec3f, own: vec3f) -> vec3f {
+  let same = p.id == centre_id && centre_id != NO_ID && view.camera.aperture_radius == 0.0;
+  return select(own, centre_emission, same);
+}
+
+// The G-buffer of the surface through each pixel centre, a pass of its own before the paths (albedo
+// and emission come from the samples; the record keeps the centre's emission for them meanwhile).
+// Apart, this ray's traversal and surface evaluation are not compiled into the path kernel a second
+// time: measured on the H200 (E1M1, 1080p), the frame took 10.9 ms with them inside and 7.7 ms
+// without (docs/perf.md).
+@compute @workgroup_size(8, 8)
+fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
+  begin_ray_count(local);
+  let pixel = params.tile_origin + id.xy;
+  if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
+    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+    let texel = centre_texel(pixel);
+    write_centre(pixel_index, texel);
+    frame_records[pixel_index].emission = pack_rgb9e5(texel.emission);
+    // The pixel-centre ray counts as one more extension ray.
+    count_rays(1u, 0u);
+  }
+  end_ray_count(local);
 }
 
 @compute @workgroup_size(8, 8)
@@ -52,32 +146,30 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
   let pixel = params.tile_origin + id.xy;
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
-    var rng = rng_seed(pixel_index, params.sample_index, params.seed);
+    let centre_id = surface_records[pixel_index].id;
+    let centre = unpack_rgb9e5(frame_records[pixel_index].emission);
     var illumination = vec3f(0.0);
     var albedo = vec3f(0.0);
     var emission = vec3f(0.0);
-    // The pixel-centre ray of the G-buffer counts as one more extension ray.
-    var extension_rays = 1u;
+    var extension_rays = 0u;
     var shadow_rays = 0u;
     for (var s = 0u; s < params.samples; s++) {
-      primary = PrimaryHit(vec3f(1.0), vec3f(0.0));
+      primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
+      // One stream per sample: a Sobol stream is one sample of its pixel's sequence.
+      var rng = sampler_seed(params.sampler, pixel, view.image_size, params.sample_index + s, params.seed);
       let image_point = vec2f(pixel) + rng_next_2d(&rng);
       let path = trace_path(camera_sample_ray(image_point, &rng), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
       illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);
       albedo += primary.albedo;
-      emission += emitted;
+      emission += kept_emission(primary, centre_id, centre, emitted);
       extension_rays += path.extension_rays;
       shadow_rays += path.shadow_rays;
     }
     let inv = 1.0 / f32(params.samples);
-    var texel = centre_texel(pixel);
-    texel.albedo = albedo * inv;
-    texel.emission = emission * inv;
-    frame_radiance[pixel_index] = vec4f(illumination * inv, 1.0);
-    gbuffer[pixel_index] = texel;
-    guide[pixel_index] = vec4f(texel.normal, texel.linear_depth);
+    frame_scratch[FRAME_WORDS * pixel_index + FRAME_RADIANCE] = pack_rgb9e5(illumination * inv);
+    frame_records[pixel_index] = FrameTexel(pack_rgb9e5(albedo * inv), pack_rgb9e5(emission * inv));
     count_rays(extension_rays, shadow_rays);
   }
   // The same ray counters as the progressive kernel, so the viewer's rays per second stay honest.

@@ -21,6 +21,8 @@ struct PathTraceParams {
   max_bounces: u32,
   seed: u32,
   light_sampling: u32,
+  // The random numbers' sampler: SAMPLER_* of lib/random.
+  sampler: u32,
   // The torch at the camera position (radiance zero: off).
   torch: TorchLight,
 }
@@ -96,7 +98,7 @@ fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocatio
     for (var s = 0u; s < params.samples; s++) {
       // One stream per sample (not per dispatch), so that an image depends on the seed alone and not on
       // how the dispatch planner batched its samples into submits.
-      var rng = rng_seed(pixel_index, params.sample_index + s, params.seed);
+      var rng = sampler_seed(params.sampler, pixel, view.image_size, params.sample_index + s, params.seed);
       let jitter = rng_next_2d(&rng);
       let path = trace_path(camera_sample_ray(vec2f(pixel) + jitter, &rng), &rng, path_settings());
       // A non-finite sample (a numerical accident) is dropped rather than poisoning the pixel forever.

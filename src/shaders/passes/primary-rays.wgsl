@@ -1,10 +1,34 @@
-// Coherent primary rays through pixel centres, for the traversal benchmark (as tinybvh's speed test
-// measures it); with a thin lens each pixel's ray leaves its own random point of the aperture (as
-// the path tracer's do), so they are less coherent. Expects the view (group 1); its output is group 2.
+// Coherent primary rays through pixel centres, for the traversal benchmark; with a thin lens each
+// pixel's ray leaves its own random point of the aperture (as the path tracer's do), so they are
+// less coherent. The rays are stored in the order the benchmark traces them, 64 to a workgroup:
+// by 8 × 8-pixel tiles (tinybvh's speed test: one workgroup per tile) or by image rows.
+// Expects the view (group 1); its parameters and output are group 2.
 
 #import view/bindings
 
+// Ray orders: the host's names live in renderer/benchmark.ts.
+const RAY_ORDER_TILES: u32 = 0u;
+const RAY_ORDER_SCANLINE: u32 = 1u;
+
+struct PrimaryRaysParams {
+  order: u32,
+}
+
 @group(2) @binding(0) var<storage, read_write> rays: array<Ray>;
+@group(2) @binding(1) var<uniform> params: PrimaryRaysParams;
+
+// Where pixel p's ray goes. Tiles: tile after tile, row-major within each, every pixel once: a tile
+// row of height h holds 8·W pixels above it, tiles left of it hold 8·h each, and a tile of width w
+// (narrower at the right edge) holds its own row-major.
+fn ray_slot(p: vec2u, size: vec2u) -> u32 {
+  if (params.order == RAY_ORDER_SCANLINE) {
+    return p.y * size.x + p.x;
+  }
+  let tile = p / 8u;
+  let tile_size = min(vec2u(8u), size - tile * 8u);
+  let local = p % 8u;
+  return tile.y * 8u * size.x + tile.x * 8u * tile_size.y + local.y * tile_size.x + local.x;
+}
 
 @compute @workgroup_size(8, 8)
 fn generate_primary_rays(@builtin(global_invocation_id) id: vec3u) {
@@ -13,5 +37,5 @@ fn generate_primary_rays(@builtin(global_invocation_id) id: vec3u) {
   }
   let pixel_index = id.y * view.image_size.x + id.x;
   var rng = rng_seed(pixel_index, 0u, 0u);
-  rays[pixel_index] = camera_sample_ray(vec2f(id.xy) + 0.5, &rng);
+  rays[ray_slot(id.xy, view.image_size)] = camera_sample_ray(vec2f(id.xy) + 0.5, &rng);
 }

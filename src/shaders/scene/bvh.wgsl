@@ -11,7 +11,8 @@
 // hit then says which instance; the primitive records are read through scene/instances.
 //
 // With STATIC_ACCEL_GRID (scene/grid.wgsl) the static world is walked through its uniform grid
-// instead of its tree, then the top level runs as above, pruned by the grid's hit.
+// instead of its tree, then the top level runs as above, pruned by the grid's hit; likewise through
+// its wide tree with STATIC_ACCEL_BVH4 or STATIC_ACCEL_CWBVH (scene/wide.wgsl).
 
 #import scene/hit-filter
 #import scene/bindings
@@ -19,6 +20,7 @@
 #import scene/materials
 #import scene/instances
 #import scene/grid
+#import scene/wide
 
 // Whether trace_closest counts its work into bvh_work. A pipeline constant, off by default: the path
 // tracer's traversal compiles without the counters; only passes/debug-view turns them on.
@@ -40,6 +42,18 @@ var<private> bvh_work: TraversalWork;
 // The builder caps depth at 60 (bvh/build.ts); a push happens at most once per level.
 const BVH_STACK_SIZE: u32 = 64u;
 
+// A scene whose stack never holds more than BVH_SHALLOW_STACK_SIZE entries (no moving instances, a
+// static tree at most that deep: scene-pack features.shallowStack) traces with a stack of that size
+// instead: less per-thread memory. On the H200 it made the Dragon's rays 2–9 % faster (docs/perf.md).
+// The unused array is folded away with the constant.
+override BVH_SHALLOW_STACK: bool = false;
+const BVH_SHALLOW_STACK_SIZE: u32 = 32u;
+
+// The loop below is deliberately plain. Measured on the H200 (docs/perf.md, issue #14), each of these
+// made the Dragon's rays slower (by up to 28 %): carrying the entered child's record from the box test instead
+// of fetching it again (the second fetch hits the cache; the records cost registers), and dropping
+// popped nodes that start beyond the closest hit (by re-testing the box, or by pushing entry distances:
+// the extra work in the pop path costs more than the visits it saves on a closed mesh).
 fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
   let n = bvh_nodes[node];
   return intersect_aabb(origin, inv_dir, n.aabb_min, n.aabb_max, t_best);
@@ -71,7 +85,7 @@ fn traversal_ray(ray: Ray, instance: u32) -> TraversalRay {
 // Where a traversal starts (node, instance): the static world's root, or the top level's when the ray
 // misses the static world (or it is empty); node NO_NODE when it misses both before t.
 fn traversal_start(local: TraversalRay, t: f32) -> vec2u {
-  let static_world = !STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
+  let static_world = !STATIC_ACCEL_GRID && !static_accel_wide() && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
   if (static_world && node_entry(0u, local.origin, local.inv_dir, t) != T_MISS) {
     return vec2u(0u, 0u);
   }
@@ -93,13 +107,19 @@ fn trace_closest(ray: Ray) -> Hit {
   set_alpha_salt(ray);
   if (BVH_COUNT_WORK) {
     // Through the grid, the count is of cells (none when the ray misses the grid) plus top-level nodes.
-    bvh_work = TraversalWork(select(1u, 0u, STATIC_ACCEL_GRID), 0u, NO_NODE);
+    bvh_work = TraversalWork(select(1u, 0u, STATIC_ACCEL_GRID || static_accel_wide()), 0u, NO_NODE);
   }
   var local = traversal_ray(ray, 0u);
   if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u)) {
     // The static world through its grid: cells count as nodes. The leaf views (leaf size, BVH
     // depth) have no leaf to show for a grid hit and show the root's.
     let work = grid_closest(local.origin, local.direction, local.inv_dir, ray.t_min, &hit);
+    if (BVH_COUNT_WORK) {
+      bvh_work = TraversalWork(work.x, work.y, select(NO_NODE, 0u, hit.triangle != NO_TRIANGLE));
+    }
+  } else if (static_accel_wide() && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u)) {
+    // The static world through its wide tree: wide nodes count as nodes; the leaf views show the root's.
+    let work = wide_closest(local.origin, local.direction, local.inv_dir, ray.t_min, &hit);
     if (BVH_COUNT_WORK) {
       bvh_work = TraversalWork(work.x, work.y, select(NO_NODE, 0u, hit.triangle != NO_TRIANGLE));
     }
@@ -111,10 +131,11 @@ fn trace_closest(ray: Ray) -> Hit {
   var node = start.x;
   var instance = start.y;
   var leave_at = 0u;
-  if (BVH_COUNT_WORK && !STATIC_ACCEL_GRID) {
+  if (BVH_COUNT_WORK && !STATIC_ACCEL_GRID && !static_accel_wide()) {
     bvh_work.nodes_visited = 0u;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
+  var shallow_stack: array<u32, BVH_SHALLOW_STACK_SIZE>;
   var sp = 0u;
   loop {
     let n = bvh_nodes[node];
@@ -159,7 +180,11 @@ fn trace_closest(ray: Ray) -> Hit {
       }
       if (t_near != T_MISS) {
         if (t_far != T_MISS) {
-          stack[sp] = far;
+          if (BVH_SHALLOW_STACK) {
+            shallow_stack[sp] = far;
+          } else {
+            stack[sp] = far;
+          }
           sp += 1u;
         }
         node = near;
@@ -187,7 +212,11 @@ fn trace_closest(ray: Ray) -> Hit {
       break;
     }
     sp -= 1u;
-    node = stack[sp];
+    if (BVH_SHALLOW_STACK) {
+      node = shallow_stack[sp];
+    } else {
+      node = stack[sp];
+    }
   }
   // A mirroring instance's world triangle has v1 and v2 swapped (scene/instances world_primitive): so do the barycentrics.
   if (SCENE_HAS_INSTANCES && hit.triangle != NO_TRIANGLE && instance_mirrored(hit.instance) && (triangles_hot[hit.triangle].flags & PRIMITIVE_ANALYTIC) == 0u) {
@@ -206,6 +235,8 @@ fn trace_any(ray: Ray) -> bool {
   var local = traversal_ray(ray, 0u);
   if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) && grid_any(local.origin, local.direction, local.inv_dir, ray.t_min, ray.t_max)) {
     return true;
+  } else if (static_accel_wide() && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) && wide_any(local.origin, local.direction, local.inv_dir, ray.t_min, ray.t_max)) {
+    return true;
   }
   let start = traversal_start(local, ray.t_max);
   if (start.x == NO_NODE) {
@@ -215,6 +246,7 @@ fn trace_any(ray: Ray) -> bool {
   var instance = start.y;
   var leave_at = 0u;
   var stack: array<u32, BVH_STACK_SIZE>;
+  var shallow_stack: array<u32, BVH_SHALLOW_STACK_SIZE>;
   var sp = 0u;
   loop {
     let n = bvh_nodes[node];
@@ -239,7 +271,11 @@ fn trace_any(ray: Ray) -> bool {
       let hit_left = node_entry(left, local.origin, local.inv_dir, ray.t_max) != T_MISS;
       let hit_right = node_entry(left + 1u, local.origin, local.inv_dir, ray.t_max) != T_MISS;
       if (hit_left && hit_right) {
-        stack[sp] = left + 1u;
+        if (BVH_SHALLOW_STACK) {
+          shallow_stack[sp] = left + 1u;
+        } else {
+          stack[sp] = left + 1u;
+        }
         sp += 1u;
         node = left;
         continue;
@@ -266,6 +302,10 @@ fn trace_any(ray: Ray) -> bool {
       return false;
     }
     sp -= 1u;
-    node = stack[sp];
+    if (BVH_SHALLOW_STACK) {
+      node = shallow_stack[sp];
+    } else {
+      node = stack[sp];
+    }
   }
 }

@@ -15,9 +15,13 @@ fn safe_inverse(d: vec3f) -> vec3f {
 }
 
 // Entry distance into the box, or T_MISS when the ray misses it or enters only at or beyond t_best.
+// Each slab distance is one fused multiply-add, bmin · inv_dir − origin · inv_dir (measured faster on
+// the H200 than (bmin − origin) · inv_dir: docs/perf.md, issue #14); bvh/ray.ts intersectAabb does
+// the same.
 fn intersect_aabb(origin: vec3f, inv_dir: vec3f, bmin: vec3f, bmax: vec3f, t_best: f32) -> f32 {
-  let t0 = (bmin - origin) * inv_dir;
-  let t1 = (bmax - origin) * inv_dir;
+  let origin_inv = origin * inv_dir;
+  let t0 = fma(bmin, inv_dir, -origin_inv);
+  let t1 = fma(bmax, inv_dir, -origin_inv);
   let near = min(t0, t1);
   let far = max(t0, t1);
   let t_near = max(max(near.x, near.y), near.z);

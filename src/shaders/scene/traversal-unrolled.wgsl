@@ -11,8 +11,11 @@
 #import scene/specialised-primitives
 
 // Declared for the scene features' constants (gpu/kernel.ts FEATURE_CONSTANTS): an unrolled scene
-// tests every primitive and has no grid to walk.
+// tests every primitive and has no grid, wide tree or stack.
 override STATIC_ACCEL_GRID: bool = false;
+override STATIC_ACCEL_BVH4: bool = false;
+override STATIC_ACCEL_CWBVH: bool = false;
+override BVH_SHALLOW_STACK: bool = false;
 
 // The one intersection routine every primitive goes through: scene/intersect's intersect_primitive,
 // which reads the kind (triangle, sphere, capsule) from the record's flags; with the record constant,

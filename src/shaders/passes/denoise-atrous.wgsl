@@ -1,0 +1,186 @@
+// One iteration of the real-time denoiser's edge-avoiding à-trous wavelet filter (Dammertz et al.
+// 2010) as SVGF uses it (Schied et al. 2017, §4.3): a 5×5 B3-spline kernel with holes of `step`
+// pixels, weighted by edge-stopping functions of normal, depth (relative to the local depth gradient)
+// and luminance (relative to the standard deviation of the 3×3-blurred variance). Filters the
+// demodulated illumination and carries its variance through with squared weights.
+//
+// The packed twin of passes/atrous (which the hybrid recipe keeps for its vec4f buffers): the guide is
+// the pixel-centre surface record, and source and result are illumination pairs (two words: f16 rgb,
+// f16 σ, denoise/gbuffer) that live in one of two bound word arrays, `a` and `b`, at a stride and
+// offset the host chooses per iteration. So the iterations ping-pong inside the frame scratch (words
+// 0–1 and 2–3 of each pixel), the colour history and the moments the temporal pass has finished with
+// (renderer/denoiser.ts has the schedule), and the last iteration remodulates and writes the frame's
+// linear output (vec4f) over the frame scratch. Expects the view (group 1) and denoise/gbuffer.
+
+#import lib/color
+#import view/bindings
+#import denoise/gbuffer
+
+// What an iteration writes besides its filtered pair.
+const ATROUS_PLAIN: u32 = 0u;
+// Also copies the source's own pair to `b` (stride 2): the unfiltered history when feedback is off.
+const ATROUS_COPY_HISTORY: u32 = 1u;
+// Instead of a pair: remodulates (albedo) and adds the emission, writing the output vec4f into `a`.
+const ATROUS_OUTPUT: u32 = 2u;
+
+struct DenoiseAtrousParams {
+  // Distance between taps in pixels: 1, 2, 4, 8, 16 over the five iterations.
+  step: i32,
+  // Edge-stopping strengths (SVGF: σ_l = 4, σ_n = 128, σ_z = 1).
+  sigma_luminance: f32,
+  sigma_normal: f32,
+  sigma_depth: f32,
+  // Where the source pair of pixel i is: array (0: a, 1: b), words stride · i + offset.
+  source_array: u32,
+  source_stride: u32,
+  source_offset: u32,
+  // Where the result pair goes (ignored by ATROUS_OUTPUT).
+  result_array: u32,
+  result_stride: u32,
+  result_offset: u32,
+  // ATROUS_*.
+  mode: u32,
+}
+
+@group(2) @binding(0) var<uniform> params: DenoiseAtrousParams;
+@group(2) @binding(1) var<storage, read> surface_records: array<SurfaceTexel>;
+@group(2) @binding(2) var<storage, read> frame_records: array<FrameTexel>;
+// Both read_write: a pass may read one pixel's words of an array while writing others' (or its own).
+@group(2) @binding(3) var<storage, read_write> a: array<u32>;
+@group(2) @binding(4) var<storage, read_write> b: array<u32>;
+
+// The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
+fn b3(d: i32) -> f32 {
+  return select(select(0.0625, 0.25, d == 1), 0.375, d == 0);
+}
+
+fn texel_index(q: vec2i) -> u32 {
+  return u32(q.y) * view.image_size.x + u32(q.x);
+}
+
+fn inside(q: vec2i) -> bool {
+  return all(q >= vec2i(0)) && all(q < vec2i(view.image_size));
+}
+
+// rgb: illumination, a: variance of the source at pixel i.
+fn source(i: u32) -> vec4f {
+  let k = params.source_stride * i + params.source_offset;
+  var p: vec2u;
+  if (params.source_array == 0u) {
+    p = vec2u(a[k], a[k + 1u]);
+  } else {
+    p = vec2u(b[k], b[k + 1u]);
+  }
+  return unpack_illumination(p);
+}
+
+fn store_result(i: u32, value: vec4f) {
+  let k = params.result_stride * i + params.result_offset;
+  let p = pack_illumination(value.rgb, value.a);
+  if (params.result_array == 0u) {
+    a[k] = p.x;
+    a[k + 1u] = p.y;
+  } else {
+    b[k] = p.x;
+    b[k + 1u] = p.y;
+  }
+}
+
+fn source_depth(q: vec2i) -> f32 {
+  return surface_records[texel_index(q)].linear_depth;
+}
+
+// The variance at p blurred by a 3×3 Gaussian: a steadier guide than one pixel's estimate.
+fn blurred_variance(p: vec2i) -> f32 {
+  var sum = 0.0;
+  var weights = 0.0;
+  for (var dy = -1; dy <= 1; dy++) {
+    for (var dx = -1; dx <= 1; dx++) {
+      let q = p + vec2i(dx, dy);
+      if (inside(q)) {
+        let w = select(0.5, 1.0, dx == 0) * select(0.5, 1.0, dy == 0);
+        sum += w * source(texel_index(q)).a;
+        weights += w;
+      }
+    }
+  }
+  return sum / weights;
+}
+
+// The smaller one-sided difference of linear depth along one axis (the smaller side does not cross an edge).
+fn depth_slope(p: vec2i, axis: vec2i, z: f32) -> f32 {
+  var slope = 1e30;
+  for (var s = -1; s <= 1; s += 2) {
+    let q = p + s * axis;
+    if (inside(q)) {
+      let depth = source_depth(q);
+      if (depth >= 0.0) {
+        slope = min(slope, abs(depth - z));
+      }
+    }
+  }
+  return select(slope, 0.0, slope == 1e30);
+}
+
+@compute @workgroup_size(8, 8)
+fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
+  if (any(id.xy >= view.image_size)) {
+    return;
+  }
+  let p = vec2i(id.xy);
+  let i = texel_index(p);
+  let centre = source(i);
+  let g = unpack_surface(surface_records[i]);
+  let miss = is_miss_depth(g.linear_depth);
+  let l_p = luminance(centre.rgb);
+  let luminance_scale = params.sigma_luminance * sqrt(max(blurred_variance(p), 0.0)) + 1e-10;
+  let slope = vec2f(depth_slope(p, vec2i(1, 0), g.linear_depth), depth_slope(p, vec2i(0, 1), g.linear_depth));
+
+  var colour = vec3f(0.0);
+  var variance = 0.0;
+  var weights = 0.0;
+  for (var dy = -2; dy <= 2; dy++) {
+    for (var dx = -2; dx <= 2; dx++) {
+      let q = p + params.step * vec2i(dx, dy);
+      if (!inside(q)) {
+        continue;
+      }
+      let qi = texel_index(q);
+      var s = centre;
+      var w = b3(abs(dx)) * b3(abs(dy));
+      if (dx != 0 || dy != 0) {
+        let gq = surface_records[qi];
+        if (miss != is_miss_depth(gq.linear_depth)) {
+          continue;
+        }
+        s = source(qi);
+        if (!miss) {
+          let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
+          let depth_scale = params.sigma_depth * dot(slope, offset) + 1e-3 * g.linear_depth;
+          w *= exp(-abs(g.linear_depth - gq.linear_depth) / depth_scale);
+          w *= pow(max(dot(g.normal, unpack_normal(gq.normal)), 0.0), params.sigma_normal);
+        }
+        w *= exp(-abs(l_p - luminance(s.rgb)) / luminance_scale);
+      }
+      colour += w * s.rgb;
+      variance += w * w * s.a;
+      weights += w;
+    }
+  }
+  let filtered = vec4f(colour / weights, variance / (weights * weights));
+  if (params.mode == ATROUS_OUTPUT) {
+    let f = frame_records[i];
+    let c = frame_emission(f) + filtered.rgb * demodulation(frame_albedo(f));
+    a[FRAME_WORDS * i] = bitcast<u32>(c.r);
+    a[FRAME_WORDS * i + 1u] = bitcast<u32>(c.g);
+    a[FRAME_WORDS * i + 2u] = bitcast<u32>(c.b);
+    a[FRAME_WORDS * i + 3u] = bitcast<u32>(1.0);
+    return;
+  }
+  if (params.mode == ATROUS_COPY_HISTORY) {
+    let own = pack_illumination(centre.rgb, centre.a);
+    b[2u * i] = own.x;
+    b[2u * i + 1u] = own.y;
+  }
+  store_result(i, filtered);
+}

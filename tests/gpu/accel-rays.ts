@@ -1,0 +1,117 @@
+/**
+ * What the static-world accel tests share (grid-traversal, wide-traversal): rays that exercise a
+ * scene (pixel rays, random rays from inside a box, some along the axes and some short, rays into
+ * each moving instance) and their closest and any hits traced through the scene's kernels as the
+ * renderer compiles them.
+ */
+import { makeRandom } from '../../src/bvh/test-scenes.ts';
+import { ComputeKernel, FEATURE_CONSTANTS, TRAVERSAL_FEATURES } from '../../src/gpu/kernel.ts';
+import { readBuffer } from '../../src/gpu/readback.ts';
+import { SceneResources } from '../../src/gpu/scene-resources.ts';
+import { cameraBasis } from '../../src/gpu/view.ts';
+import { linkWgsl } from '../../src/gpu/wgsl/linker.ts';
+import { reflectLinked } from '../../src/gpu/wgsl/reflect.ts';
+import type { Vec3 } from '../../src/math/vec3.ts';
+import { packRays } from '../../src/passes/trace-rays-pass.ts';
+import type { PreparedScene } from '../../src/renderer/prepare.ts';
+import { SHADER_MODULES } from '../../src/shaders/index.ts';
+import { outputBuffer, storageBuffer } from './compute.ts';
+
+// Closest and any hit of each ray.
+const KERNEL = `
+#import scene/bvh
+
+struct AccelTestHit {
+  t: f32,
+  source: u32,
+  u: f32,
+  v: f32,
+  any: u32,
+}
+
+@group(2) @binding(0) var<storage, read> rays: array<Ray>;
+@group(2) @binding(1) var<storage, read_write> out: array<AccelTestHit>;
+
+@compute @workgroup_size(64)
+fn accel_test(@builtin(global_invocation_id) id: vec3u) {
+  let i = id.x;
+  if (i >= arrayLength(&rays)) {
+    return;
+  }
+  let hit = trace_closest(rays[i]);
+  var source = NO_TRIANGLE;
+  if (hit.triangle != NO_TRIANGLE) {
+    source = world_shading(hit.instance, hit.triangle).source_index;
+  }
+  out[i] = AccelTestHit(hit.t, source, hit.u, hit.v, select(0u, 1u, trace_any(rays[i])));
+}
+`;
+
+export interface TestRay {
+  readonly origin: Vec3;
+  readonly direction: Vec3;
+  readonly tMin: number;
+  readonly tMax: number;
+}
+
+/** Where random rays start (a box, min and max xyz) and how many: from inside it, and toward each moving instance. */
+export interface RaySpread {
+  readonly lo: ArrayLike<number>;
+  readonly hi: ArrayLike<number>;
+  readonly random: number;
+  readonly perInstance: number;
+}
+
+/** size × size pixel rays from the camera, then the spread's rays; all in f32, as the GPU reads them. */
+export function makeRays(prepared: PreparedScene, size: number, spread: RaySpread): TestRay[] {
+  const b = cameraBasis(prepared.scene.camera, 1);
+  const rays: TestRay[] = [];
+  const far = 1e30;
+  for (let y = 0; y < size; y++) {
+    for (let x = 0; x < size; x++) {
+      const nx = (2 * (x + 0.5)) / size - 1, ny = 1 - (2 * (y + 0.5)) / size;
+      const d = [0, 1, 2].map((k) => b.forward[k]! + nx * b.right[k]! + ny * b.up[k]!);
+      rays.push({ origin: b.position, direction: d as unknown as Vec3, tMin: 0, tMax: far });
+    }
+  }
+  const boxes = prepared.levels?.boxes ?? prepared.bvh.bounds.subarray(0, 6);
+  const { lo, hi } = spread;
+  const rnd = makeRandom(17);
+  const inside = () => [0, 1, 2].map((k) => lo[k]! + rnd() * (hi[k]! - lo[k]!)) as unknown as Vec3;
+  for (let i = 0; i < spread.random; i++) {
+    let d: Vec3 = [rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 2 - 1];
+    if (i % 16 === 0) d = [[1, 0, 0], [0, -1, 0], [0, 0, 1]][i % 3] as unknown as Vec3;
+    rays.push({ origin: inside(), direction: d, tMin: 0, tMax: i % 4 === 1 ? rnd() * 3 : far });
+  }
+  for (let g = 1; prepared.levels && g < boxes.length / 6; g++) {
+    for (let i = 0; i < spread.perInstance; i++) {
+      const o = inside();
+      const target = [0, 1, 2].map((k) => boxes[g * 6 + k]! + rnd() * (boxes[g * 6 + 3 + k]! - boxes[g * 6 + k]!));
+      rays.push({ origin: o, direction: [target[0]! - o[0], target[1]! - o[1], target[2]! - o[2]], tMin: 0, tMax: far });
+    }
+  }
+  return rays.map((r) => ({ ...r, origin: r.origin.map(Math.fround) as unknown as Vec3, direction: r.direction.map(Math.fround) as unknown as Vec3, tMax: Math.fround(r.tMax) }));
+}
+
+/** Each ray's closest hit (t, source primitive, barycentrics) and whether trace_any finds anything. */
+export async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: readonly TestRay[]) {
+  const constants: Record<string, number> = {};
+  for (const name of TRAVERSAL_FEATURES) constants[FEATURE_CONSTANTS[name]] = prepared.packed.features[name] ? 1 : 0;
+  const sources = new Map(SHADER_MODULES);
+  sources.set('tests/accel-test', KERNEL);
+  const kernel = await ComputeKernel.create(device, { module: reflectLinked(linkWgsl('tests/accel-test', sources)), entryPoint: 'accel_test', constants });
+  const scene = await SceneResources.upload(device, prepared.packed, prepared.scene.name);
+  const rayBuffer = storageBuffer(device, 'accel test rays', packRays(rays));
+  const out = outputBuffer(device, 'accel test hits', rays.length * 20);
+  const encoder = device.createCommandEncoder();
+  const pass = encoder.beginComputePass();
+  kernel.dispatch(pass, { 0: kernel.bindGroup(0, scene.bindings), 2: kernel.bindGroup(2, { rays: rayBuffer, out }) }, Math.ceil(rays.length / 64));
+  pass.end();
+  device.queue.submit([encoder.finish()]);
+  const raw = await readBuffer(device, out);
+  rayBuffer.destroy();
+  out.destroy();
+  scene.destroy();
+  const f = new Float32Array(raw), u = new Uint32Array(raw);
+  return rays.map((_, i) => ({ t: f[i * 5]!, tri: u[i * 5 + 1]!, u: f[i * 5 + 2]!, v: f[i * 5 + 3]!, any: u[i * 5 + 4] === 1 }));
+}

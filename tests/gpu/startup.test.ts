@@ -1,0 +1,79 @@
+/**
+ * Start-up laziness (issue #14, time to first image): a renderer told the scene's features compiles
+ * the path tracer for that scene alone, with that scene's override constants, and no kernel the
+ * render does not run; kernels left out (the denoiser's) are still made when first asked for.
+ * The stage log (gpu/stage-log.ts) says what was compiled.
+ */
+import { afterEach, describe, expect, it } from 'vitest';
+import { FEATURE_CONSTANTS } from '../../src/gpu/kernel.ts';
+import type { SceneFeatures } from '../../src/gpu/pack/scene-pack.ts';
+import { observeStages, type StageSpan } from '../../src/gpu/stage-log.ts';
+import { builtinScene } from '../../src/loaders/builtin/index.ts';
+import { prepareScene } from '../../src/renderer/prepare.ts';
+import { Renderer } from '../../src/renderer/renderer.ts';
+import { testGpu } from './gpu-context.ts';
+
+const PATH_TRACE_PIPELINE = 'pipeline passes/path-trace:path_trace';
+
+/** Every stage reported for the test device from now on (until afterEach stops listening). */
+async function recordStages(): Promise<StageSpan[]> {
+  const spans: StageSpan[] = [];
+  observeStages((await testGpu()).device, (s) => spans.push(s));
+  return spans;
+}
+
+afterEach(async () => observeStages((await testGpu()).device, undefined));
+
+const pipelines = (spans: readonly StageSpan[]) => spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort();
+
+/** The override constants a scene with these features compiles with, as the stage's detail lists them. */
+const constantsOf = (f: SceneFeatures) => Object.entries(FEATURE_CONSTANTS).map(([k, name]) => `${name}=${f[k as keyof SceneFeatures] ? 1 : 0}`);
+
+describe('start-up compiles', () => {
+  it('compile the path tracer for the given scene alone, and the tone mapper; nothing else', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    // General materials, spheres and a sky: not the plain scene that a renderer without features compiles first.
+    const prepared = prepareScene(builtinScene('spheres'));
+    expect(prepared.packed.features.generalMaterials).toBe(true);
+    const renderer = await Renderer.create(gpu, { features: Promise.resolve(prepared.packed.features) });
+    try {
+      await renderer.resize(8, 8);
+      await renderer.setScene(prepared);
+      renderer.accumulate(1);
+      const { radiance } = await renderer.readAccumulation();
+      expect(radiance.every(Number.isFinite)).toBe(true);
+      expect(radiance.some((v) => v > 0)).toBe(true);
+      await renderer.readImage();
+      expect(pipelines(spans)).toEqual([PATH_TRACE_PIPELINE, 'pipeline passes/tonemap:tonemap_image']);
+      const detail = spans.find((s) => s.stage === PATH_TRACE_PIPELINE)!.detail!.split(' ');
+      expect(detail).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features)));
+      expect(spans.some((s) => s.stage === 'upload scene')).toBe(true);
+      for (const s of spans) expect(s.endMs).toBeGreaterThanOrEqual(s.startMs);
+    } finally {
+      renderer.destroy();
+    }
+  });
+
+  it('leave the denoiser out until it is asked for: a denoised frame after a progressive render works', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('cornell'));
+    const renderer = await Renderer.create(gpu, { features: prepared.packed.features });
+    try {
+      await renderer.resize(8, 8);
+      await renderer.setScene(prepared);
+      renderer.accumulate(1);
+      await renderer.readAccumulation();
+      expect(pipelines(spans).filter((p) => p !== PATH_TRACE_PIPELINE && !p.includes('tonemap'))).toEqual([]);
+      await renderer.enableRealTime();
+      renderer.renderFrame(1);
+      const frame = await renderer.readFrame();
+      expect(frame.radiance.every(Number.isFinite)).toBe(true);
+      expect(frame.radiance.some((v) => v > 0)).toBe(true);
+      expect(pipelines(spans).some((p) => p.endsWith(':path_trace_frame'))).toBe(true);
+    } finally {
+      renderer.destroy();
+    }
+  });
+});
