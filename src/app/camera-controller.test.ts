@@ -134,3 +134,29 @@ describe('walking through a Doom door', () => {
     expect(c.takeWalked()).toEqual([]);
   });
 });
+
+describe('camera controller: held time', () => {
+  it('moves by the held time however the frames fall: one 3 s frame equals ninety 1/30 s frames', () => {
+    const slow = new CameraController(camera, 10);
+    const fast = new CameraController(camera, 10);
+    const walkAndTurn = { ...NO_INPUT, forward: 1, turn: 1 };
+    slow.advance([{ input: walkAndTurn, seconds: 3 }]);
+    for (let i = 0; i < 90; i++) fast.advance([{ input: walkAndTurn, seconds: 1 / 30 }]);
+    for (let i = 0; i < 3; i++) expect(slow.pose.position[i]).toBeCloseTo(fast.pose.position[i]!, 9);
+    expect(slow.pose.yaw).toBeCloseTo(fast.pose.yaw, 12);
+    // Three seconds of turning at 120°/s is a full turn, and walking while turning follows a circle
+    // back to where it began (a 3 s frame that moved by the held keys at its end would be 30 units off).
+    expect(slow.pose.yaw).toBeCloseTo(2 * Math.PI, 9);
+    expect(Math.hypot(...slow.pose.position)).toBeLessThan(0.5);
+  });
+
+  it('a 30 s frame of walking into a wall stops at the wall', () => {
+    const c = new CameraController({ ...camera, position: [-128, 41, 0] }, 200, room());
+    expect(c.setMode('walk')).toBe(true);
+    expect(c.advance([{ input: { ...NO_INPUT, forward: 1 }, seconds: 30 }])).toBe(true);
+    const [x, , z] = c.pose.position;
+    expect(z).toBeGreaterThanOrEqual(-256 + 16 - 1e-3);
+    expect(z).toBeLessThan(-256 + 17);
+    expect(x).toBeCloseTo(-128, 6);
+  });
+});

@@ -25,6 +25,12 @@ export interface MoveInput {
 
 export const NO_INPUT: MoveInput = Object.freeze({ forward: 0, right: 0, up: 0, turn: 0, run: false });
 
+/** Input held constant for a time (KeyTimeline.take). */
+export interface HeldSpan {
+  readonly input: MoveInput;
+  readonly seconds: number;
+}
+
 export interface Pose {
   readonly position: Vec3;
   readonly yaw: number;
@@ -38,6 +44,11 @@ const LOOK_RATE = 0.0025;
 const MAX_PITCH = (89 * Math.PI) / 180;
 /** Shift multiplies speed by this (Doom's run is twice the walk). */
 const RUN_FACTOR = 2;
+/**
+ * The longest step of held input (s): longer spans are cut so that turning while moving follows an
+ * arc, and walking checks collisions along the way (moveWalker sub-steps further by the radius).
+ */
+const MAX_STEP = 1 / 30;
 /** How fast the eye follows a change of floor height (1/s): Doom-like smooth steps up stairs. */
 const STEP_SMOOTHING = 12;
 
@@ -117,6 +128,20 @@ export class CameraController {
   look(dx: number, dy: number): void {
     this.yaw += dx * LOOK_RATE;
     this.pitch = Math.max(-MAX_PITCH, Math.min(MAX_PITCH, this.pitch - dy * LOOK_RATE));
+  }
+
+  /**
+   * Advances through spans of held input (the time since the last frame, however long it was); true
+   * when the camera moved or turned. A slow frame never eats input: each span moves by its own time.
+   */
+  advance(spans: readonly HeldSpan[]): boolean {
+    let moved = false;
+    for (const { input, seconds } of spans) {
+      const idle = input.forward === 0 && input.right === 0 && input.up === 0 && input.turn === 0;
+      const steps = idle ? 1 : Math.ceil(seconds / MAX_STEP);
+      for (let i = 0; i < steps; i++) moved = this.update(seconds / steps, input) || moved;
+    }
+    return moved;
   }
 
   /** Advances by `dt` seconds of held input; true when the camera moved or turned. */

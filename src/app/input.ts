@@ -6,22 +6,8 @@
  * Keys typed into form fields (the settings panel) are not movement. A click that is not the end of a drag, outside pointer lock, is reported (select;
  * with Alt, focus); Esc outside pointer lock is reported too (deselect).
  */
-import type { MoveInput } from './camera-controller.ts';
-
-const AXES: Record<string, [keyof Omit<MoveInput, 'run'>, number]> = {
-  KeyW: ['forward', 1],
-  ArrowUp: ['forward', 1],
-  KeyS: ['forward', -1],
-  ArrowDown: ['forward', -1],
-  KeyD: ['right', 1],
-  KeyA: ['right', -1],
-  ArrowRight: ['turn', 1],
-  ArrowLeft: ['turn', -1],
-  Space: ['up', 1],
-  KeyR: ['up', 1],
-  KeyC: ['up', -1],
-  KeyF: ['up', -1],
-};
+import type { HeldSpan, MoveInput } from './camera-controller.ts';
+import { isMovementKey, KeyTimeline } from './key-timeline.ts';
 
 /** A click on the canvas: where (CSS pixels from its top-left corner) and whether Alt was held. */
 export interface CanvasClick {
@@ -44,7 +30,8 @@ export interface InputHandlers {
 const DRAG_THRESHOLD = 4;
 
 export class Input {
-  private readonly held = new Set<string>();
+  /** Held movement keys over time: the camera moves by how long each was held. */
+  private readonly keys = new KeyTimeline(performance.now());
   private lookX = 0;
   private lookY = 0;
   private readonly cleanup: (() => void)[] = [];
@@ -69,14 +56,14 @@ export class Input {
       if (isTyping(k) || k.ctrlKey || k.metaKey || k.altKey) return;
       if ((k.code === 'KeyE' || k.code === 'Space') && !k.repeat) handlers.onUse?.(k.code);
       if (k.code === 'KeyE') k.preventDefault();
-      if (k.code in AXES || k.code.startsWith('Shift')) {
-        this.held.add(k.code);
+      if (isMovementKey(k.code)) {
+        this.keys.press(k.code, performance.now());
         k.preventDefault();
       }
     });
-    this.listen(window, 'keyup', (e) => this.held.delete((e as KeyboardEvent).code));
+    this.listen(window, 'keyup', (e) => this.keys.release((e as KeyboardEvent).code, performance.now()));
     // Keys released while the window had no focus never send keyup.
-    this.listen(window, 'blur', () => this.held.clear());
+    this.listen(window, 'blur', () => this.keys.releaseAll(performance.now()));
     this.listen(canvas, 'mousedown', (e) => {
       const m = e as MouseEvent;
       if (m.button !== 0 || locked()) return;
@@ -105,13 +92,17 @@ export class Input {
 
   /** The held keys as axes. */
   get move(): MoveInput {
-    const axes = { forward: 0, right: 0, up: 0, turn: 0 };
-    for (const code of this.held) {
-      const axis = AXES[code];
-      if (axis) axes[axis[0]] += axis[1];
-    }
-    const clamp = (v: number) => Math.max(-1, Math.min(1, v));
-    return { forward: clamp(axes.forward), right: clamp(axes.right), up: clamp(axes.up), turn: clamp(axes.turn), run: this.held.has('ShiftLeft') || this.held.has('ShiftRight') };
+    return this.keys.move;
+  }
+
+  /** The spans of held input since the last call (or restart), up to `now` (performance.now()). */
+  takeHeld(now: number): HeldSpan[] {
+    return this.keys.take(now);
+  }
+
+  /** Forgets held time before `now` (the viewer starts or resumes playing). */
+  restartClock(now: number): void {
+    this.keys.restart(now);
   }
 
   /** Mouse movement since the last call, in pixels. */
@@ -122,7 +113,7 @@ export class Input {
   }
 
   get active(): boolean {
-    return this.held.size > 0;
+    return this.keys.active;
   }
 
   destroy(): void {

@@ -27,7 +27,7 @@ import { materialEditProblem, mergeMaterialEdits, type MaterialEdit } from '../s
 import type { MaterialOverride } from './material-link.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
-import { CameraController, NO_INPUT, sceneSpeed, type MoveInput, type MoveMode, type Pose } from './camera-controller.ts';
+import { CameraController, sceneSpeed, type HeldSpan, type MoveMode, type Pose } from './camera-controller.ts';
 import { linkOfEnvironment } from './environment-choice.ts';
 import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
@@ -87,6 +87,18 @@ async function enableRecipe(renderer: Renderer, s: RenderSettings): Promise<void
 /** Milliseconds without an edit after which the scene's specialised kernels are compiled (Lantern issue #11). */
 const SPECIALISE_AFTER_IDLE_MS = 1000;
 
+/** Where movement comes from: the page's keyboard and mouse (Input); tests may replace it. */
+export interface ViewerInput {
+  /** Spans of held input since the last call, up to `now` (performance.now()). */
+  takeHeld(now: number): HeldSpan[];
+  /** Forgets held time before `now` (playing starts or resumes). */
+  restartClock(now: number): void;
+  /** Mouse movement since the last call, in pixels. */
+  takeLook(): [number, number];
+}
+
+const NO_VIEWER_INPUT: ViewerInput = { takeHeld: () => [], restartClock: () => {}, takeLook: () => [0, 0] };
+
 export interface PassTime {
   readonly name: string;
   readonly ms: number;
@@ -141,7 +153,7 @@ export class Viewer {
   failure: unknown;
   settings: ViewerSettings = DEFAULT_VIEWER_SETTINGS;
   /** Where movement input comes from (the page's keyboard and mouse; tests may replace it). */
-  input: { readonly move: MoveInput; takeLook(): [number, number] } = { move: NO_INPUT, takeLook: () => [0, 0] };
+  input: ViewerInput = NO_VIEWER_INPUT;
 
   private loaded?: LoadedScene;
   private controllerValue?: CameraController;
@@ -695,6 +707,8 @@ export class Viewer {
     if (this.looping) return;
     this.looping = true;
     this.lastFrame = performance.now();
+    // Keys held while paused or hidden move nothing: held time counts from here.
+    this.input.restartClock(this.lastFrame);
     const frame = async (now: number) => {
       const renderer = this.renderer;
       const context = this.context;
@@ -706,7 +720,9 @@ export class Viewer {
       try {
         // An animation frame's time is when the frame began, which precedes loop()'s performance.now()
         // when the main thread was busy past a frame boundary (a scene upload on a loaded CPU): the
-        // first step would go back in time, and World.advance refuses a negative dt.
+        // first step would go back in time, and World.advance refuses a negative dt. The world (doors,
+        // lifts, the phantom) advances by at most 0.1 s a frame; held keys move by their real held
+        // time (renderFrame), so a slow frame slows the game's clock but never eats input.
         await this.renderFrame(renderer, context, Math.min(0.1, Math.max(0, (now - this.lastFrame) / 1000)));
       } catch (e) {
         this.looping = false;
@@ -748,7 +764,9 @@ export class Viewer {
     if (c) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
-      if (c.update(dt, this.input.move) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      // Held keys move by the time they were really held since the last frame, however long it took.
+      const held = this.input.takeHeld(performance.now());
+      if (c.advance(held) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
       this.stepWorld(renderer, c, dt);
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
