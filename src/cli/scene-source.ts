@@ -12,6 +12,7 @@ import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/buil
 import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
 import { describeSceneArguments, formatByName, formatOfFolder, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
 import type { Scene } from '../scene/types.ts';
+import { iwadForMap, isBareMapName } from './iwads.ts';
 import { readFileOrExplain, readJsonFile } from './read-files.ts';
 import type { Timeline } from './timeline.ts';
 
@@ -39,7 +40,7 @@ function isFile(path: string): boolean {
 }
 
 export function sceneHelp(): string {
-  return describeSceneArguments([DRAGON_ALIAS]);
+  return describeSceneArguments([DRAGON_ALIAS, 'E1M1 or MAP01 (a map of an installed Doom IWAD: $DOOMWADDIR, /usr/share/games/doom)']);
 }
 
 export interface SceneLoadOptions {
@@ -69,6 +70,8 @@ export function parseSceneArgument(arg: string): SceneArgument {
     if (!found) throw new LanternError('the Stanford Dragon is not installed', 'Run `npm ci` (it comes with the development dependencies) or give the path to dragon_vrip.ply.gz');
     return { kind: 'files', paths: [found], displayName: DRAGON_ALIAS };
   }
+  // E1M1, MAP01: a map of an installed IWAD (a file of that name in the working folder comes first).
+  if (isBareMapName(arg) && !isFile(arg)) return { kind: 'files', paths: [iwadForMap(arg)], part: arg.toUpperCase() };
   const folder = folderArgument(arg);
   if (folder) return folder;
   const reference = parseSceneReference(arg);
