@@ -40,7 +40,7 @@ function isFile(path: string): boolean {
 }
 
 export function sceneHelp(): string {
-  return describeSceneArguments([DRAGON_ALIAS, 'E1M1 or MAP01 (a map of an installed Doom IWAD: $DOOMWADDIR, /usr/share/games/doom)']);
+  return `${describeSceneArguments([DRAGON_ALIAS])}, or a Doom map name (E1M1, MAP01) of an installed IWAD ($DOOMWADDIR, /usr/share/games/doom)`;
 }
 
 export interface SceneLoadOptions {
