@@ -7,7 +7,7 @@ export function readFileOrExplain(path: string): Uint8Array {
     return readFileSync(path);
   } catch (e) {
     const code = (e as NodeJS.ErrnoException).code;
-    const why = code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : code === 'EISDIR' ? 'it is a directory' : (e as Error).message;
+    const why = code === 'ENOENT' ? 'no such file' : code === 'EACCES' ? 'permission denied' : code === 'EISDIR' ? 'it is a directory' : code === 'ENAMETOOLONG' ? 'the path is too long' : (e as Error).message;
     throw new LanternError(`cannot read '${path}': ${why}`);
   }
 }

@@ -18,6 +18,7 @@ import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frame
 import { World } from '../../scene/world.ts';
 import { processSpans } from '../process-clock.ts';
 import { Timeline } from '../timeline.ts';
+import { escapeControls } from '../terminal-text.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
 interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
@@ -150,7 +151,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     outputs: { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) },
     ...(timeline ? { timeline: timeline.toJSON() } : {}),
   };
-  if (timeline && !o.json) process.stderr.write(`${timeline.format()}\n`);
+  if (timeline && !o.json) process.stderr.write(`${escapeControls(timeline.format(), { keepLines: true })}\n`);
   if (o.json) {
     context.print(JSON.stringify(report, null, 2));
   } else {
