@@ -8,7 +8,7 @@ import type { Command } from 'commander';
 import { formatSceneLocation, type SceneLocation } from '../../loaders/scene-link.ts';
 import type { CliContext } from '../context.ts';
 import { formatLensLink } from '../../renderer/lens-link.ts';
-import { integerOption } from '../options.ts';
+import { integerOption, pathOption } from '../options.ts';
 import { lensNumber } from '../lens-option.ts';
 import { openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 import { startViewServer, type OfferedFile } from '../view-server.ts';
@@ -34,7 +34,7 @@ export function registerView(program: Command, context: CliContext): void {
     .argument('[scene]', sceneHelp(), 'cornell')
     .option('--port <n>', 'port to listen on (0: any free port)', integerOption('--port', 0, 65535), 8080)
     .option('--host <address>', 'address to listen on (127.0.0.1: this machine only)', '127.0.0.1')
-    .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)')
+    .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)', pathOption('--app'))
     .option('--aperture <radius>', 'open the page with a thin lens of this radius (scene units; 0: a pinhole)', lensNumber('--aperture', true))
     .option('--skill <1-5>', "Doom maps: the skill level whose things appear; Wolfenstein 3D maps: whose guards (default 3)", integerOption('--skill', 1, 5))
     .option('--focus-distance <d>', "the lens's focus distance (scene units; default: the scene's, or what lies at the image centre)", lensNumber('--focus-distance', false))
