@@ -10,7 +10,7 @@ import type { CliContext } from '../context.ts';
 import { formatLensLink } from '../../renderer/lens-link.ts';
 import { integerOption, pathOption } from '../options.ts';
 import { lensNumber } from '../lens-option.ts';
-import { openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
+import { checkSceneOptionsApply, openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 import { startViewServer, type OfferedFile } from '../view-server.ts';
 
 interface ViewOptions {
@@ -47,8 +47,13 @@ export function registerView(program: Command, context: CliContext): void {
  */
 async function sceneFiles(arg: string, skill?: number): Promise<{ files: OfferedFile[]; location: (urls: readonly string[]) => SceneLocation }> {
   const argument = parseSceneArgument(arg);
-  if (argument.kind === 'builtin') return { files: [], location: () => ({ kind: 'builtin', name: argument.name }) };
+  const options = skill !== undefined ? { skill } : {};
+  if (argument.kind === 'builtin') {
+    checkSceneOptionsApply(options, undefined);
+    return { files: [], location: () => ({ kind: 'builtin', name: argument.name }) };
+  }
   const { format, files: read, part } = await openSceneFiles(argument);
+  checkSceneOptionsApply(options, format);
   // The first file is the main one; only it refers to siblings (a glTF's buffers and textures).
   const files = read.map((file, i) => ({ path: file.path, siblings: i === 0 && format.siblings ? format.siblings(file) : [] }));
   return { files, location: (urls) => ({ kind: 'files', format: format.id, urls, ...(part ? { part } : {}), ...(skill !== undefined ? { skill } : {}) }) };
