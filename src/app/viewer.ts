@@ -17,6 +17,7 @@
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import { acquireGpu, type GpuContext } from '../gpu/device.ts';
+import { checkSceneFits } from '../gpu/scene-limits.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
 import { GpuTimer } from '../gpu/timestamps.ts';
 import { encodeExr } from '../image/exr.ts';
@@ -284,8 +285,10 @@ export class Viewer {
   }
 
   private async applyScene(given: LoadedScene, view: SceneView): Promise<void> {
-    this.sceneEnvironment = given.prepared.scene.environment;
     const loaded = this.environmentOverride ? { ...given, prepared: withPreparedEnvironment(given.prepared, this.environmentOverride) } : given;
+    // A scene too large for this GPU is refused before anything of the shown one changes (the page keeps it).
+    if (this.renderer) checkSceneFits(loaded.prepared.packed, this.renderer.device.limits, loaded.prepared.scene.name);
+    this.sceneEnvironment = given.prepared.scene.environment;
     const { scene, bvh } = loaded.prepared;
     // The controller keeps its own heights of the walk map (doors and lifts change them).
     const controller = new CameraController(scene.camera, sceneSpeed(boundsDiagonal(bvh), scene.metersPerUnit, scene.walkMap), scene.walkMap);

@@ -6,7 +6,8 @@
 import type { Command } from 'commander';
 import { LanternError } from '../errors.ts';
 import { numberListOption, numberOption } from './options.ts';
-import { sub, length, cross, type Vec3 } from '../math/vec3.ts';
+import { sub, length, type Vec3 } from '../math/vec3.ts';
+import { MAX_CAMERA_COORDINATE, uprightFor } from '../scene/camera-path.ts';
 import type { Camera } from '../scene/types.ts';
 
 export function cameraFromOptions(base: Camera, look?: number[], fov?: number): Camera {
@@ -16,8 +17,7 @@ export function cameraFromOptions(base: Camera, look?: number[], fov?: number): 
     const target: Vec3 = [look[3]!, look[4]!, look[5]!];
     const forward = sub(target, position);
     if (!(length(forward) > 0)) throw new LanternError('--camera: the target is the same point as the position');
-    const up: Vec3 = length(cross(forward, [0, 1, 0])) > 1e-9 * length(forward) ? [0, 1, 0] : [0, 0, -1];
-    camera = { ...camera, position, forward, up };
+    camera = { ...camera, position, forward, up: uprightFor(forward) };
   }
   if (fov !== undefined) camera = { ...camera, vfovDegrees: fov };
   return camera;
@@ -26,6 +26,6 @@ export function cameraFromOptions(base: Camera, look?: number[], fov?: number): 
 /** `--camera` and `--fov`, as render and bench take them. */
 export function withCameraOptions(command: Command): Command {
   return command
-    .option('--camera <px,py,pz,tx,ty,tz>', 'camera position and look-at target in scene coordinates (Doom maps: x, height, -y)', numberListOption('--camera', [6]))
+    .option('--camera <px,py,pz,tx,ty,tz>', 'camera position and look-at target in scene coordinates (Doom maps: x, height, -y)', numberListOption('--camera', [6], MAX_CAMERA_COORDINATE))
     .option('--fov <degrees>', 'vertical field of view', numberOption('--fov', 1, 179));
 }

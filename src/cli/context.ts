@@ -1,5 +1,9 @@
-/** What every command shares: output, notes on stderr, and the one place errors are reported. */
+/**
+ * What every command shares: output, notes on stderr, and the one place errors are reported. All
+ * three escape control characters (terminal-text.ts): names quoted from files appear in them.
+ */
 import { LanternError } from '../errors.ts';
+import { escapeControls } from './terminal-text.ts';
 
 export interface CliContext {
   readonly verbose: () => boolean;
@@ -15,20 +19,21 @@ export const EXIT_INTERNAL_ERROR = 70;
 export function createCliContext(verbose: () => boolean): CliContext {
   return {
     verbose,
-    print: (line) => process.stdout.write(`${line}\n`),
-    note: (line) => process.stderr.write(`lantern: ${line}\n`),
+    print: (line) => process.stdout.write(`${escapeControls(line, { keepLines: true })}\n`),
+    note: (line) => process.stderr.write(`lantern: ${escapeControls(line, { keepLines: true })}\n`),
     async run(body) {
       try {
         await body();
       } catch (e) {
         if (e instanceof LanternError) {
-          process.stderr.write(`lantern: error: ${e.userMessage}\n`);
+          // One line whatever the message quotes.
+          process.stderr.write(`lantern: error: ${escapeControls(e.userMessage)}\n`);
           process.exitCode = EXIT_USER_ERROR;
         } else {
-          process.stderr.write(`lantern: internal error: ${(e as Error)?.message ?? String(e)}${verbose() ? '' : ' (run with --verbose for details)'}\n`);
+          process.stderr.write(`lantern: internal error: ${escapeControls((e as Error)?.message ?? String(e))}${verbose() ? '' : ' (run with --verbose for details)'}\n`);
           process.exitCode = EXIT_INTERNAL_ERROR;
         }
-        if (verbose() && e instanceof Error && e.stack) process.stderr.write(`${e.stack}\n`);
+        if (verbose() && e instanceof Error && e.stack) process.stderr.write(`${escapeControls(e.stack, { keepLines: true })}\n`);
       }
     },
   };

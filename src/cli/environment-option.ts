@@ -10,7 +10,7 @@ import { LanternError } from '../errors.ts';
 import { loadEnvironmentImage } from '../loaders/environment-image.ts';
 import { skyEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
-import { numberListOption, numberOption } from './options.ts';
+import { numberListOption, numberOption, pathOption } from './options.ts';
 
 export interface EnvironmentOptions {
   readonly sky?: number[];
@@ -22,7 +22,7 @@ export interface EnvironmentOptions {
 export function withEnvironmentOptions(command: Command): Command {
   return command
     .option('--sky <elevation,azimuth[,turbidity]>', 'light the scene with the Hosek–Wilkie sky and its sun: sun elevation and azimuth in degrees (azimuth from +z toward +x), turbidity 1–10 (default 3)', numberListOption('--sky', [2, 3]))
-    .option('--env <file.hdr>', 'light the scene with an HDR environment map (Radiance .hdr or OpenEXR, lat-long)')
+    .option('--env <file.hdr>', 'light the scene with an HDR environment map (Radiance .hdr or OpenEXR, lat-long)', pathOption('--env'))
     .option('--env-intensity <x>', 'multiplies the --sky or --env radiance', numberOption('--env-intensity', 0, 1e9))
     .option('--env-rotation <degrees>', 'turns the --env map about the vertical axis', numberOption('--env-rotation', -360, 360));
 }

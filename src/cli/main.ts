@@ -15,6 +15,7 @@ import { registerTextures } from './commands/textures.ts';
 import { registerView } from './commands/view.ts';
 import { createCliContext } from './context.ts';
 import { isSceneThread, runSceneThread } from './scene-thread.ts';
+import { escapeControls, exitWhenDrained } from './terminal-text.ts';
 
 bundleEvaluated();
 
@@ -30,7 +31,9 @@ async function runCommand(): Promise<void> {
     .name('lantern')
     .description('Lantern: a WebGPU path tracer, headless')
     .option('-v, --verbose', 'show stack traces and details on errors')
-    .showHelpAfterError('(run with --help for usage)');
+    .showHelpAfterError('(run with --help for usage)')
+    // Usage errors quote the command line, which may hold anything a script passed on.
+    .configureOutput({ writeErr: (text) => process.stderr.write(escapeControls(text, { keepLines: true })) });
 
   registerRender(program, context);
   registerBench(program, context);
@@ -41,7 +44,9 @@ async function runCommand(): Promise<void> {
   registerView(program, context);
   registerDiff(program, context);
 
+  // A reader that goes away early (`lantern info x.wad | head`) is not an error of the command.
+  for (const stream of [process.stdout, process.stderr]) stream.on('error', (e: NodeJS.ErrnoException) => { if (e.code !== 'EPIPE') throw e; });
   await program.parseAsync(process.argv);
-  // Dawn keeps native threads alive; leave as soon as the command is done.
-  process.exit(process.exitCode ?? 0);
+  // Dawn keeps native threads alive: leave once the command is done and its output has drained.
+  await exitWhenDrained(Number(process.exitCode ?? 0));
 }

@@ -1,6 +1,6 @@
 /** Writing rendered images: PNG (tone-mapped sRGB) and EXR (linear radiance, float32 RGB). */
-import { mkdirSync, writeFileSync } from 'node:fs';
-import { dirname } from 'node:path';
+import { accessSync, constants, mkdirSync, realpathSync, statfsSync, statSync, writeFileSync, type Stats } from 'node:fs';
+import { dirname, resolve, sep } from 'node:path';
 import { deflateSync } from 'node:zlib';
 import { LanternError } from '../errors.ts';
 import { encodeExr } from '../image/exr.ts';
@@ -8,8 +8,64 @@ import { encodePng } from '../image/png.ts';
 import type { Renderer } from '../renderer/renderer.ts';
 import type { Timeline } from './timeline.ts';
 
+/**
+ * Folders of the kernel's pseudo file systems: nothing Lantern writes belongs there, and Node's
+ * recursive mkdir never returns on a missing folder under /proc (it retries ENOENT forever).
+ */
+const SPECIAL_FOLDERS = ['/proc', '/sys', '/dev'];
+// statfs f_type of procfs, sysfs, cgroup, cgroup2, debugfs, securityfs, tracefs: the same file systems mounted elsewhere.
+const SPECIAL_FILE_SYSTEMS = new Set([0x9fa0, 0x62656572, 0x27e0eb, 0x63677270, 0x64626720, 0x73636673, 0x74726163]);
+
+const statOrUndefined = (path: string): Stats | undefined => {
+  try {
+    return statSync(path);
+  } catch {
+    return undefined;
+  }
+};
+
+/**
+ * What is wrong with writing `path` (a file, or a folder that files go into), or undefined when
+ * nothing is: checked before any work starts, so that a long render is not lost at the end. The
+ * folders to create are not created here; only the nearest existing one must be a writable,
+ * ordinary folder.
+ */
+export function outputPathProblem(path: string, kind: 'file' | 'folder'): string | undefined {
+  if (path.trim() === '') return 'the name is empty';
+  const full = resolve(path);
+  const existing = statOrUndefined(full);
+  if (existing && kind === 'file' && existing.isDirectory()) return 'it is a folder';
+  if (existing && kind === 'folder' && !existing.isDirectory()) return 'it is a file, not a folder';
+  let ancestor = existing?.isDirectory() ? full : dirname(full);
+  let stat = statOrUndefined(ancestor);
+  while (!stat && dirname(ancestor) !== ancestor) {
+    ancestor = dirname(ancestor);
+    stat = statOrUndefined(ancestor);
+  }
+  if (!stat) return 'no folder on its path exists';
+  if (!stat.isDirectory()) return `${ancestor} is a file, not a folder`;
+  const real = realpathSync(ancestor);
+  if (SPECIAL_FOLDERS.some((f) => real === f || real.startsWith(f + sep)) || SPECIAL_FILE_SYSTEMS.has(Number(statfsSync(real).type))) {
+    return `${real} is a system folder (${SPECIAL_FOLDERS.join(', ')}), not a place for files`;
+  }
+  try {
+    accessSync(ancestor, constants.W_OK);
+  } catch {
+    return `the folder ${ancestor} is not writable`;
+  }
+  return undefined;
+}
+
+/** outputPathProblem as a LanternError naming the option. */
+export function checkOutputPath(option: string, path: string, kind: 'file' | 'folder'): void {
+  const problem = outputPathProblem(path, kind);
+  if (problem) throw new LanternError(`${option}: cannot write '${path}': ${problem}`);
+}
+
 /** Writes a file, creating its folder; a failure is a LanternError naming the path. */
 export function writeFile(path: string, bytes: Uint8Array): void {
+  const problem = outputPathProblem(path, 'file');
+  if (problem) throw new LanternError(`cannot write '${path}': ${problem}`);
   try {
     mkdirSync(dirname(path), { recursive: true });
     writeFileSync(path, bytes);

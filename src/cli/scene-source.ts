@@ -143,11 +143,29 @@ export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'f
   return { format, opened, files: ordered, ...(part ? { part } : {}) };
 }
 
+/** The formats --light-table and --skill mean something to. */
+const LIGHT_TABLE_FORMATS = ['doom-wad'];
+const SKILL_FORMATS = ['doom-wad', 'wolf3d'];
+
+/**
+ * Refuses --light-table and --skill for a scene they do not apply to (they were ignored in
+ * silence): `format` is the format's id and description, or undefined for a built-in scene.
+ */
+export function checkSceneOptionsApply(options: SceneLoadOptions, format: { readonly id: string; readonly description: string } | undefined): void {
+  const what = format ? format.description : 'a built-in scene';
+  if (options.lightTablePath !== undefined && !LIGHT_TABLE_FORMATS.includes(format?.id ?? '')) throw new LanternError(`--light-table applies to Doom maps only, not to ${what}`);
+  if (options.skill !== undefined && !SKILL_FORMATS.includes(format?.id ?? '')) throw new LanternError(`--skill applies to Doom and Wolfenstein 3D maps only, not to ${what}`);
+}
+
 /** `timeline` hears of reading, opening and building the scene. */
 export async function loadSceneArgument(arg: string, options: SceneLoadOptions = {}, timeline?: Timeline): Promise<Scene> {
   const argument = parseSceneArgument(arg);
-  if (argument.kind === 'builtin') return timeline ? timeline.time('scene: build', () => Promise.resolve(builtinScene(argument.name))) : builtinScene(argument.name);
-  const { opened, part } = await openSceneFiles(argument, timeline);
+  if (argument.kind === 'builtin') {
+    checkSceneOptionsApply(options, undefined);
+    return timeline ? timeline.time('scene: build', () => Promise.resolve(builtinScene(argument.name))) : builtinScene(argument.name);
+  }
+  const { format, opened, part } = await openSceneFiles(argument, timeline);
+  checkSceneOptionsApply(options, format);
   const t0 = performance.now();
   const scene = await opened.scene(part, loadOptions(options));
   timeline?.end('scene: build', t0);
@@ -160,6 +178,7 @@ export function loadOptions(options: SceneLoadOptions): LoadOptions {
   return { ...(options.onWarning ? { onWarning: options.onWarning } : {}), ...(lightTable ? { lightTable } : {}), ...(options.skill !== undefined ? { skill: options.skill } : {}) };
 }
 
-function readLightTable(path: string): Partial<LightTable> {
+/** A --light-table file, read and checked (render reads it before the GPU starts, so a mistake shows at once). */
+export function readLightTable(path: string): Partial<LightTable> {
   return parseLightTable(readJsonFile(path), path);
 }

@@ -3,11 +3,21 @@
  * named on the command line, each at `files/<n>/<name>`, with the siblings its format says it
  * refers to (a glTF's buffers and textures) at `files/<n>/<relative path>`, nothing else. It binds
  * to 127.0.0.1 by default and never serves a path it was not given (no directory listing, no `..`).
+ *
+ * What else it refuses (the README's Security section says the same to users): a request whose
+ * `Host` is not a name of this machine (a web page on another site whose name was re-pointed at
+ * 127.0.0.1, "DNS rebinding", would otherwise read the served files); connections past a cap, and
+ * those that are slow to send their request or idle. Every response says `nosniff` and carries a
+ * Content-Security-Policy that lets the page run its own scripts, workers and WebAssembly and
+ * nothing from elsewhere. A file is streamed with stream.pipeline, which closes the file when the
+ * client goes away mid-download.
  */
 import { createReadStream, existsSync, statSync } from 'node:fs';
 import { createServer, type IncomingMessage, type ServerResponse } from 'node:http';
-import type { AddressInfo } from 'node:net';
+import { isIP, type AddressInfo } from 'node:net';
+import { hostname, networkInterfaces } from 'node:os';
 import { basename, dirname, extname, join, normalize, resolve, sep } from 'node:path';
+import { pipeline } from 'node:stream';
 import { LanternError } from '../errors.ts';
 
 const CONTENT_TYPES: Record<string, string> = {
@@ -22,6 +32,62 @@ const CONTENT_TYPES: Record<string, string> = {
   '.map': 'application/json',
 };
 
+/**
+ * What the page needs and no more: its own scripts and module workers (meshoptimizer's decoder
+ * workers start from blob: URLs), WebAssembly compiled from its own bytes (meshoptimizer), fetches
+ * of the served files and of data:/blob: URLs (glTF embeds buffers as data: URIs; files dropped on
+ * the page are blob: URLs), images from data:/blob: URLs, inline styles (tweakpane adds a <style>).
+ * No other origin, no plug-ins, no framing, no forms.
+ */
+export const CONTENT_SECURITY_POLICY = [
+  "default-src 'none'",
+  "script-src 'self' 'wasm-unsafe-eval'",
+  "worker-src 'self' blob:",
+  "connect-src 'self' data: blob:",
+  "img-src 'self' data: blob:",
+  "style-src 'self' 'unsafe-inline'",
+  "base-uri 'none'",
+  "form-action 'none'",
+  "frame-ancestors 'none'",
+].join('; ');
+
+/** Headers on every response. */
+const SECURITY_HEADERS = {
+  'x-content-type-options': 'nosniff',
+  'content-security-policy': CONTENT_SECURITY_POLICY,
+  'referrer-policy': 'no-referrer',
+  'cross-origin-resource-policy': 'same-origin',
+};
+
+/** Limits on connections (see startViewServer); tests make them short. */
+export interface ConnectionLimits {
+  /** Open connections at once; more are closed as they arrive. */
+  readonly maxConnections: number;
+  /** Milliseconds a client may take to send a request's headers. */
+  readonly headersTimeoutMs: number;
+  /** Milliseconds a client may take to send a whole request. */
+  readonly requestTimeoutMs: number;
+  /** Milliseconds an idle kept-alive connection stays open. */
+  readonly keepAliveTimeoutMs: number;
+  /** Milliseconds of no traffic either way after which a connection is closed (a stalled download). */
+  readonly idleTimeoutMs: number;
+  /** How often Node checks the headers and request timeouts. */
+  readonly checkIntervalMs: number;
+}
+
+/**
+ * A browser opens about six connections to a host; 256 leaves room for several tabs and scripts
+ * while a flood of idle sockets cannot use up the process's file descriptors.
+ */
+export const DEFAULT_CONNECTION_LIMITS: ConnectionLimits = {
+  maxConnections: 256,
+  headersTimeoutMs: 10_000,
+  requestTimeoutMs: 30_000,
+  keepAliveTimeoutMs: 5_000,
+  idleTimeoutMs: 120_000,
+  checkIntervalMs: 1_000,
+};
+
 export interface ViewServerOptions {
   /** The built page: a folder with index.html. */
   readonly appDir: string;
@@ -30,6 +96,7 @@ export interface ViewServerOptions {
   readonly host?: string;
   /** 0 picks a free port. */
   readonly port?: number;
+  readonly limits?: Partial<ConnectionLimits>;
 }
 
 export interface OfferedFile {
@@ -43,6 +110,8 @@ export interface ViewServer {
   readonly url: string;
   /** Each offered file's address relative to the page: files/<n>/<name>. */
   readonly fileUrls: readonly string[];
+  /** False when the server listens beyond this machine (--host 0.0.0.0, a LAN address): anyone who can reach the port can read the served files. */
+  readonly loopbackOnly: boolean;
   close(): Promise<void>;
 }
 
@@ -64,24 +133,87 @@ export async function startViewServer(options: ViewServerOptions): Promise<ViewS
     return [main, ...beside];
   });
   const mains = files.filter((f) => !('sibling' in f));
-  const server = createServer((request, response) => serve(request, response, appDir, files));
+  const limits = { ...DEFAULT_CONNECTION_LIMITS, ...options.limits };
+  let allowedHosts: ReadonlySet<string> = new Set();
+  const server = createServer(
+    { headersTimeout: limits.headersTimeoutMs, requestTimeout: limits.requestTimeoutMs, keepAliveTimeout: limits.keepAliveTimeoutMs, connectionsCheckingInterval: limits.checkIntervalMs },
+    (request, response) => {
+      if (!hostAllowed(request.headers.host, allowedHosts)) return reply(response, 421, 'this server answers only to the names of the machine it runs on');
+      serve(request, response, appDir, files);
+    },
+  );
+  server.maxConnections = limits.maxConnections;
+  server.setTimeout(limits.idleTimeoutMs, (socket) => socket.destroy());
+  const host = options.host ?? '127.0.0.1';
+  const port = options.port ?? 0;
   await new Promise<void>((resolve, reject) => {
-    server.once('error', (e: NodeJS.ErrnoException) =>
-      reject(e.code === 'EADDRINUSE' ? new LanternError(`port ${options.port} is already in use`, 'Choose another with --port, or --port 0 for any free one') : e),
-    );
-    server.listen(options.port ?? 0, options.host ?? '127.0.0.1', resolve);
+    server.once('error', (e: NodeJS.ErrnoException) => reject(listenError(e, host, port)));
+    server.listen(port, host, resolve);
   });
   const address = server.address() as AddressInfo;
-  const host = address.family === 'IPv6' ? `[${address.address}]` : address.address;
+  allowedHosts = hostNames(address.address);
+  const urlHost = address.family === 'IPv6' ? `[${address.address}]` : address.address;
   return {
-    url: `http://${host}:${address.port}/`,
+    url: `http://${urlHost}:${address.port}/`,
     fileUrls: mains.map((f) => f.url),
+    loopbackOnly: isLoopback(address.address),
     close: () =>
       new Promise<void>((resolve) => {
         server.closeAllConnections();
         server.close(() => resolve());
       }),
   };
+}
+
+/** A failure to listen as one line that names the address and what to do. */
+function listenError(e: NodeJS.ErrnoException, host: string, port: number): Error {
+  switch (e.code) {
+    case 'EADDRINUSE':
+      return new LanternError(`port ${port} is already in use`, 'Choose another with --port, or --port 0 for any free one');
+    case 'EACCES':
+      return new LanternError(`not allowed to listen on port ${port}`, 'Ports below 1024 need privileges: choose another with --port');
+    case 'EADDRNOTAVAIL':
+      return new LanternError(`cannot listen on ${host}: it is not an address of this machine`, 'Use --host 127.0.0.1 (this machine only) or an address of one of its network interfaces');
+    case 'ENOTFOUND':
+    case 'EAI_AGAIN':
+    case 'EAI_FAIL':
+    case 'EAI_NONAME':
+      return new LanternError(`cannot listen on '${host}': no such host`, 'Give --host an IP address, such as 127.0.0.1');
+    case 'EINVAL':
+      return new LanternError(`cannot listen on ${host}, port ${port}: invalid address`, 'Give --host an IP address, such as 127.0.0.1');
+    default:
+      return e;
+  }
+}
+
+const isLoopback = (address: string): boolean => address === '::1' || address.startsWith('127.') || address.startsWith('::ffff:127.');
+
+/**
+ * The names a request may give in `Host`: the loopback names, the bound address and, when bound to
+ * every interface (0.0.0.0, ::), every address of this machine and its host name. A web page on
+ * another site can make a browser send its own domain name here (by re-pointing that name at this
+ * machine); it cannot make it send one of these.
+ */
+function hostNames(bound: string): ReadonlySet<string> {
+  const names = new Set(['localhost', '127.0.0.1', '::1', bound]);
+  if (bound === '0.0.0.0' || bound === '::') {
+    for (const list of Object.values(networkInterfaces())) for (const a of list ?? []) names.add(a.address);
+    names.add(hostname().toLowerCase());
+  }
+  return names;
+}
+
+/** Whether a `Host` header (name or address, with or without a port) is one of `names`. */
+export function hostAllowed(header: string | undefined, names: ReadonlySet<string>): boolean {
+  if (!header) return false;
+  const value = header.trim().toLowerCase();
+  // [v6]:port, [v6], name:port, name.
+  const bracketed = /^\[([0-9a-f:.]+)\](?::\d+)?$/.exec(value);
+  const name = bracketed ? bracketed[1]! : value.replace(/:\d+$/, '');
+  if (bracketed ? isIP(name) !== 6 : name.includes(':')) return false;
+  // Names under .localhost resolve to this machine by definition (RFC 6761); a trailing dot is the same name.
+  const plain = name.endsWith('.') ? name.slice(0, -1) : name;
+  return names.has(plain) || plain.endsWith('.localhost') || (isIP(plain) === 4 && plain.startsWith('127.'));
 }
 
 function serve(request: IncomingMessage, response: ServerResponse, appDir: string, files: readonly { path: string; url: string }[]): void {
@@ -109,17 +241,17 @@ function sendFile(request: IncomingMessage, response: ServerResponse, path: stri
   } catch {
     return reply(response, 404, 'not found');
   }
-  response.writeHead(200, { 'content-type': type, 'content-length': size, 'cache-control': 'no-cache' });
+  response.writeHead(200, { ...SECURITY_HEADERS, 'content-type': type, 'content-length': size, 'cache-control': 'no-cache' });
   if (request.method === 'HEAD') {
     response.end();
     return;
   }
-  createReadStream(path)
-    .on('error', () => response.destroy())
-    .pipe(response);
+  // pipeline, not pipe: a client that goes away mid-download destroys the file stream too (pipe
+  // left it open, one descriptor per aborted download). A read error ends the response early.
+  pipeline(createReadStream(path), response, () => undefined);
 }
 
 function reply(response: ServerResponse, status: number, text: string): void {
-  response.writeHead(status, { 'content-type': 'text/plain; charset=utf-8' });
+  response.writeHead(status, { ...SECURITY_HEADERS, 'content-type': 'text/plain; charset=utf-8' });
   response.end(`${text}\n`);
 }

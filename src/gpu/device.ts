@@ -32,6 +32,9 @@ const LIMITS_TO_RAISE = [
   'maxComputeWorkgroupStorageSize',
   'maxComputeInvocationsPerWorkgroup',
   'maxTextureDimension2D',
+  // A scene's texture atlas has a layer per page (scene-limits.ts checks the scene against these).
+  'maxTextureArrayLayers',
+  'maxUniformBufferBindingSize',
 ] as const;
 
 /**

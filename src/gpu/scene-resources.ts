@@ -5,9 +5,10 @@
 import { LanternError } from '../errors.ts';
 import { BSDF_TABLE_TEXTURE_FORMAT, bsdfTableTexture } from './pack/bsdf-tables.ts';
 import { ENVIRONMENT_CDF_FORMAT, ENVIRONMENT_MAP_FORMAT, type PackedEnvironment } from './pack/environment-pack.ts';
-import { INSTANCE_TEXELS, INSTANCES_PER_ROW, type PackedScene } from './pack/scene-pack.ts';
+import type { PackedScene } from './pack/scene-pack.ts';
 import { createBufferWithData } from './readback.ts';
 import { withErrorScope } from './device.ts';
+import { checkSceneFits, instanceTextureSize } from './scene-limits.ts';
 
 const STORAGE_NAMES = ['bvh_nodes', 'triangles_hot', 'triangles_shading', 'materials', 'light_slots', 'texture_refs'] as const;
 const UNIFORM_NAMES = ['scene_info', 'punctual_lights'] as const;
@@ -45,16 +46,8 @@ export class SceneResources {
   }
 
   static async upload(device: GPUDevice, packed: PackedScene, label: string): Promise<SceneResources> {
-    const limit = device.limits.maxStorageBufferBindingSize;
-    for (const name of STORAGE_NAMES) {
-      const size = packed[name].byteLength;
-      if (size > limit) {
-        throw new LanternError(
-          `scene '${label}' is too large for this GPU: ${name} needs ${(size / 2 ** 20).toFixed(1)} MiB but one storage buffer may hold ${(limit / 2 ** 20).toFixed(1)} MiB`,
-          'Use a smaller scene or a GPU with larger storage buffers',
-        );
-      }
-    }
+    // Before anything is allocated: a scene that cannot fit leaves nothing half made.
+    checkSceneFits(packed, device.limits, label);
     const buffers = await withErrorScope(device, `the GPU buffers of scene '${label}'`, () => {
       const b: Record<string, GPUBuffer> = {};
       for (const name of UNIFORM_NAMES) {
@@ -70,12 +63,6 @@ export class SceneResources {
     const environment = await uploadEnvironment(device, packed.environment, label);
     const bsdfTables = await uploadBsdfTables(device);
     const attributes = packed.triangleAttributes;
-    if (attributes.height > device.limits.maxTextureDimension2D) {
-      throw new LanternError(
-        `scene '${label}' is too large for this GPU: its ${packed.counts.triangles.toLocaleString('en-US')} triangles' tangents need a texture ${attributes.height} texels tall, more than the ${device.limits.maxTextureDimension2D} it allows`,
-        'Use a smaller scene, or one without normal maps and second uv sets',
-      );
-    }
     const triangleAttributes = await withErrorScope(device, `the tangents of scene '${label}'`, () => {
       const texture = device.createTexture({ label: `${label} triangle attributes`, size: [attributes.width, attributes.height], format: 'rgba32uint', usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
       writeTriangleAttributes(device, texture, attributes);
@@ -143,12 +130,6 @@ export class SceneResources {
     this.triangleAttributes.destroy();
     this.instanceData.destroy();
   }
-}
-
-/** instance_data's size for records of `bytes` bytes: INSTANCES_PER_ROW records a row (shaders/scene/types.wgsl). */
-export function instanceTextureSize(bytes: number): { width: number; height: number } {
-  const records = Math.max(1, Math.ceil(bytes / (INSTANCE_TEXELS * 16)));
-  return { width: INSTANCES_PER_ROW * INSTANCE_TEXELS, height: Math.ceil(records / INSTANCES_PER_ROW) };
 }
 
 function createInstanceTexture(device: GPUDevice, records: ArrayBuffer, label: string): GPUTexture {

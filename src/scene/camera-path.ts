@@ -7,7 +7,7 @@
  *                    { "time": 2, "position": [400, 273, -800], "target": [278, 273, 0] } ] }
  */
 import { LanternError } from '../errors.ts';
-import { add, length, scale, sub, type Vec3 } from '../math/vec3.ts';
+import { add, cross, dot, length, scale, sub, type Vec3 } from '../math/vec3.ts';
 import type { Camera } from './types.ts';
 
 export interface CameraKeyframe {
@@ -22,7 +22,32 @@ export interface CameraPath {
   readonly keyframes: readonly CameraKeyframe[];
 }
 
-const isVec3 = (v: unknown): v is Vec3 => Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x));
+/**
+ * The largest coordinate a camera may have (here and in `--camera`): float32 positions that far out
+ * are already coarse, and 1e308 is finite while the difference of two such is not.
+ */
+export const MAX_CAMERA_COORDINATE = 1e7;
+
+const isVec3 = (v: unknown): v is Vec3 =>
+  Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x) && Math.abs(x) <= MAX_CAMERA_COORDINATE);
+
+/**
+ * An up vector for a camera looking along `forward`: `preferred` unless the camera looks (nearly)
+ * along it, where it would not fix the image's rotation; then +y, or −z when +y is the one it looks
+ * along (straight up or down), as `--camera` has always done.
+ */
+export function uprightFor(forward: Vec3, preferred: Vec3 = [0, 1, 0]): Vec3 {
+  const parallel = (up: Vec3) => !(length(cross(forward, up)) > 1e-9 * length(forward) * length(up));
+  if (!parallel(preferred)) return preferred;
+  return parallel([0, 1, 0]) ? [0, 0, -1] : [0, 1, 0];
+}
+
+/** Whether the camera of a segment from keyframe a to b passes through its target (target − position reaches 0). */
+function passesThroughTarget(a: CameraKeyframe, b: CameraKeyframe): boolean {
+  const da = sub(a.target, a.position), db = sub(b.target, b.position);
+  // d(t) = da + t (db − da) is 0 for some t in [0, 1] only when da and db point opposite ways along one line.
+  return dot(da, db) < 0 && length(cross(da, db)) <= 1e-9 * length(da) * length(db);
+}
 
 /** Checks a parsed JSON value and returns it as a path; every mistake is a LanternError naming the keyframe. */
 export function parseCameraPath(json: unknown, name = 'camera path'): CameraPath {
@@ -37,12 +62,15 @@ export function parseCameraPath(json: unknown, name = 'camera path'): CameraPath
     if (typeof k.time !== 'number' || !Number.isFinite(k.time)) throw new LanternError(`${where}: "time" must be a number of seconds`);
     if (k.time <= previous) throw new LanternError(`${where}: times must increase (${k.time} follows ${previous})`);
     previous = k.time;
-    if (!isVec3(k.position)) throw new LanternError(`${where}: "position" must be three numbers`);
-    if (!isVec3(k.target)) throw new LanternError(`${where}: "target" must be three numbers`);
+    if (!isVec3(k.position)) throw new LanternError(`${where}: "position" must be three numbers from -${MAX_CAMERA_COORDINATE} to ${MAX_CAMERA_COORDINATE}`);
+    if (!isVec3(k.target)) throw new LanternError(`${where}: "target" must be three numbers from -${MAX_CAMERA_COORDINATE} to ${MAX_CAMERA_COORDINATE}`);
     if (!(length(sub(k.target, k.position)) > 0)) throw new LanternError(`${where}: the target is the same point as the position`);
     if (k.fov !== undefined && !(typeof k.fov === 'number' && k.fov > 0 && k.fov < 180)) throw new LanternError(`${where}: "fov" must be degrees between 0 and 180`);
     return { time: k.time, position: k.position, target: k.target, ...(k.fov !== undefined ? { fov: k.fov as number } : {}) };
   });
+  for (let i = 0; i + 1 < out.length; i++) {
+    if (passesThroughTarget(out[i]!, out[i + 1]!)) throw new LanternError(`${name}: between keyframes ${i} and ${i + 1} the camera passes through its target`, 'Move the target so that it stays in front of the camera');
+  }
   return { keyframes: out };
 }
 
@@ -58,7 +86,9 @@ export function cameraAt(path: CameraPath, time: number, base: Camera): Camera {
   const position = lerp(a.position, b.position, t);
   const target = lerp(a.target, b.target, t);
   const fovA = a.fov ?? base.vfovDegrees, fovB = b.fov ?? base.vfovDegrees;
-  return { ...base, position, forward: sub(target, position), vfovDegrees: fovA + (fovB - fovA) * t };
+  const forward = sub(target, position);
+  // A keyframe may look straight up or down: keep the base camera's up unless it looks along it.
+  return { ...base, position, forward, up: uprightFor(forward, base.up), vfovDegrees: fovA + (fovB - fovA) * t };
 }
 
 /** The time of frame `index` of `frames`, evenly spaced over the path (one frame: the start). */

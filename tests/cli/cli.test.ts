@@ -204,6 +204,16 @@ describe('bad input', () => {
     [['bench', 'cornell', '--ray-order', 'hilbert'], /--ray-order must be one of tiles, scanline, not 'hilbert'/],
     [['bench', 'cornell', '--protocol', 'tinybvh-closeup'], /--protocol traces a bare mesh: 'cornell' is not a PLY mesh/],
     [['bench'], /bench needs a scene/],
+    [['render', 'cornell', '--camera', '1e308,0,0,0,0,0'], /--camera takes numbers from -10000000 to 10000000, not 1e\+308/],
+    [['render', 'cornell', '--history-cap', '8'], /--history-cap applies to frame mode only/],
+    [['render', 'cornell', '--frames', '2', '--light-samples', '2'], /--light-samples applies to the hybrid recipe only/],
+    [['render', 'cornell', '--fps', '10'], /--fps applies to frame mode only/],
+    [['render', 'cornell', '--light-table', 'lights.json'], /--light-table applies to Doom maps only, not to a built-in scene/],
+    [['info', 'cornell', '--skill', '2'], /--skill applies to Doom and Wolfenstein 3D maps only/],
+    [['render', 'cornell', '--out', ''], /--out needs a file name, not an empty one/],
+    [['render', 'cornell', '--exr', '/proc/lantern/x.exr'], /--exr: cannot write '\/proc\/lantern\/x\.exr': \/proc is a system folder/],
+    // Once spun for ever in a recursive mkdir.
+    [['textures', 'missing.wad', '-o', '/proc/lantern-textures'], /--out: cannot write '\/proc\/lantern-textures': \/proc is a system folder/],
   ])('%j: one line, non-zero exit', (args, message) => {
     const r = lantern(args as string[]);
     expect(r.code).not.toBe(0);
@@ -226,6 +236,23 @@ describe('bad input', () => {
     expect(r.code).toBe(1);
     expect(r.stderr).toMatch(/no WebGPU adapter found.*driver/);
     expect(oneLine(r.stderr)).toBe(true);
+  });
+
+  it('checks inputs and outputs before the GPU starts (without a driver, their error is the one shown)', () => {
+    const noDriver = { VK_ICD_FILENAMES: join(dir, 'no-such-driver.json') };
+    const path = join(dir, 'straight-through.json');
+    writeFileSync(path, JSON.stringify({ keyframes: [{ time: 0, position: [0, 0, 0], target: [0, 0, 1] }, { time: 1, position: [0, 0, 0], target: [0, 0, -1] }] }));
+    for (const [args, message] of [
+      [['render', 'missing.ply'], /cannot read 'missing\.ply': no such file/],
+      [['render', 'cornell', '--path', join(dir, 'no-path.json')], /cannot read '.*no-path\.json': no such file/],
+      [['render', 'cornell', '--path', path], /between keyframes 0 and 1 the camera passes through its target/],
+      [['render', 'cornell', '--out', dir], /--out: cannot write '.*': it is a folder/],
+      [['render', 'cornell', '--frames', '2', '--out', path], /--out: cannot write '.*straight-through\.json': it is a file, not a folder/],
+    ] as const) {
+      const r = lantern([...args], noDriver);
+      expect(r.code, r.rawStderr).toBe(1);
+      expect(r.stderr).toMatch(message);
+    }
   });
 
   it('--verbose adds the stack trace', () => {

@@ -4,8 +4,8 @@ import { LanternError } from '../../errors.ts';
 import { sceneToGlb } from '../../exporters/glb.ts';
 import { validateScene } from '../../scene/validate.ts';
 import type { CliContext } from '../context.ts';
-import { numberOption, withSceneOptions, type SceneOptionValues } from '../options.ts';
-import { writeFile } from '../output-files.ts';
+import { numberOption, pathOption, withSceneOptions, type SceneOptionValues } from '../options.ts';
+import { checkOutputPath, writeFile } from '../output-files.ts';
 import { loadSceneArgument, sceneHelp, sceneLoadOptions } from '../scene-source.ts';
 
 export function registerConvert(program: Command, context: CliContext): void {
@@ -13,11 +13,12 @@ export function registerConvert(program: Command, context: CliContext): void {
     .command('convert')
     .description('write the built scene as binary glTF 2.0 (.glb) with embedded PNG textures, for Blender or any glTF viewer')
     .argument('<scene>', sceneHelp())
-    .requiredOption('-o, --out <file.glb>', 'where to write the .glb')
+    .requiredOption('-o, --out <file.glb>', 'where to write the .glb', pathOption('--out'))
     .option('--meters-per-unit <m>', "scale of one scene unit in metres (default: the scene's own, e.g. 1/32 for Doom maps)", numberOption('--meters-per-unit', 1e-9, 1e9));
   withSceneOptions(command).action((sceneArg: string, o: { out: string; metersPerUnit?: number } & SceneOptionValues) =>
       context.run(async () => {
         if (!o.out.toLowerCase().endsWith('.glb')) throw new LanternError(`--out must name a .glb file, not '${o.out}'`);
+        checkOutputPath('--out', o.out, 'file');
         const scene = await loadSceneArgument(sceneArg, sceneLoadOptions(o, context.note));
         validateScene(scene);
         const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });

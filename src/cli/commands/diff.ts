@@ -6,8 +6,8 @@ import { compareImages, errorHeatmap, type LinearRgbImage } from '../../image/co
 import { decodeExr, exrToRgb } from '../../image/exr.ts';
 import { encodePng } from '../../image/png.ts';
 import type { CliContext } from '../context.ts';
-import { numberOption } from '../options.ts';
-import { writeFile } from '../output-files.ts';
+import { numberOption, pathOption } from '../options.ts';
+import { checkOutputPath, writeFile } from '../output-files.ts';
 
 interface DiffOptions {
   heatmap?: string;
@@ -21,10 +21,17 @@ export function registerDiff(program: Command, context: CliContext): void {
     .description('compare a linear EXR image with a reference EXR: RMSE, relative MSE, SSIM')
     .argument('<image.exr>', 'the image to judge')
     .argument('<reference.exr>', 'the reference (relative MSE divides by it)')
-    .option('--heatmap <file.png>', 'write the per-pixel relative luminance error as a PNG heat map (black 0, red, yellow, white at --heatmap-scale)')
+    .option('--heatmap <file.png>', 'write the per-pixel relative luminance error as a PNG heat map (black 0, red, yellow, white at --heatmap-scale)', pathOption('--heatmap'))
     .option('--heatmap-scale <ratio>', 'relative error shown as white', numberOption('--heatmap-scale', 1e-6, 1e6), 1)
     .option('--json', 'print the figures as JSON')
-    .action((a: string, b: string, options: DiffOptions) => context.run(async () => diff(a, b, options, context)));
+    .action((a: string, b: string, options: DiffOptions, command: Command) =>
+      context.run(async () => {
+        // Checked before the images are decoded: a large pair takes a while.
+        if (options.heatmap === undefined && command.getOptionValueSource('heatmapScale') === 'cli') throw new LanternError('--heatmap-scale goes with --heatmap');
+        if (options.heatmap !== undefined) checkOutputPath('--heatmap', options.heatmap, 'file');
+        diff(a, b, options, context);
+      }),
+    );
 }
 
 function readExr(path: string): LinearRgbImage {

@@ -8,7 +8,7 @@ import { withSceneOptions, type SceneOptionValues } from '../options.ts';
 import { builtinScene } from '../../loaders/builtin/index.ts';
 import type { Scene } from '../../scene/types.ts';
 import { describePrimitives } from '../../scene/triangles.ts';
-import { loadOptions, openSceneFiles, parseSceneArgument, sceneHelp, sceneLoadOptions } from '../scene-source.ts';
+import { checkSceneOptionsApply, loadOptions, openSceneFiles, parseSceneArgument, sceneHelp, sceneLoadOptions } from '../scene-source.ts';
 
 export function registerInfo(program: Command, context: CliContext): void {
   const command = program
@@ -20,11 +20,14 @@ export function registerInfo(program: Command, context: CliContext): void {
       context.run(async () => {
         const t0 = performance.now();
         const argument = parseSceneArgument(sceneArg);
-        const sceneOptions = loadOptions(sceneLoadOptions(options, context.note));
+        const given = sceneLoadOptions(options, context.note);
+        if (argument.kind === 'builtin') checkSceneOptionsApply(given, undefined);
+        const sceneOptions = loadOptions(given);
         let loaded: Scene;
         if (argument.kind === 'builtin') loaded = builtinScene(argument.name);
         else {
           const { format, opened, part } = await openSceneFiles(argument);
+          checkSceneOptionsApply(given, format);
           // A file of several scenes named without one: list them rather than pick the first.
           const inventory = format.part && part === undefined ? opened.inventory?.(sceneOptions) : undefined;
           if (inventory) {

@@ -9,7 +9,7 @@ import { encodeExr } from '../../image/exr.ts';
 import { encodePng } from '../../image/png.ts';
 import { GpuTimer } from '../../gpu/timestamps.ts';
 import type { Renderer } from '../../renderer/renderer.ts';
-import { cameraAt, frameTime, parseCameraPath } from '../../scene/camera-path.ts';
+import { cameraAt, frameTime, parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { isEmptyUpdate } from '../../scene/dynamics.ts';
 import type { World } from '../../scene/world.ts';
@@ -20,6 +20,8 @@ export interface FrameModeOptions {
   readonly denoise?: boolean;
   readonly temporal?: boolean;
   readonly path?: string;
+  /** The --path file, read and checked before the GPU started (render.ts checkRenderOptions). */
+  readonly cameraPath?: CameraPath;
   readonly frames?: number;
   /** --mode: the hybrid recipe is a real-time recipe, always rendered in frame mode. */
   readonly mode?: string;
@@ -51,7 +53,7 @@ export interface FrameWorld {
 }
 
 export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }, moving?: FrameWorld): Promise<FrameModeResult> {
-  const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
+  const path = o.cameraPath ?? (o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined);
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
   // The denoiser's settings (--temporal, --denoise, --history-cap, ...) and the hybrid recipe's are the caller's, applied with the others.

@@ -1,12 +1,18 @@
 /** `lantern render <scene>`: a progressive render to PNG and/or EXR, with a progress bar. */
 import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
+import { LanternError } from '../../errors.ts';
+import { parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
+import { checkReadableFile, readJsonFile } from '../read-files.ts';
+import { checkOutputPath } from '../output-files.ts';
+import { checkSceneOptionsApply, parseSceneArgument, readLightTable, sceneLoadOptions } from '../scene-source.ts';
+import { CLI_SETTINGS, settingOption } from '../setting-options.ts';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraFromOptions, withCameraOptions } from '../camera-option.ts';
 import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
-import { integerOption, numberOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
+import { integerOption, numberOption, pathOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
 import type { KernelKind } from '../../renderer/renderer.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
@@ -18,6 +24,7 @@ import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frame
 import { World } from '../../scene/world.ts';
 import { processSpans } from '../process-clock.ts';
 import { Timeline } from '../timeline.ts';
+import { escapeControls } from '../terminal-text.ts';
 
 /** The options besides the render settings (those are read by settingsFromOptions, by their schema entries). */
 interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
@@ -48,23 +55,57 @@ export function registerRender(program: Command, context: CliContext): void {
     'specialised compiles kernels for this scene while rendering starts with the generic ones and switches when they are ready (the same estimate); it pays on long renders on a GPU (docs/perf.md)',
   )
     .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
-    .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)')
-    .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)')
+    .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)', pathOption('--out'))
+    .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)', pathOption('--exr'))
     .option('--json', 'print what was done as JSON')
     .option('--timings', 'report where the time went from process start to the written image (stderr; with --json, as "timeline")')
     .option('--frames <n>', 'frame mode: frames to render, --spp samples each; with more than one, --out and --exr name folders', integerOption('--frames', 1, 100_000))
-    .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)')
+    .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)', pathOption('--path'))
     .option('--time <seconds>', "the moment of a moving scene to render (Doom's animated textures and lights, the dungeon's phantom); frame mode: the first frame's", numberOption('--time', 0, 1e6), 0)
     .option('--fps <n>', 'frame mode without --path: frames per second of scene time', numberOption('--fps', 0.001, 1000), 30)
     .option('--warmup <seconds>', 'frame mode: render frames for this long first and throw them away, so that the GPU clocks are up when the timed frames start', numberOption('--warmup', 0, 60))
-    .action((sceneArg: string, options: RenderOptions) => context.run(() => render(sceneArg, options, context)));
+    .action((sceneArg: string, options: RenderOptions, command: Command) =>
+      context.run(() => render(sceneArg, options, context, (name) => command.getOptionValueSource(name) === 'cli')),
+    );
 }
 
-async function render(sceneArg: string, o: RenderOptions, context: CliContext): Promise<void> {
+/** A setting's mode, from its description's prefix in the schema ('frame mode: ...', 'hybrid: ...'). */
+const settingMode = (description: string): 'frame' | 'hybrid' | undefined => (description.startsWith('frame mode:') ? 'frame' : description.startsWith('hybrid:') ? 'hybrid' : undefined);
+
+/**
+ * Everything that can be checked before the GPU starts and the scene loads: options given where they
+ * do not apply, the scene's files, the camera path and light table (read and parsed), and that the
+ * outputs can be written. A mistake then costs a moment, not a render. Returns the parsed path.
+ */
+export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (option: string) => boolean, png: string | undefined): CameraPath | undefined {
+  const frameMode = isFrameMode(o);
+  for (const entry of CLI_SETTINGS) {
+    const mode = settingMode(entry.spec.description);
+    // A switch such as --temporal turns frame mode on; what else is given must fit the mode.
+    if (!mode || entry.spec.cli?.switch || o[settingOption(entry).attributeName()] === undefined) continue;
+    if (mode === 'frame' && !frameMode) throw new LanternError(`${entry.spec.cli!.flag} applies to frame mode only`, 'Add --frames, --path, --denoise, --temporal or --mode hybrid, or leave it out');
+    if (mode === 'hybrid' && o.mode !== 'hybrid') throw new LanternError(`${entry.spec.cli!.flag} applies to the hybrid recipe only`, 'Add --mode hybrid, or leave it out');
+  }
+  if (!frameMode && given('warmup')) throw new LanternError('--warmup applies to frame mode only', 'Add --frames, --path, --denoise, --temporal or --mode hybrid, or leave it out');
+  if (given('fps') && (!frameMode || o.path !== undefined)) throw new LanternError(o.path !== undefined ? '--fps does not apply with --path (the path\'s times set the frames)' : '--fps applies to frame mode only', 'Leave it out');
+  const argument = parseSceneArgument(sceneArg);
+  // A file's format is known once its bytes are read (on the scene thread, which checks again).
+  if (argument.kind === 'builtin') checkSceneOptionsApply(sceneLoadOptions(o), undefined);
+  else for (const file of argument.paths) checkReadableFile(file);
+  if (o.lightTable !== undefined) readLightTable(o.lightTable);
+  const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
+  const sequence = frameMode && ((o.frames ?? 1) > 1 || o.path !== undefined);
+  if (png !== undefined) checkOutputPath('--out', png, sequence ? 'folder' : 'file');
+  if (o.exr !== undefined) checkOutputPath('--exr', o.exr, sequence ? 'folder' : 'file');
+  return path;
+}
+
+async function render(sceneArg: string, o: RenderOptions, context: CliContext, given: (option: string) => boolean): Promise<void> {
   // A sequence of frames writes only what was asked for.
   const sequence = isFrameMode(o) && ((o.frames ?? 1) > 1 || o.path !== undefined);
   const png = o.out ?? (o.exr || sequence ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   checkLensOptions(o);
+  const cameraPath = checkRenderOptions(sceneArg, o, given, png);
   const timeline = o.timings ? new Timeline() : undefined;
   for (const span of timeline ? processSpans() : []) timeline!.add(span);
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), undefined, timeline);
@@ -89,7 +130,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
   if (isFrameMode(o)) {
     if (o.kernel === 'specialised') context.note('frame mode renders with the generic kernels (--kernel specialised applies to progressive renders)');
     const camera = renderer.camera!;
-    const result = await renderFrames(renderer, camera, o.spp, o, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
+    const result = await renderFrames(renderer, camera, o.spp, { ...o, ...(cameraPath ? { cameraPath } : {}) }, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
     // The integrator that traced the frames (the path recipe's --integrator), and what the wavefront's own buffers hold.
     const integrator = s.recipe === 'path' ? { integrator: renderer.frameIntegrator, ...(renderer.frameIntegrator === 'wavefront' ? { wavefrontBytes: renderer.wavefrontBytes } : {}) } : {};
     // The real-time chain's memory (the path recipe's): bytes per pixel in all and per buffer.
@@ -150,7 +191,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext): 
     outputs: { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) },
     ...(timeline ? { timeline: timeline.toJSON() } : {}),
   };
-  if (timeline && !o.json) process.stderr.write(`${timeline.format()}\n`);
+  if (timeline && !o.json) process.stderr.write(`${escapeControls(timeline.format(), { keepLines: true })}\n`);
   if (o.json) {
     context.print(JSON.stringify(report, null, 2));
   } else {

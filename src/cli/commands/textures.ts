@@ -4,7 +4,8 @@ import type { Command } from 'commander';
 import { DoomGraphics } from '../../loaders/doom/textures.ts';
 import { encodePng } from '../../image/png.ts';
 import type { CliContext } from '../context.ts';
-import { writeFile } from '../output-files.ts';
+import { checkOutputPath, writeFile } from '../output-files.ts';
+import { pathOption } from '../options.ts';
 import { openWads } from '../wad-files.ts';
 
 /** Lump names may hold characters a file system dislikes ('\\', '[', ...): keep them readable and unique. */
@@ -17,9 +18,10 @@ export function registerTextures(program: Command, context: CliContext): void {
     .command('textures')
     .description('write every wall texture and flat of a WAD (or iwad.wad+pwad.wad) as PNG files')
     .argument('<wad>', 'a .wad file, or several joined by +')
-    .requiredOption('-o, --out <dir>', 'folder to write textures/ and flats/ into')
+    .requiredOption('-o, --out <dir>', 'folder to write textures/ and flats/ into', pathOption('--out'))
     .action((wad: string, o: { out: string }) =>
       context.run(async () => {
+        checkOutputPath('--out', o.out, 'folder');
         const { stack } = openWads(wad);
         const graphics = new DoomGraphics(stack, { onWarning: context.note });
         let count = 0;

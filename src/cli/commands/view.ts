@@ -8,9 +8,9 @@ import type { Command } from 'commander';
 import { formatSceneLocation, type SceneLocation } from '../../loaders/scene-link.ts';
 import type { CliContext } from '../context.ts';
 import { formatLensLink } from '../../renderer/lens-link.ts';
-import { integerOption } from '../options.ts';
+import { integerOption, pathOption } from '../options.ts';
 import { lensNumber } from '../lens-option.ts';
-import { openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
+import { checkSceneOptionsApply, openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 import { startViewServer, type OfferedFile } from '../view-server.ts';
 
 interface ViewOptions {
@@ -34,7 +34,7 @@ export function registerView(program: Command, context: CliContext): void {
     .argument('[scene]', sceneHelp(), 'cornell')
     .option('--port <n>', 'port to listen on (0: any free port)', integerOption('--port', 0, 65535), 8080)
     .option('--host <address>', 'address to listen on (127.0.0.1: this machine only)', '127.0.0.1')
-    .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)')
+    .option('--app <dir>', 'the built page to serve (default: dist/app beside the CLI)', pathOption('--app'))
     .option('--aperture <radius>', 'open the page with a thin lens of this radius (scene units; 0: a pinhole)', lensNumber('--aperture', true))
     .option('--skill <1-5>', "Doom maps: the skill level whose things appear; Wolfenstein 3D maps: whose guards (default 3)", integerOption('--skill', 1, 5))
     .option('--focus-distance <d>', "the lens's focus distance (scene units; default: the scene's, or what lies at the image centre)", lensNumber('--focus-distance', false))
@@ -47,8 +47,13 @@ export function registerView(program: Command, context: CliContext): void {
  */
 async function sceneFiles(arg: string, skill?: number): Promise<{ files: OfferedFile[]; location: (urls: readonly string[]) => SceneLocation }> {
   const argument = parseSceneArgument(arg);
-  if (argument.kind === 'builtin') return { files: [], location: () => ({ kind: 'builtin', name: argument.name }) };
+  const options = skill !== undefined ? { skill } : {};
+  if (argument.kind === 'builtin') {
+    checkSceneOptionsApply(options, undefined);
+    return { files: [], location: () => ({ kind: 'builtin', name: argument.name }) };
+  }
   const { format, files: read, part } = await openSceneFiles(argument);
+  checkSceneOptionsApply(options, format);
   // The first file is the main one; only it refers to siblings (a glTF's buffers and textures).
   const files = read.map((file, i) => ({ path: file.path, siblings: i === 0 && format.siblings ? format.siblings(file) : [] }));
   return { files, location: (urls) => ({ kind: 'files', format: format.id, urls, ...(part ? { part } : {}), ...(skill !== undefined ? { skill } : {}) }) };
@@ -62,6 +67,9 @@ async function view(sceneArg: string, o: ViewOptions, context: CliContext): Prom
   formatLensLink({ ...(o.aperture !== undefined ? { apertureRadius: o.aperture } : {}), ...(o.focusDistance !== undefined ? { focusDistance: o.focusDistance } : {}) }, params);
   const link = `${server.url}?${params}`;
   context.print(`Lantern viewer: ${link}`);
+  if (!server.loopbackOnly) {
+    context.note(`warning: listening on ${o.host}, beyond this machine: anyone who can reach port ${new URL(server.url).port} can open the viewer and download the scene files it serves (use --host 127.0.0.1 to keep it local)`);
+  }
   context.note('open it in a browser with WebGPU (Chrome, Edge); Ctrl-C stops the server');
   await new Promise<void>((resolve) => {
     const stop = () => resolve();
