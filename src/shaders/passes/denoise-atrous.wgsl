@@ -49,6 +49,8 @@ struct DenoiseAtrousParams {
 @group(2) @binding(3) var<storage, read_write> a: array<u32>;
 @group(2) @binding(4) var<storage, read_write> b: array<u32>;
 
+const LOG2_E: f32 = 1.4426950408889634;
+
 // The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
 fn b3(d: i32) -> f32 {
   return select(select(0.0625, 0.25, d == 1), 0.375, d == 0);
@@ -133,7 +135,10 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   let g = unpack_surface(surface_records[i]);
   let miss = is_miss_depth(g.linear_depth);
   let l_p = luminance(centre.rgb);
-  let luminance_scale = params.sigma_luminance * sqrt(max(blurred_variance(p), 0.0)) + 1e-10;
+  // The edge-stopping weights are folded into one exp2 per tap (their exponents add): exp(−Δz/s_z) ·
+  // dot(n, n_q)^σ_n · exp(−Δl/s_l) = exp2(σ_n·log2(dot) − (Δz/s_z + Δl/s_l)·log2(e)): two
+  // transcendental calls a tap instead of four (pow is a log2 and an exp2).
+  let inv_luminance_scale = 1.0 / (params.sigma_luminance * sqrt(max(blurred_variance(p), 0.0)) + 1e-10);
   let slope = vec2f(depth_slope(p, vec2i(1, 0), g.linear_depth), depth_slope(p, vec2i(0, 1), g.linear_depth));
 
   var colour = vec3f(0.0);
@@ -154,13 +159,15 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
           continue;
         }
         s = source(qi);
+        var exponent = -abs(l_p - luminance(s.rgb)) * inv_luminance_scale * LOG2_E;
         if (!miss) {
           let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
           let depth_scale = params.sigma_depth * dot(slope, offset) + 1e-3 * g.linear_depth;
-          w *= exp(-abs(g.linear_depth - gq.linear_depth) / depth_scale);
-          w *= pow(max(dot(g.normal, unpack_normal(gq.normal)), 0.0), params.sigma_normal);
+          exponent -= abs(g.linear_depth - gq.linear_depth) / depth_scale * LOG2_E;
+          // A normal at 90° or more: log2(1e-30) · 128 underflows exp2 to 0, as pow(0, 128) is 0.
+          exponent += params.sigma_normal * log2(max(dot(g.normal, unpack_normal(gq.normal)), 1e-30));
         }
-        w *= exp(-abs(l_p - luminance(s.rgb)) / luminance_scale);
+        w *= exp2(exponent);
       }
       colour += w * s.rgb;
       variance += w * w * s.a;

@@ -10,7 +10,8 @@
 // not blurred by the spatial filter (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering", §4).
 // A sample's first-hit emission is replaced by the pixel's box-filtered emission at the centre hit
 // wherever the sample saw the same surface (centre_emission): lamp textures are then steady from the
-// first frame, and only the edges keep the samples' jitter.
+// first frame; at silhouettes it joins the illumination, which the temporal pass accumulates
+// (split_sample).
 // Expects the scene (group 0) and view (group 1); group 2 adds the previous camera and the outputs.
 
 #import passes/path-trace
@@ -111,12 +112,30 @@ fn write_centre(pixel_index: u32, c: CentreTexel) {
   frame_scratch[FRAME_WORDS * pixel_index + FRAME_PREVIOUS_DEPTH] = pack_f16_pair(c.previous_depth, 0.0);
 }
 
-// A sample's first-hit emission as the pixel keeps it: the centre's filtered emission where the
-// sample saw the centre's surface (same material; a pinhole: with a lens the samples' defocus is
-// the truth), its own elsewhere (edges, misses).
-fn kept_emission(p: PrimaryHit, centre_id: u32, centre_emission: vec3f, own: vec3f) -> vec3f {
-  let same = p.id == centre_id && centre_id != NO_ID && view.camera.aperture_radius == 0.0;
-  return select(own, centre_emission, same);
+// One sample split into the demodulated illumination the filters see and the first-hit emission
+// added back after them (SVGF §4 keeps emission apart so that the filter does not blur lamps):
+// - where the sample saw the centre's surface (same material) through a pinhole, the centre's
+//   box-filtered emission stands in for its own: lamp textures are steady from the first frame;
+// - where it saw another surface than the centre's (a silhouette: the edge of a lamp, the sky behind
+//   a wall), its emission stays in the illumination, so that the temporal accumulation averages the
+//   edge's coverage over frames like any other noise (kept apart, it would flicker at full strength
+//   every frame: the Cornell light's rim made a still view change by 0.14 RMSE a frame);
+// - where both it and the centre see the environment, or a thin lens spreads the samples, its own
+//   emission stays apart (the sky is not blurred; defocus is the samples' truth).
+struct SampleSplit {
+  illumination: vec3f,
+  emission: vec3f,
+}
+
+fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, centre_emission: vec3f) -> SampleSplit {
+  let apart = SampleSplit(max(radiance - emitted, vec3f(0.0)) / demodulation(p.albedo), emitted);
+  if (view.camera.aperture_radius != 0.0 || (p.id == NO_PRIMARY_ID && centre_id == NO_ID)) {
+    return apart;
+  }
+  if (p.id == centre_id) {
+    return SampleSplit(apart.illumination, centre_emission);
+  }
+  return SampleSplit(radiance / demodulation(p.albedo), vec3f(0.0));
 }
 
 // The G-buffer of the surface through each pixel centre, a pass of its own before the paths (albedo
@@ -161,9 +180,10 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
       let path = trace_path(camera_sample_ray(image_point, &rng), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
-      illumination += max(radiance - emitted, vec3f(0.0)) / demodulation(primary.albedo);
+      let split = split_sample(primary, radiance, emitted, centre_id, centre);
+      illumination += split.illumination;
       albedo += primary.albedo;
-      emission += kept_emission(primary, centre_id, centre, emitted);
+      emission += split.emission;
       extension_rays += path.extension_rays;
       shadow_rays += path.shadow_rays;
     }

@@ -204,9 +204,10 @@ fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   let emitted = select(vec3f(0.0), emission_u.xyz, is_finite_vec3(emission_u.xyz));
   let p = PrimaryHit(albedo_id.xyz, emitted, bitcast<u32>(albedo_id.w));
   let centre = unpack_rgb9e5(frame_records[slot].emission);
-  var illumination = max(radiance - emitted, vec3f(0.0)) / demodulation(p.albedo);
+  let split = split_sample(p, radiance, emitted, surface_records[slot].id, centre);
+  var illumination = split.illumination;
   var albedo = p.albedo;
-  var emission = kept_emission(p, surface_records[slot].id, centre, emitted);
+  var emission = split.emission;
   if (wavefront.sample > 0u) {
     illumination = load_f(F_SUM_ILLUMINATION, slot).xyz + illumination;
     albedo = load_f(F_SUM_ALBEDO, slot).xyz + albedo;
