@@ -372,16 +372,17 @@ function triangulate(sector: number, polygons: readonly SectorPolygon[]): Sector
   for (const p of polygons) {
     const base = vertices.length / 2;
     const holeStarts: number[] = [];
-    const coords = [...p.outer];
+    // Appended element by element: push(...ring) with a 65k-vertex ring overflows the call stack.
+    const coords = p.outer.slice();
     for (const h of p.holes) {
       holeStarts.push(coords.length / 2);
-      coords.push(...h);
+      for (const c of h) coords.push(c);
     }
     const expected = ringArea(p.outer) + p.holes.reduce((sum, h) => sum + ringArea(h), 0);
     const piece = earcutChecked(coords, holeStarts, expected);
     area += piece.area;
     for (const i of piece.triangles) indices.push(base + i);
-    vertices.push(...coords);
+    for (const c of coords) vertices.push(c);
   }
   return { sector, vertices: new Float64Array(vertices), indices: new Uint32Array(indices), area, polygons };
 }
@@ -407,7 +408,10 @@ function earcutChecked(coords: readonly number[], holeStarts: readonly number[],
   let best = { triangles: [] as number[], area: 0 };
   for (const turn of TURNS) {
     const turned: number[] = [];
-    for (let i = 0; i < coords.length; i += 2) turned.push(...turn(coords[i]!, coords[i + 1]!));
+    for (let i = 0; i < coords.length; i += 2) {
+      const [x, y] = turn(coords[i]!, coords[i + 1]!);
+      turned.push(x, y);
+    }
     const tris = earcut(turned, holeStarts);
     const triangles: number[] = [];
     let area = 0;
