@@ -6,7 +6,7 @@
  */
 import { Gunzip } from 'fflate';
 import { LanternError } from '../errors.ts';
-import { limits, overLimit } from './budgets.ts';
+import { limits, overLimit } from '../budgets.ts';
 
 /** Compressed bytes pushed at a time: deflate expands at most ~1032×, so one slice yields at most ~17 MB. */
 const SLICE = 16 * 1024;

@@ -4,7 +4,7 @@
  */
 import { LanternError } from '../../errors.ts';
 import type { FileHead, OpenedScene, SceneFormat } from '../format.ts';
-import { WarningCap } from '../budgets.ts';
+import { WarningCap } from '../../budgets.ts';
 import { loadDoomMap, summarizeMaps } from './load.ts';
 import { SpriteSet } from './sprites.ts';
 import { DoomGraphics } from './textures.ts';

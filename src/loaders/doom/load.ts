@@ -4,7 +4,7 @@
  * prints. Pure, like every loader.
  */
 import { LanternError } from '../../errors.ts';
-import { WarningCap } from '../budgets.ts';
+import { WarningCap } from '../../budgets.ts';
 import { DOOM_ANIMATIONS, readAnimatedLump, resolveCycles, type DoomCycles } from './animations.ts';
 import type { LightTable } from './light-table.ts';
 import { readMap } from './map-lumps.ts';

@@ -16,7 +16,7 @@
  * Every index in the returned DoomMap is therefore in range (sidedefs may also be NO_SIDEDEF).
  */
 import { LanternError } from '../../errors.ts';
-import { checkLimit } from '../budgets.ts';
+import { checkLimit } from '../../budgets.ts';
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from './map-types.ts';
 import { NO_SIDEDEF } from './map-types.ts';
 import { readName, type MapLumps, type WadStack } from './wad.ts';

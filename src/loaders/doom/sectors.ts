@@ -14,7 +14,7 @@
  * through `warn`; a sector that still cannot be triangulated is reported as a failure.
  */
 import earcut from 'earcut';
-import { limits } from '../budgets.ts';
+import { limits } from '../../budgets.ts';
 import { NO_SIDEDEF, type DoomMap } from './map-types.ts';
 
 /** One piece of a sector: a counter-clockwise outer ring and the clockwise rings of its holes. */

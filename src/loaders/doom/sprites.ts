@@ -9,7 +9,7 @@
  */
 import { LanternError } from '../../errors.ts';
 import type { Palette } from './palette.ts';
-import type { Budget } from '../budgets.ts';
+import type { Budget } from '../../budgets.ts';
 import { decodePicture, readPictureHeader, type Picture } from './picture.ts';
 import type { WadStack } from './wad.ts';
 

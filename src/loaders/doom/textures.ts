@@ -16,7 +16,7 @@
  * costs a warning and the damaged part; the header of a whole lump being unreadable is an error.
  */
 import { LanternError } from '../../errors.ts';
-import { Budget } from '../budgets.ts';
+import { Budget } from '../../budgets.ts';
 import type { Texture } from '../../scene/types.ts';
 import type { DoomImageSource } from './map-types.ts';
 import { readPalette, type Palette } from './palette.ts';

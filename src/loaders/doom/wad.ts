@@ -5,7 +5,7 @@
  * slice lumps without bounds checks. A WadStack layers an IWAD and PWADs the way the game does.
  */
 import { LanternError } from '../../errors.ts';
-import { checkLimit } from '../budgets.ts';
+import { checkLimit } from '../../budgets.ts';
 
 export interface Lump {
   /** Upper-cased, up to 8 characters. */

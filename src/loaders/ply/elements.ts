@@ -4,7 +4,7 @@
  * properties, lists included, are skipped in step with the data.
  */
 import { LanternError } from '../../errors.ts';
-import { limits } from '../budgets.ts';
+import { limits } from '../../budgets.ts';
 import { SCALAR_SIZE, type PlyElement, type PlyListProperty, type PlyScalarType } from './header.ts';
 import { BinaryReader, getScalar, PlyBadValue, PlyEndOfData, readListCount, type ValueReader } from './readers.ts';
 

@@ -4,7 +4,7 @@
  * Pure: bytes in, Scene out; runs in Node, the browser and Web Workers alike.
  */
 import { LanternError } from '../../errors.ts';
-import { checkLimit } from '../budgets.ts';
+import { checkLimit } from '../../budgets.ts';
 import { gunzipCapped, isGzip } from '../gzip.ts';
 import { studioScene } from '../../scene/studio.ts';
 import { diffuse, type Material, type Mesh, type Scene } from '../../scene/types.ts';

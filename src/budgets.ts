@@ -14,7 +14,7 @@
  * Pure: no node:* imports. The environment is read through globalThis, so the page (which has none)
  * simply gets the defaults.
  */
-import { LanternError } from '../errors.ts';
+import { LanternError } from './errors.ts';
 
 export interface Limits {
   /** Bytes a compressed stream (gzip, zlib) may inflate to. */
