@@ -227,7 +227,11 @@ function repairChains(edges: readonly Edge[], points: PointTable, say: (m: strin
     else grid.set(key, [start]);
   }
   const result = [...edges];
-  const pairs: Array<{ end: number; start: number; d: number; rank: number }> = [];
+  // Candidate pairs in parallel arrays (a sector near its work budget has millions of them).
+  const pairEnd: number[] = [];
+  const pairStart: number[] = [];
+  const pairD: number[] = [];
+  const pairRank: number[] = [];
   let endRank = 0;
   for (const end of endsLeft.keys()) {
     const [ex, ey] = [points.xs[end]!, points.ys[end]!];
@@ -239,25 +243,31 @@ function repairChains(edges: readonly Edge[], points: PointTable, say: (m: strin
         work.spend(list.length);
         for (const start of list) {
           const d = Math.hypot(ex - points.xs[start]!, ey - points.ys[start]!);
-          if (d <= GAP_TOLERANCE) pairs.push({ end, start, d, rank: endRank * startRank.size + startRank.get(start)! });
+          if (d <= GAP_TOLERANCE) {
+            pairEnd.push(end);
+            pairStart.push(start);
+            pairD.push(d);
+            pairRank.push(endRank * startRank.size + startRank.get(start)!);
+          }
         }
       }
     }
     endRank++;
   }
   // Nearest first; equal gaps in the order of the ends, then the starts, as they were first seen.
-  pairs.sort((p, q) => p.d - q.d || p.rank - q.rank);
+  const order = Uint32Array.from(pairD.keys()).sort((p, q) => pairD[p]! - pairD[q]! || pairRank[p]! - pairRank[q]!);
   let startsOpen = 0;
   for (const n of startsLeft.values()) startsOpen += n;
-  for (const p of pairs) {
-    const e = endsLeft.get(p.end)!;
-    const s = startsLeft.get(p.start)!;
+  for (const p of order) {
+    const [end, start] = [pairEnd[p]!, pairStart[p]!];
+    const e = endsLeft.get(end)!;
+    const s = startsLeft.get(start)!;
     if (e === 0 || s === 0) continue;
-    endsLeft.set(p.end, e - 1);
-    startsLeft.set(p.start, s - 1);
+    endsLeft.set(end, e - 1);
+    startsLeft.set(start, s - 1);
     startsOpen--;
-    result.push({ from: p.end, to: p.start, line: -1 });
-    say(`unclosed boundary: joined ${points.describe(p.end)} to ${points.describe(p.start)} (a gap of ${fmt(p.d)} units)`);
+    result.push({ from: end, to: start, line: -1 });
+    say(`unclosed boundary: joined ${points.describe(end)} to ${points.describe(start)} (a gap of ${fmt(pairD[p]!)} units)`);
   }
   if (startsOpen === 0) return result;
 
