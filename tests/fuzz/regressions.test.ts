@@ -12,6 +12,8 @@ import { loadDoomMap, summarizeMaps } from '../../src/loaders/doom/load.ts';
 import { buildSectorShapes } from '../../src/loaders/doom/sectors.ts';
 import { DoomGraphics } from '../../src/loaders/doom/textures.ts';
 import { readWad, WadStack } from '../../src/loaders/doom/wad.ts';
+import { NO_SIBLINGS } from '../../src/loaders/format.ts';
+import { MOLECULE_FORMAT } from '../../src/loaders/molecule/format.ts';
 import { parsePly } from '../../src/loaders/ply/ply.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
 
@@ -164,6 +166,17 @@ describe('sizes asked for by headers', () => {
     bytes.set(head);
     new DataView(bytes.buffer).setUint32(head.length + 36, corners, true);
     expect(() => parsePly(bytes, 'ngon.ply')).toThrow(/polygonVertices=65536/);
+  });
+});
+
+describe('findings of the fuzz suite', () => {
+  it('builds a molecule whose double bond reaches an atom at -1e308 Å (the bond side normalised a zero vector)', async () => {
+    const text = ['m', '  Lantern           3D', '', '  2  1  0     0  0  0  0  0  0999 V2000',
+      '    0.4700    2.5688    0.0006 O   0  0  0  0  0  0  0  0  0  0  0  0',
+      '    -1e308    0.2592   -0.0008 C   0  0  0  0  0  0  0  0  0  0  0  0',
+      '  1  2  2  0  0  0  0', 'M  END', ''].join('\n');
+    const opened = await MOLECULE_FORMAT.open({ files: [{ name: 'far.mol', bytes: new TextEncoder().encode(text) }], resolve: NO_SIBLINGS });
+    await expect(opened.scene()).resolves.toBeDefined();
   });
 });
 
