@@ -1,0 +1,15 @@
+/**
+ * Runs fuzz cases for scripts/fuzz.ts, one message per case: { target, seed, index } in, the outcome
+ * and the case's time out. Cases are regenerated here from their seed, so nothing large is sent.
+ */
+import { parentPort } from 'node:worker_threads';
+import { caseSeed, Rng } from '../tests/fuzz/mutate.ts';
+import { runInput, TARGETS } from '../tests/fuzz/targets.ts';
+
+parentPort!.on('message', async (job: { target: string; seed: number; index: number }) => {
+  const target = TARGETS.find((t) => t.id === job.target)!;
+  const files = target.input(new Rng(caseSeed(job.seed, job.index)), job.index);
+  const start = performance.now();
+  const outcome = await runInput(target, files);
+  parentPort!.postMessage({ ...outcome, ms: performance.now() - start, bytes: files.reduce((n, f) => n + f.bytes.length, 0) });
+});
