@@ -108,6 +108,18 @@ export function configureLimits(next: Partial<Limits> | undefined): void {
   configured = next === undefined ? undefined : { ...limits(), ...next };
 }
 
+/**
+ * The CLI's `--limits name=value,…`: over LANTERN_LIMITS' values (the option wins), configured for
+ * this thread and written back to the environment so that worker threads started later agree.
+ */
+export function applyLimitsOption(text: string | undefined): void {
+  if (text === undefined) return;
+  const env = (globalThis as { process?: { env?: Record<string, string | undefined> } }).process?.env;
+  const merged = parseLimits(text, limits());
+  configured = merged;
+  if (env) env[LIMITS_ENV] = LIMIT_NAMES.map((name) => `${name}=${merged[name]}`).join(',');
+}
+
 /** Runs `f` with some limits changed, then restores them (tests). */
 export function withLimits<T>(changes: Partial<Limits>, f: () => T): T {
   const before = limits();
