@@ -9,6 +9,8 @@ import { runInput, TARGETS } from '../tests/fuzz/targets.ts';
 parentPort!.on('message', async (job: { target: string; seed: number; index: number }) => {
   const target = TARGETS.find((t) => t.id === job.target)!;
   const files = target.input(new Rng(caseSeed(job.seed, job.index)), job.index);
+  // Building a crafted input can take seconds on a loaded machine: the clock starts after it.
+  parentPort!.postMessage({ started: true });
   const start = performance.now();
   const outcome = await runInput(target, files);
   parentPort!.postMessage({ ...outcome, ms: performance.now() - start, bytes: files.reduce((n, f) => n + f.bytes.length, 0) });

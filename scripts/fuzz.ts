@@ -85,13 +85,14 @@ class CaseRunner {
   constructor(private readonly heapMb: number) {}
 
   /** `sample` returns true once the case is over its memory limit: it is stopped there, before it takes the machine. */
-  run(target: string, seed: number, index: number, timeoutMs: number, sample: () => boolean): Promise<Result> {
+  run(target: string, seed: number, index: number, timeoutMs: number, onStart: () => void, sample: () => boolean): Promise<Result> {
     this.worker ??= new Worker(new URL(WORKER_FILE, import.meta.url), { resourceLimits: { maxOldGenerationSizeMb: this.heapMb } });
     const worker = this.worker;
     const start = performance.now();
     return new Promise((resolve) => {
+      let started = false;
       const sampler = setInterval(() => {
-        if (!sample()) return;
+        if (!started || !sample()) return;
         this.worker = undefined;
         void worker.terminate();
         done({ kind: 'memory', message: 'stopped when it passed the memory limit', ms: performance.now() - start });
@@ -103,17 +104,23 @@ class CaseRunner {
         worker.off('error', onError);
         resolve(r);
       };
-      const onMessage = (m: Result) => done(m);
+      let timer: ReturnType<typeof setTimeout> | undefined;
+      const onMessage = (m: Result | { started: true }) => {
+        if (!('started' in m)) return done(m);
+        // The input is built: from here the case has timeoutMs, and its memory is measured from here.
+        onStart();
+        started = true;
+        timer = setTimeout(() => {
+          this.worker = undefined;
+          void worker.terminate();
+          done({ kind: 'hang', message: `still running after ${timeoutMs / 1000} s`, ms: timeoutMs });
+        }, timeoutMs);
+      };
       const onError = (e: Error & { code?: string }) => {
         this.worker = undefined;
         const memory = e.code === 'ERR_WORKER_OUT_OF_MEMORY';
         done({ kind: memory ? 'memory' : 'crash', message: `${e.name}: ${e.message}`, ms: performance.now() - start });
       };
-      const timer = setTimeout(() => {
-        this.worker = undefined;
-        void worker.terminate();
-        done({ kind: 'hang', message: `still running after ${timeoutMs / 1000} s`, ms: timeoutMs });
-      }, timeoutMs);
       worker.on('message', onMessage);
       worker.on('error', onError);
       worker.postMessage({ target, seed, index });
@@ -138,9 +145,12 @@ async function main(): Promise<void> {
       if (Date.now() >= deadline) break;
       const tally = tallies.get(target)!;
       const index = tally.inputs;
-      const baseline = process.memoryUsage().rss;
+      let baseline = process.memoryUsage().rss;
       let peak = 0;
-      const result = await runners.get(target)!.run(target.id, o.seed, index, o.timeoutMs, () => {
+      const onStart = () => {
+        baseline = process.memoryUsage().rss;
+      };
+      const result = await runners.get(target)!.run(target.id, o.seed, index, o.timeoutMs, onStart, () => {
         peak = Math.max(peak, process.memoryUsage().rss - baseline);
         return peak > o.memoryBytes;
       });

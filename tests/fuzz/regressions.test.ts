@@ -14,7 +14,10 @@ import { DoomGraphics } from '../../src/loaders/doom/textures.ts';
 import { readWad, WadStack } from '../../src/loaders/doom/wad.ts';
 import { NO_SIBLINGS } from '../../src/loaders/format.ts';
 import { MOLECULE_FORMAT } from '../../src/loaders/molecule/format.ts';
+import { GLTF_FORMAT } from '../../src/loaders/gltf/format.ts';
 import { parsePly } from '../../src/loaders/ply/ply.ts';
+import { Rng } from './mutate.ts';
+import { glb, gltfSeed } from './targets.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
 
 const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad')]);
@@ -177,6 +180,18 @@ describe('findings of the fuzz suite', () => {
       '  1  2  2  0  0  0  0', 'M  END', ''].join('\n');
     const opened = await MOLECULE_FORMAT.open({ files: [{ name: 'far.mol', bytes: new TextEncoder().encode(text) }], resolve: NO_SIBLINGS });
     await expect(opened.scene()).resolves.toBeDefined();
+  });
+
+  it('leaves out a glTF attribute whose count is not POSITION\'s (it was read past its end: a RangeError)', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const accessors = json.accessors as Array<Record<string, unknown>>;
+    // TEXCOORD_0 read as 4 VEC2s from the 36-byte position view: in bounds, but one more than the 3 vertices.
+    accessors[1] = { ...accessors[1], bufferView: 0, count: 4 };
+    const opened = await GLTF_FORMAT.open({ files: [{ name: 'uv.glb', bytes: glb(json, bin) }], resolve: NO_SIBLINGS });
+    const warnings: string[] = [];
+    const scene = await opened.scene(undefined, { onWarning: (w) => warnings.push(w) });
+    expect(warnings).toContain("mesh 'mesh 0' has 4 TEXCOORD_0 values for 3 vertices; TEXCOORD_0 is ignored there");
+    expect(scene.meshes[0]!.uvs).toBeUndefined();
   });
 });
 
