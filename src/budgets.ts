@@ -40,7 +40,7 @@ export interface Limits {
 }
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
-  decompressedBytes: 1 << 30, // 1 GiB
+  decompressedBytes: 1 << 29, // 512 MiB
   vertices: 1 << 25, // 33.5 million
   faces: 1 << 25,
   polygonVertices: 1 << 16,

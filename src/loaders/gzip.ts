@@ -20,6 +20,12 @@ export function gunzipCapped(bytes: Uint8Array, name: string): Uint8Array {
   // A 10-byte header and an 8-byte trailer at the least; fflate takes a bare header for an empty stream.
   if (bytes.length < 18) throw new LanternError(`${name}: could not decompress the gzip data (only ${bytes.length} bytes)`, 'the file may be truncated');
   const cap = limits().decompressedBytes;
+  // The trailer's size (mod 2^32, and only the last member's) is a hint, never trusted: when it is
+  // plausible the output is written straight into one buffer of that size, which saves holding the
+  // chunks and their copy at once; if the stream disagrees, the chunks are kept after all.
+  const n = bytes.length;
+  const hint = (bytes[n - 4]! | (bytes[n - 3]! << 8) | (bytes[n - 2]! << 16) | (bytes[n - 1]! << 24)) >>> 0;
+  let direct = hint > 0 && hint <= cap && hint <= n * 1032 + 1024 ? new Uint8Array(hint) : undefined;
   const chunks: Uint8Array[] = [];
   let total = 0;
   let over = false;
@@ -27,9 +33,18 @@ export function gunzipCapped(bytes: Uint8Array, name: string): Uint8Array {
   const inflater = new Gunzip((chunk, final) => {
     if (final) finished = true;
     if (over) return;
+    if (total + chunk.length > cap) {
+      over = true;
+      total += chunk.length;
+      return;
+    }
+    if (direct && total + chunk.length <= direct.length) direct.set(chunk, total);
+    else {
+      if (direct) chunks.push(direct.subarray(0, total));
+      direct = undefined;
+      chunks.push(chunk);
+    }
     total += chunk.length;
-    if (total > cap) over = true;
-    else chunks.push(chunk);
   });
   try {
     for (let at = 0; at < bytes.length && !over; at += SLICE) {
@@ -41,6 +56,8 @@ export function gunzipCapped(bytes: Uint8Array, name: string): Uint8Array {
   }
   if (over) throw overLimit('decompressedBytes', total, `${name}: inflated gzip data (at least)`);
   if (!finished) throw new LanternError(`${name}: the gzip data ends early`, 'the file may be truncated');
+  if (direct && total === direct.length) return direct;
+  if (direct) chunks.push(direct.subarray(0, total));
   const out = new Uint8Array(total);
   let at = 0;
   for (const c of chunks) {

@@ -155,6 +155,17 @@ describe('sizes asked for by headers', () => {
     expect(inflated).toBeLessThan(32 * 2 ** 20);
   });
 
+  it('inflates gzip whole whether or not the trailer\'s size is right (two members: it names only the last)', async () => {
+    const { gunzipCapped } = await import('../../src/loaders/gzip.ts');
+    const { gzipSync } = await import('node:zlib');
+    const [a, b] = [new Uint8Array(300_000).fill(7), new Uint8Array(5000).fill(9)];
+    const one = gunzipCapped(new Uint8Array(gzipSync(a)), 'one.gz');
+    const two = gunzipCapped(new Uint8Array([...gzipSync(a), ...gzipSync(b)]), 'two.gz');
+    expect(one).toEqual(a);
+    expect(two.length).toBe(305_000);
+    expect(two.subarray(300_000).every((x) => x === 9)).toBe(true);
+  });
+
   it('refuses an EXR claiming 100,000² pixels from its header, and one claiming 8,000² at the pixel limit', () => {
     expect(() => decodeExr(hugeExr(100_000, 100_000, 410_000), 'huge.exr')).toThrow(/far larger than the file could hold/);
     // 8,000² half RGB pixels could come from 410 KB of deflate, so only the pixel limit refuses them.
