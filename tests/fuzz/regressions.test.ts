@@ -206,6 +206,18 @@ describe('findings of the fuzz suite', () => {
   });
 });
 
+describe('recursion', () => {
+  it('places a mesh at the end of a chain of 20,000 nested glTF nodes (the visit recursed once per level)', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const depth = 20_000;
+    const nodes = Array.from({ length: depth }, (_, i) => (i + 1 < depth ? { children: [i + 1] } : { mesh: 0 }));
+    const opened = await GLTF_FORMAT.open({ files: [{ name: 'deep.glb', bytes: glb({ ...json, nodes, scenes: [{ nodes: [0] }] }, bin) }], resolve: NO_SIBLINGS });
+    const scene = await opened.scene();
+    expect(scene.instances).toHaveLength(1);
+    expect(scene.instances[0]!.id).toBe(depth - 1);
+  });
+});
+
 describe('limits', () => {
   it('parses name=value lists with k/M/G suffixes and refuses unknown names and bad values in one line', () => {
     expect(parseLimits('imagePixels=256M, sectorWork=1e9').imagePixels).toBe(256 * 2 ** 20);
