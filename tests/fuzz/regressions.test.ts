@@ -5,7 +5,7 @@
  * naming the limit and the value found, without the memory it used to take.
  */
 import { describe, expect, it } from 'vitest';
-import { DEFAULT_LIMITS, limits, parseLimits, withLimits, WarningCap } from '../../src/budgets.ts';
+import { applyLimitsOption, configureLimits, DEFAULT_LIMITS, limits, parseLimits, withLimits, WarningCap } from '../../src/budgets.ts';
 import { LanternError } from '../../src/errors.ts';
 import { decodeExr } from '../../src/image/exr.ts';
 import { loadDoomMap, summarizeMaps } from '../../src/loaders/doom/load.ts';
@@ -226,5 +226,21 @@ describe('limits', () => {
     expect(() => parseLimits('pixels=5')).toThrow(/unknown limit 'pixels'/);
     expect(() => parseLimits('vertices=-5')).toThrow(/bad value for limit vertices/);
     expect(() => parseLimits('vertices')).toThrow(/expected name=value/);
+  });
+
+  it('takes --limits over LANTERN_LIMITS and hands the result to worker threads through the environment', () => {
+    const saved = process.env.LANTERN_LIMITS;
+    try {
+      process.env.LANTERN_LIMITS = 'lumps=5,faces=7';
+      configureLimits(undefined);
+      applyLimitsOption('lumps=9');
+      expect([limits().lumps, limits().faces]).toEqual([9, 7]);
+      expect(parseLimits(process.env.LANTERN_LIMITS)).toEqual(limits());
+    } finally {
+      if (saved === undefined) delete process.env.LANTERN_LIMITS;
+      else process.env.LANTERN_LIMITS = saved;
+      configureLimits(undefined);
+    }
+    expect(limits().lumps).toBe(DEFAULT_LIMITS.lumps);
   });
 });
