@@ -79,7 +79,7 @@ export function gridMap(n: number): DoomMap {
   }
   for (let i = 0; i <= n; i++) {
     for (let j = 0; j < n; j++) {
-      // Vertical line (i, j + 1) → (i, j): its right side is the cell i − 1... going down, right is west.
+      // Vertical line (i, j + 1) → (i, j), heading south: its right side is west, the cell i − 1.
       const [right, left] = [cell(i - 1, j), cell(i, j)];
       if (right !== NO_SIDEDEF) linedefs.push(line(at(i, j + 1), at(i, j), right, left));
       else linedefs.push(line(at(i, j), at(i, j + 1), left));

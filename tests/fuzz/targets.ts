@@ -346,14 +346,34 @@ function mutateExr(rng: Rng, seed: Uint8Array): Uint8Array {
       return bytes;
     }
     case 3: { // a line offset, or a chunk's y or size
-      const end = find('\0\0\0\0\0\0\0\0') >= 0 ? Buffer.from(bytes.buffer, bytes.byteOffset, bytes.length).indexOf(0, find('lineOrder')) : 0;
-      const table = Math.max(0, end);
-      putInt(bytes, table + 8 * rng.int(8) + rng.pick([0, 4, 8, 12]), 4, interesting(rng, bytes.length));
+      const table = exrTableStart(bytes);
+      const chunk = table + 8 * rng.int(4);
+      if (rng.chance(0.5)) putInt(bytes, chunk, 4, interesting(rng, bytes.length));
+      else {
+        const first = new DataView(bytes.buffer).getUint32(table, true);
+        putInt(bytes, first + rng.pick([0, 4]), 4, interesting(rng));
+      }
       return bytes;
     }
     default:
       return mutateBytes(rng, bytes);
   }
+}
+
+/** Where the line offset table starts: after the header's attributes (name, type, size, value) and its closing NUL. */
+function exrTableStart(bytes: Uint8Array): number {
+  let at = 8;
+  const skipString = () => {
+    while (at < bytes.length && bytes[at] !== 0) at++;
+    at++;
+  };
+  while (at < bytes.length && bytes[at] !== 0) {
+    skipString(); // name
+    skipString(); // type
+    if (at + 4 > bytes.length) break;
+    at += 4 + new DataView(bytes.buffer).getInt32(at, true);
+  }
+  return at + 1;
 }
 
 // ---- HDR ----
