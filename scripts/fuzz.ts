@@ -174,9 +174,13 @@ async function main(): Promise<void> {
 function save(o: Options, target: FuzzTarget, index: number, kind: string, message: string): void {
   const dir = join(o.out, target.id);
   mkdirSync(dir, { recursive: true });
-  const files = target.input(new Rng(caseSeed(o.seed, index)), index);
   const stem = `${kind}-seed${o.seed}-case${index}`;
-  files.forEach((f) => writeFileSync(join(dir, `${stem}-${f.name.replace(/[^\w.-]+/g, '_')}`), f.bytes));
+  try {
+    const files = target.input(new Rng(caseSeed(o.seed, index)), index);
+    files.forEach((f) => writeFileSync(join(dir, `${stem}-${f.name.replace(/[^\w.-]+/g, '_')}`), f.bytes));
+  } catch (e) {
+    message += ` (the input could not be rebuilt: ${(e as Error).message})`;
+  }
   writeFileSync(join(dir, `${stem}.txt`), `${target.label}\nseed ${o.seed}, case ${index}: ${kind}\n${message}\n`);
   process.stderr.write(`fuzz: ${target.id} case ${index}: ${kind}: ${message}\n`);
 }

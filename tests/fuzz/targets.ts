@@ -115,7 +115,7 @@ function mutateWad(rng: Rng, seed: Uint8Array): Uint8Array {
       break;
     case 7: { // TEXTURE1: count, an offset, or a texture's width, height or patch count
       const l = lump('TEXTURE1');
-      if (!l) return mutateBytes(rng, bytes);
+      if (!l || l.size < 8) return mutateBytes(rng, bytes);
       const view = new DataView(bytes.buffer, l.offset, l.size);
       const count = view.getInt32(0, true);
       if (rng.chance(0.3) || count <= 0) putInt(bytes, l.offset, 4, interesting(rng, count));
@@ -349,7 +349,7 @@ function mutateExr(rng: Rng, seed: Uint8Array): Uint8Array {
       const table = exrTableStart(bytes);
       const chunk = table + 8 * rng.int(4);
       if (rng.chance(0.5)) putInt(bytes, chunk, 4, interesting(rng, bytes.length));
-      else {
+      else if (table + 4 <= bytes.length) {
         const first = new DataView(bytes.buffer).getUint32(table, true);
         putInt(bytes, first + rng.pick([0, 4]), 4, interesting(rng));
       }
@@ -371,7 +371,9 @@ function exrTableStart(bytes: Uint8Array): number {
     skipString(); // name
     skipString(); // type
     if (at + 4 > bytes.length) break;
-    at += 4 + new DataView(bytes.buffer).getInt32(at, true);
+    const size = new DataView(bytes.buffer).getInt32(at, true);
+    if (size < 0) break;
+    at += 4 + size;
   }
   return at + 1;
 }
