@@ -5,6 +5,7 @@
 // First: it notes when the bundle started to run (the start-up timeline of `render --timings`).
 import { bundleEvaluated } from './process-clock.ts';
 import { Command } from 'commander';
+import { applyLimitsOption, LIMIT_NAMES, LIMITS_ENV, LIMITS_OPTION } from '../budgets.ts';
 import { registerBench } from './commands/bench.ts';
 import { registerBvhStats } from './commands/bvh-stats.ts';
 import { registerConvert } from './commands/convert.ts';
@@ -31,9 +32,15 @@ async function runCommand(): Promise<void> {
     .name('lantern')
     .description('Lantern: a WebGPU path tracer, headless')
     .option('-v, --verbose', 'show stack traces and details on errors')
+    .option(`${LIMITS_OPTION} <list>`, `raise the size limits on input files, name=value,… (${LIMIT_NAMES.join(', ')}); also ${LIMITS_ENV}`)
     .showHelpAfterError('(run with --help for usage)')
     // Usage errors quote the command line, which may hold anything a script passed on.
     .configureOutput({ writeErr: (text) => process.stderr.write(escapeControls(text, { keepLines: true })) });
+  // The size limits (budgets.ts) are set before any file is read; a bad list stops here, in one line.
+  program.hook('preAction', async () => {
+    await context.run(async () => applyLimitsOption(program.opts().limits));
+    if (process.exitCode) process.exit(process.exitCode);
+  });
 
   registerRender(program, context);
   registerBench(program, context);

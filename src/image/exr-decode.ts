@@ -4,6 +4,7 @@
  * Anything else (tiles, deep data, multi-part, PIZ/PXR24/B44/DWA, subsampled channels) is refused with
  * a LanternError that says what it found.
  */
+import { checkLimit } from '../budgets.ts';
 import { LanternError } from '../errors.ts';
 import { rleDecompress, zipDecompress } from './exr-compression.ts';
 import {
@@ -34,8 +35,15 @@ interface Header {
   height: number;
 }
 
-/** Deflate cannot expand data more than ~1032×; a header promising more pixels than that is corrupt. */
-const MAX_EXPANSION = 1100;
+/**
+ * How much a compression can expand data: deflate ~1032×, RLE 128 bytes from 2; stored data not at
+ * all. A header promising more pixels than the file could hold is corrupt.
+ */
+function maxExpansion(compression: number): number {
+  if (compression === COMPRESSION_NONE) return 1;
+  if (compression === COMPRESSION_RLE) return 64;
+  return 1100;
+}
 
 export function decodeExr(bytes: Uint8Array, name = 'image.exr'): ExrImage {
   const r = new Reader(bytes, name);
@@ -54,9 +62,12 @@ export function decodeExr(bytes: Uint8Array, name = 'image.exr'): ExrImage {
   const header = readHeader(r);
   const { width, height, channels } = header;
   const pixelBytes = channels.reduce((s, c) => s + PIXEL_SIZE[c.type]!, 0);
-  if (width * height * pixelBytes > Math.max(bytes.length, 1 << 16) * MAX_EXPANSION || width * height > 1 << 28) {
+  // The header alone decides: nothing is allocated or inflated for an image over the pixel limit
+  // (a 410 KB file claiming a huge data window once made `lantern diff` take 5.2 GB and 183 s).
+  if (width * height * pixelBytes > Math.max(bytes.length, 1 << 16) * maxExpansion(header.compression)) {
     throw new LanternError(`${name}: the data window (${width}×${height}) is far larger than the file could hold`, 'the file is corrupt');
   }
+  checkLimit('imagePixels', width * height, `${name}: ${width}×${height} pixels`);
   const linesPerChunk = COMPRESSIONS[header.compression]!.linesPerChunk;
   const chunkCount = Math.ceil(height / linesPerChunk);
   const offsets: number[] = [];

@@ -11,6 +11,7 @@
  * followed by the four components of the scanline one after the other, each as runs (a count byte
  * > 128: that many − 128 copies of the next byte) and literals (a count byte 1..128: that many bytes).
  */
+import { checkLimit } from '../budgets.ts';
 import { LanternError } from '../errors.ts';
 
 export interface HdrImage {
@@ -97,6 +98,7 @@ export function decodeHdr(bytes: Uint8Array, name = 'image.hdr'): HdrImage {
   if (width > HDR_MAX_SIDE || height > HDR_MAX_SIDE || width * height > HDR_MAX_PIXELS) {
     throw new LanternError(`${name}: image of ${width}×${height} pixels is too large`, `use a map of at most ${HDR_MAX_PIXELS / (1024 * 1024)} Mpx, sides up to ${HDR_MAX_SIDE}`);
   }
+  checkLimit('imagePixels', width * height, `${name}: ${width}×${height} pixels`);
 
   const rgb = new Float32Array(width * height * 3);
   const scanline = new Uint8Array(width * 4);

@@ -5,6 +5,7 @@
  */
 import { convertIndexedToRgb, decode, type DecodedPng } from 'fast-png';
 import { zlibSync } from 'fflate';
+import { checkLimit } from '../budgets.ts';
 import { LanternError } from '../errors.ts';
 
 export interface RgbaImage {
@@ -88,6 +89,12 @@ function crc32(bytes: Uint8Array, start: number, end: number): number {
  * such as image comparisons handle one layout only. A grey/RGB tRNS colour key is ignored (opaque).
  */
 export function decodePng(bytes: Uint8Array, name = 'image.png'): RgbaImage {
+  // The size from IHDR (the first chunk, bytes 16–23) is checked before anything is inflated.
+  if (bytes.length >= 24 && bytes[12] === 0x49 && bytes[13] === 0x48 && bytes[14] === 0x44 && bytes[15] === 0x52) {
+    const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    const [width, height] = [view.getUint32(16), view.getUint32(20)];
+    checkLimit('imagePixels', width * height, `${name}: ${width}×${height} pixels`);
+  }
   let png: DecodedPng;
   try {
     // CRCs checked: a damaged reference image should fail loudly, not compare as different pixels.

@@ -36,8 +36,8 @@ export const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   cli: [...GPU_BELOW, 'gpu', 'passes', 'renderer', 'loaders', 'image', 'exporters'],
 };
 
-/** Files at src/ that every folder may import. */
-const SHARED = new Set(['errors.ts', 'types']);
+/** Files at src/ that every folder may import (budgets.ts: the size limits every reader of files checks). */
+const SHARED = new Set(['errors.ts', 'budgets.ts', 'types']);
 /** Imported by tests only. */
 const TEST_HELPERS = new Set(['expect-lantern-error.ts']);
 

@@ -203,9 +203,10 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
   if (levels) {
     writeTlasNodes(nodes, levels.tlas, layout.tlasBase, layout.tlasBase);
     const dynamic = dynamicLights(scene, triangles, levels, layout, packedMaterials);
-    lights.leaves.push(...dynamic.leaves);
-    lights.powers.push(...dynamic.powers);
-    lights.instances.push(...dynamic.instances);
+    // Appended in a loop: push(...list) overflows the call stack once a scene has ~100k moving emitters.
+    for (let i = 0; i < dynamic.leaves.length; i++) lights.leaves.push(dynamic.leaves[i]!);
+    for (let i = 0; i < dynamic.powers.length; i++) lights.powers.push(dynamic.powers[i]!);
+    for (let i = 0; i < dynamic.instances.length; i++) lights.instances.push(dynamic.instances[i]!);
     emissiveSpheres += dynamic.spheres;
   }
   if (emissiveCapsules > 0) {

@@ -4,6 +4,7 @@
  */
 import { LanternError } from '../../errors.ts';
 import type { FileHead, OpenedScene, SceneFormat } from '../format.ts';
+import { WarningCap } from '../../budgets.ts';
 import { loadDoomMap, summarizeMaps } from './load.ts';
 import { SpriteSet } from './sprites.ts';
 import { DoomGraphics } from './textures.ts';
@@ -44,19 +45,33 @@ function openStack(stack: WadStack): OpenedScene {
   // Composed once per stack and reused by every map: most textures are shared between maps.
   let graphics: DoomGraphics | undefined;
   let sprites: SpriteSet | undefined;
+  // The shared graphics report through whichever load is running, capped per kind like its own warnings.
+  let current: ((message: string) => void) | undefined;
+  const relay = (message: string) => current?.(message);
   return {
     description: stack.describe(),
     parts: maps.map((m) => ({ name: m.name, loadable: m.format === 'doom', ...(m.format === 'doom' ? {} : { note: `${m.format} format: not supported` }) })),
     async scene(part, options = {}) {
-      const onWarning = options.onWarning;
-      graphics ??= new DoomGraphics(stack, onWarning ? { onWarning } : {});
-      sprites ??= new SpriteSet(stack, graphics.palette, onWarning);
-      // Without a part: the first map Lantern can build, not a Hexen map that happens to come first.
-      const map = part ?? maps.find((m) => m.format === 'doom')?.name;
-      const things = options.skill !== undefined ? { things: { skill: options.skill } } : {};
-      const loaded = loadDoomMap(stack, map, { graphics, sprites, ...things, ...(onWarning ? { onWarning } : {}), ...(options.lightTable ? { lightTable: options.lightTable } : {}) });
-      if (loaded.failures.length > 0) onWarning?.(`${loaded.failures.length} sector(s) of ${loaded.map.name} could not be triangulated: ${loaded.failures.map((f) => `#${f.sector}`).join(', ')}`);
-      return loaded.scene;
+      const cap = options.onWarning ? new WarningCap(options.onWarning) : undefined;
+      const onWarning = cap?.warn;
+      current = onWarning;
+      try {
+        graphics ??= new DoomGraphics(stack, { onWarning: relay });
+        sprites ??= new SpriteSet(stack, graphics.palette, relay, graphics.texels);
+        // Without a part: the first map Lantern can build, not a Hexen map that happens to come first.
+        const map = part ?? maps.find((m) => m.format === 'doom')?.name;
+        const things = options.skill !== undefined ? { things: { skill: options.skill } } : {};
+        const loaded = loadDoomMap(stack, map, { graphics, sprites, ...things, ...(onWarning ? { onWarning } : {}), ...(options.lightTable ? { lightTable: options.lightTable } : {}) });
+        const failed = loaded.failures;
+        if (failed.length > 0) {
+          const listed = failed.slice(0, 20).map((f) => `#${f.sector}`).join(', ') + (failed.length > 20 ? ` and ${failed.length - 20} more` : '');
+          onWarning?.(`${failed.length} sector(s) of ${loaded.map.name} could not be triangulated: ${listed}`);
+        }
+        return loaded.scene;
+      } finally {
+        current = undefined;
+        cap?.finish();
+      }
     },
     inventory(options = {}) {
       const skill = options.skill ?? DEFAULT_SKILL;

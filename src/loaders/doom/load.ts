@@ -4,6 +4,7 @@
  * prints. Pure, like every loader.
  */
 import { LanternError } from '../../errors.ts';
+import { WarningCap } from '../../budgets.ts';
 import { DOOM_ANIMATIONS, readAnimatedLump, resolveCycles, type DoomCycles } from './animations.ts';
 import type { LightTable } from './light-table.ts';
 import { readMap } from './map-lumps.ts';
@@ -49,19 +50,26 @@ export function loadDoomMap(stack: WadStack, mapName: string | undefined, option
   if (!info) {
     throw new LanternError(`${stack.describe()} has no map '${mapName}'`, `Its maps are: ${maps.map((m) => m.name).join(', ')}`);
   }
-  const map = readMap(stack, info.name, options.onWarning ? { onWarning: options.onWarning } : {});
-  const graphics = options.graphics ?? new DoomGraphics(stack, options.onWarning ? { onWarning: options.onWarning } : {});
-  const sky = graphics.sky(info.name);
-  const sprites = options.sprites ?? new SpriteSet(stack, graphics.palette, options.onWarning);
-  const built = doomMapToScene(map, graphics, {
-    sprites,
-    ...(options.things ? { things: options.things } : {}),
-    ...(sky ? { sky } : {}),
-    cycles: doomCycles(stack, graphics, options.onWarning),
-    ...(options.lightTable ? { lightTable: options.lightTable } : {}),
-    ...(options.onWarning ? { onWarning: options.onWarning } : {}),
-  });
-  return { ...built, map: info, things: map.things.length, linedefs: map.linedefs.length };
+  // Warnings of one kind are capped (a broken WAD once printed 119,996 lines); the closing lines say how many were held back.
+  const cap = options.onWarning ? new WarningCap(options.onWarning) : undefined;
+  const onWarning = cap?.warn;
+  try {
+    const map = readMap(stack, info.name, onWarning ? { onWarning } : {});
+    const graphics = options.graphics ?? new DoomGraphics(stack, onWarning ? { onWarning } : {});
+    const sky = graphics.sky(info.name);
+    const sprites = options.sprites ?? new SpriteSet(stack, graphics.palette, onWarning, graphics.texels);
+    const built = doomMapToScene(map, graphics, {
+      sprites,
+      ...(options.things ? { things: options.things } : {}),
+      ...(sky ? { sky } : {}),
+      cycles: doomCycles(stack, graphics, onWarning),
+      ...(options.lightTable ? { lightTable: options.lightTable } : {}),
+      ...(onWarning ? { onWarning } : {}),
+    });
+    return { ...built, map: info, things: map.things.length, linedefs: map.linedefs.length };
+  } finally {
+    cap?.finish();
+  }
 }
 
 export interface MapSummary {
@@ -86,7 +94,7 @@ export interface MapSummary {
  */
 export function summarizeMaps(stack: WadStack, things: ThingOptions = {}): MapSummary[] {
   const graphics = new DoomGraphics(stack);
-  const sprites = new SpriteSet(stack, graphics.palette);
+  const sprites = new SpriteSet(stack, graphics.palette, undefined, graphics.texels);
   return stack.maps().map((info) => {
     try {
       const m = loadDoomMap(stack, info.name, { graphics, sprites, things });
@@ -103,8 +111,10 @@ export function summarizeMaps(stack: WadStack, things: ThingOptions = {}): MapSu
         failures: m.failures,
       };
     } catch (e) {
-      if (!(e instanceof LanternError)) throw e;
-      return { name: info.name, format: info.format, error: e.userMessage };
+      // Every map answers for itself: one that breaks the loader (a bug, or a stack overflow on a
+      // hostile map) is listed with its error and the other maps are still summarised.
+      const error = e instanceof LanternError ? e.userMessage : `internal error: ${e instanceof Error ? e.message : String(e)}`;
+      return { name: info.name, format: info.format, error };
     }
   });
 }

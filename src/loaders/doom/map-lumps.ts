@@ -16,6 +16,7 @@
  * Every index in the returned DoomMap is therefore in range (sidedefs may also be NO_SIDEDEF).
  */
 import { LanternError } from '../../errors.ts';
+import { checkLimit } from '../../budgets.ts';
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from './map-types.ts';
 import { NO_SIDEDEF } from './map-types.ts';
 import { readName, type MapLumps, type WadStack } from './wad.ts';
@@ -79,6 +80,7 @@ function lumpRecords(map: MapLumps, lump: MapLumpName, where: string): Records {
       'the map is corrupt or not in the Doom format',
     );
   }
+  checkLimit('mapRecords', bytes.length / size, `${where}: ${lump} records`);
   return { view: new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength), bytes, count: bytes.length / size, size };
 }
 

@@ -14,6 +14,7 @@
  * through `warn`; a sector that still cannot be triangulated is reported as a failure.
  */
 import earcut from 'earcut';
+import { limits } from '../../budgets.ts';
 import { NO_SIDEDEF, type DoomMap } from './map-types.ts';
 
 /** One piece of a sector: a counter-clockwise outer ring and the clockwise rings of its holes. */
@@ -73,12 +74,21 @@ export function buildSectorShapes(map: DoomMap, warn: (message: string) => void 
     // No edges at all: an unused sector, or one drawn only with self-referencing lines (a mapping
     // trick whose area belongs to the sector around it). Nothing to build, nothing wrong.
     let polygons: SectorPolygon[] = [];
-    if (edges.length > 0) {
-      const say = (m: string) => warn(`sector ${sector}: ${m}`);
-      polygons = nestLoops(traceLoops(repairChains(edges, points, say), points, say), say);
-      if (polygons.length === 0) failures.push({ sector, reason: `its ${edges.length} boundary lines enclose no area` });
+    let shape: SectorShape;
+    const work = new SectorWork(limits().sectorWork);
+    try {
+      if (edges.length > 0) {
+        const say = (m: string) => warn(`sector ${sector}: ${m}`);
+        polygons = nestLoops(traceLoops(repairChains(edges, points, say, work), points, say), say, work);
+        if (polygons.length === 0) failures.push({ sector, reason: `its ${edges.length} boundary lines enclose no area` });
+      }
+      shape = triangulate(sector, polygons, work);
+    } catch (e) {
+      if (!(e instanceof SectorOverBudget)) throw e;
+      failures.push({ sector, reason: `rebuilding its ${edges.length} boundary lines takes more than sectorWork=${work.limit} steps (raise it with --limits sectorWork=N)` });
+      shapes.push({ sector, vertices: new Float64Array(0), indices: new Uint32Array(0), area: 0, polygons: [] });
+      continue;
     }
-    const shape = triangulate(sector, polygons);
     const expected = polygons.reduce((sum, p) => sum + ringArea(p.outer) + p.holes.reduce((s, h) => s + ringArea(h), 0), 0);
     if (!(Math.abs(shape.area - expected) <= AREA_TOLERANCE * Math.abs(expected))) {
       failures.push({ sector, reason: `its triangles cover ${fmt(shape.area)} of its ${fmt(expected)} square units` });
@@ -185,54 +195,138 @@ function collectEdges(map: DoomMap, points: PointTable, warn: (m: string) => voi
  * A closed boundary enters and leaves every vertex equally often. Where it does not, chains end
  * loose: join each loose end to the nearest loose start within GAP_TOLERANCE (nearest pairs first),
  * then drop what still dangles, repeatedly, since dropping one line can leave another loose.
+ *
+ * Candidate pairs come from a grid of GAP_TOLERANCE-sized cells (only the 3×3 cells around an end
+ * can hold a start close enough), and the dangling lines are peeled off with a work list, so a
+ * sector with 20,000 loose segments costs about its size, not its size squared; each candidate
+ * pair is charged to the sector's work budget.
  */
-function repairChains(edges: readonly Edge[], points: PointTable, say: (m: string) => void): Edge[] {
+function repairChains(edges: readonly Edge[], points: PointTable, say: (m: string) => void, work: SectorWork): Edge[] {
   const balance = new Map<number, number>(); // out − in
   for (const e of edges) {
     balance.set(e.from, (balance.get(e.from) ?? 0) + 1);
     balance.set(e.to, (balance.get(e.to) ?? 0) - 1);
   }
-  const starts: number[] = [];
-  const ends: number[] = [];
-  for (const [v, b] of balance) for (let i = 0; i < Math.abs(b); i++) (b > 0 ? starts : ends).push(v);
-  if (starts.length === 0) return [...edges];
+  // Loose starts and ends with their multiplicity, and each one's rank (the order ties are broken in).
+  const startsLeft = new Map<number, number>();
+  const endsLeft = new Map<number, number>();
+  for (const [v, b] of balance) {
+    if (b > 0) startsLeft.set(v, b);
+    else if (b < 0) endsLeft.set(v, -b);
+  }
+  if (startsLeft.size === 0) return [...edges];
 
+  const cell = (x: number, y: number) => `${Math.floor(x / GAP_TOLERANCE)},${Math.floor(y / GAP_TOLERANCE)}`;
+  const grid = new Map<string, number[]>();
+  const startRank = new Map<number, number>();
+  for (const start of startsLeft.keys()) {
+    startRank.set(start, startRank.size);
+    const key = cell(points.xs[start]!, points.ys[start]!);
+    const list = grid.get(key);
+    if (list) list.push(start);
+    else grid.set(key, [start]);
+  }
   const result = [...edges];
-  const pairs: Array<{ end: number; start: number; d: number }> = [];
-  for (const end of new Set(ends)) {
-    for (const start of new Set(starts)) {
-      const d = Math.hypot(points.xs[end]! - points.xs[start]!, points.ys[end]! - points.ys[start]!);
-      if (d <= GAP_TOLERANCE) pairs.push({ end, start, d });
+  // Candidate pairs in parallel arrays (a sector near its work budget has millions of them).
+  const pairEnd: number[] = [];
+  const pairStart: number[] = [];
+  const pairD: number[] = [];
+  const pairRank: number[] = [];
+  let endRank = 0;
+  for (const end of endsLeft.keys()) {
+    const [ex, ey] = [points.xs[end]!, points.ys[end]!];
+    const [cx, cy] = [Math.floor(ex / GAP_TOLERANCE), Math.floor(ey / GAP_TOLERANCE)];
+    for (let dx = -1; dx <= 1; dx++) {
+      for (let dy = -1; dy <= 1; dy++) {
+        const list = grid.get(`${cx + dx},${cy + dy}`);
+        if (!list) continue;
+        work.spend(list.length);
+        for (const start of list) {
+          const d = Math.hypot(ex - points.xs[start]!, ey - points.ys[start]!);
+          if (d <= GAP_TOLERANCE) {
+            pairEnd.push(end);
+            pairStart.push(start);
+            pairD.push(d);
+            pairRank.push(endRank * startRank.size + startRank.get(start)!);
+          }
+        }
+      }
     }
+    endRank++;
   }
-  pairs.sort((p, q) => p.d - q.d);
-  const left = (list: number[], v: number) => list.indexOf(v) >= 0;
-  for (const p of pairs) {
-    if (!left(ends, p.end) || !left(starts, p.start)) continue;
-    ends.splice(ends.indexOf(p.end), 1);
-    starts.splice(starts.indexOf(p.start), 1);
-    result.push({ from: p.end, to: p.start, line: -1 });
-    say(`unclosed boundary: joined ${points.describe(p.end)} to ${points.describe(p.start)} (a gap of ${fmt(p.d)} units)`);
+  // Nearest first; equal gaps in the order of the ends, then the starts, as they were first seen.
+  const order = Uint32Array.from(pairD.keys()).sort((p, q) => pairD[p]! - pairD[q]! || pairRank[p]! - pairRank[q]!);
+  let startsOpen = 0;
+  for (const n of startsLeft.values()) startsOpen += n;
+  for (const p of order) {
+    const [end, start] = [pairEnd[p]!, pairStart[p]!];
+    const e = endsLeft.get(end)!;
+    const s = startsLeft.get(start)!;
+    if (e === 0 || s === 0) continue;
+    endsLeft.set(end, e - 1);
+    startsLeft.set(start, s - 1);
+    startsOpen--;
+    result.push({ from: end, to: start, line: -1 });
+    say(`unclosed boundary: joined ${points.describe(end)} to ${points.describe(start)} (a gap of ${fmt(pairD[p]!)} units)`);
   }
-  if (starts.length === 0) return result;
+  if (startsOpen === 0) return result;
 
   // Drop dangling lines: those leaving a vertex nothing enters, or entering one nothing leaves.
-  let kept = result;
-  for (;;) {
-    const ins = new Map<number, number>();
-    const outs = new Map<number, number>();
-    for (const e of kept) {
-      outs.set(e.from, (outs.get(e.from) ?? 0) + 1);
-      ins.set(e.to, (ins.get(e.to) ?? 0) + 1);
-    }
-    const next = kept.filter((e) => ins.has(e.from) && outs.has(e.to));
-    if (next.length === kept.length) break;
-    kept = next;
+  // Peeled with a work list: removing a line can only strand the lines at its two vertices.
+  const ins = new Map<number, number>();
+  const outs = new Map<number, number>();
+  const leaving = new Map<number, number[]>();
+  const entering = new Map<number, number[]>();
+  result.forEach((e, i) => {
+    outs.set(e.from, (outs.get(e.from) ?? 0) + 1);
+    ins.set(e.to, (ins.get(e.to) ?? 0) + 1);
+    (leaving.get(e.from) ?? leaving.set(e.from, []).get(e.from)!).push(i);
+    (entering.get(e.to) ?? entering.set(e.to, []).get(e.to)!).push(i);
+  });
+  const alive = new Uint8Array(result.length).fill(1);
+  const queue: number[] = [];
+  result.forEach((e, i) => {
+    if (!ins.get(e.from) || !outs.get(e.to)) queue.push(i);
+  });
+  while (queue.length > 0) {
+    const i = queue.pop()!;
+    if (!alive[i]) continue;
+    const e = result[i]!;
+    if (ins.get(e.from)! > 0 && outs.get(e.to)! > 0) continue;
+    alive[i] = 0;
+    work.spend(1);
+    const outsLeft = outs.get(e.from)! - 1;
+    const insLeft = ins.get(e.to)! - 1;
+    outs.set(e.from, outsLeft);
+    ins.set(e.to, insLeft);
+    if (outsLeft === 0) for (const j of entering.get(e.from) ?? []) if (alive[j]) queue.push(j);
+    if (insLeft === 0) for (const j of leaving.get(e.to) ?? []) if (alive[j]) queue.push(j);
   }
-  const dropped = result.filter((e) => !kept.includes(e)).map((e) => e.line);
-  if (dropped.length > 0) say(`unclosed boundary: dropped dangling linedef${dropped.length > 1 ? 's' : ''} ${dropped.join(', ')}`);
+  const kept = result.filter((_, i) => alive[i]);
+  const dropped = result.filter((_, i) => !alive[i]).map((e) => e.line);
+  if (dropped.length > 0) say(`unclosed boundary: dropped dangling linedef${dropped.length > 1 ? 's' : ''} ${listSome(dropped)}`);
   return kept;
 }
+
+/** At most 20 numbers, then how many more: a message quoting 20,000 linedefs helps nobody. */
+function listSome(items: readonly number[]): string {
+  return items.length <= 20 ? items.join(', ') : `${items.slice(0, 20).join(', ')} and ${items.length - 20} more`;
+}
+
+/**
+ * The work one sector's repair and nesting may do (candidate pairs, lines peeled, ring vertices
+ * tested). Past the limit the sector is reported as failed and the rest of the map still loads.
+ */
+class SectorWork {
+  private spent = 0;
+  constructor(readonly limit: number) {}
+  spend(n: number): void {
+    this.spent += n;
+    if (this.spent > this.limit) throw new SectorOverBudget();
+  }
+}
+
+class SectorOverBudget extends Error {}
 
 /**
  * Chains edges into closed loops. At a vertex where several boundaries meet (two rooms of one sector
@@ -279,7 +373,7 @@ function traceLoops(edges: readonly Edge[], points: PointTable, say: (m: string)
       }
       if (best < 0) {
         const lines = path.map((i) => edges[i]!.line).filter((l) => l >= 0);
-        say(`unclosed boundary: linedefs ${lines.join(', ')} lead nowhere; dropped`);
+        say(`unclosed boundary: linedefs ${listSome(lines)} lead nowhere; dropped`);
         break;
       }
       used[best] = true;
@@ -296,7 +390,7 @@ function traceLoops(edges: readonly Edge[], points: PointTable, say: (m: string)
  * surrounds another part of the same sector). A hole nothing surrounds is an outer boundary drawn
  * with its sidedefs on the wrong side; we flip it.
  */
-function nestLoops(loops: readonly number[][], say: (m: string) => void): SectorPolygon[] {
+function nestLoops(loops: readonly number[][], say: (m: string) => void, work: SectorWork): SectorPolygon[] {
   const outers: Array<{ ring: number[]; area: number; holes: number[][] }> = [];
   const holes: number[][] = [];
   for (const ring of loops) {
@@ -309,7 +403,10 @@ function nestLoops(loops: readonly number[][], say: (m: string) => void): Sector
   outers.sort((a, b) => a.area - b.area);
   for (const hole of holes) {
     const [px, py] = probeOutside(hole);
-    const parent = outers.find((o) => pointInRing(o.ring, px, py));
+    const parent = outers.find((o) => {
+      work.spend(o.ring.length / 2);
+      return pointInRing(o.ring, px, py);
+    });
     if (parent) parent.holes.push(hole);
     else {
       say(`a boundary at (${hole[0]}, ${hole[1]}) runs clockwise with nothing around it; treated as an outer boundary`);
@@ -365,23 +462,26 @@ function reverseRing(ring: readonly number[]): number[] {
   return out;
 }
 
-function triangulate(sector: number, polygons: readonly SectorPolygon[]): SectorShape {
+function triangulate(sector: number, polygons: readonly SectorPolygon[], work: SectorWork): SectorShape {
   const vertices: number[] = [];
   const indices: number[] = [];
   let area = 0;
   for (const p of polygons) {
     const base = vertices.length / 2;
     const holeStarts: number[] = [];
-    const coords = [...p.outer];
+    // Appended element by element: push(...ring) with a 65k-vertex ring overflows the call stack.
+    const coords = p.outer.slice();
     for (const h of p.holes) {
       holeStarts.push(coords.length / 2);
-      coords.push(...h);
+      for (const c of h) coords.push(c);
     }
     const expected = ringArea(p.outer) + p.holes.reduce((sum, h) => sum + ringArea(h), 0);
+    // earcut bridges each hole to the outer ring by a scan of the ring: about vertices × holes steps.
+    work.spend((coords.length / 2) * (holeStarts.length + 1));
     const piece = earcutChecked(coords, holeStarts, expected);
     area += piece.area;
     for (const i of piece.triangles) indices.push(base + i);
-    vertices.push(...coords);
+    for (const c of coords) vertices.push(c);
   }
   return { sector, vertices: new Float64Array(vertices), indices: new Uint32Array(indices), area, polygons };
 }
@@ -407,7 +507,10 @@ function earcutChecked(coords: readonly number[], holeStarts: readonly number[],
   let best = { triangles: [] as number[], area: 0 };
   for (const turn of TURNS) {
     const turned: number[] = [];
-    for (let i = 0; i < coords.length; i += 2) turned.push(...turn(coords[i]!, coords[i + 1]!));
+    for (let i = 0; i < coords.length; i += 2) {
+      const [x, y] = turn(coords[i]!, coords[i + 1]!);
+      turned.push(x, y);
+    }
     const tris = earcut(turned, holeStarts);
     const triangles: number[] = [];
     let area = 0;

@@ -9,7 +9,8 @@
  */
 import { LanternError } from '../../errors.ts';
 import type { Palette } from './palette.ts';
-import { decodePicture, type Picture } from './picture.ts';
+import type { Budget } from '../../budgets.ts';
+import { decodePicture, readPictureHeader, type Picture } from './picture.ts';
 import type { WadStack } from './wad.ts';
 
 export interface SpriteLumpName {
@@ -76,6 +77,8 @@ export class SpriteSet implements SpriteSource {
     private readonly stack: WadStack,
     private readonly palette: Palette,
     private readonly warn: (message: string) => void = () => {},
+    /** Shared with the textures (DoomGraphics.texels) so one budget bounds every picture of a load. */
+    private readonly texels?: Budget,
   ) {
     for (const [name, ref] of stack.namespace('sprites')) {
       const parsed = parseSpriteLumpName(name);
@@ -103,7 +106,10 @@ export class SpriteSet implements SpriteSource {
       let picture: Picture | undefined;
       if (ref) {
         try {
-          picture = decodePicture(ref.file.data(ref.lump), lump, this.palette, this.warn);
+          const bytes = ref.file.data(ref.lump);
+          const header = readPictureHeader(bytes, lump);
+          this.texels?.add(header.width * header.height, `sprite ${lump}, ${header.width}×${header.height}`);
+          picture = decodePicture(bytes, lump, this.palette, this.warn);
         } catch (e) {
           if (!(e instanceof LanternError)) throw e;
           this.warn(`sprite ${lump} in ${ref.file.name}: ${e.message}; not drawn`);

@@ -16,6 +16,7 @@
  * costs a warning and the damaged part; the header of a whole lump being unreadable is an error.
  */
 import { LanternError } from '../../errors.ts';
+import { Budget } from '../../budgets.ts';
 import type { Texture } from '../../scene/types.ts';
 import type { DoomImageSource } from './map-types.ts';
 import { readPalette, type Palette } from './palette.ts';
@@ -52,6 +53,11 @@ export class DoomGraphics implements DoomImageSource {
   private readonly patches = new Map<number, ResolvedPatch>();
   private readonly textures = new Map<string, Texture | undefined>();
   private readonly flats = new Map<string, Texture | undefined>();
+  /**
+   * Texels composed so far (textures, flats, and the sprites of a SpriteSet given this budget),
+   * charged before each image is allocated: a 23 KB WAD can ask for 48 textures of 4096².
+   */
+  readonly texels = new Budget('textureTexels', 'texture texels');
 
   constructor(stack: WadStack, options: DoomGraphicsOptions = {}) {
     this.stack = stack;
@@ -115,6 +121,7 @@ export class DoomGraphics implements DoomImageSource {
 
   private compose(def: TextureDefinition): Texture {
     const { name, width, height } = def;
+    this.texels.add(width * height, `texture ${name}, ${width}×${height}`);
     const rgba = new Uint8Array(width * height * 4);
     const target = { width, height, pixels: new Uint32Array(rgba.buffer) };
     for (const placement of def.patches) {
@@ -160,6 +167,7 @@ export class DoomGraphics implements DoomImageSource {
       return undefined;
     }
     const [width, height] = size;
+    this.texels.add(width * height, `flat ${name}, ${width}×${height}`);
     const rgba = new Uint8Array(width * height * 4);
     const pixels = new Uint32Array(rgba.buffer);
     const colors = this.palette.packed;

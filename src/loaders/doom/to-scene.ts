@@ -269,9 +269,10 @@ function playerCamera(map: DoomMap, shapes: SectorShapes, warn: (m: string) => v
   let x: number, y: number, angle: number;
   if (start) [x, y, angle] = [start.x, start.y, start.angle];
   else {
-    const xs = map.vertices.map((v) => v.x);
-    const ys = map.vertices.map((v) => v.y);
-    [x, y, angle] = [(Math.min(...xs) + Math.max(...xs)) / 2, (Math.min(...ys) + Math.max(...ys)) / 2, 0];
+    // A loop, not Math.min(...xs): spreading 140k arguments overflows the call stack.
+    let [minX, minY, maxX, maxY] = [Infinity, Infinity, -Infinity, -Infinity];
+    for (const v of map.vertices) [minX, minY, maxX, maxY] = [Math.min(minX, v.x), Math.min(minY, v.y), Math.max(maxX, v.x), Math.max(maxY, v.y)];
+    [x, y, angle] = map.vertices.length > 0 ? [(minX + maxX) / 2, (minY + maxY) / 2, 0] : [0, 0, 0];
     warn(`${map.name} has no player 1 start; the camera stands in the middle of the map, looking east`);
   }
   const sector = sectorAt(shapes, x, y) ?? nearestSector(shapes, x, y);
@@ -316,7 +317,7 @@ class MeshParts {
   vertex(p: Vec3, uv: readonly [number, number], motion: VertexMotion = [0, 0, 0, 0]): void {
     this.positions.push(p[0], p[1], p[2]);
     this.uvs.push(uv[0], uv[1]);
-    if (this.moves) this.motions.push(...motion);
+    if (this.moves) this.motions.push(motion[0], motion[1], motion[2], motion[3]);
   }
   triangle(a: number, b: number, c: number, material: number): void {
     this.indices.push(a, b, c);

@@ -1,4 +1,5 @@
 /** The glTF 2.0 entry of the loader registry: a .glb, or a .gltf with its .bin and images beside it. */
+import { WarningCap } from '../../budgets.ts';
 import type { SceneFormat } from '../format.ts';
 import { gltfSiblings, sniffGltf } from './document.ts';
 import { loadGltf } from './index.ts';
@@ -21,7 +22,13 @@ export const GLTF_FORMAT: SceneFormat = {
       parts: [],
       scene: async (_part, sceneOptions = options) => {
         const scene = await loadGltf(file, set.resolve);
-        for (const w of scene.warnings ?? []) sceneOptions.onWarning?.(w);
+        // Capped per kind: a file with thousands of unsupported materials would print thousands of lines.
+        const onWarning = sceneOptions.onWarning;
+        if (onWarning) {
+          const cap = new WarningCap(onWarning);
+          for (const w of scene.warnings ?? []) cap.warn(w);
+          cap.finish();
+        }
         return scene;
       },
     };

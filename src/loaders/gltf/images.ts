@@ -5,6 +5,7 @@
  * substitutes a neutral texture and warns.
  */
 import { decode as decodeJpeg } from 'jpeg-js';
+import { limits } from '../../budgets.ts';
 import { decodePng } from '../../image/png.ts';
 
 export interface DecodedImage {
@@ -17,8 +18,6 @@ export type ImageDecodeResult = { readonly ok: true; readonly image: DecodedImag
 
 const PNG_SIGNATURE = [0x89, 0x50, 0x4e, 0x47];
 const JPEG_SIGNATURE = [0xff, 0xd8, 0xff];
-/** jpeg-js refuses images above this many megapixels unless told; a 16k × 16k texture is the sane limit. */
-const MAX_JPEG_MEGAPIXELS = 268;
 
 export function decodeImage(bytes: Uint8Array, name: string): ImageDecodeResult {
   try {
@@ -27,7 +26,7 @@ export function decodeImage(bytes: Uint8Array, name: string): ImageDecodeResult 
       return { ok: true, image: { width: png.width, height: png.height, rgba: png.data } };
     }
     if (startsWith(bytes, JPEG_SIGNATURE)) {
-      const img = decodeJpeg(bytes, { useTArray: true, formatAsRGBA: true, maxResolutionInMP: MAX_JPEG_MEGAPIXELS });
+      const img = decodeJpeg(bytes, { useTArray: true, formatAsRGBA: true, maxResolutionInMP: limits().imagePixels / 1e6, maxMemoryUsageInMB: Math.ceil((limits().imagePixels * 8) / 2 ** 20) });
       return { ok: true, image: { width: img.width, height: img.height, rgba: new Uint8Array(img.data.buffer, img.data.byteOffset, img.data.byteLength) } };
     }
   } catch (e) {

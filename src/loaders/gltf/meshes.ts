@@ -78,10 +78,18 @@ async function convertPrimitive(prim: Primitive, meshName: string, ctx: MeshCont
     indices,
     materialId: ctx.materialId(material),
   };
-  const normal = prim.getAttribute('NORMAL');
-  const uv0 = prim.getAttribute('TEXCOORD_0');
-  const uv1 = prim.getAttribute('TEXCOORD_1');
-  const tangent = prim.getAttribute('TANGENT');
+  // Every attribute must have POSITION's count (glTF 2.0 §3.7.2.1); one that does not (a damaged
+  // file: the fuzzer found it) would be read past its end, so it is left out with a warning.
+  const attribute = (semantic: string) => {
+    const a = prim.getAttribute(semantic);
+    if (!a || a.getCount() === vertexCount) return a ?? undefined;
+    ctx.warnings.add(`mesh '${meshName}' has ${a.getCount()} ${semantic} values for ${vertexCount} vertices; ${semantic} is ignored there`);
+    return undefined;
+  };
+  const normal = attribute('NORMAL');
+  const uv0 = attribute('TEXCOORD_0');
+  const uv1 = attribute('TEXCOORD_1');
+  const tangent = attribute('TANGENT');
   if (normal) part.normals = normalizeAll(readFloats(normal, 3));
   if (uv0) part.uvs = readFloats(uv0, 2);
   if (uv1) part.uvs1 = readFloats(uv1, 2);

@@ -59,7 +59,8 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
   let camera: Camera | undefined;
   let extraIds = 0;
 
-  const visit = async (node: Node, parent: Mat4): Promise<void> => {
+  /** Places one node's mesh, camera and light; returns its world-from-object transform for its children. */
+  const visit = async (node: Node, parent: Mat4): Promise<Mat4> => {
     const worldFromObject = multiply(parent, node.getMatrix());
     const index = nodeIndex.get(node) ?? -1;
     const mesh = node.getMesh();
@@ -89,10 +90,25 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
     if (cam && !camera) camera = convertCamera(cam, worldFromObject, warnings);
     const light = node.getExtension<Light>('KHR_lights_punctual');
     if (light) lights.push(convertLight(light, worldFromObject, `light ${lights.length}`));
-    for (const child of node.listChildren()) await visit(child, worldFromObject);
+    return worldFromObject;
   };
+  // Depth first in file order with an explicit stack: recursion as deep as the node hierarchy
+  // overflows the call stack on a chain of a few thousand nodes. A node reached twice (the
+  // hierarchy must be trees) is placed once, so a cycle ends.
   const identity: Mat4 = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
-  for (const node of gltfScene.listChildren()) await visit(node, identity);
+  const pending: Array<{ node: Node; parent: Mat4 }> = gltfScene.listChildren().map((node) => ({ node, parent: identity })).reverse();
+  const placed = new Set<Node>();
+  while (pending.length > 0) {
+    const { node, parent } = pending.pop()!;
+    if (placed.has(node)) {
+      warnings.add(`node ${nodeIndex.get(node) ?? -1} is reached twice in the node hierarchy; it is placed once`);
+      continue;
+    }
+    placed.add(node);
+    const worldFromObject = await visit(node, parent);
+    const children = node.listChildren();
+    for (let i = children.length - 1; i >= 0; i--) pending.push({ node: children[i]!, parent: worldFromObject });
+  }
 
   if (instances.length === 0) {
     const missing = [...new Set(source.missingData.flat().filter((u) => u !== undefined))];

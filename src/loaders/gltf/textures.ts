@@ -9,6 +9,8 @@
  */
 import type { Texture as GltfTexture, TextureInfo } from '@gltf-transform/core';
 import type { Transform } from '@gltf-transform/extensions';
+import { Budget } from '../../budgets.ts';
+import { LanternError } from '../../errors.ts';
 import type { Texture, TextureEncoding, TextureRef, UvTransform } from '../../scene/types.ts';
 import { decodeImage, type DecodedImage } from './images.ts';
 import type { Warnings } from './warnings.ts';
@@ -48,6 +50,22 @@ export class TextureTable {
     return { texture: index, ...(texCoord === 1 ? { texCoord: 1 as const } : {}), ...(uv && !isIdentityTransform(uv) ? { transform: uv } : {}) };
   }
 
+  /**
+   * Counts a decoded image against the textureTexels limit (each image is already held to
+   * imagePixels by its header); past it the image is dropped and the reason returned.
+   */
+  private chargeTexels(image: DecodedImage, imageName: string): string | undefined {
+    try {
+      this.texels.add(image.width * image.height, `${imageName}, ${image.width}×${image.height}`);
+      return undefined;
+    } catch (e) {
+      if (e instanceof LanternError) return e.message;
+      throw e;
+    }
+  }
+
+  private readonly texels = new Budget('textureTexels', 'texture texels');
+
   private textureFor(texture: GltfTexture, use: TextureUse, materialName: string): number {
     const i = this.gltfIndex.get(texture) ?? -1;
     const encoding: TextureEncoding = use === 'color' ? 'srgb' : 'linear';
@@ -62,8 +80,9 @@ export class TextureTable {
     } else {
       const bytes = texture.getImage();
       const result = bytes && bytes.length > 0 ? decodeImage(bytes, imageName) : { ok: false as const, reason: 'it is empty' };
-      if (result.ok) decoded = result.image;
-      else this.warnings.add(`texture ${imageName} (material '${materialName}') is replaced by a neutral one: ${result.reason}`);
+      const refused = result.ok ? this.chargeTexels(result.image, imageName) : result.reason;
+      if (result.ok && !refused) decoded = result.image;
+      else this.warnings.add(`texture ${imageName} (material '${materialName}') is replaced by a neutral one: ${refused}`);
     }
     const name = encoding === 'linear' && use !== 'normal' ? `${imageName} (linear)` : use === 'normal' ? `${imageName} (normal)` : imageName;
     const out: Texture = decoded

@@ -92,6 +92,9 @@ export function bondCapsules(molecule: Molecule, bondIndex: number): BondCapsule
 function sideDirection(molecule: Molecule, bond: Bond): Vec3 {
   const pa = molecule.atoms[bond.a]!.position;
   const pb = molecule.atoms[bond.b]!.position;
+  // Two bonded atoms at one place (a damaged file; the fuzzer found it) give the bond no direction,
+  // and any side will do.
+  if (!(length(sub(pb, pa)) > 0)) return [1, 0, 0];
   const axis = normalize(sub(pb, pa));
   const neighbours = molecule.bonds
     .filter((o) => o !== bond && (o.a === bond.a || o.b === bond.a || o.a === bond.b || o.b === bond.b))
@@ -105,7 +108,9 @@ function sideDirection(molecule: Molecule, bond: Bond): Vec3 {
   }
   // No neighbour off the bond's line: any perpendicular, from the world axis least along the bond.
   const least: Vec3 = Math.abs(axis[0]) < 0.6 ? [1, 0, 0] : Math.abs(axis[1]) < 0.6 ? [0, 1, 0] : [0, 0, 1];
-  return normalize(cross(axis, least));
+  const side = cross(axis, least);
+  // Coordinates near the float range (1e308, found by the fuzzer) can still cancel to nothing.
+  return length(side) > 0 ? normalize(side) : [1, 0, 0];
 }
 
 const touches = (bond: Bond, atom: number) => bond.a === atom || bond.b === atom;

@@ -4,6 +4,7 @@
  * properties, lists included, are skipped in step with the data.
  */
 import { LanternError } from '../../errors.ts';
+import { limits } from '../../budgets.ts';
 import { SCALAR_SIZE, type PlyElement, type PlyListProperty, type PlyScalarType } from './header.ts';
 import { BinaryReader, getScalar, PlyBadValue, PlyEndOfData, readListCount, type ValueReader } from './readers.ts';
 
@@ -166,6 +167,7 @@ export function readFaces(reader: ValueReader, element: PlyElement, vertexCount:
   // Sized for all-triangle meshes, the common case; polygons grow it.
   let indices: Uint32Array = new Uint32Array(element.count * 3);
   let n = 0, skipped = 0;
+  const maxCorners = limits().polygonVertices;
   const index = (): number => {
     const v = reader.read(list.itemType);
     if (!(v >= 0 && v < vertexCount && Number.isInteger(v))) throw outOfRange(v, vertexCount);
@@ -181,6 +183,7 @@ export function readFaces(reader: ValueReader, element: PlyElement, vertexCount:
         continue;
       }
       const m = readListCount(reader, list);
+      if (m > maxCorners) throw tooManyCorners(m, maxCorners);
       if (m < 3) {
         reader.skip(list.itemType, m);
         skipped++;
@@ -213,6 +216,7 @@ function readBinaryFaceList(reader: BinaryReader, list: PlyListProperty, count: 
   const countType = list.countType, itemType = list.itemType;
   let indices: Uint32Array = new Uint32Array(count * 3);
   let n = 0, skipped = 0, pos = reader.pos;
+  const maxCorners = limits().polygonVertices;
   const index = (at: number): number => {
     const v = getScalar(view, at, itemType, little);
     if (!(v >= 0 && v < vertexCount && Number.isInteger(v))) throw outOfRange(v, vertexCount);
@@ -225,6 +229,7 @@ function readBinaryFaceList(reader: BinaryReader, list: PlyListProperty, count: 
     if (m < 0) throw new PlyBadValue(`list '${list.name}' has an invalid entry count ${m}`);
     pos += countSize;
     if (pos + m * itemSize > end) throw new PlyEndOfData();
+    if (m > maxCorners) throw tooManyCorners(m, maxCorners);
     if (m < 3) {
       pos += m * itemSize;
       skipped++;
@@ -254,3 +259,7 @@ function grow(a: Uint32Array, needed: number): Uint32Array {
 
 const outOfRange = (v: number, vertexCount: number): PlyBadValue =>
   new PlyBadValue(`vertex index ${v} is out of range (the file has ${vertexCount} vertices)`);
+
+/** A polygon past the limit: fanned into triangles it would multiply the mesh. */
+const tooManyCorners = (m: number, max: number): PlyBadValue =>
+  new PlyBadValue(`a face has ${m} corners, over the limit polygonVertices=${max} (raise it with --limits polygonVertices=N)`);

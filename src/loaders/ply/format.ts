@@ -1,6 +1,6 @@
 /** The PLY entry of the loader registry: one mesh per file, plain or gzip-compressed. */
 import { Gunzip } from 'fflate';
-import type { SceneFormat } from '../format.ts';
+import { SNIFF_BYTES, type SceneFormat } from '../format.ts';
 import { loadPly } from './ply.ts';
 
 const PLY_MAGIC = [0x70, 0x6c, 0x79]; // "ply", then "\n" or "\r\n"
@@ -17,9 +17,11 @@ function gzippedPly(head: Uint8Array): boolean {
   if (head[0] !== 0x1f || head[1] !== 0x8b) return false;
   let first: Uint8Array | undefined;
   try {
+    // Only the first bytes: callers may pass the whole file, and inflating all of a gzip bomb here
+    // would take its full size before the loader's limit is ever checked.
     new Gunzip((chunk) => {
       first ??= chunk;
-    }).push(head, false);
+    }).push(head.subarray(0, SNIFF_BYTES), false);
   } catch {
     return false;
   }

@@ -3,8 +3,9 @@
  * (either endianness) file, optionally gzip-compressed. Everything else in the file is skipped.
  * Pure: bytes in, Scene out; runs in Node, the browser and Web Workers alike.
  */
-import { gunzipSync } from 'fflate';
 import { LanternError } from '../../errors.ts';
+import { checkLimit } from '../../budgets.ts';
+import { gunzipCapped, isGzip } from '../gzip.ts';
 import { studioScene } from '../../scene/studio.ts';
 import { diffuse, type Material, type Mesh, type Scene } from '../../scene/types.ts';
 import { parsePlyHeader, SCALAR_SIZE, type PlyElement, type PlyHeader, type PlyProperty } from './header.ts';
@@ -41,6 +42,8 @@ export function parsePly(input: Uint8Array, name: string): ParsedPly {
     throw new LanternError(`${name}: the PLY file has no faces (no 'face' element)`, 'Lantern renders triangle meshes, not point clouds');
   }
   checkMinimumSize(bytes.length - header.bodyOffset, header, name);
+  checkLimit('vertices', vertexElement.count, `${name}: vertices`);
+  checkLimit('faces', faceElement.count, `${name}: faces`);
 
   const reader: ValueReader =
     header.format === 'ascii'
@@ -81,17 +84,7 @@ export function parsePly(input: Uint8Array, name: string): ParsedPly {
 }
 
 function maybeGunzip(bytes: Uint8Array, name: string): Uint8Array {
-  if (bytes[0] !== 0x1f || bytes[1] !== 0x8b) return bytes;
-  // gunzip pre-allocates the size stored in the last 4 bytes; deflate cannot expand more than ~1032×,
-  // so a larger claim means a corrupt file, and believing it could mean allocating gigabytes.
-  const n = bytes.length;
-  const claimed = n >= 4 ? (bytes[n - 4]! | (bytes[n - 3]! << 8) | (bytes[n - 2]! << 16) | (bytes[n - 1]! << 24)) >>> 0 : 0;
-  if (claimed > n * 1032 + 1024) throw new LanternError(`${name}: corrupt gzip data (it claims to expand to ${claimed} bytes)`);
-  try {
-    return gunzipSync(bytes);
-  } catch (e) {
-    throw new LanternError(`${name}: could not decompress the gzip data (${(e as Error).message})`, 'the file may be truncated', { cause: e });
-  }
+  return isGzip(bytes) ? gunzipCapped(bytes, name) : bytes;
 }
 
 /**

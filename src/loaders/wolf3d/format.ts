@@ -160,8 +160,8 @@ function openGame(game: WolfGame, description: string): OpenedScene {
         try {
           return { ...info, ...countTiles(game.map(info.id)) };
         } catch (e) {
-          if (e instanceof LanternError) return { ...info, error: e.message };
-          throw e;
+          // Each map answers for itself, as in the Doom listing: a bug on one map is that map's line.
+          return { ...info, error: e instanceof LanternError ? e.message : `internal error: ${e instanceof Error ? e.message : String(e)}` };
         }
       });
       const lines = [

@@ -1,0 +1,177 @@
+/**
+ * The large or degenerate inputs of issue 17's table, built in code: each one once crashed, hung or
+ * took gigabytes. They are legal (or nearly) files, so they test sizes and shapes, not parsing.
+ */
+import { gzipSync } from 'node:zlib';
+import { encodeExr } from '../../src/image/exr.ts';
+import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from '../../src/loaders/doom/map-types.ts';
+import { NO_SIDEDEF } from '../../src/loaders/doom/map-types.ts';
+import { encodeFlat, encodeMap, encodePalette, encodePatch, encodePnames, encodeTextureLump, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
+
+const room = (floorFlat = 'FLOOR'): Sector => ({ floorHeight: 0, ceilingHeight: 128, floorFlat, ceilingFlat: 'FLOOR', lightLevel: 160, special: 0, tag: 0 });
+const side = (sector: number, middle = '-'): Sidedef => ({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle, sector });
+const line = (v1: number, v2: number, front: number, back = NO_SIDEDEF): Linedef => ({ v1, v2, flags: back === NO_SIDEDEF ? 1 : 4, special: 0, tag: 0, front, back });
+const PLAYER = (x: number, y: number): Thing => ({ x, y, angle: 90, type: 1, flags: 7 });
+
+/** A WAD of the maps with the palette and one flat (FLOOR) they name, so the whole Doom pipeline runs. */
+export function wadOf(maps: readonly DoomMap[], extra: (w: WadBuilder) => void = () => {}): Uint8Array {
+  const w = new WadBuilder().lump('PLAYPAL', encodePalette());
+  for (const m of maps) w.lumps(encodeMap(m));
+  extra(w);
+  return w.marker('F_START').lump('FLOOR', encodeFlat(7)).marker('F_END').build('IWAD');
+}
+
+/**
+ * One sector whose boundary has `n` vertices: a rectangle whose bottom edge is cut into n − 3 unit
+ * segments. Its sidedefs are shared (one per sector, as packed WADs do), so n may reach 65,535.
+ */
+export function bigSectorMap(n: number): DoomMap {
+  const w = n - 3;
+  const vertices: MapVertex[] = [{ x: 0, y: 0 }, { x: 0, y: 1000 }, { x: w, y: 1000 }];
+  for (let x = w; x >= 1; x--) vertices.push({ x, y: 0 });
+  // Clockwise: the inside is on the right, where the front sidedef faces.
+  const linedefs = vertices.map((_, i) => line(i, (i + 1) % vertices.length, 0));
+  return { name: 'MAP01', vertices, linedefs, sidedefs: [side(0, 'WALL')], sectors: [room()], things: [PLAYER(w / 2, 500)] };
+}
+
+/** A square room plus `extra` vertices no line uses, and no player start: the camera is placed from all vertices. */
+export function noPlayerStartMap(extra: number): DoomMap {
+  const vertices: MapVertex[] = [{ x: 0, y: 0 }, { x: 0, y: 256 }, { x: 256, y: 256 }, { x: 256, y: 0 }];
+  for (let i = 0; i < extra; i++) vertices.push({ x: (i * 7919) % 512 - 128, y: (i * 104729) % 512 - 128 });
+  const linedefs = [0, 1, 2, 3].map((i) => line(i, (i + 1) % 4, 0));
+  return { name: 'MAP01', vertices, linedefs, sidedefs: [side(0, 'WALL')], sectors: [room()], things: [] };
+}
+
+/**
+ * A closed room (sector 0) and sector 1 made of `segments` disconnected unit-spaced segments packed
+ * into a square, every end within the gap tolerance of thousands of starts: the repair that joins
+ * gaps once considered every pair.
+ */
+export function danglingSegmentsMap(segments: number): DoomMap {
+  const vertices: MapVertex[] = [{ x: -64, y: -64 }, { x: -64, y: 4096 }, { x: 4096, y: 4096 }, { x: 4096, y: -64 }];
+  const linedefs = [0, 1, 2, 3].map((i) => line(i, (i + 1) % 4, 0));
+  const perRow = Math.ceil(Math.sqrt(segments));
+  for (let k = 0; k < segments; k++) {
+    const [x, y] = [(k % perRow) * 12, Math.floor(k / perRow) * 12];
+    vertices.push({ x, y }, { x: x + 5, y: y + 3 });
+    linedefs.push(line(vertices.length - 2, vertices.length - 1, 1));
+  }
+  return { name: 'MAP01', vertices, linedefs, sidedefs: [side(0, 'WALL'), side(1, 'WALL')], sectors: [room(), room()], things: [PLAYER(-32, -32)] };
+}
+
+/**
+ * An n × n grid of square sectors, 64 units a side: 2n(n + 1) linedefs (n = 230: 106,260), each
+ * interior line two-sided. One sidedef per sector, shared by its lines.
+ */
+export function gridMap(n: number): DoomMap {
+  const vertices: MapVertex[] = [];
+  const at = (i: number, j: number) => j * (n + 1) + i;
+  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) vertices.push({ x: i * 64, y: j * 64 });
+  const cell = (i: number, j: number) => (i >= 0 && j >= 0 && i < n && j < n ? j * n + i : NO_SIDEDEF);
+  const linedefs: Linedef[] = [];
+  for (let j = 0; j <= n; j++) {
+    for (let i = 0; i < n; i++) {
+      // Horizontal line (i, j) → (i + 1, j): its right side is below (the cell j − 1).
+      const [right, left] = [cell(i, j - 1), cell(i, j)];
+      if (right !== NO_SIDEDEF) linedefs.push(line(at(i, j), at(i + 1, j), right, left));
+      else linedefs.push(line(at(i + 1, j), at(i, j), left));
+    }
+  }
+  for (let i = 0; i <= n; i++) {
+    for (let j = 0; j < n; j++) {
+      // Vertical line (i, j + 1) → (i, j), heading south: its right side is west, the cell i − 1.
+      const [right, left] = [cell(i - 1, j), cell(i, j)];
+      if (right !== NO_SIDEDEF) linedefs.push(line(at(i, j + 1), at(i, j), right, left));
+      else linedefs.push(line(at(i, j), at(i, j + 1), left));
+    }
+  }
+  const sectors = Array.from({ length: n * n }, () => room());
+  const sidedefs = sectors.map((_, s) => side(s));
+  return { name: 'MAP01', vertices, linedefs, sidedefs, sectors, things: [PLAYER(32, 32)] };
+}
+
+/**
+ * `lines` random linedefs between `points` random vertices, each side naming one of `sectors`
+ * sectors at random: legal records, nonsense geometry. A fixed LCG keeps it the same every run.
+ */
+export function randomLinesMap(lines: number, points: number, sectors: number, seed = 1): DoomMap {
+  let s = seed >>> 0;
+  const rand = (n: number) => ((s = (Math.imul(s, 1664525) + 1013904223) >>> 0) % n);
+  const vertices: MapVertex[] = Array.from({ length: points }, () => ({ x: rand(16384) - 8192, y: rand(16384) - 8192 }));
+  const linedefs: Linedef[] = Array.from({ length: lines }, () => line(rand(points), rand(points), rand(sectors), rand(3) === 0 ? NO_SIDEDEF : rand(sectors)));
+  const all = Array.from({ length: sectors }, () => room());
+  return { name: 'MAP01', vertices, linedefs, sidedefs: all.map((_, i) => side(i, 'WALL')), sectors: all, things: [PLAYER(0, 0)] };
+}
+
+/** A square room and `lumps` empty filler lumps in the directory. */
+export function manyLumpsWad(lumps: number): Uint8Array {
+  return wadOf([squareMap()], (w) => {
+    for (let i = 0; i < lumps; i++) w.marker(`L${i}`);
+  });
+}
+
+/** A 256-unit square room with a player start. */
+function squareMap(): DoomMap {
+  return { ...noPlayerStartMap(0), things: [PLAYER(128, 128)] };
+}
+
+/**
+ * A room whose walls use `count` textures of side × side, each drawn from one small patch tiled
+ * over it: a few KB asking for count · side² texels.
+ */
+export function bigTexturesWad(count: number, side: number): Uint8Array {
+  const names = Array.from({ length: count }, (_, i) => `BIG${i}`);
+  const map = squareMap();
+  // One sidedef per wall line, cycling through the textures so the map needs all of them.
+  const sidedefs = names.map((name) => ({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle: name, sector: 0 }));
+  const linedefs = [0, 1, 2, 3].map((i) => line(i, (i + 1) % 4, i % count));
+  // The room's four walls name the first four textures; tests reach the rest through DoomGraphics.
+  return wadOf([{ ...map, linedefs, sidedefs }], (w) => {
+    w.lump('PNAMES', encodePnames(['TILE']));
+    w.lump('TEXTURE1', encodeTextureLump(names.map((name) => ({ name, width: side, height: side, patches: [{ x: 0, y: 0, patch: 0 }] }))));
+    w.marker('P_START').lump('TILE', encodePatch(8, 8, new Array<number>(64).fill(3))).marker('P_END');
+  });
+}
+
+/** A room and `count` textures each made of its own patch, none of which exists, behind `filler` lumps. */
+export function missingPatchesWad(count: number, filler: number): Uint8Array {
+  const names = Array.from({ length: count }, (_, i) => `MP${i}`);
+  return wadOf([squareMap()], (w) => {
+    w.lump('PNAMES', encodePnames(names.map((n) => `${n}P`)));
+    w.lump('TEXTURE1', encodeTextureLump(names.map((name, i) => ({ name, width: 64, height: 64, patches: [{ x: 0, y: 0, patch: i }] }))));
+    for (let i = 0; i < filler; i++) w.lump(`F${i}`, new Uint8Array([1]));
+  });
+}
+
+/** `bytes` zeros, gzip-compressed (about 1/1000 of the size). */
+export function gzipBomb(bytes: number): Uint8Array {
+  return new Uint8Array(gzipSync(new Uint8Array(bytes), { level: 9 }));
+}
+
+/**
+ * A valid small EXR whose data window is then rewritten to width × height (its chunk table and data
+ * stay those of the small image), padded to `fileBytes`: what a hostile or truncated header looks like.
+ */
+export function hugeExr(width: number, height: number, fileBytes = 0): Uint8Array {
+  const small = encodeExr(2, 2, new Float32Array(12), { compression: 'zip', pixelType: 'half' });
+  const out = new Uint8Array(Math.max(small.length, fileBytes));
+  out.set(small);
+  for (const attr of ['dataWindow', 'displayWindow']) {
+    const at = indexOfAscii(out, `${attr}\0box2i\0`);
+    if (at < 0) throw new Error(`crafted: no ${attr} in the EXR`);
+    const view = new DataView(out.buffer, at + attr.length + 7 + 4, 16);
+    view.setInt32(0, 0, true);
+    view.setInt32(4, 0, true);
+    view.setInt32(8, width - 1, true);
+    view.setInt32(12, height - 1, true);
+  }
+  return out;
+}
+
+function indexOfAscii(bytes: Uint8Array, text: string): number {
+  outer: for (let i = 0; i + text.length <= bytes.length; i++) {
+    for (let k = 0; k < text.length; k++) if (bytes[i + k] !== text.charCodeAt(k)) continue outer;
+    return i;
+  }
+  return -1;
+}

@@ -1,0 +1,246 @@
+/**
+ * Every finding of issue 17's table as a test, on inputs built in code (crafted.ts): each one once
+ * crashed (a stack overflow), hung (quadratic repair, a linear scan per patch) or took gigabytes (a
+ * gzip bomb, textures and images sized from a header). Each must now load, or be refused in one line
+ * naming the limit and the value found, without the memory it used to take.
+ */
+import { describe, expect, it } from 'vitest';
+import { applyLimitsOption, configureLimits, DEFAULT_LIMITS, limits, parseLimits, withLimits, WarningCap } from '../../src/budgets.ts';
+import { LanternError } from '../../src/errors.ts';
+import { decodeExr } from '../../src/image/exr.ts';
+import { loadDoomMap, summarizeMaps } from '../../src/loaders/doom/load.ts';
+import { buildSectorShapes } from '../../src/loaders/doom/sectors.ts';
+import { DoomGraphics } from '../../src/loaders/doom/textures.ts';
+import { readWad, WadStack } from '../../src/loaders/doom/wad.ts';
+import { NO_SIBLINGS } from '../../src/loaders/format.ts';
+import { MOLECULE_FORMAT } from '../../src/loaders/molecule/format.ts';
+import { GLTF_FORMAT } from '../../src/loaders/gltf/format.ts';
+import { parsePly } from '../../src/loaders/ply/ply.ts';
+import { Rng } from './mutate.ts';
+import { glb, gltfSeed } from './targets.ts';
+import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
+
+const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad')]);
+
+/** The one-line refusal of a limit: a LanternError naming it and the value found. */
+function expectRefusal(f: () => unknown, limit: string): LanternError {
+  let thrown: unknown;
+  try {
+    f();
+  } catch (e) {
+    thrown = e;
+  }
+  expect(thrown).toBeInstanceOf(LanternError);
+  const message = (thrown as LanternError).userMessage;
+  expect(message).toContain(`over the limit ${limit}=`);
+  expect(message).not.toContain('\n');
+  return thrown as LanternError;
+}
+
+describe('Doom maps that crashed', () => {
+  it('builds a sector of 65,000 vertices (push(...coords) overflowed the stack)', () => {
+    const map = bigSectorMap(65_000);
+    const { shapes, failures } = buildSectorShapes(map);
+    expect(failures).toEqual([]);
+    // The rectangle (65,000 − 3) × 1000, triangulated exactly.
+    expect(shapes[0]!.area).toBe(64_997 * 1000);
+  });
+
+  it('places the camera over 140,000 vertices without a player start (Math.min(...xs) overflowed)', () => {
+    const stack = stackOf(wadOf([noPlayerStartMap(140_000)]));
+    const warnings: string[] = [];
+    const load = loadDoomMap(stack, 'MAP01', { onWarning: (w) => warnings.push(w) });
+    expect(warnings.some((w) => w.includes('no player 1 start'))).toBe(true);
+    // Crafted vertices span x in [-128, 383]: the middle is at 127.5 map units, 127.5/32 m... in world x.
+    expect(Number.isFinite(load.scene.camera.position[0])).toBe(true);
+  });
+
+  it('lists every map when one of them breaks the loader: the error is that map\'s, the others are summarised', () => {
+    // MAP02's linedef names a sidedef whose sector index is far past the end: a LanternError-free
+    // path would have to survive it; a broken map must not hide MAP01 in any case.
+    const good = { ...noPlayerStartMap(0), name: 'MAP01' };
+    const broken = { ...bigSectorMap(10), name: 'MAP02', sectors: [] };
+    const summaries = summarizeMaps(stackOf(wadOf([good, broken])));
+    expect(summaries.map((s) => s.name)).toEqual(['MAP01', 'MAP02']);
+    expect(summaries[0]!.error).toBeUndefined();
+    expect(summaries[1]!.error).toMatch(/^MAP02 in crafted.wad has no (usable linedefs|sectors)/);
+  });
+});
+
+describe('Doom geometry that was quadratic', () => {
+  it('repairs 20,000 dangling segments by failing that sector alone, and loads the map', () => {
+    const map = danglingSegmentsMap(20_000);
+    const before = process.memoryUsage().rss;
+    const warnings: string[] = [];
+    const cap = new WarningCap((w) => warnings.push(w));
+    const { shapes, failures } = buildSectorShapes(map, cap.warn);
+    cap.finish();
+    expect(failures.map((f) => f.sector)).toEqual([1]);
+    expect(failures[0]!.reason).toMatch(/sectorWork=/);
+    expect(shapes[0]!.area).toBe(4160 * 4160);
+    expect(process.memoryUsage().rss - before).toBeLessThan(512 * 2 ** 20);
+    // Warnings of each kind are capped, with one closing line per kind.
+    expect(warnings.length).toBeLessThan(200);
+  });
+
+  it('with the budget raised, the same sector is repaired (its lines are joined or dropped, none is lost)', () => {
+    const { failures } = withLimits({ sectorWork: 1e9 }, () => buildSectorShapes(danglingSegmentsMap(400)));
+    expect(failures.filter((f) => /sectorWork/.test(f.reason))).toEqual([]);
+  });
+
+  it('builds a 106,260-linedef grid of 52,900 sectors, each exactly its square', () => {
+    const map = gridMap(230);
+    expect(map.linedefs.length).toBe(106_260);
+    const { shapes, failures } = buildSectorShapes(map);
+    expect(failures).toEqual([]);
+    expect(shapes.every((s) => s.area === 64 * 64)).toBe(true);
+  });
+
+  it('loads 30,000 random linedefs: nonsense geometry costs warnings and failed sectors, not minutes', () => {
+    const stack = stackOf(wadOf([randomLinesMap(30_000, 20_000, 300)]));
+    const warnings: string[] = [];
+    const load = loadDoomMap(stack, 'MAP01', { onWarning: (w) => warnings.push(w) });
+    expect(load.linedefs).toBe(30_000);
+    // Capped: at most warningsPerKind of each kind plus one closing line per kind.
+    const closing = warnings.filter((w) => w.startsWith('… and '));
+    expect(closing.length).toBeGreaterThan(0);
+    expect(warnings.length).toBeLessThan(40 * (limits().warningsPerKind + 1));
+  });
+});
+
+describe('Doom lookups that scanned', () => {
+  it('resolves 8,000 missing patches behind 20,000 lumps through the index, with capped warnings', () => {
+    const stack = stackOf(missingPatchesWad(8000, 20_000));
+    const warnings: string[] = [];
+    const cap = new WarningCap((w) => warnings.push(w));
+    const graphics = new DoomGraphics(stack, { onWarning: cap.warn });
+    for (const name of graphics.textureNames()) graphics.texture(name);
+    cap.finish();
+    expect(graphics.textureNames()).toHaveLength(8000);
+    expect(warnings).toHaveLength(limits().warningsPerKind + 1);
+    expect(warnings.at(-1)).toMatch(/^… and 7,980 more warnings like "texture MP0: skipped patch MP0P: no such lump in the WADs"/);
+  });
+
+  it('reads a directory of 200,000 lumps and finds its map', () => {
+    const stack = stackOf(manyLumpsWad(200_000));
+    expect(stack.maps().map((m) => m.name)).toEqual(['MAP01']);
+    expect(stack.files[0]!.lumps.length).toBeGreaterThan(200_000);
+  });
+});
+
+describe('sizes asked for by headers', () => {
+  it('refuses the 48 textures of 4096² of a 23 KB WAD at the texel limit, before allocating them', () => {
+    // The default allows 8 such textures (512 MiB); at a tenth of that the test stays small and the
+    // arithmetic is the same.
+    expect(48 * 4096 ** 2).toBeGreaterThan(DEFAULT_LIMITS.textureTexels);
+    const bytes = bigTexturesWad(48, 4096);
+    expect(bytes.length).toBeLessThan(24_000);
+    withLimits({ textureTexels: 3 * 4096 ** 2 }, () => {
+      const graphics = new DoomGraphics(stackOf(bytes));
+      for (const i of [0, 1, 2]) expect(graphics.texture(`BIG${i}`)!.width).toBe(4096);
+      const refusal = expectRefusal(() => graphics.texture('BIG3'), 'textureTexels');
+      expect(refusal.message).toContain('67,108,864');
+      expect(refusal.message).toContain('BIG3');
+    });
+  });
+
+  it('refuses a gzip bomb while inflating, at the decompressed-bytes limit', () => {
+    // 32 MiB of zeros in 32 KB; refused at a limit of 4 MiB as the default refuses gigabytes.
+    const bomb = gzipBomb(32 * 2 ** 20);
+    expect(bomb.length).toBeLessThan(50_000);
+    const refusal = withLimits({ decompressedBytes: 4 * 2 ** 20 }, () => expectRefusal(() => parsePly(bomb, 'bomb.ply.gz'), 'decompressedBytes'));
+    // Inflating stopped soon after the limit, not at the end of the stream.
+    const inflated = Number(/at least\): ([\d,]+)/.exec(refusal.message)![1]!.replaceAll(',', ''));
+    expect(inflated).toBeGreaterThan(4 * 2 ** 20);
+    expect(inflated).toBeLessThan(32 * 2 ** 20);
+  });
+
+  it('inflates gzip whole whether or not the trailer\'s size is right (two members: it names only the last)', async () => {
+    const { gunzipCapped } = await import('../../src/loaders/gzip.ts');
+    const { gzipSync } = await import('node:zlib');
+    const [a, b] = [new Uint8Array(300_000).fill(7), new Uint8Array(5000).fill(9)];
+    const one = gunzipCapped(new Uint8Array(gzipSync(a)), 'one.gz');
+    const two = gunzipCapped(new Uint8Array([...gzipSync(a), ...gzipSync(b)]), 'two.gz');
+    expect(one).toEqual(a);
+    expect(two.length).toBe(305_000);
+    expect(two.subarray(300_000).every((x) => x === 9)).toBe(true);
+  });
+
+  it('refuses an EXR claiming 100,000² pixels from its header, and one claiming 8,000² at the pixel limit', () => {
+    expect(() => decodeExr(hugeExr(100_000, 100_000, 410_000), 'huge.exr')).toThrow(/far larger than the file could hold/);
+    // 8,000² half RGB pixels could come from 410 KB of deflate, so only the pixel limit refuses them.
+    expectRefusal(() => decodeExr(hugeExr(8000, 8000, 410_000), 'big.exr'), 'imagePixels');
+  });
+
+  it('refuses a PLY face of a million corners at the polygon limit', () => {
+    const corners = 1_000_000;
+    const header = `ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n`;
+    const head = new TextEncoder().encode(header);
+    const bytes = new Uint8Array(head.length + 36 + 4 + 4 * corners);
+    bytes.set(head);
+    new DataView(bytes.buffer).setUint32(head.length + 36, corners, true);
+    expect(() => parsePly(bytes, 'ngon.ply')).toThrow(/polygonVertices=65536/);
+  });
+});
+
+describe('findings of the fuzz suite', () => {
+  it('builds a molecule whose double bond reaches an atom at -1e308 Å (the bond side normalised a zero vector)', async () => {
+    const text = ['m', '  Lantern           3D', '', '  2  1  0     0  0  0  0  0  0999 V2000',
+      '    0.4700    2.5688    0.0006 O   0  0  0  0  0  0  0  0  0  0  0  0',
+      '    -1e308    0.2592   -0.0008 C   0  0  0  0  0  0  0  0  0  0  0  0',
+      '  1  2  2  0  0  0  0', 'M  END', ''].join('\n');
+    const opened = await MOLECULE_FORMAT.open({ files: [{ name: 'far.mol', bytes: new TextEncoder().encode(text) }], resolve: NO_SIBLINGS });
+    await expect(opened.scene()).resolves.toBeDefined();
+  });
+
+  it('leaves out a glTF attribute whose count is not POSITION\'s (it was read past its end: a RangeError)', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const accessors = json.accessors as Array<Record<string, unknown>>;
+    // TEXCOORD_0 read as 4 VEC2s from the 36-byte position view: in bounds, but one more than the 3 vertices.
+    accessors[1] = { ...accessors[1], bufferView: 0, count: 4 };
+    const opened = await GLTF_FORMAT.open({ files: [{ name: 'uv.glb', bytes: glb(json, bin) }], resolve: NO_SIBLINGS });
+    const warnings: string[] = [];
+    const scene = await opened.scene(undefined, { onWarning: (w) => warnings.push(w) });
+    expect(warnings).toContain("mesh 'mesh 0' has 4 TEXCOORD_0 values for 3 vertices; TEXCOORD_0 is ignored there");
+    expect(scene.meshes[0]!.uvs).toBeUndefined();
+  });
+});
+
+describe('recursion', () => {
+  it('places a mesh at the end of a chain of 20,000 nested glTF nodes (the visit recursed once per level)', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const depth = 20_000;
+    const nodes = Array.from({ length: depth }, (_, i) => (i + 1 < depth ? { children: [i + 1] } : { mesh: 0 }));
+    const opened = await GLTF_FORMAT.open({ files: [{ name: 'deep.glb', bytes: glb({ ...json, nodes, scenes: [{ nodes: [0] }] }, bin) }], resolve: NO_SIBLINGS });
+    const scene = await opened.scene();
+    expect(scene.instances).toHaveLength(1);
+    expect(scene.instances[0]!.id).toBe(depth - 1);
+  });
+});
+
+describe('limits', () => {
+  it('parses name=value lists with k/M/G suffixes and refuses unknown names and bad values in one line', () => {
+    expect(parseLimits('imagePixels=256M, sectorWork=1e9').imagePixels).toBe(256 * 2 ** 20);
+    expect(parseLimits('sectorWork=1e9').sectorWork).toBe(1e9);
+    expect(parseLimits('').vertices).toBe(DEFAULT_LIMITS.vertices);
+    expect(() => parseLimits('pixels=5')).toThrow(/unknown limit 'pixels'/);
+    expect(() => parseLimits('vertices=-5')).toThrow(/bad value for limit vertices/);
+    expect(() => parseLimits('vertices')).toThrow(/expected name=value/);
+  });
+
+  it('takes --limits over LANTERN_LIMITS and hands the result to worker threads through the environment', () => {
+    const saved = process.env.LANTERN_LIMITS;
+    try {
+      process.env.LANTERN_LIMITS = 'lumps=5,faces=7';
+      configureLimits(undefined);
+      applyLimitsOption('lumps=9');
+      expect([limits().lumps, limits().faces]).toEqual([9, 7]);
+      expect(parseLimits(process.env.LANTERN_LIMITS)).toEqual(limits());
+    } finally {
+      if (saved === undefined) delete process.env.LANTERN_LIMITS;
+      else process.env.LANTERN_LIMITS = saved;
+      configureLimits(undefined);
+    }
+    expect(limits().lumps).toBe(DEFAULT_LIMITS.lumps);
+  });
+});

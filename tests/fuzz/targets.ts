@@ -1,0 +1,584 @@
+/**
+ * One fuzz target per loader: seed inputs built in code, a structure-aware mutator that knows where
+ * the format keeps its counts, sizes, offsets and indices, and the code path `lantern info` (scenes)
+ * or `lantern diff` (images) runs on the file. A case passes when it loads or is refused with a
+ * LanternError; anything else thrown is a crash. Time and memory are judged by the callers.
+ */
+import { gzipSync } from 'node:zlib';
+import { LanternError } from '../../src/errors.ts';
+import { decodeExr, encodeExr, exrToRgb } from '../../src/image/exr.ts';
+import { decodeHdr } from '../../src/image/hdr.ts';
+import { decodePng, encodePng } from '../../src/image/png.ts';
+import { animatedRoomWad, encodeMap, encodePalette, squareRoomWad, twoRooms, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
+import { readWad } from '../../src/loaders/doom/wad.ts';
+import { NO_SIBLINGS, type FileSet, type NamedBytes, type SceneFormat } from '../../src/loaders/format.ts';
+import { formatOfSet } from '../../src/loaders/registry.ts';
+import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
+import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
+import { concat, interesting, mutateBytes, mutateLines, putInt, Rng } from './mutate.ts';
+
+export interface FuzzTarget {
+  /** Short id: reproducers are saved under it. */
+  readonly id: string;
+  /** The input class, as the issue's table names it. */
+  readonly label: string;
+  /**
+   * The input of case `index` from its generator: mutated targets ignore `index`, crafted ones
+   * (a fixed list) take input `index % count`.
+   */
+  input(rng: Rng, index: number): NamedBytes[];
+  /** How many distinct inputs a crafted target has (undefined: unlimited). */
+  readonly count?: number;
+  /** The code path of the CLI command that reads this kind of file. */
+  run(files: NamedBytes[]): Promise<void>;
+}
+
+/**
+ * `lantern info`: the format from the bytes, the set opened, and its inventory (which builds every
+ * map) or, for a format without one, its scene.
+ */
+async function infoOnly(files: NamedBytes[]): Promise<void> {
+  const { format, files: ordered } = formatOfSet(files.map((f) => ({ ...f, head: f.bytes.subarray(0, 1024) })));
+  const opened = await (format as SceneFormat).open({ files: ordered.map(({ name, bytes }) => ({ name, bytes })), resolve: NO_SIBLINGS });
+  if (opened.inventory) opened.inventory();
+  else await opened.scene(undefined, { onWarning: () => {} });
+}
+
+/** `lantern info`, then the scenes `render` would build: each part's (the first three), through the format's own scene path. */
+async function infoPath(files: NamedBytes[]): Promise<void> {
+  const { format, files: ordered } = formatOfSet(files.map((f) => ({ ...f, head: f.bytes.subarray(0, 1024) })));
+  const set: FileSet = { files: ordered.map(({ name, bytes }) => ({ name, bytes })), resolve: NO_SIBLINGS };
+  const opened = await (format as SceneFormat).open(set);
+  opened.inventory?.();
+  const parts = opened.parts.filter((p) => p.loadable).slice(0, 3);
+  const warnings: string[] = [];
+  const onWarning = (w: string) => void warnings.push(w);
+  if (parts.length === 0) await opened.scene(undefined, { onWarning });
+  for (const p of parts) await opened.scene(p.name, { onWarning });
+}
+
+/** `lantern diff`: both images decoded and compared (here: converted to RGB, as diff does). */
+async function exrPath(files: NamedBytes[]): Promise<void> {
+  for (const f of files) exrToRgb(decodeExr(f.bytes, f.name));
+}
+
+// ---- WAD ----
+
+const WAD_SEED_MAKERS: Array<() => Uint8Array> = [
+  () => squareRoomWad(),
+  () => animatedRoomWad(),
+  () => new WadBuilder().lump('PLAYPAL', encodePalette()).lumps(encodeMap({ ...twoRooms({}, 'door'), name: 'MAP01' })).build('IWAD'),
+];
+let wadSeeds: Uint8Array[] | undefined;
+const WAD_SEEDS = () => (wadSeeds ??= WAD_SEED_MAKERS.map((make) => make()));
+
+/** Knows the directory, the map lumps' record layouts, TEXTURE1, PNAMES and pictures. */
+function mutateWad(rng: Rng, seed: Uint8Array): Uint8Array {
+  let wad;
+  try {
+    wad = readWad(seed, 'seed.wad');
+  } catch {
+    return mutateBytes(rng, seed);
+  }
+  const bytes = seed.slice();
+  const lumps = wad.lumps.filter((l) => l.size > 0);
+  const dirOffset = new DataView(bytes.buffer).getInt32(8, true);
+  const lump = (name: string) => lumps.find((l) => l.name === name);
+  const record = (name: string, size: number, field: number, width: 1 | 2 | 4) => {
+    const l = lump(name);
+    if (!l || l.size < size) return;
+    const n = Math.floor(l.size / size);
+    putInt(bytes, l.offset + rng.int(n) * size + field, width, interesting(rng, n));
+  };
+  switch (rng.int(12)) {
+    case 0: // a directory entry's offset or size
+      putInt(bytes, dirOffset + 16 * rng.int(wad.lumps.length) + rng.pick([0, 4]), 4, interesting(rng));
+      break;
+    case 1: // the header's lump count or directory offset
+      putInt(bytes, rng.pick([4, 8]), 4, interesting(rng, wad.lumps.length));
+      break;
+    case 2: // a lump renamed (a map lump lost, a marker moved)
+      putInt(bytes, dirOffset + 16 * rng.int(wad.lumps.length) + 8 + rng.int(8), 1, rng.pick([0, 0x41, 0x5f, 0x31, rng.int(256)]));
+      break;
+    case 3: // linedef vertex or sidedef indices
+      record('LINEDEFS', 14, rng.pick([0, 2, 10, 12]), 2);
+      break;
+    case 4: // vertex coordinates at the edges, or one vertex made another's
+      record('VERTEXES', 4, rng.pick([0, 2]), 2);
+      break;
+    case 5: // sidedef sector, sector heights and light
+      if (rng.chance(0.5)) record('SIDEDEFS', 30, 28, 2);
+      else record('SECTORS', 26, rng.pick([0, 2, 20, 22, 24]), 2);
+      break;
+    case 6: // things: type, position, flags
+      record('THINGS', 10, rng.pick([0, 2, 6, 8]), 2);
+      break;
+    case 7: { // TEXTURE1: count, an offset, or a texture's width, height or patch count
+      const l = lump('TEXTURE1');
+      if (!l || l.size < 8) return mutateBytes(rng, bytes);
+      const view = new DataView(bytes.buffer, l.offset, l.size);
+      const count = view.getInt32(0, true);
+      if (rng.chance(0.3) || count <= 0) putInt(bytes, l.offset, 4, interesting(rng, count));
+      else {
+        const at = view.getInt32(4 + 4 * rng.int(Math.min(count, (l.size - 4) >> 2)), true);
+        putInt(bytes, l.offset + at + rng.pick([12, 14, 20, 22, 24, 26]), 2, interesting(rng));
+      }
+      break;
+    }
+    case 8: { // PNAMES count or a name
+      const l = lump('PNAMES');
+      if (!l) return mutateBytes(rng, bytes);
+      if (rng.chance(0.5)) putInt(bytes, l.offset, 4, interesting(rng));
+      else putInt(bytes, l.offset + 4 + rng.int(Math.max(1, l.size - 4)), 1, rng.int(256));
+      break;
+    }
+    case 9: { // a picture's size, offsets or a column offset
+      const pictures = lumps.filter((l) => /PAT|WALL|SKY/.test(l.name));
+      if (pictures.length === 0) return mutateBytes(rng, bytes);
+      const l = rng.pick(pictures);
+      putInt(bytes, l.offset + rng.pick([0, 2, 4, 6, 8, 12, 16]), rng.pick([2, 4] as const), interesting(rng));
+      break;
+    }
+    case 10: { // bytes inside one lump
+      const l = rng.pick(lumps);
+      return mutateBytes(rng, bytes, l.offset, l.offset + l.size);
+    }
+    default:
+      return mutateBytes(rng, bytes);
+  }
+  return bytes;
+}
+
+// ---- PLY ----
+
+/**
+ * A PLY generated with lies: counts that disagree with the body, list counts, indices out of range,
+ * NaN/Inf coordinates, n-gons, odd property types, either endianness or ascii, sometimes gzipped.
+ */
+function generatePly(rng: Rng): Uint8Array {
+  const format = rng.pick(['ascii', 'binary_little_endian', 'binary_big_endian'] as const);
+  const nv = 3 + rng.int(20);
+  const nf = 1 + rng.int(20);
+  const lie = (n: number) => (rng.chance(0.15) ? interesting(rng, n) : n);
+  const posType = rng.pick(['float', 'double', 'float32', 'int', 'uchar']);
+  const countType = rng.pick(['uchar', 'uchar', 'ushort', 'int', 'uint', 'char']);
+  const indexType = rng.pick(['int', 'uint', 'int32', 'ushort', 'uchar']);
+  const normals = rng.chance(0.3);
+  const extra = rng.chance(0.2);
+  const header = [
+    'ply',
+    `format ${format} 1.0`,
+    ...(rng.chance(0.3) ? ['comment fuzz'] : []),
+    ...(extra && rng.chance(0.5) ? [`element junk ${lie(2)}`, 'property list uchar int stuff'] : []),
+    `element vertex ${lie(nv)}`,
+    `property ${posType} x`, `property ${posType} y`, `property ${posType} z`,
+    ...(normals ? ['property float nx', 'property float ny', 'property float nz'] : []),
+    `element face ${lie(nf)}`,
+    `property list ${countType} ${indexType} vertex_indices`,
+    ...(extra ? [`element edge ${lie(1)}`, 'property int vertex1'] : []),
+    'end_header',
+  ];
+  let head = header.join('\n') + '\n';
+  if (rng.chance(0.2)) head = mutateLines(rng, head, 1);
+  const values: Array<{ type: string; v: number }> = [];
+  if (extra && header.some((l) => l.startsWith('element junk'))) values.push({ type: 'uchar', v: 1 }, { type: 'int', v: 5 }, { type: 'uchar', v: 0 });
+  for (let i = 0; i < nv; i++) {
+    for (let k = 0; k < 3; k++) values.push({ type: posType, v: rng.chance(0.03) ? rng.pick([NaN, Infinity, -Infinity, 1e308]) : rng.int(200) - 100 });
+    if (normals) for (let k = 0; k < 3; k++) values.push({ type: 'float', v: rng.next() });
+  }
+  for (let f = 0; f < nf; f++) {
+    const m = rng.chance(0.1) ? interesting(rng) & 0xffff : rng.pick([3, 3, 3, 4, 5, 8, 2, 0]);
+    values.push({ type: countType, v: m });
+    for (let j = 0; j < Math.min(m, 64); j++) values.push({ type: indexType, v: rng.chance(0.05) ? interesting(rng, nv) : rng.int(nv) });
+  }
+  if (extra) values.push({ type: 'int', v: 0 });
+  let body: Uint8Array;
+  if (format === 'ascii') body = new TextEncoder().encode(values.map((x) => String(x.v)).join(rng.chance(0.9) ? ' ' : '\n') + '\n');
+  else {
+    const little = format === 'binary_little_endian';
+    const size: Record<string, number> = { float: 4, float32: 4, double: 8, int: 4, int32: 4, uint: 4, uchar: 1, char: 1, ushort: 2 };
+    const view = new DataView(new ArrayBuffer(values.reduce((n, x) => n + size[x.type]!, 0)));
+    let at = 0;
+    for (const { type, v } of values) {
+      if (type === 'float' || type === 'float32') view.setFloat32(at, v, little);
+      else if (type === 'double') view.setFloat64(at, v, little);
+      else if (size[type] === 4) view.setInt32(at, v | 0, little);
+      else if (size[type] === 2) view.setUint16(at, v & 0xffff, little);
+      else view.setUint8(at, v & 0xff);
+      at += size[type]!;
+    }
+    body = new Uint8Array(view.buffer);
+  }
+  let bytes = concat(new TextEncoder().encode(head), body);
+  if (rng.chance(0.25)) bytes = mutateBytes(rng, bytes);
+  if (rng.chance(0.25)) {
+    bytes = new Uint8Array(gzipSync(bytes));
+    if (rng.chance(0.3)) bytes = mutateBytes(rng, bytes);
+  }
+  return bytes;
+}
+
+// ---- glTF / GLB ----
+
+/** A textured triangle as GLB (or as .gltf with a data: URI): positions, uvs, indices, a PNG. */
+export function gltfSeed(rng: Rng): { json: Record<string, unknown>; bin: Uint8Array } {
+  const positions = new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]);
+  const uvs = new Float32Array([0, 0, 1, 0, 0, 1]);
+  const indices = new Uint16Array([0, 1, 2, 0]);
+  const png = encodePng(2, 2, new Uint8Array(16).fill(200));
+  const parts = [new Uint8Array(positions.buffer), new Uint8Array(uvs.buffer), new Uint8Array(indices.buffer), png];
+  const views: Array<{ buffer: number; byteOffset: number; byteLength: number }> = [];
+  let at = 0;
+  for (const p of parts) {
+    views.push({ buffer: 0, byteOffset: at, byteLength: p.length });
+    at += (p.length + 3) & ~3;
+  }
+  const bin = new Uint8Array(at);
+  parts.forEach((p, i) => bin.set(p, views[i]!.byteOffset));
+  const json = {
+    asset: { version: '2.0' },
+    scene: 0,
+    scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0, ...(rng.chance(0.3) ? { scale: [2, 2, 2] } : {}) }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2, material: 0 }] }],
+    materials: [{ pbrMetallicRoughness: { baseColorTexture: { index: 0 }, baseColorFactor: [1, 1, 1, 1] } }],
+    textures: [{ source: 0 }],
+    images: [{ bufferView: 3, mimeType: 'image/png' }],
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: 3, type: 'VEC3', min: [0, 0, 0], max: [1, 1, 0] },
+      { bufferView: 1, componentType: 5126, count: 3, type: 'VEC2' },
+      { bufferView: 2, componentType: 5123, count: 3, type: 'SCALAR' },
+    ],
+    bufferViews: views,
+    buffers: [{ byteLength: bin.length }],
+  };
+  return { json, bin };
+}
+
+/** Bends one number, deletes one key or retypes one value somewhere in the JSON tree. */
+function mutateJson(rng: Rng, value: unknown, depth = 0): unknown {
+  if (Array.isArray(value)) {
+    if (value.length === 0 || rng.chance(0.1)) return rng.chance(0.5) ? [] : [...value, ...value];
+    const copy = [...value];
+    const i = rng.int(copy.length);
+    copy[i] = mutateJson(rng, copy[i], depth + 1);
+    return copy;
+  }
+  if (value && typeof value === 'object') {
+    const entries = Object.entries(value as Record<string, unknown>);
+    if (entries.length === 0) return value;
+    const [k, v] = rng.pick(entries);
+    const copy: Record<string, unknown> = { ...(value as Record<string, unknown>) };
+    if (rng.chance(0.1) && depth > 0) delete copy[k];
+    else copy[k] = mutateJson(rng, v, depth + 1);
+    return copy;
+  }
+  if (typeof value === 'number') return rng.chance(0.85) ? interesting(rng, value) : rng.pick([0.5, -0.5, 1e308, null, 'x', [], {}]);
+  if (typeof value === 'string') return rng.pick(['', 'VEC4', 'MAT4', 'SCALAR', 'image/jpeg', 'data:,', '../../etc/passwd', 'x'.repeat(300)]);
+  return rng.pick([0, null, 'x', {}]);
+}
+
+export function glb(json: unknown, bin: Uint8Array): Uint8Array {
+  const text = new TextEncoder().encode(JSON.stringify(json));
+  const jsonChunk = new Uint8Array((text.length + 3) & ~3).fill(0x20);
+  jsonChunk.set(text);
+  const out = new Uint8Array(12 + 8 + jsonChunk.length + 8 + bin.length);
+  const view = new DataView(out.buffer);
+  view.setUint32(0, 0x46546c67, true);
+  view.setUint32(4, 2, true);
+  view.setUint32(8, out.length, true);
+  view.setUint32(12, jsonChunk.length, true);
+  view.setUint32(16, 0x4e4f534a, true);
+  out.set(jsonChunk, 20);
+  view.setUint32(20 + jsonChunk.length, bin.length, true);
+  view.setUint32(24 + jsonChunk.length, 0x004e4942, true);
+  out.set(bin, 28 + jsonChunk.length);
+  return out;
+}
+
+function generateGltf(rng: Rng): NamedBytes {
+  const { json, bin } = gltfSeed(rng);
+  let j: unknown = json;
+  for (let r = 1 + rng.int(3); r > 0; r--) j = mutateJson(rng, j);
+  let b = rng.chance(0.3) ? mutateBytes(rng, bin) : bin;
+  if (rng.chance(0.3)) {
+    // .gltf text with the buffer as a data: URI.
+    const withUri = { ...(j as Record<string, unknown>), buffers: [{ byteLength: b.length, uri: `data:application/octet-stream;base64,${Buffer.from(b).toString('base64')}` }] };
+    let text: Uint8Array = new TextEncoder().encode(JSON.stringify(withUri));
+    if (rng.chance(0.2)) text = mutateBytes(rng, text);
+    return { name: 'fuzz.gltf', bytes: text };
+  }
+  let out = glb(j, b);
+  if (rng.chance(0.3)) {
+    // A chunk or header length that lies.
+    putInt(out, rng.pick([8, 12, 20 + ((out.length - 28 - b.length) & ~3)]), 4, interesting(rng, out.length));
+  }
+  if (rng.chance(0.1)) out = out.slice(0, rng.int(out.length));
+  return { name: 'fuzz.glb', bytes: out };
+}
+
+// ---- EXR ----
+
+function exrSeed(rng: Rng): Uint8Array {
+  const [w, h] = [1 + rng.int(40), 1 + rng.int(40)];
+  const rgb = new Float32Array(w * h * 3).map(() => rng.next() * 4);
+  return encodeExr(w, h, rgb, { compression: rng.pick(['zip', 'zips', 'none'] as const), pixelType: rng.pick(['float', 'half'] as const) });
+}
+
+/** Knows the header's attributes (dataWindow, channels, compression) and the line offset table. */
+function mutateExr(rng: Rng, seed: Uint8Array): Uint8Array {
+  const bytes = seed.slice();
+  const find = (text: string) => Buffer.from(bytes.buffer, bytes.byteOffset, bytes.length).indexOf(text);
+  switch (rng.int(6)) {
+    case 0: { // data window corners
+      const at = find('dataWindow\0box2i\0');
+      putInt(bytes, at + 21 + 4 * rng.int(4), 4, interesting(rng));
+      return bytes;
+    }
+    case 1: { // a channel's pixel type or sampling
+      const at = find('channels\0chlist\0');
+      putInt(bytes, at + 24 + 2 + rng.int(24), rng.pick([1, 4] as const), interesting(rng));
+      return bytes;
+    }
+    case 2: { // compression
+      const at = find('compression\0compression\0');
+      putInt(bytes, at + 28, 1, rng.int(12));
+      return bytes;
+    }
+    case 3: { // a line offset, or a chunk's y or size
+      const table = exrTableStart(bytes);
+      const chunk = table + 8 * rng.int(4);
+      if (rng.chance(0.5)) putInt(bytes, chunk, 4, interesting(rng, bytes.length));
+      else if (table + 4 <= bytes.length) {
+        const first = new DataView(bytes.buffer).getUint32(table, true);
+        putInt(bytes, first + rng.pick([0, 4]), 4, interesting(rng));
+      }
+      return bytes;
+    }
+    default:
+      return mutateBytes(rng, bytes);
+  }
+}
+
+/** Where the line offset table starts: after the header's attributes (name, type, size, value) and its closing NUL. */
+function exrTableStart(bytes: Uint8Array): number {
+  let at = 8;
+  const skipString = () => {
+    while (at < bytes.length && bytes[at] !== 0) at++;
+    at++;
+  };
+  while (at < bytes.length && bytes[at] !== 0) {
+    skipString(); // name
+    skipString(); // type
+    if (at + 4 > bytes.length) break;
+    const size = new DataView(bytes.buffer).getInt32(at, true);
+    if (size < 0) break;
+    at += 4 + size;
+  }
+  return at + 1;
+}
+
+// ---- HDR ----
+
+function hdrSeed(rng: Rng): Uint8Array {
+  const [w, h] = [8 + rng.int(40), 1 + rng.int(20)];
+  const rle = rng.chance(0.6) && w >= 8;
+  const head = new TextEncoder().encode(`#?RADIANCE\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=1\n\n-Y ${h} +X ${w}\n`);
+  const body: number[] = [];
+  for (let y = 0; y < h; y++) {
+    if (rle) {
+      body.push(2, 2, w >> 8, w & 255);
+      for (let c = 0; c < 4; c++) {
+        // One run of the whole row per channel, or literal bytes.
+        if (rng.chance(0.5)) body.push(128 + Math.min(w, 127), c === 3 ? 128 : rng.int(256), ...(w > 127 ? [128 + (w - 127), 1] : []));
+        else for (let x = 0; x < w; x += 128) body.push(Math.min(128, w - x), ...Array.from({ length: Math.min(128, w - x) }, () => (c === 3 ? 128 : rng.int(256))));
+      }
+    } else for (let x = 0; x < w; x++) body.push(rng.int(256), rng.int(256), rng.int(256), 128);
+  }
+  return concat(head, new Uint8Array(body));
+}
+
+function mutateHdr(rng: Rng, seed: Uint8Array): Uint8Array {
+  const text = new TextDecoder('latin1').decode(seed);
+  const res = text.indexOf('-Y ');
+  if (rng.chance(0.3) && res >= 0) {
+    const line = text.slice(res, text.indexOf('\n', res));
+    const bent = mutateLines(rng, line, 1);
+    return concat(seed.subarray(0, res), new TextEncoder().encode(bent), seed.subarray(res + line.length));
+  }
+  return mutateBytes(rng, seed, rng.chance(0.5) ? Math.max(0, text.indexOf('\n', res) + 1) : 0);
+}
+
+// ---- PNG ----
+
+function pngSeed(rng: Rng): Uint8Array {
+  const [w, h] = [1 + rng.int(16), 1 + rng.int(16)];
+  return encodePng(w, h, new Uint8Array(w * h * 4).map(() => rng.int(256)));
+}
+
+const CRC_TABLE = new Uint32Array(256).map((_, n) => {
+  let c = n;
+  for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  return c;
+});
+
+/** IHDR fields (width, height, depth, colour type), IDAT bytes; the CRCs rewritten half the time so the decoder goes past them. */
+function mutatePng(rng: Rng, seed: Uint8Array): Uint8Array {
+  let bytes: Uint8Array = seed.slice();
+  if (rng.chance(0.5)) putInt(bytes, rng.pick([16, 20]), 4, interesting(rng), false);
+  else if (rng.chance(0.5)) bytes[rng.pick([24, 25, 26, 27, 28])] = rng.pick([0, 1, 2, 3, 4, 6, 8, 16, 255]);
+  else bytes = mutateBytes(rng, bytes, 33);
+  if (rng.chance(0.5)) {
+    for (let at = 8; at + 12 <= bytes.length; ) {
+      const len = new DataView(bytes.buffer).getUint32(at);
+      if (at + 12 + len > bytes.length) break;
+      let c = 0xffffffff;
+      for (let i = at + 4; i < at + 8 + len; i++) c = CRC_TABLE[(c ^ bytes[i]!) & 0xff]! ^ (c >>> 8);
+      putInt(bytes, at + 8 + len, 4, (c ^ 0xffffffff) >>> 0, false);
+      at += 12 + len;
+    }
+  }
+  return bytes;
+}
+
+// ---- Wolfenstein 3D ----
+
+/** One of MAPHEAD (RLEW tag, map offsets), GAMEMAPS (map headers: plane offsets, lengths, size; compressed planes) or VSWAP (chunk count, offsets, lengths). */
+let wolfSeed: NamedBytes[] | undefined;
+
+function generateWolf(rng: Rng): NamedBytes[] {
+  if (!wolfSeed) {
+    const game = testGameFiles({ maps: 1 });
+    wolfSeed = [game.maphead, game.gamemaps, game.vswap];
+  }
+  const files: Array<{ name: string; bytes: Uint8Array }> = wolfSeed.map((f) => ({ ...f, bytes: f.bytes.slice() }));
+  const which = rng.int(3);
+  const f = files[which]!;
+  if (rng.chance(0.6)) {
+    const fields: Record<number, () => number> = {
+      0: () => 2 + 4 * rng.int(4),
+      1: () => {
+        const header = new DataView(files[0]!.bytes.buffer).getInt32(2, true);
+        return Math.max(0, header) + rng.pick([0, 4, 8, 12, 14, 16, 18, 20, 22, 24]);
+      },
+      2: () => rng.pick([0, 2, 4, 6, 8, 10, 12, 14]),
+    };
+    putInt(f.bytes, fields[which]!(), rng.pick([2, 4] as const), interesting(rng));
+  } else f.bytes = mutateBytes(rng, f.bytes);
+  return files;
+}
+
+// ---- molecules ----
+
+const MOLFILE = `caffeine
+  Lantern           3D
+
+  4  3  0     0  0  0  0  0  0999 V2000
+    0.4700    2.5688    0.0006 O   0  0  0  0  0  0  0  0  0  0  0  0
+   -0.9686   -1.3125    0.0000 N   0  0  0  0  0  0  0  0  0  0  0  0
+    0.8579    0.2592   -0.0008 C   0  0  0  0  0  0  0  0  0  0  0  0
+    3.5163   -1.5787    0.0008 H   0  0  0  0  0  0  0  0  0  0  0  0
+  1  3  2  0  0  0  0
+  2  3  1  0  0  0  0
+  3  4  1  0  0  0  0
+M  END
+`;
+
+const V3000 = `ethanol
+  Lantern           3D
+
+  0  0  0     0  0  0  0  0  0999 V3000
+M  V30 BEGIN CTAB
+M  V30 COUNTS 3 2 0 0 0
+M  V30 BEGIN ATOM
+M  V30 1 C 0 0 0 0
+M  V30 2 C 1.5 0 0 0
+M  V30 3 O 2.2 1.2 0 0
+M  V30 END ATOM
+M  V30 BEGIN BOND
+M  V30 1 1 1 2
+M  V30 2 1 2 3
+M  V30 END BOND
+M  V30 END CTAB
+M  END
+`;
+
+function generateMolecule(rng: Rng): NamedBytes {
+  const records = Array.from({ length: 1 + rng.int(3) }, () => (rng.chance(0.7) ? MOLFILE : V3000));
+  const sdf = rng.chance(0.5);
+  let text = sdf ? records.map((r) => `${r}> <NAME>\nx\n\n$$$$\n`).join('') : records[0]!;
+  text = mutateLines(rng, text);
+  let bytes: Uint8Array = new TextEncoder().encode(text);
+  if (rng.chance(0.15)) bytes = mutateBytes(rng, bytes);
+  return { name: sdf ? 'fuzz.sdf' : 'fuzz.mol', bytes };
+}
+
+// ---- the targets ----
+
+const mutated = (id: string, label: string, input: (rng: Rng) => NamedBytes[], run: (files: NamedBytes[]) => Promise<void> = infoPath): FuzzTarget => ({ id, label, input, run });
+
+/** Each crafted input of the issue's table, by name, built on demand (some take a second). */
+const CRAFTED_WADS: Array<[string, () => Uint8Array]> = [
+  ['65k-vertex sector', () => wadOf([bigSectorMap(65_000)])],
+  ['140k vertices, no player start', () => wadOf([noPlayerStartMap(140_000)])],
+  ['20k dangling segments', () => wadOf([danglingSegmentsMap(20_000)])],
+  ['130k-linedef grid', () => wadOf([gridMap(255)])],
+  ['100k random linedefs', () => wadOf([randomLinesMap(100_000, 50_000, 1000)])],
+  ['100k random linedefs, 20 sectors', () => wadOf([randomLinesMap(100_000, 60_000, 20, 7)])],
+  ['8000 missing patches behind 20k lumps', () => missingPatchesWad(8000, 20_000)],
+  ['200k lumps', () => manyLumpsWad(200_000)],
+  ['48 textures of 4096²', () => bigTexturesWad(48, 4096)],
+  ['4 textures of 4096² on the walls', () => bigTexturesWad(4, 4096)],
+  ['30k dangling segments spread out', () => wadOf([danglingSegmentsMap(30_000)])],
+  ['grid of 230² sectors', () => wadOf([gridMap(230)])],
+  ['65k-vertex sector, no player start', () => wadOf([{ ...bigSectorMap(65_000), things: [] }])],
+];
+
+const BOMBS = [64, 256, 1024, 2560, 6144].map((mb) => mb * 2 ** 20);
+
+export const TARGETS: readonly FuzzTarget[] = [
+  mutated('wad', 'WAD, structure-aware mutations (directory, map records, textures, patches)', (rng) => {
+    let bytes: Uint8Array = rng.pick(WAD_SEEDS());
+    for (let r = 1 + rng.int(3); r > 0; r--) bytes = mutateWad(rng, bytes);
+    return [{ name: 'fuzz.wad', bytes }];
+  }),
+  { id: 'wad-crafted', label: 'WAD, crafted large maps (issue 17)', count: CRAFTED_WADS.length, input: (_rng, i) => [{ name: `${CRAFTED_WADS[i % CRAFTED_WADS.length]![0]}.wad`, bytes: CRAFTED_WADS[i % CRAFTED_WADS.length]![1]() }], run: infoOnly },
+  mutated('ply', 'PLY, generated with lies (counts, lists, indices, NaN/Inf, n-gons, endianness, gzip)', (rng) => [{ name: 'fuzz.ply', bytes: generatePly(rng) }]),
+  { id: 'ply-bomb', label: 'PLY, gzip bombs', count: BOMBS.length, input: (_rng, i) => [{ name: 'bomb.ply.gz', bytes: plyBomb(BOMBS[i % BOMBS.length]!) }], run: infoOnly },
+  mutated('gltf', 'glTF/GLB, JSON and chunk mutations', (rng) => [generateGltf(rng)]),
+  mutated('exr', 'EXR, header and chunk mutations (lantern diff)', (rng) => {
+    let bytes = exrSeed(rng);
+    for (let r = 1 + rng.int(2); r > 0; r--) bytes = mutateExr(rng, bytes);
+    return [{ name: 'fuzz.exr', bytes }];
+  }, exrPath),
+  { id: 'exr-huge', label: 'EXR, crafted huge dimensions (lantern diff)', count: 2, input: (_rng, i) => [{ name: 'huge.exr', bytes: i % 2 === 0 ? hugeExr(100_000, 100_000, 410_000) : hugeExr(8000, 8000, 410_000) }, { name: 'small.exr', bytes: exrSeed(new Rng(1)) }], run: exrPath },
+  mutated('hdr', 'HDR, header and RLE mutations', (rng) => [{ name: 'fuzz.hdr', bytes: mutateHdr(rng, hdrSeed(rng)) }], async (files) => void decodeHdr(files[0]!.bytes, files[0]!.name)),
+  mutated('png', 'PNG, IHDR and IDAT mutations', (rng) => [{ name: 'fuzz.png', bytes: mutatePng(rng, pngSeed(rng)) }], async (files) => void decodePng(files[0]!.bytes, files[0]!.name)),
+  mutated('wolf3d', 'Wolfenstein 3D, MAPHEAD/GAMEMAPS/VSWAP mutations', (rng) => generateWolf(rng)),
+  mutated('molecule', 'Molecule files (MDL molfile V2000/V3000, SDF), line mutations', (rng) => [generateMolecule(rng)]),
+];
+
+/**
+ * A PLY whose gzip stream inflates to about `bytes`: a valid header, then members of 64 MiB of zeros
+ * concatenated (gzip allows several members; each compresses to ~64 KB), so big bombs cost little to build.
+ */
+function plyBomb(bytes: number): Uint8Array {
+  const header = gzipSync(new TextEncoder().encode('ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n'));
+  const member = gzipBomb(Math.min(bytes, 64 * 2 ** 20));
+  const parts: Uint8Array[] = [new Uint8Array(header)];
+  for (let n = 0; n < bytes; n += 64 * 2 ** 20) parts.push(member);
+  return concat(...parts);
+}
+
+export type Outcome = { readonly kind: 'ok' | 'clean'; readonly message?: string } | { readonly kind: 'crash'; readonly message: string };
+
+/** Runs one input through its target: ok, a clean refusal (LanternError), or a crash (anything else). */
+export async function runInput(target: FuzzTarget, files: NamedBytes[]): Promise<Outcome> {
+  try {
+    await target.run(files);
+    return { kind: 'ok' };
+  } catch (e) {
+    if (e instanceof LanternError) return { kind: 'clean', message: e.userMessage };
+    return { kind: 'crash', message: e instanceof Error ? `${e.name}: ${e.message}` : String(e) };
+  }
+}
