@@ -16,6 +16,11 @@ export class GpuTimer {
     this.readBuffer = device.createBuffer({ label: 'timestamp read', size: capacity * 16, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
   }
 
+  /** Passes that can still be timed before the next read. */
+  get room(): number {
+    return this.capacity - this.names.length;
+  }
+
   /** The `timestampWrites` of a compute or render pass descriptor, recording a pass named `name`. */
   timestampWrites(name: string): GPUComputePassTimestampWrites {
     if (this.names.length >= this.capacity) throw new Error(`GpuTimer holds at most ${this.capacity} passes per resolve`);
