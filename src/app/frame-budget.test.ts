@@ -125,32 +125,41 @@ describe('describeFixedScale', () => {
 });
 
 describe('ChunkSizer', () => {
-  it('cuts a slow frame into whole workgroup rows of about the target time, and a fast one not at all', () => {
-    const sizer = new ChunkSizer();
+  it('cuts a slow frame into bands of whole workgroup rows of about the target time, and a fast one not at all', () => {
     const width = 640, height = 400;
-    // Before any measurement: about an eighth of the image, in whole workgroup rows.
-    expect(sizer.rows(width, height, height, 1)).toBe(48);
-    // 10 µs per pixel-sample: 6.4 ms per row, 40 ms is 6 rows: a workgroup row (8) is the least.
-    sizer.observe(width * 56, 1, 10e-3 * width * 56);
-    expect(sizer.rows(width, height, height, 1)).toBe(8);
-    // 0.1 µs per pixel-sample: 64 µs a row, the whole image in one submission.
-    const fast = new ChunkSizer();
-    fast.observe(width * 56, 1, 1e-4 * width * 56);
-    fast.observe(width * 56, 1, 1e-4 * width * 56);
-    expect(fast.rows(width, height, height, 1)).toBe(height);
+    // Before any measurement, on a GPU: about an eighth of the image, in whole workgroup rows.
+    const sizer = new ChunkSizer('hardware');
+    expect(sizer.next(width, height, height, 1)).toEqual({ rows: 48, columns: width });
     // 1 µs per pixel-sample at 2 spp: 40 / (1e-3 × 640 × 2) = 31 rows → 24.
-    const mid = new ChunkSizer();
-    mid.observe(width * 8, 2, 1e-3 * width * 8 * 2);
-    const rows = mid.rows(width, height, height, 2);
-    expect(rows).toBe(24);
-    expect(rows * width * 2 * 1e-3).toBeLessThanOrEqual(CHUNK_TARGET_MS);
+    sizer.observe(width * 8, 2, 1e-3 * width * 8 * 2);
+    const chunk = sizer.next(width, height, height, 2);
+    expect(chunk).toEqual({ rows: 24, columns: width });
+    expect(chunk.rows * width * 2 * 1e-3).toBeLessThanOrEqual(CHUNK_TARGET_MS);
+    // 0.1 µs per pixel-sample: 64 µs a row, the whole image in one submission.
+    const fast = new ChunkSizer('hardware');
+    fast.observe(width * 56, 1, 1e-4 * width * 56);
+    expect(fast.next(width, height, height, 1)).toEqual({ rows: height, columns: width });
+  });
+
+  it('cuts a band into pieces where one workgroup row across is too slow (a software adapter)', () => {
+    const width = 1280, height = 800;
+    // A software adapter starts with one workgroup row, a piece of it.
+    const sizer = new ChunkSizer('software');
+    expect(sizer.next(width, height, height, 1)).toEqual({ rows: 8, columns: 64 });
+    // 25 µs per pixel-sample: 40 ms is 1600 pixels, 8 rows × 200 columns.
+    sizer.observe(8 * 64, 1, 25e-3 * 8 * 64);
+    const chunk = sizer.next(width, height, height, 1);
+    expect(chunk).toEqual({ rows: 8, columns: 200 });
+    expect(chunk.rows * chunk.columns * 25e-3).toBeLessThanOrEqual(CHUNK_TARGET_MS);
+    // The end of a band: no sliver of a piece left over.
+    expect(sizer.next(width, height, height, 1, 204)).toEqual({ rows: 8, columns: 204 });
   });
 
   it('never leaves a sliver under a workgroup row for a submission of its own', () => {
-    const sizer = new ChunkSizer();
+    const sizer = new ChunkSizer('hardware');
     sizer.observe(100 * 8, 1, 40);
-    expect(sizer.rows(100, 100, 12, 1)).toBe(12);
-    expect(sizer.rows(100, 100, 3, 1)).toBe(3);
-    expect(sizer.rows(100, 100, 0, 1)).toBe(0);
+    expect(sizer.next(100, 100, 12, 1).rows).toBe(12);
+    expect(sizer.next(100, 100, 3, 1).rows).toBe(3);
+    expect(sizer.next(100, 100, 0, 1)).toEqual({ rows: 0, columns: 0 });
   });
 });

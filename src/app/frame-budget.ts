@@ -106,7 +106,7 @@ export class FrameBudget {
   readonly displayHz: number;
   private step: number;
   private samples: number;
-  private readonly baseSamples: number;
+  private baseSamples: number;
   /** Milliseconds per pixel and sample of the frames since the last change (at most FRAMES_TO_JUDGE + 2). */
   private costs: number[] = [];
   private changedAt: number | undefined;
@@ -141,6 +141,12 @@ export class FrameBudget {
   /** The last frame reported. */
   get lastFrame(): FrameSample | undefined {
     return this.last;
+  }
+
+  /** The user's samples per frame changed: the budget's floor follows (above it, the budget's own choice stays). */
+  setBaseSamples(samples: number): void {
+    this.baseSamples = Math.max(1, Math.floor(samples));
+    this.samples = Math.max(this.samples, this.baseSamples);
   }
 
   /** Reports a frame; returns whether the choice changed (the viewer then resizes before the next frame). */
@@ -218,24 +224,45 @@ export const CHUNK_TARGET_MS = 40;
 /** Bands are whole workgroup rows (the tracing kernels' @workgroup_size is 8 × 8). */
 export const CHUNK_ROW_MULTIPLE = 8;
 
+/** The next submission's piece of the image: a band of `rows` rows, `columns` wide (the whole width unless one band is too slow). */
+export interface Chunk {
+  readonly rows: number;
+  readonly columns: number;
+}
+
 /**
- * How many rows of the image go into the next submission of a frame's path tracing: measured time
- * per row (pixels × samples) over the last submissions, aiming at CHUNK_TARGET_MS. Starts with an
- * eighth of the image, so the first frame on any adapter is cut up before anything is known.
+ * How much of a frame's path tracing goes into the next submission: measured time per pixel and
+ * sample over the last submissions, aiming at CHUNK_TARGET_MS. A chunk is a band of whole workgroup
+ * rows across the image, or, where even one workgroup row across is too slow (SwiftShader on a wide
+ * canvas: 8 × 1280 pixels take a quarter of a second), a piece of such a row. Before anything is
+ * measured: an eighth of the image on a real GPU, one workgroup row on a software adapter.
  */
 export class ChunkSizer {
   /** Milliseconds per pixel-sample, smoothed over submissions (undefined until measured). */
   private cost?: number;
 
-  constructor(private readonly targetMs: number = CHUNK_TARGET_MS) {}
+  constructor(
+    private readonly adapter: AdapterKind = 'hardware',
+    private readonly targetMs: number = CHUNK_TARGET_MS,
+  ) {}
 
-  /** Rows for the next submission of an image `width` wide with `remaining` rows left, at `samples` per pixel. */
-  rows(width: number, height: number, remaining: number, samples: number): number {
-    if (remaining <= 0) return 0;
-    const wanted = this.cost === undefined ? Math.ceil(height / 8) : this.targetMs / (this.cost * width * samples);
+  /**
+   * The next chunk of an image `width` × `height` at `samples` per pixel, with `remainingRows` rows
+   * left (`remainingColumns` of the current band, when a band is under way: its height stays).
+   */
+  next(width: number, height: number, remainingRows: number, samples: number, remainingColumns = width): Chunk {
+    if (remainingRows <= 0) return { rows: 0, columns: 0 };
+    const pixels = this.cost === undefined ? (this.adapter === 'software' ? 0 : (width * height) / 8) : this.targetMs / (this.cost * samples);
+    const wanted = pixels / width;
     const rows = Math.max(CHUNK_ROW_MULTIPLE, Math.floor(wanted / CHUNK_ROW_MULTIPLE) * CHUNK_ROW_MULTIPLE);
     // No sliver left over for a submission of its own.
-    return rows >= remaining || remaining - rows < CHUNK_ROW_MULTIPLE ? remaining : rows;
+    const bandRows = rows >= remainingRows || remainingRows - rows < CHUNK_ROW_MULTIPLE ? remainingRows : rows;
+    if (wanted >= CHUNK_ROW_MULTIPLE) return { rows: bandRows, columns: width };
+    // Even a workgroup row across is too much: a piece of one, in whole workgroups.
+    const pieceRows = remainingRows - CHUNK_ROW_MULTIPLE < CHUNK_ROW_MULTIPLE ? remainingRows : CHUNK_ROW_MULTIPLE;
+    const across = this.cost === undefined ? CHUNK_ROW_MULTIPLE * 8 : pixels / pieceRows;
+    const columns = Math.max(CHUNK_ROW_MULTIPLE, Math.floor(across / CHUNK_ROW_MULTIPLE) * CHUNK_ROW_MULTIPLE);
+    return { rows: pieceRows, columns: columns >= remainingColumns || remainingColumns - columns < CHUNK_ROW_MULTIPLE ? remainingColumns : columns };
   }
 
   /** Reports a submission of `pixels` × `samples` that took `ms` (submit to onSubmittedWorkDone). */

@@ -128,6 +128,8 @@ export class Renderer {
   private epoch = 0;
   /** Counts resetHistory() calls: a split frame begun before one is given up (SplitFrame.valid). */
   private historyResets = 0;
+  /** Counts scene uploads: a split frame holds the resources it began with. */
+  private uploads = 0;
   private denoiser?: Denoiser;
   /** The hybrid recipe (enableHybrid). */
   private hybrid?: Hybrid;
@@ -252,6 +254,7 @@ export class Renderer {
     const resources = uploaded.value;
     this.resources?.destroy();
     this.resources = resources;
+    this.uploads++;
     this.prepared = prepared;
     this.selectionStale = true;
     // A new scene: its own tiles, if the setting asks for them.
@@ -683,7 +686,7 @@ export class Renderer {
   }
 
   /**
-   * Adds `samples` paths per pixel as a sequence of row bands, each submitted by SplitFrame.submitRows
+   * Adds `samples` paths per pixel as a sequence of row bands, each submitted by SplitFrame.submitChunk
    * (the viewer awaits each; the CLI's long renders use accumulate with DispatchPlanner's tiles). The
    * samples count once the last band is submitted; an estimate reset meanwhile gives the frame up
    * (the reset cleared what its bands added).
@@ -814,12 +817,12 @@ export class Renderer {
    */
   renderFrame(samples: number, timer?: GpuTimer): void {
     const frame = this.beginFrame(samples, timer);
-    frame.submitRows(frame.height);
+    frame.submitChunk(frame.height);
   }
 
   /**
    * One real-time frame (renderFrame) as a sequence of submissions: the path tracing in row bands,
-   * each submitted by SplitFrame.submitRows, the filters with the last band. Awaiting finish()
+   * each submitted by SplitFrame.submitChunk, the filters with the last band. Awaiting finish()
    * between bands keeps every submission short, so the page answers input, Pause and settings between
    * them; the frame adds up to exactly renderFrame's. The wavefront integrator and the hybrid recipe
    * trace whole frames: their frames have one band (splittable false).
@@ -868,9 +871,9 @@ export class Renderer {
     return new SplitFrame(this, targets, samples, false, { band: () => {}, finish: () => {}, done: () => {}, abandon: () => {}, whole: render }, 'frame');
   }
 
-  /** What SplitFrame checks before each band: the estimate, the history and the image are those the frame began with. */
+  /** What SplitFrame checks before each band: the estimate, the history and the scene are those the frame began with. */
   frameGeneration(): string {
-    return `${this.epoch} ${this.historyResets}`;
+    return `${this.epoch} ${this.historyResets} ${this.uploads}`;
   }
 
   /** Submits an encoder (SplitFrame's bands). */
@@ -1161,15 +1164,18 @@ interface SplitWork {
 
 /**
  * A frame's GPU work cut into row bands (Renderer.beginFrame, beginAccumulate), submitted one at a
- * time top to bottom: submitRows(n) records the next n rows (and, with the last, the passes after the
- * tracing) and submits them; the caller awaits Renderer.finish() before the next, so each submission
+ * time top to bottom: submitChunk records the next band of rows, or a piece of one (and, with the last,
+ * the passes after the tracing) and submits it; the caller awaits Renderer.finish() before the next, so each submission
  * is a short wait for the page. Every pixel's paths depend on that pixel alone (its random streams are
  * keyed by pixel and sample index, never by tile), so the bands add up to exactly the unsplit frame.
  * Anything that changes what the frame computes (a camera move, a resize, a scene or settings
  * change: each resets the estimate or the history) makes it invalid; the caller then abandons it.
  */
 export class SplitFrame {
-  private rows = 0;
+  /** The next chunk's corner, and the height of the band under way. */
+  private x = 0;
+  private y = 0;
+  private bandRows = 0;
   private finished = false;
   private abandoned = false;
   private readonly generation: string;
@@ -1179,7 +1185,7 @@ export class SplitFrame {
     private readonly targets: ImageTargets,
     /** Paths per pixel of the frame. */
     readonly samples: number,
-    /** Whether the tracing can be cut into bands (false: the first submitRows submits the whole frame). */
+    /** Whether the tracing can be cut into bands (false: the first submitChunk submits the whole frame). */
     readonly splittable: boolean,
     private readonly work: SplitWork,
     private readonly label: string,
@@ -1195,9 +1201,19 @@ export class SplitFrame {
     return this.targets.height;
   }
 
-  /** Rows submitted so far. */
+  /** Rows done so far (whole bands). */
   get rowsDone(): number {
-    return this.rows;
+    return this.y;
+  }
+
+  /** Rows not yet done, the current band's included. */
+  get rowsLeft(): number {
+    return this.height - this.y;
+  }
+
+  /** Columns of the current band not yet done (the width between bands). */
+  get columnsLeft(): number {
+    return this.width - this.x;
   }
 
   /** Whether the whole frame has been submitted. */
@@ -1211,21 +1227,30 @@ export class SplitFrame {
   }
 
   /**
-   * Records and submits the next `rows` rows (at least one; all that remain for a frame that is not
-   * splittable), and with the last of them the passes after the tracing, in the same submission.
-   * Returns the pixels traced.
+   * Records and submits the next chunk: `columns` pixels (default the whole width) of a band of
+   * `rows` rows; a band's height is set by its first chunk, and chunks go left to right, bands top to
+   * bottom. A frame that is not splittable is submitted whole. The last chunk carries the passes
+   * after the tracing in the same submission. Returns the pixels traced.
    */
-  submitRows(rows: number): number {
+  submitChunk(rows: number, columns = this.width): number {
     if (!this.valid) throw new Error('SplitFrame: the frame was finished, abandoned or overtaken by a change; begin another');
-    const y = this.rows;
-    const n = this.splittable ? Math.min(Math.max(1, Math.floor(rows)), this.height - y) : this.height - y;
-    this.rows = y + n;
-    const last = this.rows === this.height;
+    if (!this.splittable) {
+      rows = this.height;
+      columns = this.width;
+    }
+    if (this.x === 0) this.bandRows = Math.min(Math.max(1, Math.floor(rows)), this.height - this.y);
+    const tile = { x: this.x, y: this.y, width: Math.min(Math.max(1, Math.floor(columns)), this.width - this.x), height: this.bandRows };
+    this.x += tile.width;
+    if (this.x === this.width) {
+      this.x = 0;
+      this.y += this.bandRows;
+    }
+    const last = this.y === this.height;
     if (this.work.whole) {
       this.work.whole();
     } else {
-      const encoder = this.renderer.device.createCommandEncoder({ label: `${this.label} rows ${y}–${this.rows}` });
-      this.work.band(encoder, { x: 0, y, width: this.width, height: n });
+      const encoder = this.renderer.device.createCommandEncoder({ label: `${this.label} (${tile.x}, ${tile.y}) ${tile.width}×${tile.height}` });
+      this.work.band(encoder, tile);
       if (last) this.work.finish(encoder);
       this.renderer.submit(encoder);
     }
@@ -1233,7 +1258,7 @@ export class SplitFrame {
       this.finished = true;
       this.work.done();
     }
-    return n * this.width;
+    return tile.width * tile.height;
   }
 
   /** Gives the frame up (the real-time chain's history stays that of the last finished frame). */

@@ -2,7 +2,7 @@
  * Frames cut into row bands (Renderer.beginAccumulate, beginFrame: the viewer's short submissions)
  * are bit for bit the unsplit frames: the progressive estimate, the real-time chain's output over two
  * frames with a camera move between them (so the second reprojects the first), and the ray counts.
- * A band of a frame given up (a change came mid-frame) leaves the real-time history as it was.
+ * A chunk of a frame given up (a change came mid-frame) leaves the real-time history as it was.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
@@ -13,8 +13,8 @@ import { testGpu } from './gpu-context.ts';
 
 const WIDTH = 40;
 const HEIGHT = 28;
-/** Bands of uneven heights, none a whole number of workgroup rows (8): tile origins off the workgroup grid. */
-const BANDS = [5, 9, 3, 100];
+/** Chunks of uneven sizes, none a whole number of workgroups (8): tile origins off the workgroup grid, bands in pieces. */
+const CHUNKS: readonly (readonly [number, number])[] = [[5, WIDTH], [9, 13], [9, 100], [3, 7], [3, 11], [3, 100], [100, 100]];
 
 const scene = prepareScene(builtinScene('cornell'));
 const cameraA: Camera = scene.scene.camera;
@@ -30,17 +30,19 @@ beforeAll(async () => {
     await r.setScene(scene);
     await r.resize(WIDTH, HEIGHT);
   }
-});
+  // Compiling the path tracers on SwiftShader alone (when no other test file compiled them first) takes over a minute on a loaded machine.
+}, 300_000);
 afterAll(() => {
   unsplit?.destroy();
   split?.destroy();
 });
 
-/** Submits a split frame band by band, waiting for each as the viewer does. */
+/** Submits a split frame chunk by chunk, waiting for each as the viewer does. */
 async function submitInBands(renderer: Renderer, frame: SplitFrame): Promise<number> {
   let submissions = 0;
   for (let i = 0; !frame.done; i++) {
-    frame.submitRows(BANDS[i % BANDS.length]!);
+    const [rows, columns] = CHUNKS[i % CHUNKS.length]!;
+    frame.submitChunk(rows, columns);
     submissions++;
     await renderer.finish();
   }
@@ -57,7 +59,7 @@ describe('split frames', () => {
     }
     for (let round = 0; round < 2; round++) {
       unsplit.accumulate(2);
-      expect(await submitInBands(split, split.beginAccumulate(2))).toBe(4);
+      expect(await submitInBands(split, split.beginAccumulate(2))).toBe(7);
     }
     const [a, b] = await Promise.all([unsplit.readAccumulation(), split.readAccumulation()]);
     expect(b.samples).toBe(4);
@@ -79,11 +81,11 @@ describe('split frames', () => {
     // A frame begun at another pose, overtaken by a camera change after its first band: given up.
     split.setCamera({ ...cameraA, vfovDegrees: cameraA.vfovDegrees * 0.5 });
     const overtaken = split.beginFrame(1);
-    overtaken.submitRows(8);
+    overtaken.submitChunk(8);
     split.setCamera(cameraB);
     expect(overtaken.valid).toBe(false);
     overtaken.abandon();
-    expect(() => overtaken.submitRows(8)).toThrow(/abandoned|overtaken/);
+    expect(() => overtaken.submitChunk(8)).toThrow(/abandoned|overtaken/);
 
     unsplit.setCamera(cameraB);
     unsplit.renderFrame(1);
