@@ -87,6 +87,25 @@ describe('FrameBudget', () => {
     }
   });
 
+  it('settles on a machine whose load comes and goes (frames anywhere from half to twice their cost)', () => {
+    // A seeded generator (mulberry32): the same noise every run.
+    let state = 12345;
+    const random = () => {
+      state = (state + 0x6d2b79f5) >>> 0;
+      let t = state;
+      t = Math.imul(t ^ (t >>> 15), t | 1);
+      t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
+      return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+    };
+    const noisy = () => 25e-3 * 2 ** (2 * random() - 1);
+    const { history } = simulate({ adapter: 'software', canvasPixels: CANVAS }, noisy, 600);
+    const changes = history.map((f, i) => ({ ...f, i })).filter((f) => f.changed);
+    // 600 frames at about 3 a second: over three minutes. A handful of resizes, most of them early,
+    // none in the last minute and a half (the waits before stepping up have grown).
+    expect(changes.length).toBeLessThanOrEqual(8);
+    expect(changes.filter((f) => f.i >= 300)).toHaveLength(0);
+  });
+
   it('follows the view: a costlier view scales down soon, a cheaper one scales up after a wait', () => {
     // The view changes at frame 30 to one 4× as costly, and at frame 80 back.
     const cost = (i: number) => (i >= 30 && i < 80 ? 100e-3 : 25e-3);
@@ -153,6 +172,22 @@ describe('ChunkSizer', () => {
     expect(chunk.rows * chunk.columns * 25e-3).toBeLessThanOrEqual(CHUNK_TARGET_MS);
     // The end of a band: no sliver of a piece left over.
     expect(sizer.next(width, height, height, 1, 204)).toEqual({ rows: 8, columns: 204 });
+  });
+
+  it('keeps chunks mostly work when the submission round trip itself is slow', () => {
+    // A loaded browser: 30 ms to answer an empty submission; the work is 25 µs per pixel-sample.
+    const sizer = new ChunkSizer('software');
+    sizer.observeIdle(30);
+    for (let i = 0; i < 20; i++) {
+      const { rows, columns } = sizer.next(1280, 800, 800, 1);
+      sizer.observe(rows * columns, 1, 30 + 25e-3 * rows * columns);
+    }
+    const { rows, columns } = sizer.next(1280, 800, 800, 1);
+    const workMs = 25e-3 * rows * columns;
+    // At least as much work as round trip (aiming at twice the round trip, 60 ms), and not beyond it.
+    expect(workMs).toBeGreaterThanOrEqual(30 - 25e-3 * 64);
+    expect(workMs + 30).toBeLessThanOrEqual(60);
+    expect(sizer.splits(1280, 800, 1)).toBe(true);
   });
 
   it('never leaves a sliver under a workgroup row for a submission of its own', () => {

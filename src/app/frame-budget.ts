@@ -16,8 +16,12 @@
  * (down when frames are clearly over the target, up only when the next step up is predicted to stay
  * clearly under it), after several frames at the current scale, and up only after a longer wait.
  * The steps are powers of 2^(1/4) in scale (2^(1/2) in pixels), so one step up costs a predictable
- * 41 % more and the bands cannot chase each other: going down needs a frame over 1.25 × the
- * target, going up a prediction under 0.8 × the target, i.e. a frame under 0.57 × the target now.
+ * 41 % more and the bands cannot chase each other: going down needs the median of three frames over
+ * 1.25 × the target, going up a prediction under 0.8 × the target from the costliest of the last six
+ * frames, i.e. every one of them under 0.57 × the target now. Where the load comes and goes (a
+ * software adapter shares the CPU with everything else) a step up taken back within 15 s doubles
+ * the wait before the next, so the scale settles instead of following the noise (measured in the
+ * page on SwiftShader with the median alone: a resize every few seconds).
  */
 
 /** What kind of adapter renders: a CPU implementation (SwiftShader, WARP, llvmpipe) or a real GPU. */
@@ -45,9 +49,16 @@ const UNDER = 0.8;
 const AIM = 0.9;
 /** Frames measured at a scale before the budget judges it. */
 const FRAMES_TO_JUDGE = 3;
-/** Frames, and milliseconds, at a scale before the budget tries a step up. */
+/** Frames, and milliseconds, at a scale before the budget tries a step up; every frame of them must predict the step fits. */
 const FRAMES_BEFORE_UP = 6;
 const MS_BEFORE_UP = 2000;
+/**
+ * A step up that had to be taken back within this long doubles the wait before the next one (up
+ * to MAX_MS_BEFORE_UP): on a machine whose load comes and goes, the budget settles instead of
+ * resizing (and dropping the history) every few seconds.
+ */
+const REVERSAL_MS = 15_000;
+const MAX_MS_BEFORE_UP = 64_000;
 
 /** Whether an adapter renders on the CPU: the spec's isFallbackAdapter, or a software renderer's name. */
 export function adapterKind(info: { readonly name: string; readonly isFallbackAdapter?: boolean | undefined }): AdapterKind {
@@ -107,9 +118,12 @@ export class FrameBudget {
   private step: number;
   private samples: number;
   private baseSamples: number;
-  /** Milliseconds per pixel and sample of the frames since the last change (at most FRAMES_TO_JUDGE + 2). */
+  /** Milliseconds per pixel and sample of the last frames (at most FRAMES_BEFORE_UP; since the last change, but one). */
   private costs: number[] = [];
   private changedAt: number | undefined;
+  /** When the last step up was taken, and the wait before the next one (doubled by each reversal). */
+  private upAt: number | undefined;
+  private upWaitMs = MS_BEFORE_UP;
   private framesSinceChange = 0;
   private calibrated = false;
   private last?: FrameSample;
@@ -154,7 +168,7 @@ export class FrameBudget {
     if (!(frame.ms > 0 && frame.pixels > 0 && frame.samples > 0)) return false;
     this.last = frame;
     this.costs.push(frame.ms / (frame.pixels * frame.samples));
-    if (this.costs.length > FRAMES_TO_JUDGE + 2) this.costs.shift();
+    if (this.costs.length > FRAMES_BEFORE_UP) this.costs.shift();
     this.framesSinceChange++;
     this.changedAt ??= frame.at;
     const pixelsAtScale1 = frame.pixels / SCALE_STEPS[this.step]! ** 2;
@@ -168,15 +182,25 @@ export class FrameBudget {
     const cost = median(this.costs.slice(-FRAMES_TO_JUDGE));
     const predict = (step: number, samples: number) => cost * pixelsAtScale1 * SCALE_STEPS[step]! ** 2 * samples;
     const now = predict(this.step, this.samples);
-    if (now > OVER * this.targetMs) return this.moveTo(this.fit(pixelsAtScale1, cost), frame.at);
-    const waited = this.framesSinceChange >= FRAMES_BEFORE_UP && frame.at - this.changedAt >= MS_BEFORE_UP;
-    if (!waited) return false;
-    // Up one step at a time: resolution first, then (at full resolution) samples.
-    if (this.step > 0 && predict(this.step - 1, this.samples) < UNDER * this.targetMs) return this.moveTo({ step: this.step - 1, samples: this.samples }, frame.at);
-    if (this.step === 0 && this.samples < Math.max(MAX_BUDGET_SAMPLES, this.baseSamples) && predict(0, this.samples * 2) < UNDER * this.targetMs) {
-      return this.moveTo({ step: 0, samples: Math.min(this.samples * 2, Math.max(MAX_BUDGET_SAMPLES, this.baseSamples)) }, frame.at);
+    if (now > OVER * this.targetMs) {
+      // Taken back soon after a step up: wait longer before the next.
+      if (this.upAt !== undefined && frame.at - this.upAt < REVERSAL_MS) this.upWaitMs = Math.min(MAX_MS_BEFORE_UP, 2 * this.upWaitMs);
+      this.upAt = undefined;
+      return this.moveTo(this.fit(pixelsAtScale1, cost), frame.at);
     }
-    return false;
+    const waited = this.framesSinceChange >= FRAMES_BEFORE_UP && this.costs.length >= FRAMES_BEFORE_UP && frame.at - this.changedAt >= this.upWaitMs;
+    if (!waited) return false;
+    // Up one step at a time, resolution first, then (at full resolution) samples, and only when the
+    // costliest of the last frames predicts it fits: noise delays a step up, never causes one.
+    const worst = Math.max(...this.costs);
+    const fitsUp = (step: number, samples: number) => worst * pixelsAtScale1 * SCALE_STEPS[step]! ** 2 * samples < UNDER * this.targetMs;
+    const maxSamples = Math.max(MAX_BUDGET_SAMPLES, this.baseSamples);
+    let to: { step: number; samples: number } | undefined;
+    if (this.step > 0 && fitsUp(this.step - 1, this.samples)) to = { step: this.step - 1, samples: this.samples };
+    else if (this.step === 0 && this.samples < maxSamples && fitsUp(0, this.samples * 2)) to = { step: 0, samples: Math.min(this.samples * 2, maxSamples) };
+    if (!to) return false;
+    this.upAt = frame.at;
+    return this.moveTo(to, frame.at);
   }
 
   /** The one-line account of the choice: `budget: 0.35× (software adapter, 3 fps target; last frame 310 ms)`. */
@@ -238,8 +262,10 @@ export interface Chunk {
  * measured: an eighth of the image on a real GPU, one workgroup row on a software adapter.
  */
 export class ChunkSizer {
-  /** Milliseconds per pixel-sample, smoothed over submissions (undefined until measured). */
+  /** Milliseconds per pixel-sample of the work alone, smoothed over submissions (undefined until measured). */
   private cost?: number;
+  /** Milliseconds of a submission's round trip without work (submit to onSubmittedWorkDone of nothing). */
+  private overheadMs = 0;
 
   constructor(
     private readonly adapter: AdapterKind = 'hardware',
@@ -247,12 +273,21 @@ export class ChunkSizer {
   ) {}
 
   /**
+   * What a chunk aims at: the target, or twice the round trip where that is longer (a loaded browser
+   * can take tens of milliseconds to answer an empty submission), so at least half of each
+   * submission's time is work: chunks sized from the target alone would shrink toward nothing.
+   */
+  private get aimMs(): number {
+    return Math.max(this.targetMs, 2 * this.overheadMs);
+  }
+
+  /**
    * The next chunk of an image `width` × `height` at `samples` per pixel, with `remainingRows` rows
    * left (`remainingColumns` of the current band, when a band is under way: its height stays).
    */
   next(width: number, height: number, remainingRows: number, samples: number, remainingColumns = width): Chunk {
     if (remainingRows <= 0) return { rows: 0, columns: 0 };
-    const pixels = this.cost === undefined ? (this.adapter === 'software' ? 0 : (width * height) / 8) : this.targetMs / (this.cost * samples);
+    const pixels = this.cost === undefined ? (this.adapter === 'software' ? 0 : (width * height) / 8) : (this.aimMs - this.overheadMs) / (this.cost * samples);
     const wanted = pixels / width;
     const rows = Math.max(CHUNK_ROW_MULTIPLE, Math.floor(wanted / CHUNK_ROW_MULTIPLE) * CHUNK_ROW_MULTIPLE);
     // No sliver left over for a submission of its own.
@@ -265,10 +300,23 @@ export class ChunkSizer {
     return { rows: pieceRows, columns: columns >= remainingColumns || remainingColumns - columns < CHUNK_ROW_MULTIPLE ? remainingColumns : columns };
   }
 
+  /** Whether the last chunk asked for was less than a whole image (the viewer then measures the round trip now and then). */
+  splits(width: number, height: number, samples: number): boolean {
+    const chunk = this.next(width, height, height, samples);
+    return chunk.rows < height || chunk.columns < width;
+  }
+
+  /** Reports the round trip of an empty submission (ms). */
+  observeIdle(ms: number): void {
+    if (!(ms >= 0)) return;
+    this.overheadMs = this.overheadMs === 0 ? ms : 0.5 * this.overheadMs + 0.5 * ms;
+  }
+
   /** Reports a submission of `pixels` × `samples` that took `ms` (submit to onSubmittedWorkDone). */
   observe(pixels: number, samples: number, ms: number): void {
     if (!(pixels > 0 && samples > 0 && ms >= 0)) return;
-    const cost = ms / (pixels * samples);
+    // The work's share: what the round trip alone does not explain (at least a tenth, so noise in the round trip cannot make work free).
+    const cost = Math.max(ms - this.overheadMs, 0.1 * ms) / (pixels * samples);
     // Quick to follow a costlier view (down at once), slower to trust a cheap one.
     this.cost = this.cost === undefined || cost > this.cost ? cost : 0.5 * this.cost + 0.5 * cost;
   }

@@ -985,6 +985,13 @@ export class Viewer {
       }
       if (!keepGoing()) return 'suspended';
       const split = frame.current;
+      // A frame cut into several chunks pays a round trip for each: measured at its start (the GPU
+      // idle), so the sizer tells the work from the wait.
+      if (frame.chunks === 0 && split.rowsDone === 0 && split.columnsLeft === split.width && this.chunks.splits(split.width, split.height, split.samples)) {
+        const t = performance.now();
+        await renderer.finish();
+        this.chunks.observeIdle(performance.now() - t);
+      }
       const chunk = this.chunks.next(split.width, split.height, split.rowsLeft, split.samples, split.columnsLeft);
       const t0 = performance.now();
       const pixels = split.submitChunk(chunk.rows, chunk.columns);
@@ -1026,12 +1033,15 @@ export class Viewer {
     this.frames.push({ at: performance.now(), rays });
     if (this.frames.length > STATS_WINDOW) this.frames.shift();
     if (this.playedAt !== undefined && this.firstFrameMs === undefined) this.firstFrameMs = performance.now() - this.playedAt;
-    // The budget hears the frame's GPU time: the timestamps where every pass of it was timed (a
-    // frame of a few chunks: the timer has room for them all), else the chunks' wall time.
-    const gpuTimed = timer !== undefined && frame.chunks <= MAX_TIMED_CHUNKS && this.gpuPasses.length > 0;
+    // The budget hears the frame's GPU time on a real GPU: the timestamps where every pass of it was
+    // timed (a frame of a few chunks: the timer has room for them all), else the chunks' wall time.
+    // On a software adapter always the wall time: the GPU is the CPU the page shares, and its
+    // timestamps leave out the round trips and the load that the user waits for.
+    const budget = this.budgetValue;
+    const gpuTimed = budget?.adapter === 'hardware' && timer !== undefined && frame.chunks <= MAX_TIMED_CHUNKS && this.gpuPasses.length > 0;
     const ms = gpuTimed ? this.gpuPasses.reduce((sum, p) => sum + p.ms, 0) : busyMs;
-    if (!this.scaleFixed && this.budgetValue && frame.pixels > 0) {
-      this.budgetValue.observe({ ms, gpuTimed, pixels: frame.width * frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
+    if (!this.scaleFixed && budget && frame.pixels > 0) {
+      budget.observe({ ms, gpuTimed, pixels: frame.width * frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
     }
   }
 
