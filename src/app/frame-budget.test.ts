@@ -56,6 +56,7 @@ describe('FrameBudget', () => {
     expect(history.filter((f) => f.changed)).toHaveLength(1);
     expect(budget.targetFps).toBe(3);
     expect(budget.describe()).toMatch(/^budget: 0\.\d+× \(software adapter, 3 fps target; last frame \d+ ms\)$/);
+    expect(budget.describe(false)).toMatch(/^budget: 0\.\d+× \(software adapter, 3 fps target\)$/);
   });
 
   it('holds the display rate on a real GPU, adding samples at full resolution when there is time to spare', () => {

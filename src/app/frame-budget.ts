@@ -203,13 +203,17 @@ export class FrameBudget {
     return this.moveTo(to, frame.at);
   }
 
-  /** The one-line account of the choice: `budget: 0.35× (software adapter, 3 fps target; last frame 310 ms)`. */
-  describe(): string {
+  /**
+   * The one-line account of the choice: `budget: 0.35× (software adapter, 3 fps target; last frame
+   * 310 ms)`; without the last frame (`lastFrame` false) it changes only with the choice, which a
+   * status line that must not reflow every frame wants.
+   */
+  describe(lastFrame = true): string {
     const { scale, samplesPerFrame } = this.choice;
     const spp = samplesPerFrame > this.baseSamples ? ` · ${samplesPerFrame} spp` : '';
     const why = this.adapter === 'software' ? `software adapter, ${formatNumber(this.targetFps)} fps target` : `display ${formatNumber(this.displayHz)} Hz, ${formatNumber(this.targetFps)} fps target`;
     const last = this.last ? `last frame ${formatMs(this.last.ms)}${this.last.gpuTimed ? ' GPU' : ''}` : 'measuring';
-    return `budget: ${formatScale(scale)}${spp} (${why}; ${last})`;
+    return `budget: ${formatScale(scale)}${spp} (${why}${lastFrame ? `; ${last}` : ''})`;
   }
 
   /** The largest scale (and, at full scale, samples) whose predicted frame fits AIM × the target; down to the smallest step. */

@@ -322,9 +322,10 @@ export class Viewer {
     };
   }
 
-  private budgetText(): string {
+  /** The budget's account; `lastFrame` false leaves out the last frame's time (a line that changes only with the choice). */
+  budgetText(lastFrame = true): string {
     if (this.scaleFixed || !this.budgetValue) return this.scaleFixed ? describeFixedScale(this.settings.scale) : 'budget: measuring the GPU at the first frames';
-    return this.budgetValue.describe();
+    return this.budgetValue.describe(lastFrame);
   }
 
   /** The frame budget: on or off, what it chose, its one-line account. */
