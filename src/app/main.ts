@@ -95,8 +95,8 @@ function showViewer(v: Viewer): void {
     loading !== undefined ? `loading: ${loading}…`
     : v.state === 'idle' ? 'press Play to start'
     : v.state === 'starting' ? 'starting the GPU…'
-    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter} · ${v.budgetText(false)}${hidden}`;
-  // The budget's line without the last frame's time, so the header does not reflow (and resize the canvas) every frame; the tooltip has it all.
+    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter} · ${v.budgetText(true)}${hidden}`;
+  // The budget's short line (it changes only with its choice, so the header does not reflow and resize the canvas every frame); the tooltip has it all.
   stats.title = s.budget;
   panel?.showStats();
   showLegend(v.legend);

@@ -322,10 +322,15 @@ export class Viewer {
     };
   }
 
-  /** The budget's account; `lastFrame` false leaves out the last frame's time (a line that changes only with the choice). */
-  budgetText(lastFrame = true): string {
-    if (this.scaleFixed || !this.budgetValue) return this.scaleFixed ? describeFixedScale(this.settings.scale) : 'budget: measuring the GPU at the first frames';
-    return this.budgetValue.describe(lastFrame);
+  /**
+   * The budget's account. `short`: for the status line, without the last frame's time (so it changes
+   * only with the choice) and, with the budget off, just the fixed scale: the header wraps, and a
+   * longer line moves the canvas's size and aspect (and with it the image).
+   */
+  budgetText(short = false): string {
+    if (this.scaleFixed) return short ? `scale ${Number(this.settings.scale.toPrecision(2))}× (fixed)` : describeFixedScale(this.settings.scale);
+    if (!this.budgetValue) return 'budget: measuring the GPU at the first frames';
+    return this.budgetValue.describe(!short);
   }
 
   /** The frame budget: on or off, what it chose, its one-line account. */
