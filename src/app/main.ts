@@ -91,11 +91,12 @@ function showViewer(v: Viewer): void {
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
   playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
   const hidden = document.hidden && v.state === 'playing' ? ' · paused while the tab is hidden' : '';
+  const budget = v.budgetText(true);
   stats.textContent =
     loading !== undefined ? `loading: ${loading}…`
     : v.state === 'idle' ? 'press Play to start'
     : v.state === 'starting' ? 'starting the GPU…'
-    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter} · ${v.budgetText(true)}${hidden}`;
+    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter}${budget ? ` · ${budget}` : ''}${hidden}`;
   // The budget's short line (it changes only with its choice, so the header does not reflow and resize the canvas every frame); the tooltip has it all.
   stats.title = s.budget;
   panel?.showStats();

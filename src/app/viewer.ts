@@ -324,11 +324,11 @@ export class Viewer {
 
   /**
    * The budget's account. `short`: for the status line, without the last frame's time (so it changes
-   * only with the choice) and, with the budget off, just the fixed scale: the header wraps, and a
-   * longer line moves the canvas's size and aspect (and with it the image).
+   * only with the choice), and empty with the budget off (the fixed scale shows in the image size):
+   * the header wraps, and a longer line changes the canvas's size and aspect, and with it the image.
    */
   budgetText(short = false): string {
-    if (this.scaleFixed) return short ? `scale ${Number(this.settings.scale.toPrecision(2))}× (fixed)` : describeFixedScale(this.settings.scale);
+    if (this.scaleFixed) return short ? '' : describeFixedScale(this.settings.scale);
     if (!this.budgetValue) return 'budget: measuring the GPU at the first frames';
     return this.budgetValue.describe(!short);
   }
