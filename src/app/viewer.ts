@@ -252,6 +252,8 @@ export class Viewer {
   private frameValue?: ViewerFrame;
   /** Settles when the frame under way is done or stopped (readImage waits for it: a half-traced frame is no image). */
   private frameSettled: Promise<void> = Promise.resolve();
+  /** When a chunk last told the page (hooks.onChange). */
+  private changedAt = 0;
   /** Whether chunks were submitted since the last frame was presented (the real-time output is then half overwritten). */
   private imageDirty = false;
   /** Test hook (window.lantern.delayFrames): milliseconds each frame waits after its GPU work, a deterministically slow adapter. */
@@ -889,8 +891,8 @@ export class Viewer {
     await this.frameSettled;
     let frame = this.frameValue;
     if (frame && !this.frameValid(frame)) {
-      frame.current?.abandon();
-      frame = this.frameValue = undefined;
+      this.abandonFrame(frame);
+      frame = undefined;
     }
     if (!frame) {
       await this.applyBudget();
@@ -901,16 +903,20 @@ export class Viewer {
     try {
       const outcome = await this.runChunks(frame, () => this.state === 'playing' && !document.hidden);
       // Suspended (Pause, a hidden tab): the frame waits in frameValue. Overtaken: the next animation frame plans another.
-      if (outcome === 'overtaken') {
-        frame.current?.abandon();
-        this.frameValue = undefined;
-      }
+      if (outcome === 'overtaken') this.abandonFrame(frame);
       if (outcome !== 'done') return;
       this.frameValue = undefined;
       await this.completeFrame(renderer, context, frame);
     } finally {
       settle();
     }
+  }
+
+  /** Gives a frame up: the renderer undoes what matters (the real-time ping-pong), the timer forgets its passes (no resolve will read them). */
+  private abandonFrame(frame: ViewerFrame): void {
+    frame.current?.abandon();
+    if (frame.renderer === this.renderer) this.timer?.discard();
+    if (this.frameValue === frame) this.frameValue = undefined;
   }
 
   /** Whether a frame may go on: same renderer, nothing changed what it computes since it was planned. */
@@ -1008,7 +1014,11 @@ export class Viewer {
       frame.chunks++;
       frame.busyMs += ms;
       frame.pixelsDone += split.splittable ? pixels : split.width * split.height;
-      this.hooks.onChange(this);
+      // The page's numbers follow a long frame's progress, a few times a second (not every chunk: the CPU is the GPU on a software adapter).
+      if (performance.now() - this.changedAt > CHUNK_STATUS_MS) {
+        this.changedAt = performance.now();
+        this.hooks.onChange(this);
+      }
     }
   }
 
@@ -1082,6 +1092,9 @@ export class Viewer {
     }
   }
 }
+
+/** Milliseconds between the page updates a long frame's chunks give. */
+const CHUNK_STATUS_MS = 250;
 
 /** Frames of at most this many chunks are timed by timestamp queries whole (GpuTimer's 64 passes hold them and the passes after). */
 const MAX_TIMED_CHUNKS = 16;

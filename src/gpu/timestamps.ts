@@ -29,6 +29,11 @@ export class GpuTimer {
     return { querySet: this.querySet, beginningOfPassWriteIndex: 2 * i, endOfPassWriteIndex: 2 * i + 1 };
   }
 
+  /** Forgets the passes recorded since the last read (a frame given up before its resolve): their slots are reused. */
+  discard(): void {
+    this.names = [];
+  }
+
   /** Records the copy of this round's timestamps; call once after the timed passes, then submit. */
   resolve(encoder: GPUCommandEncoder): void {
     const n = this.names.length;
