@@ -24,7 +24,7 @@ import { environmentOfLink } from './environment-choice.ts';
 import { SceneLoader } from './scene-loader.ts';
 import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
-import { describeError, Viewer } from './viewer.ts';
+import { describeError, Viewer, type BudgetState, type FrameProgress } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
 import type { ThinLens } from '../scene/types.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
@@ -91,11 +91,14 @@ function showViewer(v: Viewer): void {
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
   playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
   const hidden = document.hidden && v.state === 'playing' ? ' · paused while the tab is hidden' : '';
+  const budget = v.budgetText(true);
   stats.textContent =
     loading !== undefined ? `loading: ${loading}…`
     : v.state === 'idle' ? 'press Play to start'
     : v.state === 'starting' ? 'starting the GPU…'
-    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter}${hidden}`;
+    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter}${budget ? ` · ${budget}` : ''}${hidden}`;
+  // The budget's short line (it changes only with its choice, so the header does not reflow and resize the canvas every frame); the tooltip has it all.
+  stats.title = s.budget;
   panel?.showStats();
   showLegend(v.legend);
 }
@@ -435,6 +438,12 @@ declare global {
       /** The tone-mapped estimate (RGBA8, without the selection outline) and the samples it holds, read at one moment. */
       readImage(): Promise<{ samples: number; width: number; height: number; rgba: number[] }>;
       simulateDeviceLoss(): void;
+      /** The frame budget: whether it is on, the scale and samples per frame it chose, and its one-line account (the status line's). */
+      readonly budget: BudgetState;
+      /** How far the frame under way has got in its short submissions (undefined between frames). */
+      readonly frame: FrameProgress | undefined;
+      /** Makes every frame wait `ms` after its GPU work: a deterministically slow adapter for tests (0: off). */
+      delayFrames(ms: number): void;
     };
   }
 }
@@ -486,4 +495,13 @@ window.lantern = {
   },
   readImage: () => viewer.readImage(),
   simulateDeviceLoss: () => viewer.simulateDeviceLoss(),
+  get budget() {
+    return viewer.budget;
+  },
+  get frame() {
+    return viewer.frameProgress;
+  },
+  delayFrames(ms: number) {
+    viewer.frameDelayMs = ms;
+  },
 };

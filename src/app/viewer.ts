@@ -22,7 +22,8 @@ import type { ResourceCount } from '../gpu/resource-count.ts';
 import { GpuTimer } from '../gpu/timestamps.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
-import { Renderer, type KernelKind, type PickResult } from '../renderer/renderer.ts';
+import { Renderer, type KernelKind, type PickResult, type SplitFrame } from '../renderer/renderer.ts';
+import { adapterKind, ChunkSizer, describeFixedScale, displayRateHz, FrameBudget } from './frame-budget.ts';
 import { editMaterials } from '../renderer/prepare.ts';
 import { materialEditProblem, mergeMaterialEdits, type MaterialEdit } from '../scene/material-edit.ts';
 import type { MaterialOverride } from './material-link.ts';
@@ -132,6 +133,55 @@ export interface ViewerStats {
    * what the first frame needs, uploading the scene, the frame itself. Undefined until then.
    */
   readonly firstFrameMs: number | undefined;
+  /**
+   * What the frame budget chose and why, one line: `budget: 0.35× (software adapter, 3 fps target;
+   * last frame 310 ms)`, or `budget: off (resolution fixed at 0.5×)` once the user fixed the scale.
+   */
+  readonly budget: string;
+}
+
+/** The frame budget's state for tests (window.lantern.budget). */
+export interface BudgetState {
+  /** Whether the budget chooses the scale (false once the user fixed a resolution). */
+  readonly on: boolean;
+  readonly scale: number;
+  readonly samplesPerFrame: number;
+  readonly text: string;
+}
+
+/** The frame under way, for tests: how far its chunks have got (window.lantern.frame). */
+export interface FrameProgress {
+  /** Chunks submitted and their wall milliseconds (submit to onSubmittedWorkDone), summed. */
+  readonly chunks: number;
+  readonly busyMs: number;
+  /** Pixels traced of the pixels the frame traces (all its parts: the real-time frame, and the estimate beside it). */
+  readonly pixelsDone: number;
+  readonly pixels: number;
+  /** Whether a Pause left it suspended (it goes on at Play unless a change overtakes it). */
+  readonly suspended: boolean;
+}
+
+/**
+ * A frame of the viewer in progress: its parts (a real-time frame; the progressive estimate beside a
+ * still view, or alone) begun one after another, each submitted in chunks; what the display shows
+ * once they are all done.
+ */
+interface ViewerFrame {
+  readonly renderer: Renderer;
+  /** The renderer's frameGeneration when the frame was planned: a change since overtakes it. */
+  readonly generation: string;
+  readonly width: number;
+  readonly height: number;
+  readonly samples: number;
+  readonly parts: (() => SplitFrame)[];
+  current?: SplitFrame;
+  readonly display: ViewerDisplay;
+  /** After the last part: what the display shows (the real-time frame over the estimate beside it). */
+  readonly after?: () => void;
+  chunks: number;
+  busyMs: number;
+  pixelsDone: number;
+  readonly pixels: number;
 }
 
 export interface ViewerHooks {
@@ -193,6 +243,22 @@ export class Viewer {
   private materialEdits = new Map<number, MaterialEdit>();
   /** Edits not yet applied (a slider sends many: they are merged and applied once, in order). */
   private pendingEdits = new Map<number, MaterialEdit>();
+  /** Chooses the scale and samples per frame from measured frames, until the user fixes the resolution (made at start). */
+  private budgetValue?: FrameBudget;
+  /** Whether the user fixed the resolution (the panel's scale, a `scale=` link parameter): the budget is then off. */
+  private scaleFixed = false;
+  /** Sizes each submission of a frame's tracing from measured chunk times (made at start, for the adapter). */
+  private chunks = new ChunkSizer();
+  /** The frame under way (or suspended by Pause): its chunks go on at the next animation frame. */
+  private frameValue?: ViewerFrame;
+  /** Settles when the frame under way is done or stopped (readImage waits for it: a half-traced frame is no image). */
+  private frameSettled: Promise<void> = Promise.resolve();
+  /** When a chunk last told the page (hooks.onChange). */
+  private changedAt = 0;
+  /** Whether chunks were submitted since the last frame was presented (the real-time output is then half overwritten). */
+  private imageDirty = false;
+  /** Test hook (window.lantern.delayFrames): milliseconds each frame waits after its GPU work, a deterministically slow adapter. */
+  frameDelayMs = 0;
 
   constructor(
     private readonly canvas: HTMLCanvasElement,
@@ -240,7 +306,7 @@ export class Viewer {
     const rays = f.slice(1).reduce((n, x) => n + x.rays, 0);
     const packed = this.loaded?.prepared.packed.counts;
     return {
-      samples: this.displaying === 'frame' ? this.realTimeFrames * this.settings.samplesPerFrame : (this.renderer?.sampleCount ?? 0),
+      samples: this.displaying === 'frame' ? this.realTimeFrames * this.samplesPerFrame() : (this.renderer?.sampleCount ?? 0),
       display: this.displaying,
       framesPerSecond: span > 0 ? (f.length - 1) / span : 0,
       frameMs: f.length > 1 ? f[f.length - 1]!.at - f[f.length - 2]!.at : 0,
@@ -255,7 +321,45 @@ export class Viewer {
       gpuResources: this.gpu?.resources.count ?? { buffers: 0, textures: 0, bytes: 0 },
       kernel: this.renderer?.kernel ?? 'generic',
       firstFrameMs: this.firstFrameMs,
+      budget: this.budgetText(),
     };
+  }
+
+  /**
+   * The budget's account. `short`: for the status line, without the last frame's time (so it changes
+   * only with the choice), and empty with the budget off (the fixed scale shows in the image size):
+   * the header wraps, and a longer line changes the canvas's size and aspect, and with it the image.
+   */
+  budgetText(short = false): string {
+    if (this.scaleFixed) return short ? '' : describeFixedScale(this.settings.scale);
+    if (!this.budgetValue) return 'budget: measuring the GPU at the first frames';
+    return this.budgetValue.describe(!short);
+  }
+
+  /** The frame budget: on or off, what it chose, its one-line account. */
+  get budget(): BudgetState {
+    const on = !this.scaleFixed;
+    const choice = this.budgetValue?.choice;
+    return { on, scale: on && choice ? choice.scale : this.settings.scale, samplesPerFrame: this.samplesPerFrame(), text: this.budgetText() };
+  }
+
+  /** How far the frame under way has got (undefined between frames). */
+  get frameProgress(): FrameProgress | undefined {
+    const f = this.frameValue;
+    return f && { chunks: f.chunks, busyMs: f.busyMs, pixelsDone: f.pixelsDone, pixels: f.pixels, suspended: this.state !== 'playing' };
+  }
+
+  /** Hands the resolution back to the frame budget (the user had fixed it); a link then carries no scale. */
+  async useFrameBudget(): Promise<void> {
+    if (!this.scaleFixed) return;
+    this.scaleFixed = false;
+    await this.resizeRenderer();
+    this.hooks.onChange(this);
+  }
+
+  /** The samples per frame in use: the budget's choice (never below the user's) while it is on. */
+  private samplesPerFrame(): number {
+    return !this.scaleFixed && this.budgetValue ? this.budgetValue.choice.samplesPerFrame : this.settings.samplesPerFrame;
   }
 
   /** Starts (acquiring the GPU on first use) or resumes. */
@@ -495,13 +599,17 @@ export class Viewer {
     if (this.renderer) await enableRecipe(this.renderer, render);
     if (this.renderer && render.spectral) await this.renderer.enableSpectral();
     this.settings = next;
+    // A scale given (the panel, a link) fixes the resolution: the budget is off from then on.
+    const fixing = changes.scale !== undefined && !this.scaleFixed;
+    if (fixing) this.scaleFixed = true;
     this.legendAt = 0;
     const restart = ESTIMATE_SETTINGS.some((k) => render[k] !== before.render[k]) || isRealTime(render) !== isRealTime(before.render);
     if (restart) this.realTimeFrames = 0;
     if (!this.renderer) return;
     this.renderer.updateSettings(render);
     if (restart) this.renderer.resetHistory();
-    if (next.scale !== before.scale) await this.resizeRenderer();
+    if (next.scale !== before.scale || fixing) await this.resizeRenderer();
+    if (next.samplesPerFrame !== before.samplesPerFrame) this.budgetValue?.setBaseSamples(next.samplesPerFrame);
     if (next.accumulate !== before.accumulate || next.samplesPerFrame !== before.samplesPerFrame) this.renderer.resetAccumulation();
     this.hooks.onChange(this);
   }
@@ -567,12 +675,14 @@ export class Viewer {
 
   /** The tone-mapped image as PNG bytes. */
   async screenshotPng(): Promise<Uint8Array> {
+    await this.frameComplete();
     const renderer = this.requireRenderer();
     return encodePng(renderer.width, renderer.height, await renderer.readImage());
   }
 
   /** The tone-mapped image (RGBA8, what a screenshot holds) with the sample count at the moment it was read (the test hook). */
   async readImage(): Promise<{ samples: number; width: number; height: number; rgba: number[] }> {
+    await this.frameComplete();
     const renderer = this.requireRenderer();
     const samples = this.stats.samples;
     const rgba = await renderer.readImage();
@@ -581,6 +691,7 @@ export class Viewer {
 
   /** The linear radiance (the estimate, or the denoised frame) as EXR bytes: float32 RGB, before exposure and tone mapping. */
   async radianceExr(): Promise<Uint8Array> {
+    await this.frameComplete();
     const renderer = this.requireRenderer();
     const { width, height, radiance } = this.displaying === 'frame' && this.realTimeFrames > 0 ? await renderer.readFrame() : await renderer.readAccumulation();
     return encodeExr(width, height, radiance);
@@ -595,7 +706,8 @@ export class Viewer {
       ...(c ? { pose: c.pose, fovDegrees: c.vfovDegrees, mode: c.mode } : {}),
       ...(c?.lens ? { apertureRadius: c.lens.apertureRadius, focusDistance: c.lens.focusDistance } : {}),
       samplesPerFrame: s.samplesPerFrame,
-      scale: s.scale,
+      // A link carries a scale only where the user fixed one: otherwise the budget of whoever opens it chooses.
+      ...(this.scaleFixed ? { scale: s.scale } : {}),
       accumulate: s.accumulate,
       ...(s.animate ? {} : { animate: false }),
       ...(s.convergeWhenStill ? {} : { convergeWhenStill: false }),
@@ -629,7 +741,8 @@ export class Viewer {
   }
 
   private async start(): Promise<void> {
-    const gpu = await acquireGpu(navigator.gpu);
+    // The display's rate is measured while the GPU starts (requestAnimationFrame runs free then).
+    const [gpu, displayHz] = await Promise.all([acquireGpu(navigator.gpu), measureDisplayRate()]);
     const context = this.canvas.getContext('webgpu');
     if (!context) throw new LanternError('the canvas has no WebGPU context', 'Reload the page; if it persists, the browser has WebGPU disabled');
     context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
@@ -648,6 +761,11 @@ export class Viewer {
     this.context = context;
     this.renderer = renderer;
     this.timer = gpu.hasTimestamps ? new GpuTimer(gpu.device) : undefined;
+    // A new device may be another adapter (a lost GPU replaced by the fallback): the budget measures it afresh.
+    const adapter = adapterKind({ name: gpu.adapterName, isFallbackAdapter: gpu.adapter.info.isFallbackAdapter });
+    this.budgetValue = new FrameBudget({ adapter, displayHz, canvasPixels: Math.max(1, this.canvas.width * this.canvas.height), baseSamples: this.settings.samplesPerFrame });
+    this.chunks = new ChunkSizer(adapter);
+    this.frameValue = undefined;
     await this.resizeRenderer();
     if (this.loaded) await renderer.setScene(this.loaded.prepared);
     if (this.controllerValue) renderer.setCamera(this.cameraOf(this.controllerValue));
@@ -689,8 +807,9 @@ export class Viewer {
 
   private async resizeRenderer(): Promise<void> {
     if (!this.renderer) return;
-    const w = Math.max(1, Math.round(this.canvas.width * this.settings.scale));
-    const h = Math.max(1, Math.round(this.canvas.height * this.settings.scale));
+    const scale = this.scaleFixed || !this.budgetValue ? this.settings.scale : this.budgetValue.choice.scale;
+    const w = Math.max(1, Math.round(this.canvas.width * scale));
+    const h = Math.max(1, Math.round(this.canvas.height * scale));
     await this.renderer.resize(w, h);
     this.realTimeFrames = 0;
     if (this.controllerValue) this.renderer.setCamera(this.cameraOf(this.controllerValue));
@@ -762,7 +881,65 @@ export class Viewer {
     this.loaded = { ...this.loaded, prepared: renderer.applySceneUpdate(update) };
   }
 
+  /**
+   * One animation frame's work: the frame under way goes on (one suspended by Pause, unless a change
+   * overtook it), or a new one is planned: the budget's scale applied (between frames only), the
+   * camera moved by the input held since the last frame, the world stepped. Its GPU work goes in
+   * chunks of about CHUNK_TARGET_MS, each awaited: between them the page answers input, and Pause,
+   * a change of settings, scene or size stop the frame (the loop starts a fresh one). Once every
+   * chunk is done the frame is presented and measured.
+   */
   private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
+    // A screenshot of a suspended frame may be finishing it (frameComplete).
+    await this.frameSettled;
+    let frame = this.frameValue;
+    if (frame && !this.frameValid(frame)) {
+      this.abandonFrame(frame);
+      frame = undefined;
+    }
+    if (!frame) {
+      await this.applyBudget();
+      frame = this.frameValue = this.planFrame(renderer, dt);
+    }
+    let settle!: () => void;
+    this.frameSettled = new Promise((resolve) => (settle = resolve));
+    try {
+      const outcome = await this.runChunks(frame, () => this.state === 'playing' && !document.hidden);
+      // Suspended (Pause, a hidden tab): the frame waits in frameValue. Overtaken: the next animation frame plans another.
+      if (outcome === 'overtaken') this.abandonFrame(frame);
+      if (outcome !== 'done') return;
+      this.frameValue = undefined;
+      await this.completeFrame(renderer, context, frame);
+    } finally {
+      settle();
+    }
+  }
+
+  /** Gives a frame up: the renderer undoes what matters (the real-time ping-pong), the timer forgets its passes (no resolve will read them). */
+  private abandonFrame(frame: ViewerFrame): void {
+    frame.current?.abandon();
+    if (frame.renderer === this.renderer) this.timer?.discard();
+    if (this.frameValue === frame) this.frameValue = undefined;
+  }
+
+  /** Whether a frame may go on: same renderer, nothing changed what it computes since it was planned. */
+  private frameValid(frame: ViewerFrame): boolean {
+    return frame.renderer === this.renderer && frame.renderer.frameGeneration() === frame.generation && frame.renderer.width === frame.width && frame.renderer.height === frame.height && (!frame.current || frame.current.done || frame.current.valid);
+  }
+
+  /** Applies the budget's choice of scale (a resize: between frames only). */
+  private async applyBudget(): Promise<void> {
+    const renderer = this.renderer;
+    if (this.scaleFixed || !this.budgetValue || !renderer) return;
+    const { scale } = this.budgetValue.choice;
+    // settings.scale says what renders (the panel shows it); a link carries it only once the user fixes it.
+    if (this.settings.scale !== scale) this.settings = { ...this.settings, scale };
+    const w = Math.max(1, Math.round(this.canvas.width * scale)), h = Math.max(1, Math.round(this.canvas.height * scale));
+    if (w !== renderer.width || h !== renderer.height) await this.resizeRenderer();
+  }
+
+  /** Input, world and the frame's parts by the settings (a real-time frame, the estimate beside a still view, the estimate alone, or nothing to trace). */
+  private planFrame(renderer: Renderer, dt: number): ViewerFrame {
     const c = this.controllerValue;
     if (c) {
       const [lx, ly] = this.input.takeLook();
@@ -777,40 +954,97 @@ export class Viewer {
     const fresh = renderer.accumulationEpoch !== this.lastEpoch;
     const timer = this.timer;
     const render = this.settings.render;
-    // A debug view that replaces the image needs no path tracing.
+    const spf = this.samplesPerFrame();
+    const parts: (() => SplitFrame)[] = [];
+    let display: ViewerDisplay = 'progressive';
+    let after: (() => void) | undefined;
+    // A debug view that replaces the image needs no path tracing: it is drawn by present().
     const debugOnly = render.debugView !== 'none' && render.debugLayout === 'replace';
     if (debugOnly) {
-      // Nothing to trace: the debug view is drawn by present().
+      display = this.displaying;
     } else if (isRealTime(render)) {
       // The real-time chain keeps its own history across camera moves (reprojection). A view that held
       // still since the last frame (no reset of the estimate: camera, world, settings) also adds to the
       // exact progressive estimate, which is shown once it has enough samples.
-      const spf = this.settings.samplesPerFrame;
       const still = this.settings.convergeWhenStill && !fresh && this.realTimeFrames > 0;
       if (still && renderer.sampleCount >= CONVERGE_HANDOFF_SAMPLES) {
-        renderer.accumulate(spf, undefined, timer);
-        this.displaying = 'converged';
+        parts.push(() => renderer.beginAccumulate(spf, timer));
+        display = 'converged';
       } else {
-        renderer.renderFrame(spf, timer);
-        this.realTimeFrames++;
+        parts.push(() => renderer.beginFrame(spf, timer));
         if (still) {
-          renderer.accumulate(spf);
-          renderer.show('frame');
+          parts.push(() => renderer.beginAccumulate(spf));
+          after = () => renderer.show('frame');
         }
-        this.displaying = 'frame';
+        display = 'frame';
       }
     } else {
-      renderer.accumulate(this.settings.samplesPerFrame, undefined, timer);
-      this.displaying = 'progressive';
+      parts.push(() => renderer.beginAccumulate(spf, timer));
     }
+    const pixels = renderer.width * renderer.height * parts.length;
+    return { renderer, generation: renderer.frameGeneration(), width: renderer.width, height: renderer.height, samples: spf, parts, display, ...(after ? { after } : {}), chunks: 0, busyMs: 0, pixelsDone: 0, pixels };
+  }
+
+  /**
+   * Submits the frame's chunks one at a time, each awaited, while `keepGoing` says so and nothing
+   * overtakes the frame. 'suspended': stopped by keepGoing (the frame can go on later).
+   */
+  private async runChunks(frame: ViewerFrame, keepGoing: () => boolean): Promise<'done' | 'suspended' | 'overtaken'> {
+    const renderer = frame.renderer;
+    for (;;) {
+      if (!this.frameValid(frame)) return 'overtaken';
+      if (!frame.current || frame.current.done) {
+        const part = frame.parts.shift();
+        if (!part) return 'done';
+        frame.current = part();
+      }
+      if (!keepGoing()) return 'suspended';
+      const split = frame.current;
+      // A frame cut into several chunks pays a round trip for each: measured at its start (the GPU
+      // idle), so the sizer tells the work from the wait.
+      if (frame.chunks === 0 && split.rowsDone === 0 && split.columnsLeft === split.width && this.chunks.splits(split.width, split.height, split.samples)) {
+        const t = performance.now();
+        await renderer.finish();
+        this.chunks.observeIdle(performance.now() - t);
+      }
+      const chunk = this.chunks.next(split.width, split.height, split.rowsLeft, split.samples, split.columnsLeft);
+      const t0 = performance.now();
+      const pixels = split.submitChunk(chunk.rows, chunk.columns);
+      this.imageDirty = true;
+      await renderer.finish();
+      const ms = performance.now() - t0;
+      this.chunks.observe(pixels, split.samples, ms);
+      frame.chunks++;
+      frame.busyMs += ms;
+      frame.pixelsDone += split.splittable ? pixels : split.width * split.height;
+      // The page's numbers follow a long frame's progress, a few times a second (not every chunk: the CPU is the GPU on a software adapter).
+      if (performance.now() - this.changedAt > CHUNK_STATUS_MS) {
+        this.changedAt = performance.now();
+        this.hooks.onChange(this);
+      }
+    }
+  }
+
+  /** After the last chunk: present, read the counters and the timings, feed the budget. */
+  private async completeFrame(renderer: Renderer, context: GPUCanvasContext, frame: ViewerFrame): Promise<void> {
+    frame.after?.();
+    this.imageDirty = false;
+    this.displaying = frame.display;
+    if (frame.display === 'frame') this.realTimeFrames++;
+    const timer = this.timer;
+    const t0 = performance.now();
     renderer.present(context.getCurrentTexture(), timer);
-    // Reading the counters waits for the frame (one frame in flight) and counts its rays exactly.
+    // Reading the counters waits for the present and counts the frame's rays exactly.
     const counts = await renderer.readRayCounts();
+    const busyMs = frame.busyMs + (performance.now() - t0);
+    if (this.frameDelayMs > 0) await new Promise((resolve) => setTimeout(resolve, this.frameDelayMs));
     const total = counts.extension + counts.shadow;
+    const fresh = renderer.accumulationEpoch !== this.lastEpoch;
     const rays = fresh ? total : total - this.lastRayCount;
     this.lastRayCount = total;
     this.lastEpoch = renderer.accumulationEpoch;
-    if (timer) this.gpuPasses = await timer.read();
+    if (timer) this.gpuPasses = sumByName(await timer.read());
+    const render = this.settings.render;
     if (render.debugView !== 'none' && performance.now() - this.legendAt > LEGEND_INTERVAL_MS) {
       this.legendValue = await renderer.debugLegend();
       this.legendAt = performance.now();
@@ -818,7 +1052,83 @@ export class Viewer {
     this.frames.push({ at: performance.now(), rays });
     if (this.frames.length > STATS_WINDOW) this.frames.shift();
     if (this.playedAt !== undefined && this.firstFrameMs === undefined) this.firstFrameMs = performance.now() - this.playedAt;
+    // The budget hears the frame's GPU time on a real GPU: the timestamps where every pass of it was
+    // timed (a frame of a few chunks: the timer has room for them all), else the chunks' wall time.
+    // On a software adapter always the wall time: the GPU is the CPU the page shares, and its
+    // timestamps leave out the round trips and the load that the user waits for.
+    const budget = this.budgetValue;
+    const gpuTimed = budget?.adapter === 'hardware' && timer !== undefined && frame.chunks <= MAX_TIMED_CHUNKS && this.gpuPasses.length > 0;
+    const ms = gpuTimed ? this.gpuPasses.reduce((sum, p) => sum + p.ms, 0) : busyMs;
+    if (!this.scaleFixed && budget && frame.pixels > 0) {
+      budget.observe({ ms, gpuTimed, pixels: frame.width * frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
+    }
   }
+
+  /**
+   * Waits until the image is a whole frame: for the frame under way to be done, or, for one that
+   * Pause suspended, runs its remaining chunks and presents it (a half-traced real-time frame is no
+   * image). Screenshots and readImage call it.
+   */
+  private async frameComplete(): Promise<void> {
+    for (;;) {
+      await this.frameSettled;
+      const frame = this.frameValue;
+      // Between frames, with the last one presented whole.
+      if (!frame && !this.imageDirty) return;
+      if (this.state === 'playing' && this.looping && !document.hidden) {
+        // The loop goes on with it at the next animation frame (its callback was asked for first).
+        await new Promise((resolve) => requestAnimationFrame(resolve));
+        continue;
+      }
+      const renderer = this.renderer, context = this.context;
+      if (!frame || !renderer || !context || !this.frameValid(frame)) return;
+      let settle!: () => void;
+      this.frameSettled = new Promise((resolve) => (settle = resolve));
+      try {
+        if ((await this.runChunks(frame, () => true)) !== 'done') return;
+        this.frameValue = undefined;
+        await this.completeFrame(renderer, context, frame);
+      } finally {
+        settle();
+      }
+      return;
+    }
+  }
+}
+
+/** Milliseconds between the page updates a long frame's chunks give. */
+const CHUNK_STATUS_MS = 250;
+
+/** Frames of at most this many chunks are timed by timestamp queries whole (GpuTimer's 64 passes hold them and the passes after). */
+const MAX_TIMED_CHUNKS = 16;
+
+/** Pass timings with the chunks of one pass (named alike) summed, in the order the passes first ran. */
+function sumByName(passes: readonly PassTime[]): PassTime[] {
+  const sums = new Map<string, number>();
+  for (const p of passes) sums.set(p.name, (sums.get(p.name) ?? 0) + p.ms);
+  return [...sums].map(([name, ms]) => ({ name, ms }));
+}
+
+/**
+ * The display's refresh rate from requestAnimationFrame intervals over a few frames (displayRateHz),
+ * or the default when frames do not come (a hidden tab) within a second.
+ */
+function measureDisplayRate(frames = 12): Promise<number> {
+  return new Promise((resolve) => {
+    const intervals: number[] = [];
+    let last: number | undefined;
+    const done = () => resolve(displayRateHz(intervals));
+    const timeout = setTimeout(done, 1000);
+    const tick = (now: number) => {
+      if (last !== undefined) intervals.push(now - last);
+      last = now;
+      if (intervals.length >= frames) {
+        clearTimeout(timeout);
+        done();
+      } else requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  });
 }
 
 /** What a link may say about the view of the scene it opens. */

@@ -16,12 +16,22 @@ export class GpuTimer {
     this.readBuffer = device.createBuffer({ label: 'timestamp read', size: capacity * 16, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });
   }
 
+  /** Passes that can still be timed before the next read. */
+  get room(): number {
+    return this.capacity - this.names.length;
+  }
+
   /** The `timestampWrites` of a compute or render pass descriptor, recording a pass named `name`. */
   timestampWrites(name: string): GPUComputePassTimestampWrites {
     if (this.names.length >= this.capacity) throw new Error(`GpuTimer holds at most ${this.capacity} passes per resolve`);
     const i = this.names.length;
     this.names.push(name);
     return { querySet: this.querySet, beginningOfPassWriteIndex: 2 * i, endOfPassWriteIndex: 2 * i + 1 };
+  }
+
+  /** Forgets the passes recorded since the last read (a frame given up before its resolve): their slots are reused. */
+  discard(): void {
+    this.names = [];
   }
 
   /** Records the copy of this round's timestamps; call once after the timed passes, then submit. */

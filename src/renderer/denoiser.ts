@@ -23,7 +23,7 @@ import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass, type FrameTarget } from '../passes/path-trace-frame-pass.ts';
 import { WavefrontFramePass } from '../passes/wavefront-frame-pass.ts';
 import { readBuffer } from '../gpu/readback.ts';
-import type { TracingKernels } from '../passes/path-trace-pass.ts';
+import type { Tile, TracingKernels } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { Integrator, RenderSettings } from './settings.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -115,6 +115,8 @@ export class Denoiser {
   private parity = 0;
   private sampleIndex = 0;
   private historyValid = false;
+  /** The buffers of the frame begun (beginFrame) and not yet finished or abandoned. */
+  private open?: Buffers;
 
   private constructor(
     private readonly device: GPUDevice,
@@ -159,6 +161,11 @@ export class Denoiser {
     return this.wavefront;
   }
 
+  /** Whether a frame of this scene in these settings is traced by the wavefront (which traces whole frames only: no bands). */
+  tracesWavefront(scene: SceneResources, s: RenderSettings): boolean {
+    return s.integrator === 'wavefront' && this.wavefront !== undefined && this.wavefrontReady.has(featureKey(scene.features, s.spectral));
+  }
+
   /** Which integrator traced the last frame. */
   get frameIntegrator(): Integrator {
     return this.lastIntegrator;
@@ -200,13 +207,44 @@ export class Denoiser {
 
   /** Records one real-time frame into `encoder` (parameters are written now: submit before the next frame). */
   encodeFrame(encoder: GPUCommandEncoder, r: FrameRequest): void {
-    const b = this.ensureBuffers(r.view);
+    this.beginFrame(r);
+    this.encodeBand(encoder, r);
+    this.finishFrame(encoder, r);
+  }
+
+  /**
+   * Starts a real-time frame whose path tracing is recorded in row bands (encodeBand, each band may go
+   * in a submission of its own) and whose filters finishFrame records: what encodeFrame does in one
+   * encoder. Until finishFrame, abandonFrame gives the frame up and leaves the history as it was.
+   */
+  beginFrame(r: FrameRequest): void {
+    if (this.open) throw new Error('Denoiser: finishFrame() or abandonFrame() before the next beginFrame()');
+    const buffers = this.ensureBuffers(r.view);
+    // The surface records ping-pong: this frame writes the other one.
     this.parity ^= 1;
+    this.open = buffers;
+  }
+
+  /**
+   * Records the path tracing of `tile` (default the whole image) of the frame begun. Each pixel's
+   * paths and G-buffer depend on that pixel alone, so bands add up to exactly the unsplit frame.
+   * The wavefront traces whole frames only: it asks for the whole image.
+   */
+  encodeBand(encoder: GPUCommandEncoder, r: FrameRequest, tile?: Tile): void {
+    const b = this.open;
+    if (!b) throw new Error('Denoiser: beginFrame() before encodeBand()');
+    this.encodeTrace(encoder, r, b, this.sampleIndex, false, tile);
+  }
+
+  /** Records the frame's temporal pass and filter (after every band) and makes it the history. */
+  finishFrame(encoder: GPUCommandEncoder, r: FrameRequest): void {
+    const b = this.open;
+    if (!b) throw new Error('Denoiser: beginFrame() before finishFrame()');
+    this.open = undefined;
     const groups = b.groups[this.parity]!;
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
     const still = sameCamera(previousCamera, r.camera);
-    this.encodeTrace(encoder, r, b, this.sampleIndex);
 
     const unlimited = s.historyCap === 'unlimited';
     // A still camera with no cap converges without limit: nothing to clamp against.
@@ -240,6 +278,18 @@ export class Denoiser {
   }
 
   /**
+   * Gives up the frame begun: the surface records' ping-pong goes back, so the next frame reprojects
+   * against the last finished one. The temporal pass, the filter and the history buffers were not
+   * touched by the bands; the scratch (the output of the last frame) was, so present the next frame,
+   * not this one's.
+   */
+  abandonFrame(): void {
+    if (!this.open) return;
+    this.open = undefined;
+    this.parity ^= 1;
+  }
+
+  /**
    * One frame's path tracing alone (settings.integrator), with the random streams of frame
    * `sampleIndex`: no filter runs and the history is kept, but the current G-buffer and the frame
    * scratch (where the last frame's output was) are overwritten.
@@ -268,12 +318,12 @@ export class Denoiser {
     return { width: b.width, height: b.height, radiance, gbuffer, guide, albedo, emission, integrator: this.lastIntegrator };
   }
 
-  private encodeTrace(encoder: GPUCommandEncoder, r: FrameRequest, b: Buffers, sampleIndex: number, breakdown = false): Integrator {
+  private encodeTrace(encoder: GPUCommandEncoder, r: FrameRequest, b: Buffers, sampleIndex: number, breakdown = false, tile: Tile = { x: 0, y: 0, width: b.width, height: b.height }): Integrator {
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
-    const dispatch = { tile: { x: 0, y: 0, width: b.width, height: b.height }, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
+    const dispatch = { tile, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
     const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters };
-    const wavefront = s.integrator === 'wavefront' && this.wavefrontReady.has(featureKey(r.scene.features, s.spectral)) ? this.wavefront : undefined;
+    const wavefront = this.tracesWavefront(r.scene, s) ? this.wavefront : undefined;
     // The pixel-centre G-buffer is the frame kernel's own pass for both integrators.
     this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, wavefront !== undefined);
     if (wavefront) wavefront.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, breakdown);

@@ -39,7 +39,7 @@ import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import { DebugViews } from './debug-views.ts';
-import { Denoiser, type DenoiserBufferSize, type FrameTrace } from './denoiser.ts';
+import { Denoiser, type DenoiserBufferSize, type FrameRequest, type FrameTrace } from './denoiser.ts';
 import { Hybrid } from './hybrid.ts';
 import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
@@ -126,6 +126,10 @@ export class Renderer {
   private settingsValue: RenderSettings = DEFAULT_SETTINGS;
   private samples = 0;
   private epoch = 0;
+  /** Counts resetHistory() calls: a split frame begun before one is given up (SplitFrame.valid). */
+  private historyResets = 0;
+  /** Counts scene uploads: a split frame holds the resources it began with. */
+  private uploads = 0;
   private denoiser?: Denoiser;
   /** The hybrid recipe (enableHybrid). */
   private hybrid?: Hybrid;
@@ -250,6 +254,7 @@ export class Renderer {
     const resources = uploaded.value;
     this.resources?.destroy();
     this.resources = resources;
+    this.uploads++;
     this.prepared = prepared;
     this.selectionStale = true;
     // A new scene: its own tiles, if the setting asks for them.
@@ -669,20 +674,50 @@ export class Renderer {
    * timer, each tile's pass is timed and the timestamps are resolved with the last tile.
    */
   accumulate(samples: number, tiles: readonly Tile[] = [this.fullImage()], timer?: GpuTimer): void {
-    const { resources, targets } = this.ready();
-    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
-    const s = this.settingsValue;
-    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
-    const torch = effectiveTorch(this.prepared?.scene, s.torch);
+    this.checkAccumulate(samples);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, torch, spectral: s.spectral };
-      this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
+      this.encodeAccumulate(encoder, tile, samples, timer);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
     });
     this.samples += samples;
     this.shown = 'accumulation';
+  }
+
+  /**
+   * Adds `samples` paths per pixel as a sequence of row bands, each submitted by SplitFrame.submitChunk
+   * (the viewer awaits each; the CLI's long renders use accumulate with DispatchPlanner's tiles). The
+   * samples count once the last band is submitted; an estimate reset meanwhile gives the frame up
+   * (the reset cleared what its bands added).
+   */
+  beginAccumulate(samples: number, timer?: GpuTimer): SplitFrame {
+    const { targets } = this.ready();
+    this.checkAccumulate(samples);
+    return new SplitFrame(this, targets, samples, true, {
+      band: (encoder, tile) => this.encodeAccumulate(encoder, tile, samples, timer && timer.room > TIMER_ROOM_AFTER_BANDS ? timer : undefined),
+      finish: (encoder) => timer?.resolve(encoder),
+      done: () => {
+        this.samples += samples;
+        this.shown = 'accumulation';
+      },
+      abandon: () => {},
+    }, 'path trace');
+  }
+
+  private checkAccumulate(samples: number): void {
+    this.ready();
+    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
+    if (this.settingsValue.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
+  }
+
+  /** Records `samples` paths per pixel over `tile`, starting at the estimate's current sample index. */
+  private encodeAccumulate(encoder: GPUCommandEncoder, tile: Tile, samples: number, timer?: GpuTimer): void {
+    const { resources, targets } = this.ready();
+    const s = this.settingsValue;
+    const torch = effectiveTorch(this.prepared?.scene, s.torch);
+    const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, torch, spectral: s.spectral };
+    this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
   }
 
   /**
@@ -781,17 +816,29 @@ export class Renderer {
    * drop it. With a timer, every pass is timed. present(), readImage() and readFrame() show the result.
    */
   renderFrame(samples: number, timer?: GpuTimer): void {
+    const frame = this.beginFrame(samples, timer);
+    frame.submitChunk(frame.height);
+  }
+
+  /**
+   * One real-time frame (renderFrame) as a sequence of submissions: the path tracing in row bands,
+   * each submitted by SplitFrame.submitChunk, the filters with the last band. Awaiting finish()
+   * between bands keeps every submission short, so the page answers input, Pause and settings between
+   * them; the frame adds up to exactly renderFrame's. The wavefront integrator and the hybrid recipe
+   * trace whole frames: their frames have one band (splittable false).
+   */
+  beginFrame(samples: number, timer?: GpuTimer): SplitFrame {
     const { resources, targets } = this.ready();
     const s = this.settingsValue;
-    if (s.recipe === 'hybrid') return this.renderHybridFrame(timer);
-    if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
+    if (s.recipe === 'hybrid') return this.wholeFrame(targets, samples, () => this.renderHybridFrame(timer));
+    const denoiser = this.denoiser;
+    if (!denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
     if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     this.settleInstances();
-    const encoder = this.device.createCommandEncoder({ label: 'real-time frame' });
-    this.denoiser.encodeFrame(encoder, {
-      scene: resources,
+    const request: FrameRequest = {
+      scene: this.resources!,
       view: this.view,
       camera: this.cameraValue,
       settings: s,
@@ -800,12 +847,43 @@ export class Renderer {
       depthScale: this.sceneSize(),
       ...(torch ? { torch } : {}),
       ...(timer ? { timer } : {}),
-    });
-    timer?.resolve(encoder);
+    };
+    const whole = denoiser.tracesWavefront(resources, s);
+    denoiser.beginFrame(request);
+    return new SplitFrame(this, targets, samples, !whole, {
+      // Bands are timed while the timer has room for them and the passes after (each band's passes are named alike: readers sum them).
+      band: (encoder, tile) => denoiser.encodeBand(encoder, timedWhileRoom(request, timer), whole ? undefined : tile),
+      finish: (encoder) => {
+        denoiser.finishFrame(encoder, request);
+        timer?.resolve(encoder);
+      },
+      done: () => {
+        this.frameRecipe = 'path';
+        this.shown = 'frame';
+        if (this.settle === 'after-frame') this.settle = 'now';
+      },
+      abandon: () => denoiser.abandonFrame(),
+    }, 'real-time frame');
+  }
+
+  /** A frame traced whole (the hybrid recipe): one band, submitted by `render`. */
+  private wholeFrame(targets: ImageTargets, samples: number, render: () => void): SplitFrame {
+    return new SplitFrame(this, targets, samples, false, { band: () => {}, finish: () => {}, done: () => {}, abandon: () => {}, whole: render }, 'frame');
+  }
+
+  /** What SplitFrame checks before each band: the estimate, the history and the scene are those the frame began with. */
+  frameGeneration(): string {
+    return `${this.epoch} ${this.historyResets} ${this.uploads}`;
+  }
+
+  /** Submits an encoder (SplitFrame's bands). */
+  submit(encoder: GPUCommandEncoder): void {
     this.device.queue.submit([encoder.finish()]);
-    this.frameRecipe = 'path';
-    this.shown = 'frame';
-    if (this.settle === 'after-frame') this.settle = 'now';
+  }
+
+  /** The targets in use (SplitFrame checks that a resize has not replaced them). */
+  currentTargets(): object | undefined {
+    return this.targets;
   }
 
   /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
@@ -856,6 +934,7 @@ export class Renderer {
 
   /** Drops the real-time history: the next frame starts from its own samples. */
   resetHistory(): void {
+    this.historyResets++;
     this.denoiser?.resetHistory();
     this.hybrid?.resetHistory();
   }
@@ -1060,6 +1139,133 @@ export class Renderer {
     this.targets.rayCounters.destroy();
     this.targets.output.destroy();
     this.targets = undefined;
+  }
+}
+
+/** Timestamp slots a split frame leaves for the passes after its bands (temporal, à-trous ×5, tone map, present, debug). */
+const TIMER_ROOM_AFTER_BANDS = 12;
+
+/** The request with the timer while it has room for a band's passes (2) and those after the bands. */
+function timedWhileRoom(request: FrameRequest, timer: GpuTimer | undefined): FrameRequest {
+  if (!timer || timer.room > TIMER_ROOM_AFTER_BANDS + 2) return request;
+  const { timer: _, ...untimed } = request;
+  return untimed;
+}
+
+/** What a SplitFrame records: a band of the tracing, the passes after the last band, and what completes or gives up the frame. */
+interface SplitWork {
+  band(encoder: GPUCommandEncoder, tile: Tile): void;
+  finish(encoder: GPUCommandEncoder): void;
+  done(): void;
+  abandon(): void;
+  /** A frame traced whole, submitting itself (the hybrid recipe). */
+  whole?: () => void;
+}
+
+/**
+ * A frame's GPU work cut into row bands (Renderer.beginFrame, beginAccumulate), submitted one at a
+ * time top to bottom: submitChunk records the next band of rows, or a piece of one (and, with the last,
+ * the passes after the tracing) and submits it; the caller awaits Renderer.finish() before the next, so each submission
+ * is a short wait for the page. Every pixel's paths depend on that pixel alone (its random streams are
+ * keyed by pixel and sample index, never by tile), so the bands add up to exactly the unsplit frame.
+ * Anything that changes what the frame computes (a camera move, a resize, a scene or settings
+ * change: each resets the estimate or the history) makes it invalid; the caller then abandons it.
+ */
+export class SplitFrame {
+  /** The next chunk's corner, and the height of the band under way. */
+  private x = 0;
+  private y = 0;
+  private bandRows = 0;
+  private finished = false;
+  private abandoned = false;
+  private readonly generation: string;
+
+  constructor(
+    private readonly renderer: Renderer,
+    private readonly targets: ImageTargets,
+    /** Paths per pixel of the frame. */
+    readonly samples: number,
+    /** Whether the tracing can be cut into bands (false: the first submitChunk submits the whole frame). */
+    readonly splittable: boolean,
+    private readonly work: SplitWork,
+    private readonly label: string,
+  ) {
+    this.generation = renderer.frameGeneration();
+  }
+
+  get width(): number {
+    return this.targets.width;
+  }
+
+  get height(): number {
+    return this.targets.height;
+  }
+
+  /** Rows done so far (whole bands). */
+  get rowsDone(): number {
+    return this.y;
+  }
+
+  /** Rows not yet done, the current band's included. */
+  get rowsLeft(): number {
+    return this.height - this.y;
+  }
+
+  /** Columns of the current band not yet done (the width between bands). */
+  get columnsLeft(): number {
+    return this.width - this.x;
+  }
+
+  /** Whether the whole frame has been submitted. */
+  get done(): boolean {
+    return this.finished;
+  }
+
+  /** Whether the frame may go on: nothing reset the estimate or the history and the image was not resized since it began. */
+  get valid(): boolean {
+    return !this.abandoned && !this.finished && this.renderer.currentTargets() === this.targets && this.renderer.frameGeneration() === this.generation;
+  }
+
+  /**
+   * Records and submits the next chunk: `columns` pixels (default the whole width) of a band of
+   * `rows` rows; a band's height is set by its first chunk, and chunks go left to right, bands top to
+   * bottom. A frame that is not splittable is submitted whole. The last chunk carries the passes
+   * after the tracing in the same submission. Returns the pixels traced.
+   */
+  submitChunk(rows: number, columns = this.width): number {
+    if (!this.valid) throw new Error('SplitFrame: the frame was finished, abandoned or overtaken by a change; begin another');
+    if (!this.splittable) {
+      rows = this.height;
+      columns = this.width;
+    }
+    if (this.x === 0) this.bandRows = Math.min(Math.max(1, Math.floor(rows)), this.height - this.y);
+    const tile = { x: this.x, y: this.y, width: Math.min(Math.max(1, Math.floor(columns)), this.width - this.x), height: this.bandRows };
+    this.x += tile.width;
+    if (this.x === this.width) {
+      this.x = 0;
+      this.y += this.bandRows;
+    }
+    const last = this.y === this.height;
+    if (this.work.whole) {
+      this.work.whole();
+    } else {
+      const encoder = this.renderer.device.createCommandEncoder({ label: `${this.label} (${tile.x}, ${tile.y}) ${tile.width}×${tile.height}` });
+      this.work.band(encoder, tile);
+      if (last) this.work.finish(encoder);
+      this.renderer.submit(encoder);
+    }
+    if (last) {
+      this.finished = true;
+      this.work.done();
+    }
+    return tile.width * tile.height;
+  }
+
+  /** Gives the frame up (the real-time chain's history stays that of the last finished frame). */
+  abandon(): void {
+    if (this.finished || this.abandoned) return;
+    this.abandoned = true;
+    this.work.abandon();
   }
 }
 

@@ -1,0 +1,97 @@
+/**
+ * The frame budget and short submissions in the page (Lantern issue #16): Pause takes effect while a
+ * long frame renders (its GPU work goes in chunks of tens of milliseconds, and the page answers
+ * between them), and held keys move by the time held when frames are slow (a test hook delays each
+ * frame: a deterministic 0.5 fps).
+ */
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import type { Browser, Page } from 'playwright-core';
+import { launchBrowser, servePage, waitForPage, waitForSamples, watchPage, withPageReport, type ServedPage } from './browser.ts';
+
+let browser: Browser;
+let served: ServedPage;
+
+beforeAll(async () => {
+  served = await servePage();
+  browser = await launchBrowser();
+});
+
+afterAll(async () => {
+  await browser?.close();
+  await served?.close();
+});
+
+async function open(query: string, viewport: { width: number; height: number }): Promise<{ page: Page; errors: string[] }> {
+  const page = await browser.newPage({ viewport });
+  const errors: string[] = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  watchPage(page);
+  await page.goto(`${served.url}?${query}`);
+  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, 'the scene');
+  return { page, errors };
+}
+
+const frame = (page: Page) => page.evaluate(() => window.lantern.frame);
+
+describe('short submissions', () => {
+  it('Pause takes effect within a chunk of a frame that takes seconds, and Play goes on with that frame', async () => {
+    // The whole canvas at full resolution (scale=1 fixes it: the budget is off), so one SwiftShader
+    // frame takes seconds; the page must still answer.
+    const { page, errors } = await open('scene=cornell&scale=1', { width: 900, height: 600 });
+    expect(await page.evaluate(() => window.lantern.budget)).toMatchObject({ on: false, scale: 1, text: 'budget: off (resolution fixed at 1×)' });
+    await page.click('#play');
+    // A few chunks into the first frame (after the pipelines compiled).
+    await waitForPage(page, () => (window.lantern.frame?.chunks ?? 0) >= 4, undefined, 180_000, 'the first chunks');
+    const clicked = Date.now();
+    await page.click('#play');
+    await waitForPage(page, () => window.lantern.state === 'paused', undefined, 60_000, 'Pause');
+    const pauseMs = Date.now() - clicked;
+    const stopped = (await frame(page))!;
+    // The frame's cost: the chunks' time over their share of the frame.
+    const frameMs = (stopped.busyMs / stopped.pixelsDone) * stopped.pixels;
+    expect(stopped.pixelsDone).toBeLessThan(stopped.pixels);
+    // Long frames, or this proves nothing; and Pause far quicker than one.
+    expect(frameMs).toBeGreaterThan(2000);
+    expect(pauseMs).toBeLessThan(frameMs / 4);
+    // Stopped: no chunk goes to the GPU while paused.
+    await page.waitForTimeout(500);
+    expect(await frame(page)).toMatchObject({ chunks: stopped.chunks, pixelsDone: stopped.pixelsDone, suspended: true });
+    // Play goes on with the same frame.
+    await page.click('#play');
+    await withPageReport(page, 'the frame going on', () => expect.poll(async () => (await frame(page))?.pixelsDone ?? Infinity, { timeout: 60_000, interval: 100 }).toBeGreaterThan(stopped.pixelsDone));
+    expect(await page.evaluate(() => window.lantern.samples)).toBe(0);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+});
+
+describe('slow frames', () => {
+  it('at 0.5 fps, W held for 3 s moves three times as far as W held for 1 s', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.05&mode=fly', { width: 640, height: 400 });
+    await page.click('#play');
+    await waitForSamples(page, 1, 180_000);
+    await page.locator('#view').focus();
+    const z = () => page.evaluate(() => window.lantern.camera!.position[2]);
+    /** Holds W for `ms`, then waits for the frame that applies it: the distance moved. */
+    const hold = async (ms: number, frameMs: number) => {
+      const before = await z();
+      await page.keyboard.down('KeyW');
+      await page.waitForTimeout(ms);
+      await page.keyboard.up('KeyW');
+      // Two frames after the key came up: the span held is in the camera.
+      await page.waitForTimeout(2 * frameMs + 500);
+      const after = await z();
+      await page.waitForTimeout(frameMs + 200);
+      expect(await z()).toBe(after);
+      return Math.abs(after - before);
+    };
+    const quick = await hold(1000, 100);
+    expect(quick).toBeGreaterThan(0);
+    await page.evaluate(() => window.lantern.delayFrames(2000));
+    const slow = await hold(3000, 2000);
+    expect(slow / quick).toBeGreaterThan(2.6);
+    expect(slow / quick).toBeLessThan(3.4);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+});
