@@ -84,6 +84,38 @@ function chiSquare(counts: ArrayLike<number>, total: number): number {
 const SOBOL = 1, RANDOM = 0;
 
 describe('the Sobol sampler (lib/random.wgsl)', () => {
+  it('computes the second Sobol dimension as the direction-number loop does, for every index tried', async () => {
+    const { device } = await testGpu();
+    const n = 4096;
+    // Small indices, then 32-bit ones from a fixed LCG (the scrambled indices the sampler uses are full words).
+    const indices = new Uint32Array(n);
+    let state = 12345;
+    for (let k = 0; k < n; k++) {
+      state = (Math.imul(state, 1664525) + 1013904223) >>> 0;
+      indices[k] = k < 1024 ? k : state;
+    }
+    const code = `
+#import lib/random
+@group(3) @binding(0) var<storage, read_write> values: array<vec2u>;
+@compute @workgroup_size(64)
+fn sobol(@builtin(global_invocation_id) id: vec3u) {
+  values[id.x] = sobol_2d(values[id.x].x);
+}`;
+    const kernel = await testKernel(device, 'test/sobol-2d', code, 'sobol');
+    const buffer = device.createBuffer({ label: 'values', size: n * 8, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST });
+    const input = new Uint32Array(2 * n);
+    for (let k = 0; k < n; k++) input[2 * k] = indices[k]!;
+    device.queue.writeBuffer(buffer, 0, input);
+    const out = new Uint32Array(await runOnce(device, kernel, { 3: kernel.bindGroup(3, { values: buffer }) }, [n / 64], buffer));
+    buffer.destroy();
+    const reverse = (x: number) => parseInt(x.toString(2).padStart(32, '0').split('').reverse().join(''), 2);
+    for (let k = 0; k < n; k++) {
+      let y = 0, v = 0x80000000, bits = indices[k]!;
+      for (; bits !== 0; bits >>>= 1, v = (v ^ (v >>> 1)) >>> 0) if (bits & 1) y = (y ^ v) >>> 0;
+      expect([out[2 * k], out[2 * k + 1]]).toEqual([reverse(indices[k]!), y]);
+    }
+  });
+
   it("stratifies each pixel's samples: aligned blocks of 2^k are (0,k,2)-nets in every pair, across frames' indices too", async () => {
     // first = 5120: the blocks are aligned in the index, not to the start of the draw.
     const first = 1024 * 5;
