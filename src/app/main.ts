@@ -374,6 +374,15 @@ function storage(): Storage | undefined {
   }
 }
 
+/** Keeps a value in localStorage where the browser lets it (a full or refused store only loses the memory). */
+function remember(key: string, value: string): void {
+  try {
+    storage()?.setItem(key, value);
+  } catch {
+    // Nothing to do: the page works the same without it.
+  }
+}
+
 /** What the adapter says about itself, asked before Play for the estimate (no device is made: no GPU work). */
 let adapterFacts: AdapterFacts | undefined;
 async function queryAdapter(): Promise<void> {
@@ -423,14 +432,14 @@ function onPlaying(): void {
     played = true;
     const store = storage();
     if (store && !store.getItem(HELP_SEEN_KEY)) {
-      store.setItem(HELP_SEEN_KEY, '1');
+      remember(HELP_SEEN_KEY, '1');
       showHelp(true);
     }
   }
   const ms = viewer.stats.firstFrameMs;
   if (ms !== undefined && adapterFacts && !recorded) {
     recorded = true;
-    storage()?.setItem(FIRST_FRAME_KEY, JSON.stringify({ adapter: adapterKey(adapterFacts), ms, pixels: viewer.stats.width * viewer.stats.height } satisfies FirstFrameRecord));
+    remember(FIRST_FRAME_KEY, JSON.stringify({ adapter: adapterKey(adapterFacts), ms, pixels: viewer.stats.width * viewer.stats.height } satisfies FirstFrameRecord));
   }
 }
 let recorded = false;
