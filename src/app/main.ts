@@ -143,6 +143,8 @@ function showViewer(v: Viewer): void {
     : v.state === 'idle' ? 'press Play to start'
     : v.state === 'starting' ? 'starting the GPU…'
     : `${spp} · ${frameRate(s.framesPerSecond)} · ${s.width}×${s.height} · ${s.adapter}${hidden}`;
+  // Cut to its line on a narrow header (style.css): the whole reading is the tooltip.
+  stats.title = stats.textContent;
   panel?.showStats();
   showLegend(v.legend);
   showStart(v);
