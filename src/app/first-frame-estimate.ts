@@ -63,7 +63,7 @@ export function estimateFirstFrame(adapter: AdapterFacts | undefined, pixels: nu
   const ms = COMPILE_MS[kind] + (1000 * pixels * RAYS_PER_PIXEL) / RAYS_PER_SECOND[kind];
   return {
     ms,
-    basis: kind === 'software' ? 'a software GPU (it runs on the CPU): shaders compile for about 15 s, then about a million rays a second' : 'a hardware GPU: mostly compiling shaders',
+    basis: kind === 'software' ? 'a software GPU, which runs on the CPU: shaders compile for about 15 s, then about a million rays a second' : 'a hardware GPU: mostly compiling shaders',
   };
 }
 
