@@ -8,6 +8,14 @@
  * Clicks on the canvas select (Esc or empty space deselects) and Alt-clicks focus the lens
  * (input.ts); the panel's Material folder edits what is selected, and links carry the edits.
  *
+ * For a new user: before Play the canvas shows the scene's name, a Play button and the expected
+ * wait for the first frame (first-frame-estimate.ts); `?` (key or button) shows the controls, once
+ * by itself on the first Play (remembered in localStorage); the canvas owns the keyboard while
+ * playing, so form controls hand focus back once used (an arrow key never switches scenes
+ * mid-walk); `Tab` hides the settings, which are a drawer on narrow screens; messages can be
+ * closed, info expires, and a scene's warnings fold into a count that opens on click. The scene
+ * picker always names the scene that is rendering, also after a file that failed to load.
+ *
  * Test hook: `window.lantern` exposes the viewer's state, sample count, scene, camera, lens,
  * selection and live GPU resources, and reads the estimate with its sample count; the canvas
  * carries data-state and data-samples, so scripts can wait for frames, and data-first-frame-ms (the
@@ -28,6 +36,8 @@ import { describeError, Viewer, type BudgetState, type FrameProgress } from './v
 import type { ResourceCount } from '../gpu/resource-count.ts';
 import type { ThinLens } from '../scene/types.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
+import { frameRate } from './number-format.ts';
+import { adapterKey, describeEstimate, estimateFirstFrame, type AdapterFacts, type FirstFrameRecord } from './first-frame-estimate.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 const canvas = $<HTMLCanvasElement>('view');
@@ -39,22 +49,54 @@ const mapSelect = $<HTMLSelectElement>('map');
 const playButton = $<HTMLButtonElement>('play');
 const progress = $<HTMLProgressElement>('progress');
 const stats = $<HTMLSpanElement>('stats');
-const message = $<HTMLParagraphElement>('message');
+const message = $<HTMLDivElement>('message');
+const messageBox = $<HTMLDivElement>('message-box');
 const dropZone = $<HTMLDivElement>('drop-zone');
 const legend = $<HTMLDivElement>('legend');
+const start = $<HTMLDivElement>('start');
+const startPlay = $<HTMLButtonElement>('start-play');
+const help = $<HTMLElement>('help');
+const helpButton = $<HTMLButtonElement>('help-button');
+const panelToggle = $<HTMLButtonElement>('panel-toggle');
 
 /** The option of the scene picker that stands for a scene opened from a file. */
 const FILE_OPTION = '__file__';
 
-function showMessage(text: string, kind: 'info' | 'warning' | 'error'): void {
+/** How long an info message stays (warnings and errors stay until closed or replaced). */
+const INFO_MESSAGE_MS = 8000;
+let messageTimer: ReturnType<typeof setTimeout> | undefined;
+
+/**
+ * Shows one message (it replaces the last). Info expires after INFO_MESSAGE_MS; warnings and errors
+ * stay until closed (×) or replaced. `details` (a scene's loading warnings) fold under the text,
+ * which then reads as their count, and open on a click.
+ */
+function showMessage(text: string, kind: 'info' | 'warning' | 'error', details: readonly string[] = []): void {
+  clearTimeout(messageTimer);
+  messageBox.hidden = false;
   message.hidden = false;
   message.dataset.kind = kind;
-  message.textContent = text;
+  if (details.length > 0) {
+    const fold = document.createElement('details');
+    const summary = document.createElement('summary');
+    summary.textContent = text;
+    const list = document.createElement('div');
+    list.textContent = details.map((d) => `· ${d}`).join('\n');
+    fold.append(summary, list);
+    message.replaceChildren(fold);
+  } else message.textContent = text;
+  if (kind === 'info') messageTimer = setTimeout(clearMessage, INFO_MESSAGE_MS);
 }
 function clearMessage(): void {
+  clearTimeout(messageTimer);
+  messageBox.hidden = true;
   message.hidden = true;
   message.textContent = '';
 }
+$('message-close').addEventListener('click', () => {
+  clearMessage();
+  canvas.focus();
+});
 
 const { view: linked, problems } = parseViewParams(new URLSearchParams(location.search));
 const viewer = new Viewer(canvas, { onChange: showViewer, onMessage: showMessage });
@@ -90,17 +132,24 @@ function showViewer(v: Viewer): void {
   if (s.firstFrameMs !== undefined) canvas.dataset.firstFrameMs = s.firstFrameMs.toFixed(1);
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
   playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
+  playButton.title = navigator.gpu ? '' : NO_WEBGPU;
   const hidden = document.hidden && v.state === 'playing' ? ' · paused while the tab is hidden' : '';
   const budget = v.budgetText(true);
+  // A debug view that replaces the image traces no paths: no samples to count.
+  const r = v.settings.render;
+  const spp = r.debugView !== 'none' && r.debugLayout === 'replace' ? 'debug view' : `${s.samples} spp`;
   stats.textContent =
     loading !== undefined ? `loading: ${loading}…`
+    : !navigator.gpu ? 'no WebGPU in this browser'
     : v.state === 'idle' ? 'press Play to start'
     : v.state === 'starting' ? 'starting the GPU…'
-    : `${s.samples} spp · ${s.framesPerSecond.toFixed(1)} fps · ${s.width}×${s.height} · ${s.adapter}${budget ? ` · ${budget}` : ''}${hidden}`;
-  // The budget's short line (it changes only with its choice, so the header does not reflow and resize the canvas every frame); the tooltip has it all.
-  stats.title = s.budget;
+    : `${spp} · ${frameRate(s.framesPerSecond)} · ${s.width}×${s.height} · ${s.adapter}${budget ? ` · ${budget}` : ''}${hidden}`;
+  // Cut to its line on a narrow header (style.css): the whole reading, with the budget's reasons, is the tooltip.
+  stats.title = s.budget ? `${stats.textContent}\n${s.budget}` : stats.textContent;
   panel?.showStats();
   showLegend(v.legend);
+  showStart(v);
+  if (v.state === 'playing') onPlaying();
 }
 
 /** The debug view's legend under the image: what it shows and, for scalar views, the colour scale with its numbers. */
@@ -121,8 +170,13 @@ const formatScale = (v: number) => (Number.isInteger(v) ? String(v) : v.toFixed(
 
 // ---- loading scenes ----
 
-/** Loads a scene in the worker and shows it; a failure leaves the current scene as it was. */
-async function show(request: SceneRequest, where: SceneLocation | undefined, view: ViewParams = {}): Promise<void> {
+/** What the scene picker names: a built-in scene, or a file scene with its label and the part (map) shown. */
+type PickerLabel = { kind: 'builtin'; name: string } | { kind: 'file'; label: string; part?: string };
+/** The picker's label of the scene rendering now (set once a scene is shown). */
+let shownLabel: PickerLabel | undefined;
+
+/** Loads a scene in the worker and shows it; a failure leaves the current scene as it was, and the pickers naming it. */
+async function show(request: SceneRequest, where: SceneLocation | undefined, label: PickerLabel, view: ViewParams = {}): Promise<void> {
   const token = ++loadToken;
   progress.hidden = false;
   progress.value = 0;
@@ -147,22 +201,42 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, vie
     panel?.readFromViewer();
     // Each warning once (a texture missing from ten materials is one problem), one per line.
     const warnings = [...new Set([...loaded.warnings, ...ignored.map((p) => `ignored in the link: ${p}`)])];
-    if (warnings.length > 0) showMessage([`${loaded.prepared.scene.name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`}`, ...warnings.map((w) => `· ${w}`)].join('\n'), 'warning');
+    if (warnings.length > 0) showMessage(`${loaded.prepared.scene.name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`} (click to see)`, 'warning', warnings);
+    shownLabel = label;
   } catch (e) {
     if (token === loadToken) showMessage(describeError(e), 'error');
   } finally {
     if (token === loadToken) {
       loading = undefined;
       progress.hidden = true;
+      showPicked();
       showViewer(viewer);
     }
+  }
+}
+
+/**
+ * The scene picker names what is rendering: after a load that failed (a broken PLY), it goes back
+ * to the scene still shown, and the map picker hides when its maps are not those of that scene.
+ */
+function showPicked(): void {
+  const fileOption = sceneSelect.querySelector<HTMLOptionElement>(`option[value="${FILE_OPTION}"]`);
+  if (shownLabel?.kind === 'builtin') {
+    sceneSelect.value = shownLabel.name;
+    fileOption?.remove();
+    mapPicker.hidden = true;
+  } else if (shownLabel?.kind === 'file') {
+    markFileScene(shownLabel.label);
+    const part = shownLabel.part;
+    if (part !== undefined && [...mapSelect.options].some((o) => o.value === part)) mapSelect.value = part;
+    else mapPicker.hidden = true;
   }
 }
 
 function showBuiltin(name: string, view: ViewParams = {}): Promise<void> {
   sceneSelect.value = name;
   mapPicker.hidden = true;
-  return show({ kind: 'builtin', name }, { kind: 'builtin', name }, view);
+  return show({ kind: 'builtin', name }, { kind: 'builtin', name }, { kind: 'builtin', name }, view);
 }
 
 /** The file-scene entry of the scene picker, labelled with what was opened. */
@@ -192,6 +266,7 @@ async function openFiles(files: readonly PathedFile[], where?: { urls: readonly 
     const beside = siblings.map((f) => ({ file: f.file, path: pathRelativeTo(mainPath, f.path) }));
     const summary = await loader.openFiles(format.id, main.map((f) => f.file), beside, baseUrl);
     fileSource = where ? { format: format.id, urls: where.urls, ...(where.skill !== undefined ? { skill: where.skill } : {}) } : undefined;
+    fileLabel = summary.description;
     markFileScene(summary.description);
     if (summary.parts.length === 0) {
       mapPicker.hidden = true;
@@ -216,14 +291,18 @@ async function openFiles(files: readonly PathedFile[], where?: { urls: readonly 
   } catch (e) {
     showMessage(describeError(e), 'error');
     // The picker goes back to what is still shown.
-    if (current?.kind === 'builtin') sceneSelect.value = current.name;
+    showPicked();
   }
 }
+
+/** The label of the open file set (the picker's file entry names it). */
+let fileLabel = '';
 
 /** A scene of the open file set: a map of a WAD, or (part undefined) the set's only scene. */
 function showPart(part: string | undefined, view: ViewParams = {}): Promise<void> {
   const where: SceneLocation | undefined = fileSource ? { kind: 'files', ...fileSource, ...(part ? { part } : {}) } : undefined;
-  return show({ kind: 'part', ...(part ? { part } : {}), ...(fileSource?.skill !== undefined ? { skill: fileSource.skill } : {}) }, where, view);
+  const label: PickerLabel = { kind: 'file', label: fileLabel, ...(part !== undefined ? { part } : {}) };
+  return show({ kind: 'part', ...(part ? { part } : {}), ...(fileSource?.skill !== undefined ? { skill: fileSource.skill } : {}) }, where, label, view);
 }
 
 /** Files the server offers (`lantern view` serves the files named on its command line). */
@@ -280,6 +359,169 @@ const actions = {
   report: (e: unknown) => showMessage(describeError(e), 'error'),
 };
 
+// ---- before Play, help, the panel drawer, focus ----
+
+/** Why Play stays disabled without WebGPU (the canvas's overlay says how to get it). */
+const NO_WEBGPU = 'This browser has no WebGPU: see the notes over the image for how to enable it, or render with the lantern command';
+
+/** localStorage keys: whether the controls were shown once; first frames measured per adapter. */
+const HELP_SEEN_KEY = 'lantern.helpSeen';
+const FIRST_FRAME_KEY = 'lantern.firstFrame';
+
+/** localStorage, or undefined where the browser refuses it (private modes, file: pages). */
+function storage(): Storage | undefined {
+  try {
+    return window.localStorage;
+  } catch {
+    return undefined;
+  }
+}
+
+/** Keeps a value in localStorage where the browser lets it (a full or refused store only loses the memory). */
+function remember(key: string, value: string): void {
+  try {
+    storage()?.setItem(key, value);
+  } catch {
+    // Nothing to do: the page works the same without it.
+  }
+}
+
+/** What the adapter says about itself, asked before Play for the estimate (no device is made: no GPU work). */
+let adapterFacts: AdapterFacts | undefined;
+async function queryAdapter(): Promise<void> {
+  try {
+    const adapter = await navigator.gpu?.requestAdapter();
+    if (!adapter) return;
+    const info = adapter.info;
+    const fallback = (info as GPUAdapterInfo & { isFallbackAdapter?: boolean }).isFallbackAdapter ?? (adapter as GPUAdapter & { isFallbackAdapter?: boolean }).isFallbackAdapter ?? false;
+    adapterFacts = { vendor: info.vendor, architecture: info.architecture, device: info.device, description: info.description, isFallbackAdapter: fallback };
+    showStart(viewer);
+  } catch {
+    // No estimate then; Play says what goes wrong.
+  }
+}
+
+function firstFrameRecord(): FirstFrameRecord | undefined {
+  try {
+    const raw = storage()?.getItem(FIRST_FRAME_KEY);
+    const r = raw ? (JSON.parse(raw) as Partial<FirstFrameRecord>) : undefined;
+    return r && typeof r.adapter === 'string' && typeof r.ms === 'number' && typeof r.pixels === 'number' ? { adapter: r.adapter, ms: r.ms, pixels: r.pixels } : undefined;
+  } catch {
+    return undefined;
+  }
+}
+
+/** The pixels the first frame will have: the canvas's device pixels times the resolution scale. */
+const expectedPixels = () => Math.max(1, Math.round(canvas.width * viewer.settings.scale) * Math.round(canvas.height * viewer.settings.scale));
+
+/** The overlay before Play: the scene's name, Play, and the expected wait; without WebGPU, how to get it. */
+function showStart(v: Viewer): void {
+  const before = v.state === 'idle';
+  start.hidden = !before;
+  if (!before) return;
+  start.querySelector('.scene-name')!.textContent = loading !== undefined ? `Loading ${v.stats.sceneName || 'the scene'}…` : v.stats.sceneName;
+  const noGpu = !navigator.gpu;
+  start.querySelector<HTMLElement>('.no-webgpu')!.hidden = !noGpu;
+  startPlay.hidden = noGpu;
+  startPlay.disabled = !v.scene || loading !== undefined;
+  const estimate = estimateFirstFrame(adapterFacts, expectedPixels(), firstFrameRecord());
+  start.querySelector('.estimate')!.textContent = noGpu ? '' : estimate ? describeEstimate(estimate) : '';
+}
+
+let played = false;
+/** Once playing: the first time ever, the controls show by themselves; the first frame's wait is kept for the next visit's estimate. */
+function onPlaying(): void {
+  if (!played) {
+    played = true;
+    const store = storage();
+    if (store && !store.getItem(HELP_SEEN_KEY)) {
+      remember(HELP_SEEN_KEY, '1');
+      showHelp(true);
+    }
+  }
+  const ms = viewer.stats.firstFrameMs;
+  if (ms !== undefined && adapterFacts && !recorded) {
+    recorded = true;
+    remember(FIRST_FRAME_KEY, JSON.stringify({ adapter: adapterKey(adapterFacts), ms, pixels: viewer.stats.width * viewer.stats.height } satisfies FirstFrameRecord));
+  }
+}
+let recorded = false;
+
+function showHelp(shown: boolean): void {
+  help.hidden = !shown;
+  helpButton.setAttribute('aria-expanded', String(shown));
+}
+helpButton.addEventListener('click', () => {
+  showHelp(help.hidden === true);
+  canvas.focus();
+});
+$('help-close').addEventListener('click', () => {
+  showHelp(false);
+  canvas.focus();
+});
+
+/** Whether the settings panel shows: beside the image on wide screens (Tab hides it), a drawer over it on narrow ones (closed at first). */
+const narrow = window.matchMedia('(max-width: 460px)');
+function panelShown(): boolean {
+  return narrow.matches ? document.body.classList.contains('panel-open') : !document.body.classList.contains('panel-hidden');
+}
+function showPanel(shown: boolean): void {
+  if (narrow.matches) document.body.classList.toggle('panel-open', shown);
+  else document.body.classList.toggle('panel-hidden', !shown);
+  panelToggle.setAttribute('aria-expanded', String(shown));
+}
+panelToggle.addEventListener('click', () => {
+  showPanel(!panelShown());
+  canvas.focus();
+});
+narrow.addEventListener('change', () => panelToggle.setAttribute('aria-expanded', String(panelShown())));
+panelToggle.setAttribute('aria-expanded', String(panelShown()));
+
+/** Form controls where keys are typed (not movement, not page shortcuts). */
+const isFormField = (t: EventTarget | null) => t instanceof HTMLElement && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA' || t.isContentEditable);
+
+window.addEventListener('keydown', (e) => {
+  if (e.ctrlKey || e.metaKey || e.altKey) return;
+  if (e.key === '?' && !isFormField(e.target)) {
+    showHelp(help.hidden === true);
+    e.preventDefault();
+  } else if (e.key === 'Escape' && !help.hidden && !isFormField(e.target)) {
+    showHelp(false);
+  } else if (e.key === 'Tab' && !isFormField(e.target) && !(e.target instanceof HTMLButtonElement)) {
+    // Tab from the image (or the page) shows or hides the settings; in the panel and on buttons it moves focus as usual.
+    showPanel(!panelShown());
+    e.preventDefault();
+  }
+});
+
+/**
+ * The canvas owns the keyboard while playing: a form control gives focus back once used (a choice
+ * made, Enter, Escape), so the arrow keys move the camera instead of switching scenes. Text typed in
+ * a field keeps the focus until Enter.
+ */
+function giveBackFocus(target: EventTarget | null): void {
+  if (!(target instanceof HTMLElement)) return;
+  if (target.tagName === 'SELECT' || (target instanceof HTMLInputElement && target.type !== 'text' && target.type !== 'number')) target.blur();
+  canvas.focus({ preventScroll: true });
+}
+for (const control of [sceneSelect, mapSelect]) control.addEventListener('change', (e) => giveBackFocus(e.target));
+$('panel').addEventListener('change', (e) => {
+  // A text field's change comes with Enter or leaving it: either way it is done.
+  const t = e.target;
+  if (t instanceof HTMLSelectElement || (t instanceof HTMLInputElement && (t.type === 'checkbox' || t.type === 'file'))) giveBackFocus(t);
+});
+document.addEventListener('keydown', (e) => {
+  if ((e.key === 'Enter' || e.key === 'Escape') && isFormField(e.target)) {
+    const t = e.target as HTMLElement;
+    // Enter commits the field (Tweakpane listens for it first); then the image has the keyboard.
+    setTimeout(() => {
+      t.blur();
+      canvas.focus({ preventScroll: true });
+    });
+  }
+});
+startPlay.addEventListener('click', () => playButton.click());
+
 // ---- wiring ----
 
 new ResizeObserver((entries) => {
@@ -315,6 +557,8 @@ viewer.input = new Input(canvas, {
 playButton.addEventListener('click', () => {
   if (viewer.state === 'playing') viewer.pause();
   else viewer.play().catch((e) => viewer.fail(e));
+  // Space on a focused Play button would pause again: the keyboard goes to the image.
+  canvas.focus({ preventScroll: true });
 });
 // Each user action starts with a clean message line; what it reports stays until the next.
 sceneSelect.addEventListener('change', () => {
@@ -392,8 +636,8 @@ showViewer(viewer);
 
 if (problems.length > 0) showMessage(`Ignored in the link: ${problems.join('; ')}`, 'warning');
 if (!navigator.gpu) {
-  showMessage(describeError(new LanternError('this browser has no WebGPU', 'Use Chrome or Edge 113+, Safari 26+ or Firefox 141+ on Windows; on Linux start Chrome with --enable-unsafe-webgpu --enable-features=Vulkan')), 'error');
-}
+  showMessage(describeError(new LanternError('this browser has no WebGPU', 'The notes over the image say which browsers have it and how to turn it on; the lantern command renders without a browser')), 'error');
+} else void queryAdapter();
 const scene = linked.scene;
 if (scene?.kind === 'files') {
   const urls = scene.urls;

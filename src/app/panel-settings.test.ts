@@ -1,6 +1,20 @@
 import { describe, expect, it } from 'vitest';
-import { isValidValue } from '../renderer/settings-schema.ts';
-import { numberBindingLimits, PANEL_SETTINGS } from './panel-settings.ts';
+import { isValidValue, mergeSettings } from '../renderer/settings-schema.ts';
+import { DEFAULT_SETTINGS, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
+import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, type PanelContext } from './panel-settings.ts';
+
+/** The panel's own controls (not render settings), keyed as TOOLTIPS keys them. */
+const OWN_CONTROLS = ['samplesPerFrame', 'scale', 'accumulate', 'animate', 'convergeWhenStill', 'fov', 'mode'];
+
+/** A Doom-like scene (walk map, torch, moving doors) or a Cornell-like one (none of them), with settings changed by `patch`. */
+function context(scene: 'doom' | 'cornell', patch: RenderSettingsPatch = {}): PanelContext {
+  const render = mergeSettings(DEFAULT_SETTINGS, patch) as RenderSettings;
+  const doom = scene === 'doom';
+  return { render, hasTorch: doom, canWalk: doom, moving: doom, tileGrid: doom };
+}
+
+/** The controls disabled in a context. */
+const disabled = (c: PanelContext) => [...OWN_CONTROLS, ...PANEL_SETTINGS.map((e) => e.id)].filter((id) => notApplicable(id, c) !== undefined).sort();
 
 describe('the panel', () => {
   it('shows the settings it showed before the schema, the spectral switch and the wireframe level', () => {
@@ -30,5 +44,66 @@ describe('the panel', () => {
 
   it('slides over bounces 0–32 while accepting typed values up to 1024', () => {
     expect(numberBindingLimits(PANEL_SETTINGS.find((e) => e.id === 'maxBounces')!)).toEqual({ min: 0, max: 1024, step: 1, slider: [0, 32] });
+  });
+
+  it('gives every control a one-line tooltip, and the jargon ones their own words', () => {
+    const ids = new Set([...OWN_CONTROLS, ...PANEL_SETTINGS.map((e) => e.id)]);
+    // No tooltip for a control the panel does not have (a renamed setting would leave one behind).
+    for (const key of Object.keys(TOOLTIPS)) expect(ids.has(key), key).toBe(true);
+    for (const entry of PANEL_SETTINGS) {
+      const tip = settingTooltip(entry);
+      expect(tip, entry.id).not.toMatch(/\n/);
+      expect(tip.length, entry.id).toBeGreaterThan(10);
+      expect(tip.length, entry.id).toBeLessThan(200);
+    }
+    for (const jargon of ['clampK', 'historyCap', 'sampler', 'denoise', 'temporal', 'integrator', 'accel', 'hybrid.giScale', 'hybrid.taa', 'tileCulling']) {
+      expect(TOOLTIPS[jargon], jargon).toBeDefined();
+    }
+    expect(TOOLTIPS.clampK).toMatch(/standard deviation/);
+    expect(TOOLTIPS.denoise).toMatch(/à-trous/);
+  });
+
+  it('in a Doom map at the defaults, disables only the knobs of what is off: the hybrid recipe and the debug views', () => {
+    expect(disabled(context('doom'))).toEqual(['debugLayout', 'heatMax', 'hybrid.giBounces', 'hybrid.giFilter', 'hybrid.giSamples', 'hybrid.giScale', 'hybrid.lightSamples', 'hybrid.reflectionBounces', 'hybrid.reflections', 'hybrid.taa', 'wireframeDepth', 'wireframeLevel']);
+  });
+
+  it('disables walk mode, the torch switch, animation and tile culling in a scene without a walk map, torch or movers', () => {
+    const off = disabled(context('cornell'));
+    for (const id of ['mode', 'torch.enabled', 'animate', 'tileCulling']) expect(off).toContain(id);
+    // The torch's strength stays: setting it is how such a scene gets a torch.
+    expect(off).not.toContain('torch.intensity');
+    expect(notApplicable('mode', context('cornell'))).toMatch(/walk map/);
+  });
+
+  it('disables the real-time denoiser knobs in progressive mode, and the path tracer ones in the hybrid recipe', () => {
+    const progressive = disabled(context('doom', { temporal: false, denoise: false }));
+    for (const id of ['clampK', 'historyCap', 'denoiseView', 'integrator', 'convergeWhenStill']) expect(progressive).toContain(id);
+    expect(progressive).not.toContain('temporal');
+    // Spatial filter alone: the clamp and cap limit temporal history, which is off.
+    const spatial = disabled(context('doom', { temporal: false }));
+    expect(spatial).toEqual(expect.arrayContaining(['clampK', 'historyCap']));
+    expect(spatial).not.toContain('denoiseView');
+    const hybrid = disabled(context('doom', { recipe: 'hybrid' }));
+    for (const id of ['temporal', 'denoise', 'clampK', 'historyCap', 'integrator', 'spectral', 'samplesPerFrame']) expect(hybrid).toContain(id);
+    expect(hybrid.filter((id) => id.startsWith('hybrid.'))).toEqual([]);
+    expect(disabled(context('doom', { recipe: 'hybrid', hybrid: { reflections: false } }))).toContain('hybrid.reflectionBounces');
+  });
+
+  it('enables the debug knobs of the view shown only', () => {
+    expect(disabled(context('doom', { debugView: 'heat-nodes' }))).toEqual(expect.not.arrayContaining(['heatMax', 'debugLayout']));
+    expect(disabled(context('doom', { debugView: 'heat-nodes' }))).toEqual(expect.arrayContaining(['wireframeDepth', 'wireframeLevel']));
+    expect(disabled(context('doom', { debugView: 'wireframe' }))).toEqual(expect.arrayContaining(['heatMax']));
+    expect(disabled(context('doom', { debugView: 'wireframe' }))).not.toContain('wireframeDepth');
+  });
+
+  it('says why in one line, for every control it disables', () => {
+    const contexts = [context('cornell', { temporal: false, denoise: false }), context('cornell', { recipe: 'hybrid', hybrid: { reflections: false } })];
+    for (const c of contexts) {
+      for (const id of disabled(c)) {
+        const reason = notApplicable(id, c)!;
+        expect(reason, id).not.toMatch(/\n/);
+        expect(reason, id).toMatch(/^[A-Z].*\.$/);
+      }
+    }
   });
 });

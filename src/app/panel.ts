@@ -6,13 +6,20 @@
  * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
  * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
  * The numbers are the viewer's own measurements: frame rate and time on the wall clock, pass
- * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters.
+ * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters;
+ * written with figures that fit their size (number-format.ts).
+ *
+ * Every control has a one-line tooltip; a control that does nothing for the scene and settings
+ * shown (walk mode without a walk map, the denoiser's knobs in progressive mode) is disabled and
+ * its tooltip says why (panel-settings.ts decides). The numbers and the output buttons sit in a
+ * second pane below the settings, outside their scrolling, so they stay on screen.
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { Pane, type BladeApi, type ButtonApi, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
 import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry, type SettingsPatch } from '../renderer/settings-schema.ts';
 import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
-import { numberBindingLimits, PANEL_SETTINGS, unlimitedKey } from './panel-settings.ts';
+import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, unlimitedKey, type PanelContext } from './panel-settings.ts';
+import { duration, significant, withUnit } from './number-format.ts';
 import { fNumberForAperture, focalLengthForFov } from '../scene/lens.ts';
 import type { MoveMode } from './camera-controller.ts';
 import { LIMITS } from './view-params.ts';
@@ -30,6 +37,9 @@ export interface PanelActions {
   /** Shows a problem in the page's message line (a file that is not an HDR image). */
   report(error: unknown): void;
 }
+
+/** Whether a debug view replaces the image (nothing is path traced then). */
+const debugOnly = (r: RenderSettings) => r.debugView !== 'none' && r.debugLayout === 'replace';
 
 const options = <T extends string>(values: readonly T[]) => Object.fromEntries(values.map((v) => [v, v])) as Record<T, T>;
 
@@ -62,7 +72,7 @@ export class SettingsPanel {
   /** The render settings' panel values by setting id (a colour as {r, g, b}; 'auto' as 0). */
   private readonly settingParams: Record<string, unknown> = {};
   private depthBinding?: SliderInputBindingApi;
-  private readonly monitor = { fps: 0, frame: '', gpu: '', spp: 0, shows: '', rays: '', image: '', scene: '', gpuMemory: '', kernel: '', firstFrame: '' };
+  private readonly monitor = { fps: 0, frame: '', gpu: '', spp: '', shows: '', rays: '', image: '', scene: '', gpuMemory: '', kernel: '', firstFrame: '' };
   /** The Environment folder's values; the map is the last HDR file opened (kept while another kind is shown). */
   private readonly environment: EnvironmentChoice = { ...DEFAULT_ENVIRONMENT_CHOICE };
   private environmentMap?: EnvironmentImage;
@@ -72,35 +82,54 @@ export class SettingsPanel {
   private readonly materialPanel: MaterialPanel;
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
+  /** The controls that may be disabled or carry a tooltip, by their TOOLTIPS key (a setting's id, or the panel's own key). */
+  private readonly controls = new Map<string, BladeApi[]>();
+  /** The controls disabled now (notApplicable gave a reason). */
+  private readonly disabledIds = new Set<string>();
+  /** The numbers and the output buttons: a pane of their own that does not scroll away with the settings. */
+  private readonly numbersPane: Pane;
 
   constructor(
     container: HTMLElement,
     private readonly viewer: Viewer,
     actions: PanelActions,
   ) {
-    this.pane = new Pane({ container, title: 'Lantern' });
+    const settingsBox = document.createElement('div');
+    settingsBox.id = 'panel-settings';
+    const numbersBox = document.createElement('div');
+    numbersBox.id = 'panel-numbers';
+    container.append(settingsBox, numbersBox);
+    this.pane = new Pane({ container: settingsBox, title: 'Lantern' });
+    this.numbersPane = new Pane({ container: numbersBox });
     this.read();
     const p = this.params;
     const render = this.pane.addFolder({ title: 'Render' });
-    render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value }));
-    render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(0.25, p.scale), max: 2, step: 0.05 }).on('change', (e) => this.apply({ scale: e.value }));
-    render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value }));
-    render.addBinding(p, 'animate', { label: 'animate scene' }).on('change', (e) => this.apply({ animate: e.value }));
+    this.control('samplesPerFrame', render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value })));
+    this.control('scale', render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(0.25, p.scale), max: 2, step: 0.05 }).on('change', (e) => this.apply({ scale: e.value })));
+    this.control('accumulate', render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value })));
+    this.control('animate', render.addBinding(p, 'animate', { label: 'animate scene' }).on('change', (e) => this.apply({ animate: e.value })));
 
     const camera = this.pane.addFolder({ title: 'Camera and torch' });
-    camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => {
-      if (this.syncing) return;
-      viewer.setFieldOfView(e.value);
-      // The same aperture is another f-number at another focal length.
-      this.showFNumber();
-    });
-    camera.addBinding(p, 'mode', { label: 'movement', options: { 'walk (Doom maps)': 'walk', fly: 'fly' } }).on('change', (e) => {
-      if (this.syncing) return;
-      if (!viewer.setMoveMode(e.value)) {
-        p.mode = viewer.controller?.mode ?? 'fly';
-        this.pane.refresh();
-      }
-    });
+    this.control(
+      'fov',
+      camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => {
+        if (this.syncing) return;
+        viewer.setFieldOfView(e.value);
+        // The same aperture is another f-number at another focal length.
+        this.showFNumber();
+      }),
+    );
+    // Walk is disabled (with the reason) where the scene has no walk map, so a choice never silently reverts.
+    this.control(
+      'mode',
+      camera.addBinding(p, 'mode', { label: 'movement', options: { walk: 'walk', fly: 'fly' } }).on('change', (e) => {
+        if (this.syncing) return;
+        if (!viewer.setMoveMode(e.value)) {
+          p.mode = viewer.controller?.mode ?? 'fly';
+          this.pane.refresh();
+        }
+      }),
+    );
 
     this.addLensBindings(camera);
 
@@ -115,28 +144,83 @@ export class SettingsPanel {
       debug: this.pane.addFolder({ title: 'Debug views', expanded: false }),
     };
     // Before the filters' own settings: whether a still view hands over to the exact progressive estimate.
-    folders.denoise.addBinding(p, 'convergeWhenStill', { label: 'converge when still' }).on('change', (e) => this.apply({ convergeWhenStill: e.value }));
+    this.control('convergeWhenStill', folders.denoise.addBinding(p, 'convergeWhenStill', { label: 'converge when still' }).on('change', (e) => this.apply({ convergeWhenStill: e.value })));
     for (const entry of PANEL_SETTINGS) this.addSettingBinding(folders[entry.spec.panel!.folder], entry);
     this.fitDepthSlider();
 
-    const numbers = this.pane.addFolder({ title: 'GPU' });
+    // The output buttons first, then the numbers a user watches most, then the details: the pane's
+    // box may be shorter than its content (the page's style), and what comes first stays in view.
+    const output = this.numbersPane.addFolder({ title: 'Output' });
+    output.addButton({ title: 'Screenshot (PNG)' }).on('click', () => actions.screenshot());
+    output.addButton({ title: 'Radiance (EXR)' }).on('click', () => actions.exportExr());
+    output.addButton({ title: 'Copy link to this view' }).on('click', () => actions.copyLink());
+
+    const numbers = this.numbersPane.addFolder({ title: 'GPU' });
     const m = this.monitor;
     numbers.addBinding(m, 'fps', { label: 'frames/s', readonly: true, view: 'graph', min: 0, max: 120 });
     numbers.addBinding(m, 'frame', { label: 'frame', readonly: true });
-    numbers.addBinding(m, 'gpu', { label: 'GPU passes', readonly: true, multiline: true, rows: 10 });
-    numbers.addBinding(m, 'spp', { label: 'samples/pixel', readonly: true, format: (v) => v.toFixed(0) });
-    numbers.addBinding(m, 'shows', { label: 'showing', readonly: true });
+    numbers.addBinding(m, 'spp', { label: 'samples/pixel', readonly: true });
     numbers.addBinding(m, 'rays', { label: 'rays/s', readonly: true });
+    numbers.addBinding(m, 'shows', { label: 'showing', readonly: true });
     numbers.addBinding(m, 'image', { label: 'image', readonly: true });
+    numbers.addBinding(m, 'gpu', { label: 'GPU passes', readonly: true, multiline: true, rows: 10 });
     numbers.addBinding(m, 'scene', { label: 'scene', readonly: true, multiline: true, rows: 2 });
     numbers.addBinding(m, 'gpuMemory', { label: 'GPU memory', readonly: true });
     numbers.addBinding(m, 'kernel', { label: 'kernel', readonly: true });
     numbers.addBinding(m, 'firstFrame', { label: 'Play to first frame', readonly: true });
+    this.showApplicability();
+  }
 
-    const output = this.pane.addFolder({ title: 'Output' });
-    output.addButton({ title: 'Screenshot (PNG)' }).on('click', () => actions.screenshot());
-    output.addButton({ title: 'Radiance (EXR)' }).on('click', () => actions.exportExr());
-    output.addButton({ title: 'Copy link to this view' }).on('click', () => actions.copyLink());
+  /** Registers a control under its TOOLTIPS key: it gets its tooltip now, and is disabled where it does not apply (showApplicability). */
+  private control<T extends BladeApi>(id: string, blade: T): T {
+    const list = this.controls.get(id) ?? [];
+    list.push(blade);
+    this.controls.set(id, list);
+    return blade;
+  }
+
+  /** What the applicability rules need to know about the scene shown. */
+  private context(): PanelContext {
+    const render = this.viewer.settings.render;
+    const scene = this.viewer.scene?.prepared.scene;
+    const torch = effectiveTorch(scene, { ...render.torch, enabled: true });
+    return {
+      render,
+      hasTorch: torch !== undefined && torch.intensity > 0,
+      canWalk: this.viewer.controller?.canWalk ?? false,
+      moving: this.viewer.moving,
+      tileGrid: !!scene?.walkMap && !!scene.metersPerUnit,
+    };
+  }
+
+  /** Disables the controls that do nothing for the scene and settings shown, with the reason as their tooltip; the others get their own tooltip. */
+  private showApplicability(): void {
+    const c = this.context();
+    // The torch switch shows whether a torch lights the image, which an intensity set just now may have changed.
+    const torchEntry = PANEL_SETTINGS.find((e) => e.id === 'torch.enabled');
+    const torchShown = torchEntry && this.shownValue(torchEntry);
+    if (torchEntry && this.settingParams[torchEntry.id] !== torchShown) {
+      this.settingParams[torchEntry.id] = torchShown;
+      const wasSyncing = this.syncing;
+      this.syncing = true;
+      try {
+        this.pane.refresh();
+      } finally {
+        this.syncing = wasSyncing;
+      }
+    }
+    for (const [id, blades] of this.controls) {
+      const reason = notApplicable(id, c);
+      const entry = PANEL_SETTINGS.find((e) => e.id === id);
+      const tip = entry ? settingTooltip(entry) : TOOLTIPS[id];
+      if (reason) this.disabledIds.add(id);
+      else this.disabledIds.delete(id);
+      for (const blade of blades) {
+        if (blade.disabled !== (reason !== undefined)) blade.disabled = reason !== undefined;
+        const title = reason ? `${reason} (${tip})` : (tip ?? '');
+        if (blade.element.title !== title) blade.element.title = title;
+      }
+    }
   }
 
   /**
@@ -290,6 +374,7 @@ export class SettingsPanel {
       this.fitLensSliders();
       this.showEnvironmentControls();
       this.pane?.refresh();
+      if (this.controls.size > 0) this.showApplicability();
     } finally {
       this.syncing = false;
     }
@@ -337,8 +422,10 @@ export class SettingsPanel {
   private shownValue(entry: SettingEntry): unknown {
     const render = this.viewer.settings.render;
     const value = getAt(render, entry.path);
-    if (value !== undefined || entry.path[0] !== 'torch') return value ?? entry.spec.default;
     const scene = this.viewer.scene?.prepared;
+    // The switch is ticked only where a torch lights the image: a scene without one shows it off (and disabled).
+    if (entry.id === 'torch.enabled') return render.torch.enabled && (effectiveTorch(scene?.scene, render.torch)?.intensity ?? 0) > 0;
+    if (value !== undefined || entry.path[0] !== 'torch') return value ?? entry.spec.default;
     const torch = effectiveTorch(scene?.scene, render.torch);
     const key = entry.path[1];
     if (key === 'color') return torch?.color ?? [1, 1, 1];
@@ -382,24 +469,24 @@ export class SettingsPanel {
     const onChange = () => this.applySetting(entry);
     switch (spec.type) {
       case 'boolean':
-        folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange);
+        this.control(entry.id, folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange));
         return;
       case 'choice':
-        folder.addBinding(this.settingParams, entry.id, { label: hint.label, options: options(spec.values) }).on('change', onChange);
+        this.control(entry.id, folder.addBinding(this.settingParams, entry.id, { label: hint.label, options: options(spec.values) }).on('change', onChange));
         return;
       case 'color':
-        folder.addBinding(this.settingParams, entry.id, { label: hint.label, color: { type: 'float' } }).on('change', onChange);
+        this.control(entry.id, folder.addBinding(this.settingParams, entry.id, { label: hint.label, color: { type: 'float' } }).on('change', onChange));
         return;
       case 'numbers':
       case 'text':
-        folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange);
+        this.control(entry.id, folder.addBinding(this.settingParams, entry.id, { label: hint.label }).on('change', onChange));
         return;
       case 'integer':
       case 'number':
       case 'number-or-auto':
       case 'integer-or-unlimited': {
         const { slider, ...limits } = numberBindingLimits(entry);
-        const binding = folder.addBinding(this.settingParams, entry.id, { label: hint.label, ...limits });
+        const binding = this.control(entry.id, folder.addBinding(this.settingParams, entry.id, { label: hint.label, ...limits }));
         binding.on('change', onChange);
         if (limits.min !== undefined && limits.max !== undefined) {
           const sliderBinding = binding as unknown as SliderInputBindingApi;
@@ -408,7 +495,7 @@ export class SettingsPanel {
           // The depth slider reaches the scene's own BVH depth (see readFromViewer).
           if (entry.id === 'wireframeDepth') this.depthBinding = sliderBinding;
         }
-        if (spec.type === 'integer-or-unlimited') folder.addBinding(this.settingParams, unlimitedKey(entry.id), { label: hint.unlimitedLabel ?? 'unlimited' }).on('change', onChange);
+        if (spec.type === 'integer-or-unlimited') this.control(entry.id, folder.addBinding(this.settingParams, unlimitedKey(entry.id), { label: hint.unlimitedLabel ?? 'unlimited' }).on('change', onChange));
         return;
       }
       default:
@@ -422,17 +509,18 @@ export class SettingsPanel {
     const s = this.viewer.stats;
     const m = this.monitor;
     m.fps = s.framesPerSecond;
-    m.frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms` : '–';
+    m.frame = s.frameMs > 0 ? duration(s.frameMs) : '–';
     const total = s.gpuPasses.reduce((t, p) => t + p.ms, 0);
-    m.gpu = s.gpuPasses.length > 0 ? [...s.gpuPasses.map((p) => `${p.name}: ${p.ms.toFixed(2)} ms`), `total: ${total.toFixed(2)} ms`].join('\n') : s.adapter ? 'no timestamp queries on this adapter' : '–';
-    m.spp = s.samples;
+    m.gpu = s.gpuPasses.length > 0 ? [...s.gpuPasses.map((p) => `${p.name}: ${duration(p.ms)}`), `total: ${duration(total)}`].join('\n') : s.adapter ? 'no timestamp queries on this adapter' : '–';
+    // A debug view that replaces the image traces no paths: its frames are not samples of the image.
+    m.spp = debugOnly(this.viewer.settings.render) ? '– (debug view)' : String(s.samples);
     m.shows = DISPLAY_NAMES[s.display];
-    m.rays = s.raysPerSecond > 0 ? `${(s.raysPerSecond / 1e6).toFixed(1)} M` : '–';
+    m.rays = s.raysPerSecond > 0 ? withUnit(s.raysPerSecond, '').trim() : '–';
     m.image = s.width > 0 ? `${s.width}×${s.height}` : '–';
     m.scene = s.sceneName ? `${s.sceneName}\n${s.triangles.toLocaleString('en')} triangles · ${s.bvhNodes.toLocaleString('en')} BVH nodes` : '–';
-    m.gpuMemory = s.adapter ? `${(s.gpuResources.bytes / 2 ** 20).toFixed(1)} MiB in ${s.gpuResources.buffers} buffers, ${s.gpuResources.textures} textures` : '–';
+    m.gpuMemory = s.adapter ? `${significant(s.gpuResources.bytes / 2 ** 20)} MiB in ${s.gpuResources.buffers} buffers, ${s.gpuResources.textures} textures` : '–';
     m.kernel = s.adapter ? (s.kernel === 'specialised' ? 'specialised to the scene' : 'generic') : '–';
-    m.firstFrame = s.firstFrameMs !== undefined ? `${s.firstFrameMs.toFixed(0)} ms` : '–';
+    m.firstFrame = s.firstFrameMs !== undefined ? duration(s.firstFrameMs) : '–';
   }
 
   private fitDepthSlider(): void {
@@ -444,11 +532,17 @@ export class SettingsPanel {
 
   dispose(): void {
     this.pane.dispose();
+    this.numbersPane.dispose();
   }
 
   private apply(changes: Parameters<Viewer['updateSettings']>[0]): void {
     if (this.syncing) return;
-    this.viewer.updateSettings(changes).catch((e) => this.viewer.fail(e));
+    this.viewer
+      .updateSettings(changes)
+      // What applies may have changed with it (the denoiser's knobs once both filters are off). The
+      // values are not read back: later changes may still be queued behind this one.
+      .then(() => this.showApplicability())
+      .catch((e) => this.viewer.fail(e));
   }
 
   /**
@@ -464,7 +558,8 @@ export class SettingsPanel {
       return;
     }
     const patch: Record<string, unknown> = {};
-    for (const e of group) setAt(patch, e.path, this.boundValue(e));
+    // A disabled switch shows what applies (the torch off where there is none), not the setting: the setting is sent unchanged.
+    for (const e of group) setAt(patch, e.path, this.disabledIds.has(e.id) ? getAt(this.viewer.settings.render, e.path) : this.boundValue(e));
     // Only the changed top-level setting goes: the viewer applies changes in order, after pipelines
     // compile, so its settings may not hold the previous change yet and must not be sent back whole.
     const key = entry.path[0] as keyof RenderSettings;
