@@ -915,13 +915,17 @@ export class Renderer {
     if (this.prepared) await this.debugViews.prepare(this.prepared.packed.features);
   }
 
-  /** The tone-mapped sRGB image, RGBA8 row-major, top row first; with a debug view, composed with it. */
-  async readImage(): Promise<Uint8Array> {
+  /**
+   * The tone-mapped sRGB image, RGBA8 row-major, top row first; with a debug view, composed with it.
+   * With a timer, the exposure and tone map passes are timed (resolved here; read them after).
+   */
+  async readImage(timer?: GpuTimer): Promise<Uint8Array> {
     const { targets } = this.ready();
     if (this.settingsValue.debugView !== 'none') await this.enableDebugViews();
     const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
-    this.encodeTonemap(encoder, targets, this.pendingExposureSeconds);
+    this.encodeTonemap(encoder, targets, this.pendingExposureSeconds, timer);
     this.pendingExposureSeconds = 0;
+    timer?.resolve(encoder);
     const image = this.encodeDebugView(encoder, targets);
     this.device.queue.submit([encoder.finish()]);
     return readTexture4x8(this.device, image);
