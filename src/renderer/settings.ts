@@ -60,7 +60,7 @@ export const RENDER_SETTINGS = {
   }),
   toneMapper: choice(TONE_MAPPERS, {
     name: 'tone mapper', description: 'tone curve (PNG only)', default: 'aces',
-    cli: { flag: '--tonemap', argument: '<curve>' }, link: 'tonemap', restarts: false, panel: { folder: 'render', label: 'tone map' },
+    cli: { flag: '--tonemap', argument: '<curve>' }, link: 'tonemap', restarts: false, panel: { folder: 'exposure', label: 'tone curve' },
   }),
   /**
    * Absent: the scene's kind decides (Scene.autoExposure: automatic for the game maps, the scene's own
@@ -74,10 +74,12 @@ export const RENDER_SETTINGS = {
   exposureCompensation: number({
     name: 'exposure compensation', description: 'automatic exposure: stops added to the exposure that brings the log-average luminance to middle grey (0.18)', min: -16, max: 16, default: 0,
     cli: { flag: '--exposure-compensation', argument: '<stops>' }, link: 'exposure-compensation', restarts: false,
+    panel: { folder: 'exposure', label: 'compensation (stops)', step: 0.1, slider: [-4, 4] },
   }),
   exposureAdaptation: number({
     name: 'exposure adaptation time', description: 'automatic exposure: seconds for the exposure to close 63 % of the way to the image\'s (the time constant of the exponential adaptation; viewer: wall-clock time, CLI: --frames time)', min: 0, above: true, max: 3600, default: 1,
     cli: { flag: '--exposure-adaptation', argument: '<seconds>' }, link: 'exposure-adaptation', restarts: false,
+    panel: { folder: 'exposure', label: 'adaptation (s)', step: 0.05, slider: [0.05, 5] },
   }),
   spectral: boolean({
     name: 'spectral', description: 'spectral rendering: four wavelengths per path (hero wavelength), RGB lifted to spectra, glass disperses (docs/spectral.md)', words: ['0', '1'], default: false,
