@@ -157,13 +157,16 @@ export class Renderer {
   private pendingExposureSeconds = 0;
   /** When present() last adapted the exposure (performance.now()): the viewer adapts on the wall clock. */
   private lastPresentMs?: number;
+  /** The automatic exposure's kernels, compiled the first time an image is exposed automatically (enableAutoExposure). */
+  private exposure?: ExposurePass;
+  private exposureCompile?: Promise<ExposurePass>;
+  private destroyed = false;
 
   private constructor(
     readonly gpu: GpuContext,
     private readonly view: ViewUniform,
     private readonly pathTrace: PathTracePass,
     private readonly tonemap: TonemapPass,
-    private readonly exposure: ExposurePass,
     private presentPass?: PresentPass,
     private debugViews?: DebugViews,
   ) {}
@@ -180,13 +183,12 @@ export class Renderer {
   static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: boolean } = {}): Promise<Renderer> {
     const { device } = gpu;
     // The small passes first: they compile while the path tracer is reflected and its scene awaited.
-    const [tonemap, exposure, present, pathTrace] = await Promise.all([
+    const [tonemap, present, pathTrace] = await Promise.all([
       TonemapPass.create(device),
-      ExposurePass.create(device),
       options.presentation ? PresentPass.create(device) : undefined,
       PathTracePass.create(device, options.features),
     ]);
-    return new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap, exposure, present);
+    return new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap, present);
   }
 
   get device(): GPUDevice {
@@ -219,7 +221,9 @@ export class Renderer {
   async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
     const accel = this.settingsValue.accel;
     const prepared = withAccel('packed' in scene ? scene : prepareScene(scene, undefined, { accel }), accel);
-    await this.upload(prepared);
+    // A scene exposed automatically (a game map) compiles the exposure pass beside its path tracer.
+    const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.enableAutoExposure() : undefined;
+    await Promise.all([this.upload(prepared), exposure]);
     void this.setSelection(undefined);
     // Another scene: the eye starts adapted to it, not to the last one.
     this.exposureAdapted = false;
@@ -523,6 +527,9 @@ export class Renderer {
         .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
       this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
     }
+    // Automatic exposure asked for: compiled in the background; present() shows the scene's exposure
+    // until it is ready, readImage() waits for it (and reports a failure).
+    if (this.exposureChoice.kind === 'auto') this.enableAutoExposure().catch(() => undefined);
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();
@@ -922,6 +929,7 @@ export class Renderer {
   async readImage(timer?: GpuTimer): Promise<Uint8Array> {
     const { targets } = this.ready();
     if (this.settingsValue.debugView !== 'none') await this.enableDebugViews();
+    if (this.exposureChoice.kind === 'auto') await this.enableAutoExposure();
     const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
     this.encodeTonemap(encoder, targets, this.pendingExposureSeconds, timer);
     this.pendingExposureSeconds = 0;
@@ -1002,7 +1010,8 @@ export class Renderer {
     this.hybrid = undefined;
     this.pathTrace.destroy();
     this.tonemap.destroy();
-    this.exposure.destroy();
+    this.destroyed = true;
+    this.exposure?.destroy();
     this.debugViews?.destroy();
     this.selectionPass?.destroy();
     void this.tracePass?.then((p) => p.destroy());
@@ -1034,7 +1043,21 @@ export class Renderer {
 
   /** The automatic exposure as the last tone map left it: the image's log-average luminance (log2) and the exposure (stops). */
   readExposure(): Promise<ExposureReading> {
+    if (!this.exposure) throw new Error('Renderer: no image has been exposed automatically yet');
     return this.exposure.read();
+  }
+
+  /**
+   * Compiles the automatic exposure's two kernels, once. Scenes and settings that never ask for
+   * automatic exposure never compile them (start-up compiles only what the first image runs).
+   */
+  enableAutoExposure(): Promise<ExposurePass> {
+    this.exposureCompile ??= ExposurePass.create(this.device).then((pass) => {
+      if (this.destroyed) pass.destroy();
+      else this.exposure = pass;
+      return pass;
+    });
+    return this.exposureCompile;
   }
 
   private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, seconds: number, timer?: GpuTimer): void {
@@ -1044,7 +1067,10 @@ export class Renderer {
     const debug = frame !== undefined && this.frameRecipe === 'path' && s.denoiseView !== 'output';
     const radiance = frame ?? targets.accumulation;
     const sampleCount = frame ? 1 : this.samples;
-    const choice = this.exposureChoice;
+    let choice = this.exposureChoice;
+    // Until its kernels are compiled (enableAutoExposure, under way), the image keeps the scene's own exposure.
+    if (choice.kind === 'auto' && !this.exposure) choice = { kind: 'manual', stops: this.cameraValue?.exposureStops ?? 0 };
+    const pass = this.exposure;
     let exposure: { exposureStops: number; autoExposure?: GPUBuffer };
     if (debug) exposure = { exposureStops: 0 };
     else if (choice.kind === 'manual') exposure = { exposureStops: choice.stops };
@@ -1052,9 +1078,9 @@ export class Renderer {
     else if (sampleCount === 0) exposure = { exposureStops: 0 };
     else {
       const keep = this.exposureAdapted ? adaptationKeep(seconds, choice.adaptationSeconds) : 0;
-      this.exposure.encode(encoder, this.view, radiance, targets.width, targets.height, { sampleCount, keep, compensationStops: choice.compensationStops }, timer);
+      pass!.encode(encoder, this.view, radiance, targets.width, targets.height, { sampleCount, keep, compensationStops: choice.compensationStops }, timer);
       this.exposureAdapted = true;
-      exposure = { exposureStops: 0, autoExposure: this.exposure.state };
+      exposure = { exposureStops: 0, autoExposure: pass!.state };
     }
     // A manual exposure between automatic ones: the eye adapts afresh when automatic comes back.
     if (choice.kind === 'manual') this.exposureAdapted = false;
