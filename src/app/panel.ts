@@ -18,6 +18,8 @@ import { boundsDiagonal } from '../bvh/stats.ts';
 import { Pane, type BladeApi, type ButtonApi, type FolderApi, type SliderInputBindingApi } from 'tweakpane';
 import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText, setAt, type PanelFolder, type SettingEntry, type SettingsPatch } from '../renderer/settings-schema.ts';
 import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
+import { exposureChoice } from '../renderer/exposure.ts';
+import { lookSettings } from '../renderer/looks.ts';
 import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, unlimitedKey, type PanelContext } from './panel-settings.ts';
 import { duration, significant, withUnit } from './number-format.ts';
 import { fNumberForAperture, focalLengthForFov } from '../scene/lens.ts';
@@ -139,6 +141,7 @@ export class SettingsPanel {
     const folders: Record<PanelFolder, FolderApi> = {
       render,
       torch: camera,
+      exposure: this.addExposureFolder(),
       denoise: this.pane.addFolder({ title: 'Denoising (real time)' }),
       hybrid: this.pane.addFolder({ title: 'Hybrid recipe', expanded: false }),
       debug: this.pane.addFolder({ title: 'Debug views', expanded: false }),
@@ -388,6 +391,7 @@ export class SettingsPanel {
     p.accumulate = s.accumulate;
     p.animate = s.animate;
     p.convergeWhenStill = s.convergeWhenStill;
+    this.readExposure();
     Object.assign(this.environment, choiceOfEnvironment(this.viewer.environment, this.environment));
     if (this.environment.kind === 'map' && this.viewer.environment?.kind === 'map') this.environmentMap = this.viewer.environment.image;
     const c = this.viewer.controller;
@@ -502,6 +506,50 @@ export class SettingsPanel {
         unreachable(spec);
     }
   }
+
+  // ---- Exposure and tone (issue #16): automatic or manual exposure, and the Doom-like look. ----
+  // The exposure setting may be left to the scene (automatic for the game maps), a number of stops or
+  // 'auto', so it is drawn here rather than from its schema entry: a checkbox for automatic and a
+  // slider for manual stops. The compensation, adaptation time and tone curve follow from the schema.
+
+  private readonly exposureParams = { auto: false, stops: 0 };
+  private exposureStopsBinding?: BladeApi;
+
+  private addExposureFolder(): FolderApi {
+    const folder = this.pane.addFolder({ title: 'Exposure and tone' });
+    const e = this.exposureParams;
+    const look = folder.addButton({ title: 'Doom-like look' });
+    look.element.title = "Automatic exposure, a compensation and a tone curve that resemble the game's brightness, and the scene's own torch.";
+    look.on('click', () => this.apply({ render: lookSettings('doom') as Partial<RenderSettings> }));
+    const auto = folder.addBinding(e, 'auto', { label: 'automatic' });
+    auto.element.title = "Eye adaptation: the exposure follows the image's average brightness (log-average luminance), over the adaptation time. On by default for Doom and Wolfenstein maps, off for reference scenes.";
+    auto.on('change', () => {
+      this.showExposureControls();
+      if (!this.syncing) this.apply({ render: { exposureStops: e.auto ? 'auto' : e.stops } });
+    });
+    const stops = folder.addBinding(e, 'stops', { label: 'exposure (stops)', min: -64, max: 64, step: 0.1 });
+    [(stops as unknown as SliderInputBindingApi).min, (stops as unknown as SliderInputBindingApi).max] = [-8, 8];
+    stops.element.title = "Manual exposure: stops over the scene's own (each stop doubles the brightness).";
+    stops.on('change', () => {
+      if (!this.syncing) this.apply({ render: { exposureStops: e.stops } });
+    });
+    this.exposureStopsBinding = stops;
+    return folder;
+  }
+
+  /** The exposure as the viewer has it: automatic where the setting or the scene's kind says so. */
+  private readExposure(): void {
+    const render = this.viewer.settings.render;
+    const e = this.exposureParams;
+    e.auto = exposureChoice(this.viewer.scene?.prepared.scene, 0, render).kind === 'auto';
+    if (typeof render.exposureStops === 'number') e.stops = render.exposureStops;
+    this.showExposureControls();
+  }
+
+  private showExposureControls(): void {
+    if (this.exposureStopsBinding) this.exposureStopsBinding.disabled = this.exposureParams.auto;
+  }
+  // ---- End of exposure and tone. ----
 
   /** Refreshes the numbers (called on every frame; Tweakpane redraws monitors on its own interval). */
   showStats(): void {

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { malformedTexts, outOfRangeValues, validValues } from '../renderer/setting-samples.ts';
 import { describeValues, formatSettingText, setAt } from '../renderer/settings-schema.ts';
+import { lookSettings } from '../renderer/looks.ts';
 import { formatViewParams, LINKED_SETTINGS, linkedRenderSettings, parseViewParams, type ViewParams } from './view-params.ts';
 
 describe('view parameters', () => {
@@ -39,6 +40,18 @@ describe('view parameters', () => {
     // What reaches the renderer: the render settings it names, under their own names, and nothing else.
     expect(linkedRenderSettings(back)).toEqual({ maxBounces: 3, toneMapper: 'reinhard', exposureStops: -1.5, debugView: 'wireframe', debugLayout: 'overlay', wireframeDepth: 3, heatMax: 'auto', temporal: true, denoise: false, clampK: 1.5, historyCap: 'unlimited', denoiseView: 'variance' });
     expect(linkedRenderSettings({ exposureStops: 2 })).toEqual({ exposureStops: 2 });
+  });
+
+  it('reads a look as the settings it sets, under those the link names, and refuses an unknown one', () => {
+    const { view, problems } = parseViewParams(new URLSearchParams('look=doom&exposure-compensation=-0.5&torch-intensity=100'));
+    expect(problems).toEqual([]);
+    expect(view).toMatchObject({ exposureStops: 'auto', exposureCompensation: -0.5, toneMapper: lookSettings('doom').toneMapper, torch: { enabled: true, intensity: 100 } });
+    // Written back, a link names the settings themselves.
+    expect(parseViewParams(formatViewParams(view)).view).toEqual(view);
+    // The link's own value did not leak into the look.
+    expect(lookSettings('doom').torch).toEqual({ enabled: true });
+    expect(parseViewParams(new URLSearchParams('look=noir')).problems).toEqual(['look=noir is not one of doom']);
+    expect(parseViewParams(new URLSearchParams('exposure=auto')).view).toEqual({ exposureStops: 'auto' });
   });
 
   it('reads the scene forms and ignores what is absent', () => {

@@ -18,12 +18,15 @@
  *   denoise-view; parsed, checked and written from their schema entries.
  *   mat=1:<index>:<name>:c=r,g,b;r=…   a material edit (one parameter per material; material-link.ts),
  *                                      applied once the scene has loaded
+ *   look=doom                          a look (renderer/looks.ts): the settings it sets, under any
+ *                                      the link names itself (a link written back names the settings)
  *   sky=elevation,azimuth[,turbidity]  env-intensity=x
  *                                      the Hosek–Wilkie sky instead of the scene's own environment
  *                                      (as the CLI's --sky and --env-intensity); an HDR map opened
  *                                      from this computer cannot be linked
  */
-import { formatSettingText, getAt, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
+import { formatSettingText, getAt, mergeSettings, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
+import { isLook, lookSettings, LOOKS } from '../renderer/looks.ts';
 import { SETTING_ENTRIES, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
 import { formatSceneLocation, parseSceneLocation, type SceneLocation } from '../loaders/scene-link.ts';
 import { formatLensLink, parseLensLink } from '../renderer/lens-link.ts';
@@ -160,6 +163,12 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
   }
   if (materials.length > 0) view.materials = materials;
 
+  // A look first: the settings the link names go over it.
+  const look = params.get('look');
+  if (look !== null) {
+    if (isLook(look)) Object.assign(view, mergeSettings(view as RenderSettingsPatch, lookSettings(look) as never));
+    else problems.push(`look=${look} is not one of ${LOOKS.join(', ')}`);
+  }
   for (const { path, spec } of LINKED_SETTINGS) {
     const name = spec.link!;
     const raw = params.get(name);

@@ -9,22 +9,33 @@ const MODULE = 'passes/tonemap';
 const WORKGROUP = 8;
 
 export interface TonemapInput {
+  /** Stops of exposure; with `autoExposure`, stops over the adapted exposure. */
   readonly exposureStops: number;
+  /**
+   * The adapted exposure (ExposurePass.state, lib/exposure.wgsl ExposureState), to multiply by; absent
+   * for a fixed exposure (a small zero buffer is bound in its place).
+   */
+  readonly autoExposure?: GPUBuffer;
   readonly toneMapper: ToneMapper;
   readonly sampleCount: number;
 }
 
 export class TonemapPass {
-  private readonly groups = new WeakMap<GPUTexture, { view: ViewUniform; accumulation: GPUBuffer; group2: GPUBindGroup; group1: GPUBindGroup }>();
+  private readonly groups = new WeakMap<GPUTexture, { view: ViewUniform; accumulation: GPUBuffer; exposure: GPUBuffer; group2: GPUBindGroup; group1: GPUBindGroup }>();
+  /** Bound where no adapted exposure is: the shader ignores it then. */
+  private readonly noExposure: GPUBuffer;
 
   private constructor(
+    device: GPUDevice,
     private readonly kernel: ComputeKernel,
     private readonly params: UniformParams<Record<string, number>>,
-  ) {}
+  ) {
+    this.noExposure = device.createBuffer({ label: 'tone map: no adapted exposure', size: 16, usage: GPUBufferUsage.STORAGE });
+  }
 
   static async create(device: GPUDevice): Promise<TonemapPass> {
     const kernel = await ComputeKernel.create(device, { module: MODULE, entryPoint: 'tonemap_image' });
-    return new TonemapPass(kernel, new UniformParams(device, MODULE));
+    return new TonemapPass(device, kernel, new UniformParams(device, MODULE));
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
@@ -33,14 +44,17 @@ export class TonemapPass {
       exposure_scale: 2 ** input.exposureStops,
       tone_mapper: TONE_MAPPERS.indexOf(input.toneMapper),
       inv_sample_count: input.sampleCount > 0 ? 1 / input.sampleCount : 0,
+      auto_exposure: input.autoExposure ? 1 : 0,
     });
+    const exposure = input.autoExposure ?? this.noExposure;
     let g = this.groups.get(output);
-    if (!g || g.view !== view || g.accumulation !== accumulation) {
+    if (!g || g.view !== view || g.accumulation !== accumulation || g.exposure !== exposure) {
       g = {
         view,
         accumulation,
+        exposure,
         group1: this.kernel.bindGroup(1, { view: view.buffer }),
-        group2: this.kernel.bindGroup(2, { params: this.params.buffer, accumulation, output: output.createView() }),
+        group2: this.kernel.bindGroup(2, { params: this.params.buffer, accumulation, output: output.createView(), exposure }),
       };
       this.groups.set(output, g);
     }
@@ -51,5 +65,6 @@ export class TonemapPass {
 
   destroy(): void {
     this.params.destroy();
+    this.noExposure.destroy();
   }
 }

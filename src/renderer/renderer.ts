@@ -35,6 +35,8 @@ import { defaultTileCulling } from '../scene/tile-culling.ts';
 import { TILE_SWAP_BUFFERS, TileCulledScenes, type TileCullingStats } from './tile-culled.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
+import { ExposurePass, type ExposureReading } from '../passes/exposure-pass.ts';
+import { adaptationKeep, exposureChoice, type ExposureChoice } from './exposure.ts';
 import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
@@ -153,6 +155,16 @@ export class Renderer {
   private selectionRange?: SelectedRange;
   /** Whether the selection mask must be traced again (view, size, scene or selection changed). */
   private selectionStale = true;
+  /** Whether the adapted exposure holds this scene's (false: the next tone map snaps to its target). */
+  private exposureAdapted = false;
+  /** Seconds of adaptation readImage() applies next (advanceExposure). */
+  private pendingExposureSeconds = 0;
+  /** When present() last adapted the exposure (performance.now()): the viewer adapts on the wall clock. */
+  private lastPresentMs?: number;
+  /** The automatic exposure's kernels, compiled the first time an image is exposed automatically (enableAutoExposure). */
+  private exposure?: ExposurePass;
+  private exposureCompile?: Promise<ExposurePass>;
+  private destroyed = false;
 
   private constructor(
     readonly gpu: GpuContext,
@@ -213,8 +225,12 @@ export class Renderer {
   async setScene(scene: Scene | PreparedScene): Promise<PreparedScene> {
     const accel = this.settingsValue.accel;
     const prepared = withAccel('packed' in scene ? scene : prepareScene(scene, undefined, { accel }), accel);
-    await this.upload(prepared);
+    // A scene exposed automatically (a game map) compiles the exposure pass beside its path tracer.
+    const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.enableAutoExposure() : undefined;
+    await Promise.all([this.upload(prepared), exposure]);
     void this.setSelection(undefined);
+    // Another scene: the eye starts adapted to it, not to the last one.
+    this.exposureAdapted = false;
     this.setCamera(prepared.scene.camera);
     return prepared;
   }
@@ -516,6 +532,9 @@ export class Renderer {
         .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
       this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
     }
+    // Automatic exposure asked for: compiled in the background; present() shows the scene's exposure
+    // until it is ready, readImage() waits for it (and reports a failure).
+    if (this.exposureChoice.kind === 'auto') this.enableAutoExposure().catch(() => undefined);
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();
@@ -956,7 +975,11 @@ export class Renderer {
     const { targets } = this.ready();
     if (!this.presentPass) throw new Error('call enablePresentation() before present()');
     const encoder = this.device.createCommandEncoder({ label: 'present' });
-    this.encodeTonemap(encoder, targets, timer);
+    // What is presented is seen in real time: the exposure adapts over the wall-clock time since the last present.
+    const now = performance.now();
+    const seconds = this.lastPresentMs === undefined ? 0 : (now - this.lastPresentMs) / 1000;
+    this.lastPresentMs = now;
+    this.encodeTonemap(encoder, targets, seconds, timer);
     let shown = this.encodeDebugView(encoder, targets);
     if (this.selectionRange && this.selectionPass && this.resources) {
       shown = this.selectionPass.encode(encoder, { scene: this.resources, view: this.view, selection: this.selectionRange, image: shown, traceMask: this.selectionStale });
@@ -978,12 +1001,18 @@ export class Renderer {
     if (this.prepared) await this.debugViews.prepare(this.prepared.packed.features);
   }
 
-  /** The tone-mapped sRGB image, RGBA8 row-major, top row first; with a debug view, composed with it. */
-  async readImage(): Promise<Uint8Array> {
+  /**
+   * The tone-mapped sRGB image, RGBA8 row-major, top row first; with a debug view, composed with it.
+   * With a timer, the exposure and tone map passes are timed (resolved here; read them after).
+   */
+  async readImage(timer?: GpuTimer): Promise<Uint8Array> {
     const { targets } = this.ready();
     if (this.settingsValue.debugView !== 'none') await this.enableDebugViews();
+    if (this.exposureChoice.kind === 'auto') await this.enableAutoExposure();
     const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
-    this.encodeTonemap(encoder, targets);
+    this.encodeTonemap(encoder, targets, this.pendingExposureSeconds, timer);
+    this.pendingExposureSeconds = 0;
+    timer?.resolve(encoder);
     const image = this.encodeDebugView(encoder, targets);
     this.device.queue.submit([encoder.finish()]);
     return readTexture4x8(this.device, image);
@@ -1060,6 +1089,8 @@ export class Renderer {
     this.hybrid = undefined;
     this.pathTrace.destroy();
     this.tonemap.destroy();
+    this.destroyed = true;
+    this.exposure?.destroy();
     this.debugViews?.destroy();
     this.selectionPass?.destroy();
     void this.tracePass?.then((p) => p.destroy());
@@ -1071,30 +1102,68 @@ export class Renderer {
     return { resources, view: this.view };
   }
 
-  private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, timer?: GpuTimer): void {
+  /**
+   * How the image is exposed now (renderer/exposure.ts exposureChoice): the exposure setting, or where
+   * it is left to the scene, the scene's kind (automatic for the game maps).
+   */
+  get exposureChoice(): ExposureChoice {
+    return exposureChoice(this.prepared?.scene, this.cameraValue?.exposureStops ?? 0, this.settingsValue);
+  }
+
+  /**
+   * Lets the automatic exposure adapt by `seconds` more at the next readImage() (a frame sequence's
+   * time between frames; present() adapts by the wall clock by itself). The first image of a scene
+   * takes its target exposure at once.
+   */
+  advanceExposure(seconds: number): void {
+    if (!(seconds >= 0) || !Number.isFinite(seconds)) throw new Error(`Renderer.advanceExposure: ${seconds} is not a duration in seconds`);
+    this.pendingExposureSeconds += seconds;
+  }
+
+  /** The automatic exposure as the last tone map left it: the image's log-average luminance (log2) and the exposure (stops). */
+  readExposure(): Promise<ExposureReading> {
+    if (!this.exposure) throw new Error('Renderer: no image has been exposed automatically yet');
+    return this.exposure.read();
+  }
+
+  /**
+   * Compiles the automatic exposure's two kernels, once. Scenes and settings that never ask for
+   * automatic exposure never compile them (start-up compiles only what the first image runs).
+   */
+  enableAutoExposure(): Promise<ExposurePass> {
+    this.exposureCompile ??= ExposurePass.create(this.device).then((pass) => {
+      if (this.destroyed) pass.destroy();
+      else this.exposure = pass;
+      return pass;
+    });
+    return this.exposureCompile;
+  }
+
+  private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, seconds: number, timer?: GpuTimer): void {
     const s = this.settingsValue;
     const frame = this.shown === 'frame' ? this.frameOutput() : undefined;
-    if (frame) {
-      // Debug views are shown as computed: no exposure, no tone curve.
-      const debug = this.frameRecipe === 'path' && s.denoiseView !== 'output';
-      this.tonemap.encode(
-        encoder,
-        this.view,
-        frame,
-        targets.output,
-        { exposureStops: debug ? 0 : (this.cameraValue?.exposureStops ?? 0) + s.exposureStops, toneMapper: debug ? 'linear' : s.toneMapper, sampleCount: 1 },
-        timer,
-      );
-      return;
+    // Debug views are shown as computed: no exposure, no tone curve.
+    const debug = frame !== undefined && this.frameRecipe === 'path' && s.denoiseView !== 'output';
+    const radiance = frame ?? targets.accumulation;
+    const sampleCount = frame ? 1 : this.samples;
+    let choice = this.exposureChoice;
+    // Until its kernels are compiled (enableAutoExposure, under way), the image keeps the scene's own exposure.
+    if (choice.kind === 'auto' && !this.exposure) choice = { kind: 'manual', stops: this.cameraValue?.exposureStops ?? 0 };
+    const pass = this.exposure;
+    let exposure: { exposureStops: number; autoExposure?: GPUBuffer };
+    if (debug) exposure = { exposureStops: 0 };
+    else if (choice.kind === 'manual') exposure = { exposureStops: choice.stops };
+    // No samples yet: a black image, and nothing to adapt to.
+    else if (sampleCount === 0) exposure = { exposureStops: 0 };
+    else {
+      const keep = this.exposureAdapted ? adaptationKeep(seconds, choice.adaptationSeconds) : 0;
+      pass!.encode(encoder, this.view, radiance, targets.width, targets.height, { sampleCount, keep, compensationStops: choice.compensationStops }, timer);
+      this.exposureAdapted = true;
+      exposure = { exposureStops: 0, autoExposure: pass!.state };
     }
-    this.tonemap.encode(
-      encoder,
-      this.view,
-      targets.accumulation,
-      targets.output,
-      { exposureStops: (this.cameraValue?.exposureStops ?? 0) + s.exposureStops, toneMapper: s.toneMapper, sampleCount: this.samples },
-      timer,
-    );
+    // A manual exposure between automatic ones: the eye adapts afresh when automatic comes back.
+    if (choice.kind === 'manual') this.exposureAdapted = false;
+    this.tonemap.encode(encoder, this.view, radiance, targets.output, { ...exposure, toneMapper: debug ? 'linear' : s.toneMapper, sampleCount }, timer);
   }
 
   /** Encodes the debug view when one is set and returns the image to show: the composed one, or the tone-mapped one. */

@@ -12,7 +12,7 @@ export const SETTING_TYPES = ['integer', 'number', 'boolean', 'choice', 'color',
 export type SettingType = (typeof SETTING_TYPES)[number];
 
 /** The folders of the viewer's panel that settings go into, in the panel's order. */
-export const PANEL_FOLDERS = ['render', 'torch', 'denoise', 'hybrid', 'debug'] as const;
+export const PANEL_FOLDERS = ['render', 'torch', 'exposure', 'denoise', 'hybrid', 'debug'] as const;
 export type PanelFolder = (typeof PANEL_FOLDERS)[number];
 
 export interface CliHint {

@@ -60,12 +60,26 @@ export const RENDER_SETTINGS = {
   }),
   toneMapper: choice(TONE_MAPPERS, {
     name: 'tone mapper', description: 'tone curve (PNG only)', default: 'aces',
-    cli: { flag: '--tonemap', argument: '<curve>' }, link: 'tonemap', restarts: false, panel: { folder: 'render', label: 'tone map' },
+    cli: { flag: '--tonemap', argument: '<curve>' }, link: 'tonemap', restarts: false, panel: { folder: 'exposure', label: 'tone curve' },
   }),
-  exposureStops: number({
-    name: 'exposure', description: 'exposure in stops: radiance is scaled by 2^stops before the tone curve (PNG only)', min: -64, max: 64, default: 0,
-    cli: { flag: '--exposure', argument: '<stops>' }, link: 'exposure', restarts: false,
-    panel: { folder: 'render', label: 'exposure (stops)', step: 0.1, slider: [-8, 8] },
+  /**
+   * Absent: the scene's kind decides (Scene.autoExposure: automatic for the game maps, the scene's own
+   * camera exposure for reference scenes); a number: manual, in stops over the scene's exposure; 'auto':
+   * eye adaptation (renderer/exposure.ts). The panel draws its own exposure block (panel.ts).
+   */
+  exposureStops: optional(numberOrAuto({
+    name: 'exposure', description: "exposure in stops over the scene's own: radiance is scaled by 2^stops before the tone curve; 'auto' adapts it to the image's log-average luminance like an eye (default: auto for Doom and Wolfenstein maps, the scene's exposure otherwise; PNG only, EXR stays radiance)", min: -64, max: 64, default: 0,
+    cli: { flag: '--exposure', argument: '<stops|auto>' }, link: 'exposure', restarts: false,
+  })),
+  exposureCompensation: number({
+    name: 'exposure compensation', description: 'automatic exposure: stops added to the exposure that brings the log-average luminance to middle grey (0.18)', min: -16, max: 16, default: 0,
+    cli: { flag: '--exposure-compensation', argument: '<stops>' }, link: 'exposure-compensation', restarts: false,
+    panel: { folder: 'exposure', label: 'compensation (stops)', step: 0.1, slider: [-4, 4] },
+  }),
+  exposureAdaptation: number({
+    name: 'exposure adaptation time', description: 'automatic exposure: seconds for the exposure to close 63 % of the way to the image\'s (the time constant of the exponential adaptation; viewer: wall-clock time, CLI: --frames time)', min: 0, above: true, max: 3600, default: 1,
+    cli: { flag: '--exposure-adaptation', argument: '<seconds>' }, link: 'exposure-adaptation', restarts: false,
+    panel: { folder: 'exposure', label: 'adaptation (s)', step: 0.05, slider: [0.05, 5] },
   }),
   spectral: boolean({
     name: 'spectral', description: 'spectral rendering: four wavelengths per path (hero wavelength), RGB lifted to spectra, glass disperses (docs/spectral.md)', words: ['0', '1'], default: false,

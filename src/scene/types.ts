@@ -443,8 +443,18 @@ export interface Scene {
   /** What rays leaving the scene see. Absent: { kind: 'none' } (black). */
   readonly environment?: Environment;
   readonly lights?: readonly PunctualLight[];
-  /** A light the viewer carries, on by default where the scene has one (Doom maps). */
+  /**
+   * A light the viewer carries, on by default where the scene has one (Doom and Wolfenstein maps, the
+   * dungeon). Absent: the scene has no torch, and torch settings that do not give one do nothing.
+   */
   readonly torch?: Torch;
+  /**
+   * True where the image's exposure should adapt to what is seen by default, as an eye walking from
+   * a dark corridor into a lit room does (the game maps, whose rooms differ in brightness by many
+   * stops). Absent: the camera's exposure is kept (reference scenes, whose brightness is the point).
+   * The exposure setting overrides it (renderer/exposure.ts exposureChoice).
+   */
+  readonly autoExposure?: boolean;
   /** Size of one scene unit in metres, when known (Cornell box: 0.001; Doom: 1/32; glTF: 1). */
   readonly metersPerUnit?: number;
   /** The floor plan a viewer can walk on (Doom maps), with the walker's dimensions. */

@@ -388,9 +388,12 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     expect(at('PNG write').endMs).toBe(totalMs);
     expect(at('scene: build').startMs).toBeGreaterThan(0);
     // The scene loaded on a thread of its own; only the kernels this render runs were compiled, the
-    // path tracer once (for this map's features, not a plain scene's first).
+    // path tracer once (for this map's features, not a plain scene's first), and the automatic
+    // exposure's two (a Doom map is exposed automatically by default).
     expect(spans.some((s) => s.stage === 'scene thread: result received')).toBe(true);
-    expect(spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort()).toEqual(['pipeline passes/path-trace:path_trace', 'pipeline passes/tonemap:tonemap_image']);
+    expect(spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort()).toEqual([
+      'pipeline passes/exposure:exposure_adapt', 'pipeline passes/exposure:exposure_reduce', 'pipeline passes/path-trace:path_trace', 'pipeline passes/tonemap:tonemap_image',
+    ]);
   });
 
   it('converts a map to a .glb', () => {

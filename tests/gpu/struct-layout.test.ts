@@ -54,6 +54,8 @@ const STRUCTS: [string, string][] = [
   ['view/bindings', 'View'],
   ['passes/path-trace', 'PathTraceParams'],
   ['passes/tonemap', 'TonemapParams'],
+  ['passes/exposure', 'ExposureParams'],
+  ['passes/exposure', 'ExposureState'],
   ['passes/primary-rays', 'PrimaryRaysParams'],
   ['passes/selection-outline', 'SelectionParams'],
   ['scene/bindings', 'TextureRef'],

@@ -27,6 +27,8 @@ export interface FrameModeOptions {
   readonly mode?: string;
   /** Seconds of frames rendered and thrown away first, so that the GPU's clocks are up when timing starts. */
   readonly warmup?: number;
+  /** --fps: frames per second of scene time without a path (the automatic exposure adapts over it too). */
+  readonly fps?: number;
 }
 
 export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
@@ -83,9 +85,13 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
       if (!isEmptyUpdate(update)) renderer.applySceneUpdate(update);
     }
     renderer.renderFrame(spp, timer);
-    if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
     const name = `frame-${String(f).padStart(4, '0')}`;
-    if (out.png) writeFile(sequence ? join(out.png, `${name}.png`) : out.png, encodePng(renderer.width, renderer.height, await renderer.readImage()));
+    // The automatic exposure adapts over the sequence's own clock (the first frame takes its target).
+    if (f > 0) renderer.advanceExposure(path ? frameTime(path, f, frames) - frameTime(path, f - 1, frames) : 1 / (o.fps ?? 30));
+    // The tone map (and automatic exposure) are timed with the frame's passes.
+    const image = out.png ? await renderer.readImage(timer) : undefined;
+    if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
+    if (image && out.png) writeFile(sequence ? join(out.png, `${name}.png`) : out.png, encodePng(renderer.width, renderer.height, image));
     if (out.exr) {
       const { width, height, radiance } = await renderer.readFrame();
       if (previous && f >= frames / 2) changes.push(rmse(radiance, previous));

@@ -196,6 +196,8 @@ export function doomMapToScene(map: DoomMap, images: DoomImageSource, options: D
     textures,
     camera,
     torch: DOOM_TORCH,
+    // Rooms lit by lamps and corridors lit by the torch alone differ by stops: the exposure adapts.
+    autoExposure: true,
     metersPerUnit: DOOM_METERS_PER_UNIT,
     walkMap: doomWalkMap(map),
     ...(Object.keys(dynamics).length > 0 && { dynamics }),

@@ -263,6 +263,8 @@ export function wolfMapToScene(game: WolfGame, map: WolfMap, options: LoadOption
     textures: parts.textures,
     camera,
     torch: DOOM_TORCH,
+    // Rooms lit by lamps and corridors lit by the torch alone differ by stops: the exposure adapts.
+    autoExposure: true,
     metersPerUnit: WOLF_METERS_PER_UNIT,
     walkMap: wolfWalkMap(level, { tile: T, wallHeight: H, eyeHeight: WOLF_EYE_HEIGHT, radius: WOLF_PLAYER_RADIUS, bodyHeight: WOLF_BODY_HEIGHT }),
     tileGrid: { origin: [0, 0, 0], cellSize: [T, H, T], dims: [level.width, 1, level.height] },
