@@ -4,7 +4,7 @@ import { DEFAULT_SETTINGS, type RenderSettings, type RenderSettingsPatch } from 
 import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, type PanelContext } from './panel-settings.ts';
 
 /** The panel's own controls (not render settings), keyed as TOOLTIPS keys them. */
-const OWN_CONTROLS = ['samplesPerFrame', 'scale', 'accumulate', 'animate', 'convergeWhenStill', 'fov', 'mode'];
+const OWN_CONTROLS = ['samplesPerFrame', 'autoScale', 'scale', 'accumulate', 'animate', 'convergeWhenStill', 'fov', 'mode'];
 
 /** A Doom-like scene (walk map, torch, moving doors) or a Cornell-like one (none of them), with settings changed by `patch`. */
 function context(scene: 'doom' | 'cornell', patch: RenderSettingsPatch = {}): PanelContext {

@@ -41,7 +41,8 @@ export function numberBindingLimits(entry: SettingEntry): { min?: number; max?: 
 export const TOOLTIPS: Readonly<Record<string, string>> = {
   // The panel's own controls.
   samplesPerFrame: 'Paths traced per pixel each frame: more gives a cleaner frame, at a lower frame rate.',
-  scale: 'Render resolution as a fraction of the canvas: below 1 renders fewer pixels, faster, and scales the image up.',
+  scale: 'Render resolution as a fraction of the canvas: below 1 renders fewer pixels, faster, and scales the image up. Moving it fixes the resolution.',
+  autoScale: 'The frame budget picks the resolution and samples per frame that keep the page interactive on this GPU (the status line says what and why).',
   accumulate: 'Keep adding frames into one estimate while nothing changes, so the noise fades; off, every frame stands alone.',
   animate: "Run the scene's clock: animated textures, flickering lights, doors and lifts in motion. Off, the image can converge.",
   convergeWhenStill: 'When the view holds still, switch from the denoised real-time frame to the exact progressive estimate once it has 64 samples per pixel.',

@@ -58,6 +58,8 @@ export class SettingsPanel {
   private readonly params = {
     samplesPerFrame: 1,
     scale: 1,
+    // The frame budget chooses the resolution (and samples per frame) until the user fixes one.
+    autoScale: true,
     accumulate: true,
     animate: true,
     convergeWhenStill: true,
@@ -107,7 +109,17 @@ export class SettingsPanel {
     const p = this.params;
     const render = this.pane.addFolder({ title: 'Render' });
     this.control('samplesPerFrame', render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value })));
-    this.control('scale', render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(0.25, p.scale), max: 2, step: 0.05 }).on('change', (e) => this.apply({ scale: e.value })));
+    this.control(
+      'autoScale',
+      render.addBinding(p, 'autoScale', { label: 'auto resolution' }).on('change', (e) => {
+        if (this.syncing) return;
+        // Off: the resolution the budget had chosen stays, fixed; on: the budget takes over again.
+        if (e.value) this.viewer.useFrameBudget().then(() => this.readFromViewer()).catch((error) => this.viewer.fail(error));
+        else this.apply({ scale: this.viewer.budget.scale });
+      }),
+    );
+    // Down to the budget's smallest step (1/32: a software adapter at a large canvas).
+    this.control('scale', render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(1 / 32, p.scale), max: 2, step: 0.01 }).on('change', (e) => this.apply({ scale: e.value })));
     this.control('accumulate', render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value })));
     this.control('animate', render.addBinding(p, 'animate', { label: 'animate scene' }).on('change', (e) => this.apply({ animate: e.value })));
 
@@ -387,7 +399,9 @@ export class SettingsPanel {
     const p = this.params;
     const s = this.viewer.settings;
     p.samplesPerFrame = s.samplesPerFrame;
-    p.scale = s.scale;
+    const budget = this.viewer.budget;
+    p.autoScale = budget.on;
+    p.scale = budget.scale;
     p.accumulate = s.accumulate;
     p.animate = s.animate;
     p.convergeWhenStill = s.convergeWhenStill;
