@@ -2,7 +2,7 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { LanternError } from '../errors.ts';
+import { expectLanternError } from '../expect-lantern-error.ts';
 import { iwadFolders, iwadForMap, isBareMapName } from './iwads.ts';
 
 describe('bare Doom map names', () => {
@@ -24,14 +24,8 @@ describe('bare Doom map names', () => {
 
   it('says where it looked and how to get one when none is installed', () => {
     const empty = mkdtempSync(join(tmpdir(), 'iwads-none-'));
-    let error: unknown;
-    try {
-      iwadForMap('MAP01', [empty]);
-    } catch (e) {
-      error = e;
-    }
-    expect(error).toBeInstanceOf(LanternError);
-    expect((error as LanternError).message).toContain(empty);
-    expect((error as LanternError).userMessage).toMatch(/apt-get install freedoom.*freedoom2\.wad#MAP01/s);
+    const error = expectLanternError(() => iwadForMap('MAP01', [empty]));
+    expect(error.message).toContain(empty);
+    expect(error.userMessage).toMatch(/apt-get install freedoom.*freedoom2\.wad#MAP01/s);
   });
 });

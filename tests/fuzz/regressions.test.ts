@@ -7,6 +7,7 @@
 import { describe, expect, it } from 'vitest';
 import { applyLimitsOption, configureLimits, DEFAULT_LIMITS, limits, parseLimits, withLimits, WarningCap } from '../../src/budgets.ts';
 import { LanternError } from '../../src/errors.ts';
+import { expectLanternError } from '../../src/expect-lantern-error.ts';
 import { decodeExr } from '../../src/image/exr.ts';
 import { loadDoomMap, summarizeMaps } from '../../src/loaders/doom/load.ts';
 import { buildSectorShapes } from '../../src/loaders/doom/sectors.ts';
@@ -24,17 +25,11 @@ const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad
 
 /** The one-line refusal of a limit: a LanternError naming it and the value found. */
 function expectRefusal(f: () => unknown, limit: string): LanternError {
-  let thrown: unknown;
-  try {
-    f();
-  } catch (e) {
-    thrown = e;
-  }
-  expect(thrown).toBeInstanceOf(LanternError);
-  const message = (thrown as LanternError).userMessage;
+  const thrown = expectLanternError(f);
+  const message = thrown.userMessage;
   expect(message).toContain(`over the limit ${limit}=`);
   expect(message).not.toContain('\n');
-  return thrown as LanternError;
+  return thrown;
 }
 
 describe('Doom maps that crashed', () => {
