@@ -1,5 +1,5 @@
 /**
- * The frame budget and short submissions in the page (Lantern issue #16): Pause takes effect while a
+ * The frame budget and short submissions in the page (Lantern issue #16): Pause and a settings change take effect while a
  * long frame renders (its GPU work goes in chunks of tens of milliseconds, and the page answers
  * between them), and held keys move by the time held when frames are slow (a test hook delays each
  * frame: a deterministic 0.5 fps).
@@ -34,7 +34,7 @@ async function open(query: string, viewport: { width: number; height: number }):
 const frame = (page: Page) => page.evaluate(() => window.lantern.frame);
 
 describe('short submissions', () => {
-  it('Pause takes effect within a chunk of a frame that takes seconds, and Play goes on with that frame', async () => {
+  it('Pause takes effect within a chunk of a frame that takes seconds, Play goes on with that frame, and a settings change starts a new one at once', async () => {
     // The whole canvas at full resolution (scale=1 fixes it: the budget is off), so one SwiftShader
     // frame takes seconds; the page must still answer.
     const { page, errors } = await open('scene=cornell&scale=1', { width: 900, height: 600 });
@@ -46,6 +46,8 @@ describe('short submissions', () => {
     await page.click('#play');
     await waitForPage(page, () => window.lantern.state === 'paused', undefined, 60_000, 'Pause');
     const pauseMs = Date.now() - clicked;
+    // The chunk already on the GPU when Pause came finishes and is counted; none goes after it.
+    await page.waitForTimeout(300);
     const stopped = (await frame(page))!;
     // The frame's cost: the chunks' time over their share of the frame.
     const frameMs = (stopped.busyMs / stopped.pixelsDone) * stopped.pixels;
@@ -60,6 +62,19 @@ describe('short submissions', () => {
     await page.click('#play');
     await withPageReport(page, 'the frame going on', () => expect.poll(async () => (await frame(page))?.pixelsDone ?? Infinity, { timeout: 60_000, interval: 100 }).toBeGreaterThan(stopped.pixelsDone));
     expect(await page.evaluate(() => window.lantern.samples)).toBe(0);
+
+    // A setting changed while the frame renders takes effect within a chunk: that frame is given up and
+    // a new one starts (its chunk count starts again from 0), long before the old one would have ended.
+    await waitForPage(page, (n: number) => (window.lantern.frame?.chunks ?? 0) >= n, stopped.chunks + 2, 60_000, 'more chunks');
+    const running = (await frame(page))!;
+    const bounces = page.locator('.tp-lblv', { hasText: 'max bounces' }).locator('input');
+    await bounces.fill('2');
+    const edited = Date.now();
+    await bounces.press('Enter');
+    await withPageReport(page, 'a new frame after the change', () =>
+      expect.poll(async () => (await frame(page))?.chunks ?? Infinity, { timeout: 60_000, interval: 25 }).toBeLessThan(running.chunks),
+    );
+    expect(Date.now() - edited).toBeLessThan(frameMs / 2);
     expect(errors).toEqual([]);
     await page.close();
   });

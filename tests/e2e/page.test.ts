@@ -236,6 +236,15 @@ describe('the page', () => {
     const { page, errors } = await open('scene=cornell&scale=0.05&temporal=0&denoise=0');
     await playUntil(page, 1);
     await page.click('#play');
+    // A WAD's map once first: what the renderer makes once, on first need, for every later scene
+    // alike (the automatic exposure's pass and state, made for the first Doom map) is not a load's.
+    const loadWad = async () => {
+      await page.setInputFiles('#open-file', { name: 'rooms.wad', mimeType: 'application/octet-stream', buffer: Buffer.from(ROOMS) });
+      await waitLoaded(page, 'MAP01');
+      await page.selectOption('#scene', 'cornell');
+      await waitLoaded(page, 'cornell');
+    };
+    await loadWad();
     // Let the frame in flight finish: its read-back buffer lives until the read completes.
     await page.waitForTimeout(500);
     const start = await page.evaluate(() => window.lantern.gpuResources);
@@ -247,10 +256,7 @@ describe('the page', () => {
       await waitLoaded(page, name);
     }
     // Loads of a WAD's maps too.
-    await page.setInputFiles('#open-file', { name: 'rooms.wad', mimeType: 'application/octet-stream', buffer: Buffer.from(ROOMS) });
-    await waitLoaded(page, 'MAP01');
-    await page.selectOption('#scene', 'cornell');
-    await waitLoaded(page, 'cornell');
+    await loadWad();
     // The image may have changed size with the page's layout (a message line more or less above the
     // canvas): its accumulation buffer (16 bytes a pixel) and output texture (4) follow, nothing else.
     const end = await page.evaluate(() => window.lantern.gpuResources);

@@ -65,7 +65,7 @@ describe('the page for a new user', () => {
     expect(await page.evaluate(() => window.lantern.sceneLoads)).toBe(loads + 1);
     expect(await page.locator('#scene').inputValue()).toBe(picked);
     // A panel control hands the keyboard back too.
-    await row(page, /^tone map$/).locator('select').selectOption('linear');
+    await row(page, /^tone curve$/).locator('select').selectOption('linear');
     expect(await activeId(page)).toBe('view');
     expect(errors).toEqual([]);
     await page.close();
