@@ -15,6 +15,10 @@ import type { Vec3 } from '../../src/math/vec3.ts';
 import { packRays } from '../../src/passes/trace-rays-pass.ts';
 import type { PreparedScene } from '../../src/renderer/prepare.ts';
 import { SHADER_MODULES } from '../../src/shaders/index.ts';
+import { expect } from 'vitest';
+import { builtinScene } from '../../src/loaders/builtin/index.ts';
+import type { Renderer } from '../../src/renderer/renderer.ts';
+import type { RenderSettings } from '../../src/renderer/settings.ts';
 import { outputBuffer, storageBuffer } from './compute.ts';
 
 // Closest and any hit of each ray.
@@ -114,4 +118,65 @@ export async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, ray
   scene.destroy();
   const f = new Float32Array(raw), u = new Uint32Array(raw);
   return rays.map((_, i) => ({ t: f[i * 5]!, tri: u[i * 5 + 1]!, u: f[i * 5 + 2]!, v: f[i * 5 + 3]!, any: u[i * 5 + 4] === 1 }));
+}
+
+/** What an oracle counts along one ray: nodes (or cells) visited and primitives tested. */
+export interface TraversalCounts {
+  readonly nodesVisited: number;
+  readonly trianglesTested: number;
+}
+
+/**
+ * Renders the bvh-teaching scene's heat-nodes view through `accel` at width × height and checks every
+ * pixel's counts against `oracle` tracing the same pixel-centre ray on the CPU. Where turning the ray a
+ * little changes the oracle's counts it grazes a box face, a cell boundary or an edge: either count is
+ * right there (fewer than 5 % of the pixels). The heat map must show more than `distinct` levels.
+ */
+export async function expectHeatMatchesOracle(
+  renderer: Renderer,
+  accel: RenderSettings['accel'],
+  width: number,
+  height: number,
+  oracle: (prepared: PreparedScene, ray: { origin: Vec3; direction: Vec3 }) => TraversalCounts,
+  distinct: number,
+): Promise<PreparedScene> {
+  renderer.updateSettings({ accel });
+  const prepared = await renderer.setScene(builtinScene('bvh-teaching'));
+  await renderer.resize(width, height);
+  renderer.updateSettings({ debugLayout: 'replace', debugView: 'heat-nodes' });
+  const heat = await renderer.readDebugValues();
+  const b = cameraBasis(prepared.scene.camera, width / height);
+  const r = (v: Vec3): Vec3 => v.map(Math.fround) as unknown as Vec3;
+  const basis = { position: r(b.position), right: r(b.right), up: r(b.up), forward: r(b.forward) };
+  // view/bindings.wgsl camera_ray through a point of the image, turned by (dx, dy) in ndc.
+  const ray = (px: number, py: number, dx: number, dy: number) => {
+    const nx = (2 * px) / width - 1 + dx, ny = (2 * py) / height - 1 + dy;
+    const d = [0, 1, 2].map((k) => basis.forward[k]! + nx * basis.right[k]! - ny * basis.up[k]!);
+    const len = Math.hypot(...d);
+    return { origin: basis.position, direction: d.map((v) => Math.fround(v / len)) as unknown as Vec3 };
+  };
+  let exact = 0, unstable = 0;
+  const failures: string[] = [];
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const i = y * width + x;
+      const key = `${heat[i * 4]},${heat[i * 4 + 1]}`;
+      const counts = [0, 1e-6, -1e-6, 1e-5, -1e-5, 3e-4, -3e-4].flatMap((t) => [[t, 0], [0, t]]).map(([dx, dy]) => {
+        const c = oracle(prepared, ray(x + 0.5, y + 0.5, dx!, dy!));
+        return `${c.nodesVisited},${c.trianglesTested}`;
+      });
+      if (counts.every((c) => c === counts[0])) {
+        if (key === counts[0]) exact++;
+        else failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts[0]}`);
+      } else {
+        unstable++;
+        if (!counts.includes(key)) failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts.join(' | ')}`);
+      }
+    }
+  }
+  expect(failures.slice(0, 10)).toEqual([]);
+  expect(unstable).toBeLessThan(0.05 * width * height);
+  expect(exact + unstable).toBe(width * height);
+  expect(new Set(Array.from({ length: width * height }, (_, i) => heat[i * 4]!)).size).toBeGreaterThan(distinct);
+  return prepared;
 }
