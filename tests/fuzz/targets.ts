@@ -139,7 +139,8 @@ function mutateWad(rng: Rng, seed: Uint8Array): Uint8Array {
       putInt(bytes, l.offset + rng.pick([0, 2, 4, 6, 8, 12, 16]), rng.pick([2, 4] as const), interesting(rng));
       break;
     }
-    case 10: { // bytes inside one lump
+    case 10: { // bytes inside one lump (a mutated WAD may have none left with bytes)
+      if (lumps.length === 0) return mutateBytes(rng, bytes);
       const l = rng.pick(lumps);
       return mutateBytes(rng, bytes, l.offset, l.offset + l.size);
     }
