@@ -17,8 +17,9 @@ import { NO_SIBLINGS } from '../../src/loaders/format.ts';
 import { MOLECULE_FORMAT } from '../../src/loaders/molecule/format.ts';
 import { GLTF_FORMAT } from '../../src/loaders/gltf/format.ts';
 import { parsePly } from '../../src/loaders/ply/ply.ts';
+import { glb, gltfSeed, mutateWad } from './targets.ts';
 import { Rng } from './mutate.ts';
-import { glb, gltfSeed } from './targets.ts';
+import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
 
 const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad')]);
@@ -237,5 +238,15 @@ describe('limits', () => {
       configureLimits(undefined);
     }
     expect(limits().lumps).toBe(DEFAULT_LIMITS.lumps);
+  });
+});
+
+describe('the fuzzer itself', () => {
+  it('mutates a WAD whose lumps are all empty (the 5-minute run failed twice building such an input)', () => {
+    const empty = new WadBuilder().lump('MAP01', new Uint8Array(0)).lump('THINGS', new Uint8Array(0)).build('PWAD');
+    for (let seed = 1; seed <= 300; seed++) {
+      const rng = new Rng(seed);
+      expect(mutateWad(rng, empty)).toBeInstanceOf(Uint8Array);
+    }
   });
 });

@@ -73,7 +73,7 @@ let wadSeeds: Uint8Array[] | undefined;
 const WAD_SEEDS = () => (wadSeeds ??= WAD_SEED_MAKERS.map((make) => make()));
 
 /** Knows the directory, the map lumps' record layouts, TEXTURE1, PNAMES and pictures. */
-function mutateWad(rng: Rng, seed: Uint8Array): Uint8Array {
+export function mutateWad(rng: Rng, seed: Uint8Array): Uint8Array {
   let wad;
   try {
     wad = readWad(seed, 'seed.wad');
