@@ -46,8 +46,9 @@ struct DenoiseAtrousParams {
 @group(2) @binding(1) var<storage, read> surface_records: array<SurfaceTexel>;
 @group(2) @binding(2) var<storage, read> frame_records: array<FrameTexel>;
 // Both read_write: a pass may read one pixel's words of an array while writing others' (or its own).
-@group(2) @binding(3) var<storage, read_write> a: array<u32>;
-@group(2) @binding(4) var<storage, read_write> b: array<u32>;
+// Bound as word pairs (every stride and offset is even), so that a tap's pair is one 8-byte load.
+@group(2) @binding(3) var<storage, read_write> a: array<vec2u>;
+@group(2) @binding(4) var<storage, read_write> b: array<vec2u>;
 
 const LOG2_E: f32 = 1.4426950408889634;
 
@@ -66,25 +67,23 @@ fn inside(q: vec2i) -> bool {
 
 // rgb: illumination, a: variance of the source at pixel i.
 fn source(i: u32) -> vec4f {
-  let k = params.source_stride * i + params.source_offset;
+  let k = (params.source_stride * i + params.source_offset) >> 1u;
   var p: vec2u;
   if (params.source_array == 0u) {
-    p = vec2u(a[k], a[k + 1u]);
+    p = a[k];
   } else {
-    p = vec2u(b[k], b[k + 1u]);
+    p = b[k];
   }
   return unpack_illumination(p);
 }
 
 fn store_result(i: u32, value: vec4f) {
-  let k = params.result_stride * i + params.result_offset;
+  let k = (params.result_stride * i + params.result_offset) >> 1u;
   let p = pack_illumination(value.rgb, value.a);
   if (params.result_array == 0u) {
-    a[k] = p.x;
-    a[k + 1u] = p.y;
+    a[k] = p;
   } else {
-    b[k] = p.x;
-    b[k + 1u] = p.y;
+    b[k] = p;
   }
 }
 
@@ -154,11 +153,12 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
       var s = centre;
       var w = b3(abs(dx)) * b3(abs(dy));
       if (dx != 0 || dy != 0) {
+        // Both loads are issued before the test, so that their latencies overlap.
         let gq = surface_records[qi];
+        s = source(qi);
         if (miss != is_miss_depth(gq.linear_depth)) {
           continue;
         }
-        s = source(qi);
         var exponent = -abs(l_p - luminance(s.rgb)) * inv_luminance_scale * LOG2_E;
         if (!miss) {
           let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
@@ -178,16 +178,14 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   if (params.mode == ATROUS_OUTPUT) {
     let f = frame_records[i];
     let c = frame_emission(f) + filtered.rgb * demodulation(frame_albedo(f));
-    a[FRAME_WORDS * i] = bitcast<u32>(c.r);
-    a[FRAME_WORDS * i + 1u] = bitcast<u32>(c.g);
-    a[FRAME_WORDS * i + 2u] = bitcast<u32>(c.b);
-    a[FRAME_WORDS * i + 3u] = bitcast<u32>(1.0);
+    let k = (FRAME_WORDS / 2u) * i;
+    a[k] = bitcast<vec2u>(c.rg);
+    a[k + 1u] = bitcast<vec2u>(vec2f(c.b, 1.0));
     return;
   }
   if (params.mode == ATROUS_COPY_HISTORY) {
     let own = pack_illumination(centre.rgb, centre.a);
-    b[2u * i] = own.x;
-    b[2u * i + 1u] = own.y;
+    b[i] = own;
   }
   store_result(i, filtered);
 }
