@@ -49,9 +49,6 @@ function project(c: Camera, p: Vec3): [number, number] {
 let renderer: Renderer;
 beforeAll(async () => {
   renderer = await Renderer.create(await testGpu());
-  // The denoiser's own tests run on one light sample per bounce (ReSTIR is tests/gpu/restir.test.ts's),
-  // so its passes are not compiled here.
-  renderer.updateSettings({ restir: false });
   await renderer.enableRealTime();
   await renderer.setScene(wallScene(0, { albedo: 0, emission: 0, sameMaterial: true }));
   await renderer.resize(SIZE, SIZE);
@@ -348,7 +345,10 @@ describe('memory', () => {
       expect(bytesPerPixel).toBe(buffers.reduce((sum, b) => sum + b.bytesPerPixel, 0));
       // With the renderer's own 20 (accumulation, tone-mapped image): the whole chain within 100 (issue #15).
       expect(bytesPerPixel).toBeLessThanOrEqual(restir ? 80 : 72);
+      // The reservoirs are there exactly while ReSTIR is on.
+      expect(buffers.some((b) => b.label === 'ReSTIR reservoirs')).toBe(restir);
     }
+    renderer.updateSettings({ restir: false });
   });
 });
 

@@ -23,6 +23,8 @@ let renderer: Renderer;
 beforeAll(async () => {
   renderer = await Renderer.create(await testGpu());
   await renderer.enableRealTime();
+  // ReSTIR is off by default: its passes compiled now, not in the background while the first frames run without them.
+  await renderer.enableRestir();
   await renderer.setScene(SCENE);
   await renderer.resize(SIZE, SIZE);
 }, 600_000);
@@ -74,7 +76,7 @@ describe('ReSTIR DI on 40 lights', () => {
     const meansOn = on.map((f) => sumOf(f) / total), meansOff = off.map((f) => sumOf(f) / total);
     const spread = Math.sqrt(mean(meansOff.map((m) => (m - 1) ** 2)));
     console.log(`many-lights ${SIZE}×${SIZE}, 1 bounce, 1 spp, relMSE vs 1024 spp: one light sample ${mseOff.toExponential(3)}, ReSTIR ${mseOn.toExponential(3)} (×${(mseOff / mseOn).toFixed(1)}; first frame, no history: ${first.toExponential(3)}); mean / reference: ReSTIR ${mean(meansOn).toFixed(4)}, one sample ${mean(meansOff).toFixed(4)} (frame spread ${spread.toFixed(4)})`);
-    // Measured on SwiftShader: ×1.6 (relMSE 0.68 → 0.44). At 32 × 32 a pixel is ~15 cm of floor, so
+    // Measured on SwiftShader: ×1.6 (relMSE 0.68 → 0.43). At 32 × 32 a pixel is ~15 cm of floor, so
     // shading the reservoir's point at each jittered hit rather than at the pixel centre it was chosen
     // for costs much of the gain (docs/denoise.md).
     expect(mseOff / mseOn).toBeGreaterThan(1.4);
@@ -96,7 +98,7 @@ describe('ReSTIR DI on 40 lights', () => {
     const ratio = mean(measured.map((i, k) => sumOf(on[i]!) / sumOf(refs[k]!)));
     const ratioOff = mean(measured.map((i, k) => sumOf(off[i]!) / sumOf(refs[k]!)));
     console.log(`many-lights moving: relMSE one light sample ${mseOff.toExponential(3)}, ReSTIR ${mseOn.toExponential(3)} (×${(mseOff / mseOn).toFixed(1)}); mean / reference: ReSTIR ${ratio.toFixed(4)}, one sample ${ratioOff.toFixed(4)}`);
-    // Measured on SwiftShader: ×1.3, ReSTIR's mean 1.026 of the reference's.
+    // Measured on SwiftShader: ×1.6 (relMSE 0.64 → 0.41), ReSTIR's mean 0.989 of the reference's.
     expect(mseOff / mseOn).toBeGreaterThan(1.15);
     expect(Math.abs(ratio - 1)).toBeLessThan(0.05);
   }, 600_000);
