@@ -167,23 +167,11 @@ fn light_point_code(point: LightPoint) -> vec2u {
 
 // A point of an emissive triangle (uniform by area from u, as sample_triangle_light) seen from x.
 fn view_triangle_point(triangle: u32, instance: u32, x: vec3f, u: vec2f) -> LightView {
-  let tri = world_primitive(instance, triangle);
-  let shading = world_shading(instance, triangle);
-  let b = sample_triangle_uniform(u);
-  let cross_e = cross(tri.e1, tri.e2);
-  let area = 0.5 * length(cross_e);
-  let material = materials[shading.material];
-  let to_light = tri.v0 + b.x * tri.e1 + b.y * tri.e2 - x;
-  let distance2 = dot(to_light, to_light);
-  let distance = sqrt(distance2);
-  let wi = to_light / distance;
-  let cos_light = emitter_cosine(material, -dot(cross_e, wi) / (2.0 * area));
-  if (!(cos_light > 0.0) || !(distance > 0.0) || !(area > 0.0)) {
+  let t = triangle_light_point(triangle, instance, x, u);
+  if (!(t.geometry > 0.0) || !(t.sample.pdf > 0.0)) {
     return no_light_view();
   }
-  let g = cos_light / distance2;
-  let pdf = light_selection_pmf(material, area) / (area * g);
-  return LightView(wi, distance, material_emission(material, shading_uv(shading, b), wi), g, pdf);
+  return LightView(t.sample.direction, t.sample.distance, t.sample.radiance, t.geometry, t.sample.pdf);
 }
 
 // The centre and radius of an emissive sphere (leaf order) of `instance`.
