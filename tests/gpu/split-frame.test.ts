@@ -11,6 +11,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer, type SplitFrame } from '../../src/renderer/renderer.ts';
+import { GpuTimer } from '../../src/gpu/timestamps.ts';
 import type { Camera } from '../../src/scene/types.ts';
 import { testGpu } from './gpu-context.ts';
 
@@ -96,7 +97,22 @@ describe('split frames', () => {
 
       unsplit.setCamera(cameraB);
       unsplit.renderFrame(1);
-      await submitInBands(split, split.beginFrame(1));
+      // Timed: the passes each chunk recorded, in order.
+      expect(split.gpu.hasTimestamps).toBe(true);
+      const timer = new GpuTimer(split.device);
+      const chunks = await submitInBands(split, split.beginFrame(1, timer));
+      const passes = (await timer.read()).map((p) => p.name);
+      timer.destroy();
+      const count = (name: string) => passes.filter((p) => p === name).length;
+      expect(count('path trace (frame)')).toBe(chunks);
+      if (restir) {
+        // The whole image's G-buffer and reservoirs once, with the first chunk, before its paths.
+        expect(passes.slice(0, 5)).toEqual(['frame G-buffer', 'restir initial', 'restir temporal', 'restir spatial', 'path trace (frame)']);
+        expect(['frame G-buffer', 'restir initial', 'restir temporal', 'restir spatial'].map(count)).toEqual([1, 1, 1, 1]);
+      } else {
+        expect(count('frame G-buffer')).toBe(chunks);
+        expect(passes.some((p) => p.startsWith('restir'))).toBe(false);
+      }
       const [a, b] = await Promise.all([unsplit.readFrame(), split.readFrame()]);
       expect(b.width).toBe(WIDTH);
       expect(bytes(b.radiance).equals(bytes(a.radiance))).toBe(true);
