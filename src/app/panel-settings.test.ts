@@ -20,7 +20,7 @@ describe('the panel', () => {
   // The exposure itself (scene default, stops or 'auto') is drawn by panel.ts's exposure block, not from its entry.
   it('shows the settings it showed before the schema, the spectral switch, the wireframe level and the automatic exposure', () => {
     expect(PANEL_SETTINGS.map((e) => e.id).sort()).toEqual(
-      ['accel', 'clampK', 'debugLayout', 'debugView', 'denoise', 'denoiseView', 'exposureAdaptation', 'exposureCompensation', 'heatMax', 'historyCap', 'hybrid.giBounces', 'hybrid.giFilter', 'hybrid.giSamples', 'hybrid.giScale', 'hybrid.lightSamples', 'hybrid.reflectionBounces', 'hybrid.reflections', 'hybrid.taa', 'integrator', 'maxBounces', 'recipe', 'sampler', 'spectral', 'temporal', 'toneMapper', 'torch.color', 'torch.enabled', 'torch.intensity', 'torch.range', 'tileCulling', 'wireframeDepth', 'wireframeLevel'].sort(),
+      ['accel', 'clampK', 'debugLayout', 'debugView', 'denoise', 'denoiseView', 'exposureAdaptation', 'exposureCompensation', 'heatMax', 'historyCap', 'hybrid.giBounces', 'hybrid.giFilter', 'hybrid.giSamples', 'hybrid.giScale', 'hybrid.lightSamples', 'hybrid.reflectionBounces', 'hybrid.reflections', 'hybrid.taa', 'integrator', 'maxBounces', 'recipe', 'restir', 'restirCandidates', 'sampler', 'spectral', 'temporal', 'toneMapper', 'torch.color', 'torch.enabled', 'torch.intensity', 'torch.range', 'tileCulling', 'wireframeDepth', 'wireframeLevel'].sort(),
     );
   });
 

@@ -51,8 +51,8 @@ describe('render settings on the command line', () => {
   });
 
   it('leaves out what is not given, except switches, which are off unless given', () => {
-    expect(settingsOf([])).toEqual({ temporal: false, denoise: false, spectral: false, tileCulling: false });
-    expect(settingsOf(['--temporal', '-b', '3', '--torch-intensity', '5', '--torch', 'off'])).toEqual({ temporal: true, denoise: false, spectral: false, tileCulling: false, maxBounces: 3, torch: { intensity: 5, enabled: false } });
+    expect(settingsOf([])).toEqual({ temporal: false, denoise: false, spectral: false, tileCulling: false, restir: false });
+    expect(settingsOf(['--temporal', '-b', '3', '--torch-intensity', '5', '--torch', 'off'])).toEqual({ temporal: true, denoise: false, spectral: false, tileCulling: false, restir: false, maxBounces: 3, torch: { intensity: 5, enabled: false } });
   });
 
   it('a torch option keeps the torch on (nested settings merge into their group)', () => {

@@ -24,6 +24,10 @@ export interface FrameTarget {
   readonly frameRecords: GPUBuffer;
   /** The renderer's ray counters (as PathTraceTarget's): extension and shadow rays are added. */
   readonly rayCounters: GPUBuffer;
+  /** The frame's final ReSTIR reservoirs the first bounce shades (restir true); any buffer otherwise. */
+  readonly reservoirs: GPUBuffer;
+  /** Whether the first bounce takes its direct light from the reservoirs. */
+  readonly restir: boolean;
 }
 
 export class PathTraceFramePass {
@@ -33,42 +37,62 @@ export class PathTraceFramePass {
     /** The G-buffer pass before it (entry frame_gbuffer): generic variants only, RGB only. */
     private readonly gbufferKernels: TracingKernels,
     private readonly params: UniformParams<UniformValues>,
+    /** The G-buffer's own `params` (its tile may differ from the paths' in one submission). */
+    private readonly gbufferParams: UniformParams<UniformValues>,
     private readonly frame: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<PathTraceFramePass> {
     const [kernels, gbufferKernels] = await Promise.all([
-      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1 }),
+      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }),
       TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }),
     ]);
-    return new PathTraceFramePass(kernels, gbufferKernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
+    return new PathTraceFramePass(kernels, gbufferKernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
   }
 
   async prepare(features: SceneFeatures, spectral = false): Promise<void> {
     await Promise.all([this.kernels.prepare(features, spectral), this.gbufferKernels.prepare(features)]);
   }
 
-  /** Writes the parameters now (queue.writeBuffer): submit before encoding again. `gbufferOnly`: the G-buffer pass alone (the wavefront traces the samples). */
-  encode(
-    encoder: GPUCommandEncoder,
-    scene: SceneResources,
-    view: ViewUniform,
-    previousCamera: Camera,
-    target: FrameTarget,
-    d: PathTraceDispatch,
-    timer?: GpuTimer,
-    gbufferOnly = false,
-  ): void {
-    this.params.write(pathTraceParams(d));
-    this.frame.write({ previous_camera: cameraUniform(previousCamera, view.width / view.height) });
-    const targets = () => ({ params: this.params.buffer, frame: this.frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters });
+  /**
+   * The G-buffer then the paths of d.tile. Writes the parameters now (queue.writeBuffer): submit
+   * before encoding again. `gbufferOnly`: the G-buffer pass alone (the wavefront traces the samples).
+   */
+  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer, gbufferOnly = false): void {
     // The G-buffer first: the path kernel then reads the centre's id and filtered emission.
-    this.gbufferKernels.dispatch(encoder, 'frame G-buffer', scene, view, target.surface, targets, d.tile, false, timer);
-    if (!gbufferOnly) this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.surface, targets, d.tile, d.spectral ?? false, timer);
+    this.encodeGbuffer(encoder, scene, view, previousCamera, target, d, timer);
+    if (!gbufferOnly) this.encodePaths(encoder, scene, view, previousCamera, target, d, timer);
+  }
+
+  /**
+   * The G-buffer of d.tile's pixel centres alone (with ReSTIR: the whole image, which the reservoir
+   * passes read before any band's paths). It has its own parameters, so that it and a band's paths
+   * (another tile) can go in one submission.
+   */
+  encodeGbuffer(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+    this.gbufferParams.write(pathTraceParams(d));
+    this.writeFrame(view, previousCamera, target);
+    this.gbufferKernels.dispatch(encoder, 'frame G-buffer', scene, view, target.surface, () => this.bindings(target, this.gbufferParams), d.tile, false, timer);
+  }
+
+  /** The paths of d.tile alone, over a G-buffer already recorded for it. */
+  encodePaths(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+    this.params.write(pathTraceParams(d));
+    this.writeFrame(view, previousCamera, target);
+    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.surface, () => this.bindings(target, this.params), d.tile, d.spectral ?? false, timer);
+  }
+
+  private writeFrame(view: ViewUniform, previousCamera: Camera, target: FrameTarget): void {
+    this.frame.write({ previous_camera: cameraUniform(previousCamera, view.width / view.height), restir: target.restir ? 1 : 0 });
+  }
+
+  private bindings(target: FrameTarget, params: UniformParams<UniformValues>): Record<string, GPUBuffer> {
+    return { params: params.buffer, frame: this.frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters, reservoirs: target.reservoirs };
   }
 
   destroy(): void {
     this.params.destroy();
+    this.gbufferParams.destroy();
     this.frame.destroy();
   }
 }

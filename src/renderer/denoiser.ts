@@ -1,12 +1,13 @@
 /**
  * The real-time frame recipe (Renderer.renderFrame):
  *
+ *   [ReSTIR: G-buffer, reservoirs: initial, temporal, spatial — the whole image, with the first band]
  *   path trace (N spp, demodulated radiance + G-buffer) → temporal (reprojected history, variance)
  *     → à-trous ×5 (steps 1, 2, 4, 8, 16; the last remodulates) → tone map
  *     (without the filter, or for a debug view: → output pass → tone map)
  *
  * after SVGF (Schied et al. 2017), with its feedback: the first à-trous iteration's output is the
- * colour history. The Denoiser owns the per-pixel buffers (72 bytes a pixel in all, bufferSizes():
+ * colour history. The Denoiser owns the per-pixel buffers (72 bytes a pixel in all, 80 with ReSTIR, bufferSizes():
  * packed records, and buffers shared by passes whose lifetimes do not overlap, atrousSchedule),
  * ping-pongs the surface records and the moments between frames, and remembers the camera of the
  * previous frame, so moving the
@@ -22,6 +23,7 @@ import { atrousSchedule, createDenoisePasses, denoiseAtrousParams, denoiseOutput
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass, type FrameTarget } from '../passes/path-trace-frame-pass.ts';
 import { WavefrontFramePass } from '../passes/wavefront-frame-pass.ts';
+import { RestirPass, type RestirTarget } from '../passes/restir-pass.ts';
 import { readBuffer } from '../gpu/readback.ts';
 import type { Tile, TracingKernels } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
@@ -33,9 +35,9 @@ const SCRATCH_BYTES = 16;
 /** Bytes of an illumination pair (f16 rgb, f16 σ): the colour history's texel. */
 const PAIR_BYTES = 8;
 
-function structSize(name: string): number {
-  const def = reflectModule('denoise/gbuffer').defs.structs[name];
-  if (!def) throw new Error(`denoise/gbuffer has no struct ${name}`);
+function structSize(name: string, module = 'denoise/gbuffer'): number {
+  const def = reflectModule(module).defs.structs[name];
+  if (!def) throw new Error(`${module} has no struct ${name}`);
   return def.size;
 }
 
@@ -61,8 +63,33 @@ interface Buffers {
   readonly moments: readonly [GPUBuffer, GPUBuffer];
   /** The colour history (illumination pairs): written by the first à-trous iteration (feedback) or the output pass. */
   readonly history: GPUBuffer;
+  /**
+   * The last finished frame's final ReSTIR reservoirs (ReservoirTexel, shaders/restir/reservoir.wgsl),
+   * allocated only while settings.restir is on. A frame's own go to the current moments until it finishes (restirTarget).
+   */
+  readonly reservoirs?: GPUBuffer;
   /** Bind groups per parity (which surface record is current). */
   readonly groups: readonly ParityGroups[];
+}
+
+/** A frame begun and not yet finished or abandoned. */
+interface OpenFrame {
+  readonly buffers: Buffers;
+  /** Whether it runs ReSTIR (settled when it begins). */
+  readonly restir: boolean;
+  /** Whether its first band recorded the whole image's G-buffer and reservoir passes (ReSTIR). */
+  preludeDone: boolean;
+}
+
+/** How encodeTrace records a frame's tracing. */
+interface TraceOptions {
+  /** The band traced (default the whole image). */
+  readonly tile?: Tile;
+  /** Times the wavefront's stages apart. */
+  readonly breakdown?: boolean;
+  /** ReSTIR: the paths shade the frame's final reservoirs; `prelude` records the whole image's G-buffer and reservoir passes first. */
+  readonly restir?: boolean;
+  readonly prelude?: boolean;
 }
 
 interface ParityGroups {
@@ -115,8 +142,14 @@ export class Denoiser {
   private parity = 0;
   private sampleIndex = 0;
   private historyValid = false;
-  /** The buffers of the frame begun (beginFrame) and not yet finished or abandoned. */
-  private open?: Buffers;
+  /** The frame begun (beginFrame) and not yet finished or abandoned. */
+  private open?: OpenFrame;
+  /** Whether the reservoirs hold the last finished frame's (it ran ReSTIR at this size). */
+  private restirHistoryValid = false;
+  /** The ReSTIR passes, made by enableRestir (settings.restir), and the scenes they are compiled for. */
+  private restir?: RestirPass;
+  private restirPending?: Promise<RestirPass>;
+  private readonly restirReady = new Set<string>();
 
   private constructor(
     private readonly device: GPUDevice,
@@ -132,7 +165,7 @@ export class Denoiser {
   /** Compiles the frame path tracer's variant for a scene with these features. */
   async prepare(features: SceneFeatures, spectral = false): Promise<void> {
     this.preparedFor.set(featureKey(features, spectral), { features, spectral });
-    await Promise.all([this.frame.prepare(features, spectral), this.wavefront ? this.prepareWavefront(this.wavefront, features, spectral) : undefined]);
+    await Promise.all([this.frame.prepare(features, spectral), this.restir && !spectral ? this.prepareRestir(this.restir, features) : undefined, this.wavefront ? this.prepareWavefront(this.wavefront, features, spectral) : undefined]);
   }
 
   /**
@@ -149,6 +182,24 @@ export class Denoiser {
       this.wavefrontPending.catch(() => (this.wavefrontPending = undefined));
     }
     await this.wavefrontPending;
+  }
+
+  /** Compiles the ReSTIR passes for every scene prepared so far and later; frames use them once ready for their scene. */
+  async enableRestir(): Promise<void> {
+    if (!this.restirPending) {
+      this.restirPending = RestirPass.create(this.device).then(async (r) => {
+        await Promise.all([...this.preparedFor.values()].filter((p) => !p.spectral).map((p) => this.prepareRestir(r, p.features)));
+        this.restir = r;
+        return r;
+      });
+      this.restirPending.catch(() => (this.restirPending = undefined));
+    }
+    await this.restirPending;
+  }
+
+  private async prepareRestir(r: RestirPass, features: SceneFeatures): Promise<void> {
+    await r.prepare(features);
+    this.restirReady.add(featureKey(features, false));
   }
 
   private async prepareWavefront(w: WavefrontFramePass, features: SceneFeatures, spectral: boolean): Promise<void> {
@@ -191,7 +242,7 @@ export class Denoiser {
     const b = this.buffers;
     if (!b) return [];
     const pixels = b.width * b.height;
-    return [b.scratch, ...b.surfaces, b.frameRecords, ...b.moments, b.history].map((buffer) => ({ label: buffer.label, bytesPerPixel: buffer.size / pixels }));
+    return [b.scratch, ...b.surfaces, b.frameRecords, ...b.moments, b.history, ...(b.reservoirs ? [b.reservoirs] : [])].map((buffer) => ({ label: buffer.label, bytesPerPixel: buffer.size / pixels }));
   }
 
   /** Bytes per pixel of everything the real-time chain allocates (bufferSizes); 0 before the first frame. */
@@ -202,6 +253,7 @@ export class Denoiser {
   /** Forgets the history: the next frame starts from its own samples alone. */
   resetHistory(): void {
     this.historyValid = false;
+    this.restirHistoryValid = false;
     this.previousCamera = undefined;
   }
 
@@ -219,29 +271,37 @@ export class Denoiser {
    */
   beginFrame(r: FrameRequest): void {
     if (this.open) throw new Error('Denoiser: finishFrame() or abandonFrame() before the next beginFrame()');
-    const buffers = this.ensureBuffers(r.view);
+    const buffers = this.ensureBuffers(r.view, r.settings.restir);
     // The surface records ping-pong: this frame writes the other one.
     this.parity ^= 1;
-    this.open = buffers;
+    // Whether the frame runs ReSTIR is settled now, for all its bands (the passes may become ready mid-frame).
+    this.open = { buffers, restir: this.usesRestir(r, buffers), preludeDone: false };
   }
 
   /**
    * Records the path tracing of `tile` (default the whole image) of the frame begun. Each pixel's
    * paths and G-buffer depend on that pixel alone, so bands add up to exactly the unsplit frame.
+   * With ReSTIR, the spatial reuse reads every pixel's temporal reservoir: the first band records the
+   * whole image's G-buffer and reservoir passes before its paths, and every band traces paths alone.
    * The wavefront traces whole frames only: it asks for the whole image.
    */
   encodeBand(encoder: GPUCommandEncoder, r: FrameRequest, tile?: Tile): void {
-    const b = this.open;
-    if (!b) throw new Error('Denoiser: beginFrame() before encodeBand()');
-    this.encodeTrace(encoder, r, b, this.sampleIndex, false, tile);
+    const f = this.open;
+    if (!f) throw new Error('Denoiser: beginFrame() before encodeBand()');
+    this.encodeTrace(encoder, r, f.buffers, this.sampleIndex, { ...(tile ? { tile } : {}), restir: f.restir, prelude: !f.preludeDone });
+    f.preludeDone = true;
   }
 
   /** Records the frame's temporal pass and filter (after every band) and makes it the history. */
   finishFrame(encoder: GPUCommandEncoder, r: FrameRequest): void {
-    const b = this.open;
-    if (!b) throw new Error('Denoiser: beginFrame() before finishFrame()');
+    const f = this.open;
+    if (!f) throw new Error('Denoiser: beginFrame() before finishFrame()');
     this.open = undefined;
+    const b = f.buffers;
     const groups = b.groups[this.parity]!;
+    // The frame's final reservoirs become the history before the temporal pass overwrites the moments they were lent.
+    if (f.restir) this.restir!.keepHistory(encoder, this.restirTarget(b, r));
+    this.restirHistoryValid = f.restir;
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
     const still = sameCamera(previousCamera, r.camera);
@@ -279,8 +339,8 @@ export class Denoiser {
 
   /**
    * Gives up the frame begun: the surface records' ping-pong goes back, so the next frame reprojects
-   * against the last finished one. The temporal pass, the filter and the history buffers were not
-   * touched by the bands; the scratch (the output of the last frame) was, so present the next frame,
+   * against the last finished one. The temporal pass, the filter and the history buffers (the ReSTIR
+   * reservoirs included: finishFrame copies a frame's to them) were not touched by the bands; the scratch (the output of the last frame) was, so present the next frame,
    * not this one's.
    */
   abandonFrame(): void {
@@ -292,11 +352,12 @@ export class Denoiser {
   /**
    * One frame's path tracing alone (settings.integrator), with the random streams of frame
    * `sampleIndex`: no filter runs and the history is kept, but the current G-buffer and the frame
-   * scratch (where the last frame's output was) are overwritten.
+   * scratch (where the last frame's output was) are overwritten. ReSTIR does not run (its final
+   * reservoirs borrow the moments, which here belong to the history): one light sample per bounce.
    * For timing the integrators (bench) and comparing them (readTrace); returns which one traced.
    */
   encodeTraceOnly(encoder: GPUCommandEncoder, r: FrameRequest, sampleIndex: number, breakdown = false): Integrator {
-    return this.encodeTrace(encoder, r, this.ensureBuffers(r.view), sampleIndex, breakdown);
+    return this.encodeTrace(encoder, r, this.ensureBuffers(r.view, r.settings.restir), sampleIndex, { breakdown });
   }
 
   /** The raw output of the last encodeTraceOnly, once it is submitted (encodeFrame reuses the radiance words for its output). */
@@ -318,15 +379,46 @@ export class Denoiser {
     return { width: b.width, height: b.height, radiance, gbuffer, guide, albedo, emission, integrator: this.lastIntegrator };
   }
 
-  private encodeTrace(encoder: GPUCommandEncoder, r: FrameRequest, b: Buffers, sampleIndex: number, breakdown = false, tile: Tile = { x: 0, y: 0, width: b.width, height: b.height }): Integrator {
+  /** Whether a frame of this request runs ReSTIR: asked for, compiled for its scene, and traced by the megakernel in RGB with bounces. */
+  private usesRestir(r: FrameRequest, b: Buffers): boolean {
+    const s = r.settings;
+    // The wavefront's shade kernel and spectral paths keep one light sample per bounce.
+    return b.reservoirs !== undefined && this.restir !== undefined && this.restirReady.has(featureKey(r.scene.features, false)) && !this.tracesWavefront(r.scene, s) && !s.spectral && s.maxBounces > 0;
+  }
+
+  /**
+   * The ReSTIR passes' buffers in the frame begun. The frame's final reservoirs are written to the
+   * moments the temporal pass writes at the end of the frame (8 bytes a pixel too; until then they
+   * hold nothing the frame needs), so that a frame given up leaves the history's reservoirs alone.
+   */
+  private restirTarget(b: Buffers, r: FrameRequest): RestirTarget {
+    if (!b.reservoirs) throw new Error('Denoiser: ReSTIR without its reservoirs');
+    return { scratch: b.scratch, surface: b.surfaces[this.parity]!, previousSurface: b.surfaces[1 - this.parity]!, reservoirs: b.moments[this.parity]!, previousReservoirs: b.reservoirs, rayCounters: r.rayCounters };
+  }
+
+  private encodeTrace(encoder: GPUCommandEncoder, r: FrameRequest, b: Buffers, sampleIndex: number, o: TraceOptions): Integrator {
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
-    const dispatch = { tile, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
-    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters };
+    const image = { x: 0, y: 0, width: b.width, height: b.height };
+    const dispatch = { tile: o.tile ?? image, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
+    const restir = o.restir ? this.restirTarget(b, r) : undefined;
+    // The path kernel always binds the reservoirs' buffer (and reads it only with ReSTIR).
+    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters, reservoirs: b.moments[this.parity]!, restir: restir !== undefined };
+    if (restir) {
+      // The whole image's G-buffer and reservoirs before the first band's paths (encodeBand).
+      if (o.prelude) {
+        const whole = { ...dispatch, tile: image };
+        this.frame.encodeGbuffer(encoder, r.scene, r.view, previousCamera, target, whole, r.timer);
+        this.restir!.encode(encoder, r.scene, r.view, previousCamera, restir, { trace: whole, candidates: s.restirCandidates, useHistory: this.restirHistoryValid }, r.timer);
+      }
+      this.frame.encodePaths(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer);
+      this.lastIntegrator = 'megakernel';
+      return this.lastIntegrator;
+    }
     const wavefront = this.tracesWavefront(r.scene, s) ? this.wavefront : undefined;
     // The pixel-centre G-buffer is the frame kernel's own pass for both integrators.
     this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, wavefront !== undefined);
-    if (wavefront) wavefront.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, breakdown);
+    if (wavefront) wavefront.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, o.breakdown ?? false);
     this.lastIntegrator = wavefront ? 'wavefront' : 'megakernel';
     return this.lastIntegrator;
   }
@@ -334,13 +426,14 @@ export class Denoiser {
   destroy(): void {
     this.destroyBuffers();
     this.frame.destroy();
+    this.restir?.destroy();
     this.wavefront?.destroy();
     for (const p of Object.values(this.passes)) p.destroy();
   }
 
-  private ensureBuffers(view: ViewUniform): Buffers {
+  private ensureBuffers(view: ViewUniform, restir: boolean): Buffers {
     const { width, height } = view;
-    if (this.buffers && this.buffers.width === width && this.buffers.height === height) return this.buffers;
+    if (this.buffers && this.buffers.width === width && this.buffers.height === height && (this.buffers.reservoirs !== undefined) === restir) return this.buffers;
     this.destroyBuffers();
     this.resetHistory();
     const pixels = width * height;
@@ -356,6 +449,10 @@ export class Denoiser {
     const frameRecords = make('frame records', structSize('FrameTexel'));
     const moments = [make('moments 0', momentBytes), make('moments 1', momentBytes)] as const;
     const history = make('colour history', PAIR_BYTES);
+    const reservoirBytes = structSize('ReservoirTexel', 'restir/reservoir');
+    // The frame's reservoirs are lent the current moments (restirTarget): they must fit.
+    if (reservoirBytes > momentBytes) throw new Error(`a ReSTIR reservoir (${reservoirBytes} B) does not fit in a moments texel (${momentBytes} B)`);
+    const reservoirs = restir ? this.device.createBuffer({ label: 'ReSTIR reservoirs', size: pixels * reservoirBytes, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST }) : undefined;
     const { temporal, atrous, output } = this.passes;
     const schedule = atrousSchedule(true);
     const groups = [0, 1].map((p): ParityGroups => {
@@ -367,14 +464,14 @@ export class Denoiser {
         output: output.bindGroups(view, { surface_records: surface, frame_records: frameRecords, moments: moments[p]!, frame_scratch: scratch, history }),
       };
     });
-    this.buffers = { width, height, scratch, surfaces, frameRecords, moments, history, groups };
+    this.buffers = { width, height, scratch, surfaces, frameRecords, moments, history, ...(reservoirs ? { reservoirs } : {}), groups };
     return this.buffers;
   }
 
   private destroyBuffers(): void {
     const b = this.buffers;
     if (!b) return;
-    for (const buffer of [b.scratch, ...b.surfaces, b.frameRecords, ...b.moments, b.history]) buffer.destroy();
+    for (const buffer of [b.scratch, ...b.surfaces, b.frameRecords, ...b.moments, b.history, ...(b.reservoirs ? [b.reservoirs] : [])]) buffer.destroy();
     this.buffers = undefined;
   }
 }

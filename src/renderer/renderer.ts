@@ -523,6 +523,8 @@ export class Renderer {
     if (culling) this.configureTileCulling();
     // The wavefront frame path tracer is compiled in the background; frames use the megakernel until it is ready.
     if (next.integrator === 'wavefront' && this.denoiser) this.enableWavefront().catch((e: unknown) => (this.wavefrontError = e));
+    // So are the ReSTIR passes; frames take one light sample per bounce until they are ready.
+    if (next.restir && this.denoiser) this.denoiser.enableRestir().catch((e: unknown) => (this.restirError = e));
     // Another acceleration structure for the static world: built and uploaded in the background
     // (frames trace the current one meanwhile); accelSettled() waits for it.
     if (accel && this.prepared) {
@@ -756,6 +758,7 @@ export class Renderer {
     this.denoiser ??= await Denoiser.create(this.device);
     if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
     if (this.settingsValue.integrator === 'wavefront') await this.enableWavefront();
+    if (this.settingsValue.restir) await this.enableRestir();
     // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
     // frame kernel): specialise again with it.
     if (created) this.invalidateSpecialisation();
@@ -763,6 +766,15 @@ export class Renderer {
 
   /** The error of the last background compile of the wavefront path tracer, if it failed (frames stay on the megakernel). */
   wavefrontError?: unknown;
+  /** The error of the last background compile of the ReSTIR passes, if it failed (frames keep one light sample per bounce). */
+  restirError?: unknown;
+
+  /** Compiles the ReSTIR passes (settings.restir) for this and every later scene; enableRealTime first. Until they are ready, frames run without them. */
+  async enableRestir(): Promise<void> {
+    if (!this.denoiser) throw new Error('Renderer: enableRealTime() before enableRestir()');
+    await this.denoiser.enableRestir();
+    this.restirError = undefined;
+  }
 
   /**
    * Compiles the wavefront frame path tracer (settings.integrator = 'wavefront') for this and every
@@ -798,6 +810,7 @@ export class Renderer {
    * timer its passes are timed ('frame G-buffer' and 'path trace (frame)' for the megakernel;
    * 'frame G-buffer' and 'path trace (wavefront)' for the wavefront);
    * `breakdown` times the wavefront's stages apart instead (WavefrontFramePass.encode names them).
+   * ReSTIR does not run here (Denoiser.encodeTraceOnly); renderFrame times its passes.
    * For timing the two integrators (bench) and comparing them (readFrameTrace). Returns which traced.
    */
   traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
@@ -1213,10 +1226,15 @@ export class Renderer {
 
 /** Timestamp slots a split frame leaves for the passes after its bands (temporal, à-trous ×5, tone map, present, debug). */
 const TIMER_ROOM_AFTER_BANDS = 12;
+/**
+ * The most timed passes one band records: its G-buffer and paths (2), or with ReSTIR the first band's
+ * whole-image G-buffer, 'restir initial', 'restir temporal', 'restir spatial' and its paths (5).
+ */
+const TIMER_SLOTS_PER_BAND = 5;
 
-/** The request with the timer while it has room for a band's passes (2) and those after the bands. */
+/** The request with the timer while it has room for a band's passes and those after the bands. */
 function timedWhileRoom(request: FrameRequest, timer: GpuTimer | undefined): FrameRequest {
-  if (!timer || timer.room > TIMER_ROOM_AFTER_BANDS + 2) return request;
+  if (!timer || timer.room >= TIMER_ROOM_AFTER_BANDS + TIMER_SLOTS_PER_BAND) return request;
   const { timer: _, ...untimed } = request;
   return untimed;
 }

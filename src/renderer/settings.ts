@@ -161,6 +161,14 @@ export const RENDER_SETTINGS = {
     cli: { flag: '--history-cap', argument: '<n|unlimited>' }, link: 'history-cap', restarts: false,
     panel: { folder: 'denoise', label: 'history cap', step: 1, slider: [1, 256], unlimitedLabel: 'unlimited' },
   }),
+  restir: boolean({
+    name: 'restir', description: 'frame mode: direct light at the first bounce by ReSTIR DI (reservoirs of light samples reused over frames and neighbours, unbiased; docs/denoise.md); off: one light sample per bounce', words: ['0', '1'], default: false,
+    cli: { flag: '--restir', switch: true }, link: 'restir', restarts: false, panel: { folder: 'denoise', label: 'ReSTIR direct light' },
+  }),
+  restirCandidates: integer({
+    name: 'ReSTIR candidates', description: 'frame mode: light samples per pixel per frame that ReSTIR resamples (before temporal and spatial reuse)', min: 1, max: 64, default: 16,
+    cli: { flag: '--restir-candidates', argument: '<n>' }, link: 'restir-candidates', restarts: false, panel: { folder: 'denoise', label: 'ReSTIR candidates', step: 1, slider: [1, 32] },
+  }),
   denoiseView: choice(DENOISE_VIEWS, {
     name: 'denoise view', description: 'frame mode: what the real-time chain shows', default: 'output',
     cli: { flag: '--denoise-view', argument: '<view>' }, link: 'denoise-view', restarts: false, panel: { folder: 'denoise', label: 'show' },

@@ -12,6 +12,7 @@ import { dungeonScene } from './dungeon.ts';
 import { whiteFurnace } from './furnace.ts';
 import { goldenGridScene } from './golden-grid.ts';
 import { hexGridScene } from './hex-grid.ts';
+import { manyLightsScene } from './many-lights.ts';
 import { materialsScene } from './materials.ts';
 import { orbScene } from './orb.ts';
 import { prismScene } from './prism.ts';
@@ -37,6 +38,7 @@ export const BUILTIN_SCENES = {
   'hex-grid': { description: 'a hexagonal grid of coloured spheres seen through a thin lens: focal blur', make: hexGridScene },
   caffeine: { description: 'the caffeine molecule (PubChem CID 2519), ball-and-stick, in the studio', make: caffeineScene },
   dungeon: { description: 'a torch-lit stone dungeon on a 16 × 16 tile map, walkable, with a glowing phantom that wanders its corridors', make: dungeonScene },
+  'many-lights': { description: 'a room with 40 small ceiling lamps of mixed power, pillars and a low wall: a many-light sampling test (ReSTIR)', make: manyLightsScene },
   prism: { description: 'a dense-flint prism splits a narrow beam of white light into a spectrum on a screen (render with --spectral)', make: () => prismScene() },
 } as const satisfies Record<string, BuiltinScene>;
 

@@ -23,6 +23,7 @@
 #import scene/bsdf
 #import scene/dispersion
 #import scene/torch
+#import restir/reservoir
 
 // The closed set of light-sampling strategies; the host's names live in renderer/settings.ts.
 const LIGHT_SAMPLING_BSDF: u32 = 0u;
@@ -42,6 +43,28 @@ override SCENE_HAS_GENERAL_MATERIALS: bool = true;
 // hit's albedo and emission in `primary`, for demodulation. path_trace leaves it false, so the
 // branch is constant-folded away and the progressive kernel is unchanged.
 override CAPTURE_PRIMARY: bool = false;
+
+// Set only by the real-time frame kernel (passes/path-trace-frame): at the first bounce, a path whose
+// hit is on the pixel-centre surface's material takes its direct light from the pixel's ReSTIR
+// reservoir (restir_pixel, filled by the kernel) instead of one light sample (restir_direct). The
+// progressive kernel leaves it false: its estimator is unchanged.
+override RESTIR: bool = false;
+
+// The pixel's final reservoir and the pixel-centre surface it was made for (restir/restir). valid:
+// the frame uses ReSTIR and the centre hit a surface.
+struct RestirPixel {
+  valid: bool,
+  point: LightPoint,
+  w: f32,
+  position: vec3f,
+  normal: vec3f,
+  depth: f32,
+  id: u32,
+}
+var<private> restir_pixel: RestirPixel;
+// Whether this path's first bounce took its direct light from the reservoir (then BSDF rays that
+// find a light of the table at the next vertex add nothing: the light strategies cover it all).
+var<private> restir_used: bool;
 
 // What a camera ray's first hit contributes, for demodulation: the albedo there (1 for a miss) and the
 // emission seen there (radiance that needs no filtering).
@@ -116,6 +139,9 @@ var<private> deferred_shadow_mask: u32;
 
 // MIS weight of radiance found by a BSDF-sampled ray whose light-sampling density is light_pdf.
 fn bsdf_hit_weight(bounce: u32, use_nee: bool, after_delta: bool, bsdf_pdf: f32, light_pdf: f32) -> f32 {
+  if (RESTIR && bounce == 1u && restir_used) {
+    return select(1.0, 0.0, light_pdf > 0.0);
+  }
   if (bounce == 0u || !use_nee || after_delta) {
     return 1.0;
   }
@@ -131,6 +157,7 @@ fn channels_max(c: vec4f) -> f32 {
 // A camera path before its first bounce (draws the wavelengths in spectral mode).
 fn path_begin(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathState {
   var u = 0.0;
+  restir_used = false;
   if (SPECTRAL) {
     u = rng_next_f32(rng);
     spectrum_begin_path(u);
@@ -153,6 +180,51 @@ fn path_shadow(state: ptr<function, PathState>, which: u32, ray: Ray, contributi
   (*result).shadow_rays += 1u;
   if (!trace_any(ray)) {
     (*state).radiance += contribution;
+  }
+}
+
+// Whether this first-bounce hit takes its direct light from the pixel's reservoir.
+fn restir_applies(bounce: u32, use_nee: bool, material_id: u32) -> bool {
+  return RESTIR && !SPECTRAL && bounce == 0u && use_nee && restir_pixel.valid && material_id == restir_pixel.id;
+}
+
+// Direct light at a first hit p (Lambertian: f = brdf) from the pixel's reservoir, unbiased for
+// every p, not only the pixel-centre surface c the reservoir was made for. The reservoir's W is an
+// unbiased contribution weight over S = {y : p̂_c(y) · V_c(y) > 0} (restir/restir); one more light
+// sample, drawn as usual, covers the rest of the light points (those occluded from c, or below its
+// horizon: sub-pixel penumbrae and edges), so the two estimate disjoint parts of the same integral.
+fn restir_direct(state: ptr<function, PathState>, p: vec3f, origin: vec3f, ng: vec3f, ns: vec3f, brdf: vec3f, rng: ptr<function, Rng>, result: ptr<function, PathResult>) {
+  restir_used = true;
+  // The shadow rays are gathered and traced in one loop: one call site of the traversal, which
+  // every GPU compiler inlines.
+  var rays: array<Ray, 2>;
+  var contributions: array<vec4f, 2>;
+  var count = 0u;
+  let v = view_light_point(restir_pixel.point, p);
+  let cos_reservoir = dot(ns, v.direction);
+  if (restir_pixel.w > 0.0 && v.pdf > 0.0 && cos_reservoir > 0.0 && dot(ng, v.direction) > 0.0) {
+    rays[0] = Ray(origin, 0.0, v.direction, v.distance * (1.0 - SHADOW_RAY_SHORTEN));
+    contributions[0] = (*state).throughput * lift(brdf) * lift(v.radiance) * (cos_reservoir * v.geometry * restir_pixel.w);
+    count = 1u;
+  }
+  let point = restir_candidate(p, rng);
+  let s = view_light_point(point, p);
+  let cos_sample = dot(ns, s.direction);
+  if (s.pdf > 0.0 && cos_sample > 0.0 && dot(ng, s.direction) > 0.0 && any(s.radiance > vec3f(0.0))) {
+    let c = view_light_point(point, restir_pixel.position);
+    var in_reservoir = false;
+    if (restir_goal(c, restir_pixel.normal) > 0.0) {
+      (*result).shadow_rays += 1u;
+      in_reservoir = restir_visible(restir_pixel.position, restir_pixel.normal, restir_pixel.depth, c);
+    }
+    if (!in_reservoir) {
+      rays[count] = Ray(origin, 0.0, s.direction, s.distance * (1.0 - SHADOW_RAY_SHORTEN));
+      contributions[count] = (*state).throughput * lift(brdf) * lift(s.radiance) * (cos_sample / s.pdf);
+      count += 1u;
+    }
+  }
+  for (var i = 0u; i < count; i++) {
+    path_shadow(state, SHADOW_LIGHT, rays[i], contributions[i], result);
   }
 }
 
@@ -213,7 +285,9 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
     let albedo = material_albedo(material, surface.uv).rgb;
     let brdf = albedo * INV_PI;
 
-    if (sample_lights) {
+    if (restir_applies(bounce, use_nee, surface.material)) {
+      restir_direct(state, surface.position, origin, ng, ns, brdf, rng, result);
+    } else if (sample_lights) {
       let light = sample_light(origin, rng_next_2d(rng), rng_next_2d(rng));
       let cos_surface = dot(ns, light.direction);
       if (light.pdf > 0.0 && (use_nee || light.delta) && cos_surface > 0.0 && dot(ng, light.direction) > 0.0) {
@@ -276,7 +350,9 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
     let wo = vec3f(dot(wo_world, frame[0]), dot(wo_world, frame[1]), dot(wo_world, frame[2]));
 
     if (bsdf_has_non_delta(bsdf)) {
-      if (sample_lights) {
+      if (bsdf.kind == BSDF_DIFFUSE && restir_applies(bounce, use_nee, surface.material)) {
+        restir_direct(state, surface.position, spawn_point(surface, ng), ng, ns, bsdf.base_color * INV_PI, rng, result);
+      } else if (sample_lights) {
         let light = sample_light(surface.position, rng_next_2d(rng), rng_next_2d(rng));
         if (light.pdf > 0.0 && (use_nee || light.delta)) {
           let wi_world = light.direction;

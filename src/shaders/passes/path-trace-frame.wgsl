@@ -12,6 +12,9 @@
 // wherever the sample saw the same surface (centre_emission): lamp textures are then steady from the
 // first frame; at silhouettes it joins the illumination, which the temporal pass accumulates
 // (split_sample).
+// With ReSTIR on (frame.restir), restir/restir runs over the whole image between the two entries and
+// each path's first bounce shades the pixel's final reservoir (integrator/path, override RESTIR, set
+// for this kernel).
 // Expects the scene (group 0) and view (group 1); group 2 adds the previous camera and the outputs.
 
 #import passes/path-trace
@@ -21,6 +24,8 @@
 struct FrameParams {
   // The camera of the previous frame (equal to view.camera for a still camera).
   previous_camera: Camera,
+  // 1: the first bounce takes its direct light from `reservoirs` (ReSTIR DI, restir/restir).
+  restir: u32,
 }
 
 @group(2) @binding(3) var<uniform> frame: FrameParams;
@@ -31,6 +36,23 @@ struct FrameParams {
 @group(2) @binding(5) var<storage, read_write> surface_records: array<SurfaceTexel>;
 // Mean albedo and emission of the samples (the centre's filtered emission in between, see below).
 @group(2) @binding(6) var<storage, read_write> frame_records: array<FrameTexel>;
+// The frame's final ReSTIR reservoir per pixel (restir/restir's restir_spatial), read only while frame.restir.
+@group(2) @binding(7) var<storage, read> reservoirs: array<ReservoirTexel>;
+
+// The pixel's reservoir and the centre surface it was made for (integrator/path's restir_pixel).
+fn restir_pixel_at(pixel: vec2u, pixel_index: u32) -> RestirPixel {
+  let s = unpack_surface(surface_records[pixel_index]);
+  if (frame.restir == 0u || is_miss_depth(s.linear_depth)) {
+    return RestirPixel(false, LightPoint(0u, false, vec2u(0u)), 0.0, vec3f(0.0), vec3f(0.0, 0.0, 1.0), 0.0, NO_ID);
+  }
+  let r = unpack_reservoir(reservoirs[pixel_index]);
+  // restir/restir's surface_point: the camera ray through the pixel centre at the stored depth.
+  let c = view.camera;
+  let ndc = 2.0 * (vec2f(pixel) + 0.5) / vec2f(view.image_size) - vec2f(1.0);
+  let direction = normalize(c.forward + ndc.x * c.right - ndc.y * c.up);
+  let position = c.position + direction * (s.linear_depth / dot(direction, c.forward));
+  return RestirPixel(true, r.point, r.w, position, s.normal, s.linear_depth, s.id);
+}
 
 // The surface through the pixel centre and where it was in the previous frame.
 struct CentreTexel {
@@ -172,6 +194,9 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     var emission = vec3f(0.0);
     var extension_rays = 0u;
     var shadow_rays = 0u;
+    if (RESTIR) {
+      restir_pixel = restir_pixel_at(pixel, pixel_index);
+    }
     for (var s = 0u; s < params.samples; s++) {
       primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
       // One stream per sample: a Sobol stream is one sample of its pixel's sequence.

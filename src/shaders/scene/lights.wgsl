@@ -100,6 +100,17 @@ fn no_light() -> LightSample {
 
 // A point on an emissive triangle (leaf order) of `instance`, uniformly by area.
 fn sample_triangle_light(triangle: u32, instance: u32, p: vec3f, u: vec2f) -> LightSample {
+  return triangle_light_point(triangle, instance, p, u).sample;
+}
+
+// A triangle light's point as sample_triangle_light draws it from u, and its measure factor
+// g = cos θlight / d² (0 where it sends nothing to p); restir/reservoir names points by u.
+struct TriangleLightPoint {
+  sample: LightSample,
+  geometry: f32,
+}
+
+fn triangle_light_point(triangle: u32, instance: u32, p: vec3f, u: vec2f) -> TriangleLightPoint {
   let tri = world_primitive(instance, triangle);
   let shading = world_shading(instance, triangle);
   let b = sample_triangle_uniform(u);
@@ -113,11 +124,11 @@ fn sample_triangle_light(triangle: u32, instance: u32, p: vec3f, u: vec2f) -> Li
   // Emission is one-sided: the light faces along e1 × e2 (unless both faces emit).
   let cos_light = emitter_cosine(material, -dot(cross_e, wi) / (2.0 * area));
   if (!(cos_light > 0.0) || !(distance > 0.0)) {
-    return no_light();
+    return TriangleLightPoint(no_light(), 0.0);
   }
   let emission = material_emission(material, shading_uv(shading, b), wi);
   let pdf = light_selection_pmf(material, area) / area * distance2 / cos_light;
-  return LightSample(wi, distance, emission, pdf, false);
+  return TriangleLightPoint(LightSample(wi, distance, emission, pdf, false), cos_light / distance2);
 }
 
 // A point of an emissive sphere (leaf order), by the cone of directions it subtends from p (pbrt-v4
