@@ -57,14 +57,15 @@ beforeAll(async () => {
 const px = (img: LinearImage, x: number, y: number, c = 0) => img.radiance[(y * img.width + x) * 3 + c]!;
 
 describe('ray counting', () => {
-  it('counts every ray of a real-time frame: each sample path and the G-buffer ray', async () => {
+  it('counts every ray of a real-time frame: each sample path, the G-buffer ray and an emitting centre\'s sub-pixel rays', async () => {
     await renderer.setScene(wallScene(0, { albedo: 0, emission: 0, sameMaterial: true }));
     renderer.updateSettings({ maxBounces: 0, temporal: true, denoise: true, denoiseView: 'output' });
     renderer.setCamera(camera(0)); // restarts the counters
     renderer.renderFrame(2);
     const rays = await renderer.readRayCounts();
-    // With no bounce a path is its camera ray alone: 2 samples + 1 centre ray per pixel.
-    expect(rays.extension).toBe(SIZE * SIZE * 3);
+    // With no bounce a path is its camera ray alone: 2 samples + 1 centre ray per pixel, and as every
+    // centre sees the emitting wall, the 4 × 4 sub-pixel rays that measure its emission there.
+    expect(rays.extension).toBe(SIZE * SIZE * (3 + 16));
     expect(rays.shadow).toBe(0);
   });
 });
@@ -304,6 +305,38 @@ function lampScene(): Scene {
   const meshes = [{ ...mesh, uvs }];
   return { name: 'lamp', meshes, instances: placeEachOnce(meshes), materials: b.materials, textures: [{ name: 'checker', width: 8, height: 8, rgba, filter: 'nearest' }], camera: camera(0) };
 }
+
+describe('first-hit emission at an edge', () => {
+  it('gives a pixel whose centre sees an emitter the part of the pixel the emitter covers, the same every frame', async () => {
+    // A black square in front of the emitting wall, its right edge a quarter of the way into pixel
+    // column 30: pixel 30's centre sees the wall, which covers 3/4 of it (3 of the 4 × 4 sub-pixel
+    // columns); pixel 29 is wholly the square's. With no bounce the image is first-hit emission alone,
+    // so a frame is exact: 0.75 in pixel 30 whichever material each frame's sample hit (the emission
+    // taken as the whole wall's, or as each sample's own, would give 1 or 0 by the sample).
+    // The projection is linear in x on the square's plane: solve it for the edge's image position.
+    const at = (x: number) => project(camera(0), [x, 0, OCCLUDER_Z])[0];
+    const edgeX = (30.25 - at(0)) / (at(1) - at(0));
+    // The square spans edgeX − 2 … edgeX, left or right of the edge as the image has it.
+    const squareX = at(1) > at(0) ? edgeX - 1 : edgeX + 1;
+    await renderer.setScene(wallScene(squareX, { albedo: 0, emission: 0, sameMaterial: false }));
+    expect(project(camera(0), [edgeX, 0, OCCLUDER_Z])[0]).toBeCloseTo(30.25, 4);
+    renderer.updateSettings({ maxBounces: 0, temporal: true, denoise: true, denoiseView: 'output' });
+    renderer.setCamera(camera(0));
+    renderer.resetHistory();
+    const values: number[][] = [];
+    for (let f = 0; f < 4; f++) {
+      renderer.renderFrame(1);
+      const img = await renderer.readFrame();
+      values.push([px(img, 29, 24), px(img, 30, 24), px(img, 31, 24)]);
+    }
+    // (Within 0.01: the filters carry a trace of the samples' own radiance across the edge.)
+    for (const [inside, edge, wall] of values) {
+      expect(inside).toBeLessThan(0.01);
+      expect(Math.abs(edge! - 0.75)).toBeLessThan(0.01);
+      expect(Math.abs(wall! - 1)).toBeLessThan(0.01);
+    }
+  });
+});
 
 describe('a textured lamp seen by a moving camera', () => {
   it('is much closer to the converged image than the raw frame, and leaves no trail', async () => {

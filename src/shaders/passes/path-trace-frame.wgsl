@@ -69,42 +69,41 @@ struct CentreTexel {
 // Sub-pixel points per axis over which centre_emission averages the emitting texture.
 const EMISSION_GRID: u32 = 4u;
 
-// The emission seen through the pixel on the centre hit's surface: the mean over EMISSION_GRID²
-// points of the pixel, where their rays meet the plane of the hit triangle (its uv extended over the
-// plane), so a lamp texture is box-filtered over the pixel's footprint as the converged image
-// averages it, without the jitter noise of the samples. 0 where the surface does not emit toward the
-// camera; one evaluation at the hit for spheres, capsules and untextured emitters.
+// The emission the pixel sees from the centre hit's material: the mean over EMISSION_GRID² points of
+// the pixel of what each point's own ray finds there, 0 where that ray meets another material (or
+// nothing, or the emitter's back). So a lamp texture is box-filtered over the pixel's footprint as the
+// converged image averages it, and a lamp's edge covers the pixel by the fraction it really covers:
+// the samples that see another material than the centre's add their whole radiance to the filtered
+// illumination (split_sample), so the two parts sum to the pixel, and the part kept apart here is
+// steady from frame to frame (the Cornell light's rim pixels, whose centre is on the light, flipped
+// between the full light and the ceiling with each sample while this extended the light over the
+// whole pixel). 0 where the centre does not emit toward the camera: only emitting pixels trace the
+// EMISSION_GRID² rays.
+// Rays centre_emission traced for this thread's pixel (counted with the G-buffer's).
+var<private> emission_rays: u32 = 0u;
+
 fn centre_emission(pixel: vec2u, hit: Hit, surface: Surface, ray: Ray) -> vec3f {
   let material = materials[surface.material];
   let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
   if (!(cos_emitter > 0.0) || all(material.emission <= vec3f(0.0))) {
     return vec3f(0.0);
   }
-  // The grid does the filtering: read level 0.
-  texture_lod = -1e30;
-  if (surface.kind != 0u || material.emission_texture == NO_TEXTURE) {
-    return material_emission(material, surface.uv, ray.direction);
-  }
-  let tri = world_primitive(hit.instance, hit.triangle);
-  let shading = world_shading(hit.instance, hit.triangle);
-  let n = cross(tri.e1, tri.e2);
-  let d00 = dot(tri.e1, tri.e1);
-  let d01 = dot(tri.e1, tri.e2);
-  let d11 = dot(tri.e2, tri.e2);
-  let inv_det = 1.0 / max(d00 * d11 - d01 * d01, 1e-30);
   var sum = vec3f(0.0);
   for (var j = 0u; j < EMISSION_GRID; j++) {
     for (var i = 0u; i < EMISSION_GRID; i++) {
       let r = camera_ray(vec2f(pixel) + (vec2f(f32(i), f32(j)) + 0.5) / f32(EMISSION_GRID));
-      let denom = dot(r.direction, n);
-      var uv = surface.uv;
-      if (abs(denom) > 1e-12 * length(n)) {
-        let q = r.origin + (dot(tri.v0 - r.origin, n) / denom) * r.direction - tri.v0;
-        let a = dot(q, tri.e1);
-        let b = dot(q, tri.e2);
-        uv = shading_uv(shading, vec2f(d11 * a - d01 * b, d00 * b - d01 * a) * inv_det);
+      let h = trace_closest(r);
+      emission_rays += 1u;
+      if (h.triangle == NO_TRIANGLE) {
+        continue;
       }
-      sum += material_emission(material, uv, r.direction);
+      let s = surface_at(h, r);
+      if (s.material != surface.material || !(emitter_cosine(material, -dot(s.geometric_normal, r.direction)) > 0.0)) {
+        continue;
+      }
+      // The grid does the filtering: read level 0.
+      texture_lod = -1e30;
+      sum += material_emission(material, s.uv, r.direction);
     }
   }
   return sum / f32(EMISSION_GRID * EMISSION_GRID);
@@ -136,12 +135,13 @@ fn write_centre(pixel_index: u32, c: CentreTexel) {
 
 // One sample split into the demodulated illumination the filters see and the first-hit emission
 // added back after them (SVGF §4 keeps emission apart so that the filter does not blur lamps):
-// - where the sample saw the centre's surface (same material) through a pinhole, the centre's
-//   box-filtered emission stands in for its own: lamp textures are steady from the first frame;
-// - where it saw another surface than the centre's (a silhouette: the edge of a lamp, the sky behind
-//   a wall), its emission stays in the illumination, so that the temporal accumulation averages the
-//   edge's coverage over frames like any other noise (kept apart, it would flicker at full strength
-//   every frame: the Cornell light's rim made a still view change by 0.14 RMSE a frame);
+// - through a pinhole, the pixel's emission is the centre's (centre_emission: the centre material's
+//   emission over the part of the pixel that sees it), the same for every sample, so lamps are steady
+//   from the first frame; a sample that saw the centre's material leaves its own emission out (the
+//   centre's counts it), one that saw another surface (a silhouette: the edge of a lamp, the sky
+//   behind a wall) puts its whole radiance in the illumination, which the temporal accumulation
+//   averages over frames like any other noise (kept apart, it would flicker at full strength every
+//   frame: the Cornell light's rim made a still view change by 0.14 RMSE a frame);
 // - where both it and the centre see the environment, or a thin lens spreads the samples, its own
 //   emission stays apart (the sky is not blurred; defocus is the samples' truth).
 struct SampleSplit {
@@ -157,7 +157,7 @@ fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, 
   if (p.id == centre_id) {
     return SampleSplit(apart.illumination, centre_emission);
   }
-  return SampleSplit(radiance / demodulation(p.albedo), vec3f(0.0));
+  return SampleSplit(radiance / demodulation(p.albedo), centre_emission);
 }
 
 // The G-buffer of the surface through each pixel centre, a pass of its own before the paths (albedo
@@ -174,8 +174,8 @@ fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoca
     let texel = centre_texel(pixel);
     write_centre(pixel_index, texel);
     frame_records[pixel_index].emission = pack_rgb9e5(texel.emission);
-    // The pixel-centre ray counts as one more extension ray.
-    count_rays(1u, 0u);
+    // The pixel-centre ray and an emitting centre's sub-pixel rays count as extension rays.
+    count_rays(1u + emission_rays, 0u);
   }
   end_ray_count(local);
 }
