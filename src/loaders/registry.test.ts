@@ -140,7 +140,7 @@ describe('help', () => {
   it('names the built-ins, the aliases and every format with its extensions', async () => {
     const { describeSceneArguments } = await import('./registry.ts');
     const help = describeSceneArguments(['dragon']);
-    expect(help).toMatch(/^a built-in scene \(cornell, furnace, bvh-teaching, materials, spheres, rtiow, orb, golden-grid, hex-grid, caffeine, dungeon, prism\), 'dragon', or a file: /);
+    expect(help).toMatch(/^a built-in scene \(cornell, furnace, bvh-teaching, materials, spheres, rtiow, orb, golden-grid, hex-grid, caffeine, dungeon, many-lights, prism\), 'dragon', or a file: /);
     for (const f of FORMATS) for (const e of f.extensions) expect(help).toContain(e);
     expect(help).toContain("Doom WADs (.wad, '+' joins files, '#map' picks one: iwad.wad+pwad.wad#MAP01)");
     expect(help).toContain("MDL molecules (.mol, .sdf, .sd, '#model' picks one: caffeine.mol#space-filling)");
