@@ -24,9 +24,7 @@ export interface FrameTarget {
   readonly frameRecords: GPUBuffer;
   /** The renderer's ray counters (as PathTraceTarget's): extension and shadow rays are added. */
   readonly rayCounters: GPUBuffer;
-  /** The frame's final ReSTIR reservoirs the first bounce shades (restir true); any buffer otherwise. */
-  readonly reservoirs: GPUBuffer;
-  /** Whether the first bounce takes its direct light from the reservoirs. */
+  /** Whether the first bounce takes its direct light from the frame's final reservoirs, lent in the scratch (RestirPass). */
   readonly restir: boolean;
 }
 
@@ -87,7 +85,7 @@ export class PathTraceFramePass {
   }
 
   private bindings(target: FrameTarget, params: UniformParams<UniformValues>): Record<string, GPUBuffer> {
-    return { params: params.buffer, frame: this.frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters, reservoirs: target.reservoirs };
+    return { params: params.buffer, frame: this.frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters };
   }
 
   destroy(): void {

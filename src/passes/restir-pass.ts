@@ -6,7 +6,8 @@
  * and leaves one final reservoir per pixel that the path tracer shades (shaders/integrator/path.wgsl,
  * RESTIR). The reservoir under way lives in two words of the frame scratch between the passes; the
  * frame's final reservoirs go to a buffer free until the frame's filters run (the Denoiser lends the
- * current moments), and keepHistory copies them to the history (8 bytes a pixel, the only buffer of
+ * current moments), restir_lend copies them back into those two scratch words for the path tracer
+ * (which has no storage binding to spare in a browser), and keepHistory copies them to the history (8 bytes a pixel, the only buffer of
  * ReSTIR's own) once the frame is finished, so a frame given up leaves the history as it was.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -51,20 +52,21 @@ export class RestirPass {
     private readonly initial: TracingKernels,
     private readonly temporal: TracingKernels,
     private readonly spatial: TracingKernels,
+    private readonly lend: TracingKernels,
     private readonly params: UniformParams<UniformValues>,
     private readonly restir: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<RestirPass> {
-    const [initial, temporal, spatial] = await Promise.all(['restir_initial', 'restir_temporal', 'restir_spatial'].map((entry) => TracingKernels.create(device, MODULE, entry)));
-    return new RestirPass(initial!, temporal!, spatial!, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'restir'));
+    const [initial, temporal, spatial, lend] = await Promise.all(['restir_initial', 'restir_temporal', 'restir_spatial', 'restir_lend'].map((entry) => TracingKernels.create(device, MODULE, entry)));
+    return new RestirPass(initial!, temporal!, spatial!, lend!, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'restir'));
   }
 
   async prepare(features: SceneFeatures): Promise<void> {
-    await Promise.all([this.initial, this.temporal, this.spatial].map((k) => k.prepare(features)));
+    await Promise.all([this.initial, this.temporal, this.spatial, this.lend].map((k) => k.prepare(features)));
   }
 
-  /** Records the three passes over the whole image. Writes the parameters now (queue.writeBuffer): submit before encoding again. */
+  /** Records the three passes over the whole image, and the final reservoirs' copy into the scratch (restir_lend). Writes the parameters now (queue.writeBuffer): submit before encoding again. */
   encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: RestirTarget, d: RestirDispatch, timer?: GpuTimer): void {
     this.params.write(pathTraceParams(d.trace));
     this.restir.write({
@@ -88,6 +90,7 @@ export class RestirPass {
     this.initial.dispatch(encoder, 'restir initial', scene, view, target.surface, targets, tile, false, timer);
     this.temporal.dispatch(encoder, 'restir temporal', scene, view, target.surface, targets, tile, false, timer);
     this.spatial.dispatch(encoder, 'restir spatial', scene, view, target.surface, targets, tile, false, timer);
+    this.lend.dispatch(encoder, 'restir lend', scene, view, target.surface, targets, tile, false, timer);
   }
 
   /** Records the copy of a finished frame's final reservoirs into the history the next frame's temporal pass reads. */

@@ -403,7 +403,7 @@ export class Denoiser {
     const dispatch = { tile: o.tile ?? image, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
     const restir = o.restir ? this.restirTarget(b, r) : undefined;
     // The path kernel always binds the reservoirs' buffer (and reads it only with ReSTIR).
-    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters, reservoirs: b.moments[this.parity]!, restir: restir !== undefined };
+    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters, restir: restir !== undefined };
     if (restir) {
       // The whole image's G-buffer and reservoirs before the first band's paths (encodeBand).
       if (o.prelude) {

@@ -1228,9 +1228,10 @@ export class Renderer {
 const TIMER_ROOM_AFTER_BANDS = 12;
 /**
  * The most timed passes one band records: its G-buffer and paths (2), or with ReSTIR the first band's
- * whole-image G-buffer, 'restir initial', 'restir temporal', 'restir spatial' and its paths (5).
+ * whole-image G-buffer, 'restir initial', 'restir temporal', 'restir spatial', 'restir lend' and its
+ * paths (6).
  */
-const TIMER_SLOTS_PER_BAND = 5;
+const TIMER_SLOTS_PER_BAND = 6;
 
 /** The request with the timer while it has room for a band's passes and those after the bands. */
 function timedWhileRoom(request: FrameRequest, timer: GpuTimer | undefined): FrameRequest {

@@ -24,7 +24,8 @@
 struct FrameParams {
   // The camera of the previous frame (equal to view.camera for a still camera).
   previous_camera: Camera,
-  // 1: the first bounce takes its direct light from `reservoirs` (ReSTIR DI, restir/restir).
+  // 1: the first bounce takes its direct light from the pixel's final reservoir, lent in the frame
+  // scratch (ReSTIR DI, restir/restir's restir_lend).
   restir: u32,
 }
 
@@ -36,8 +37,6 @@ struct FrameParams {
 @group(2) @binding(5) var<storage, read_write> surface_records: array<SurfaceTexel>;
 // Mean albedo and emission of the samples (the centre's filtered emission in between, see below).
 @group(2) @binding(6) var<storage, read_write> frame_records: array<FrameTexel>;
-// The frame's final ReSTIR reservoir per pixel (restir/restir's restir_spatial), read only while frame.restir.
-@group(2) @binding(7) var<storage, read> reservoirs: array<ReservoirTexel>;
 
 // The pixel's reservoir and the centre surface it was made for (integrator/path's restir_pixel).
 fn restir_pixel_at(pixel: vec2u, pixel_index: u32) -> RestirPixel {
@@ -45,7 +44,7 @@ fn restir_pixel_at(pixel: vec2u, pixel_index: u32) -> RestirPixel {
   if (frame.restir == 0u || is_miss_depth(s.linear_depth)) {
     return RestirPixel(false, LightPoint(0u, false, vec2u(0u)), 0.0, vec3f(0.0), vec3f(0.0, 0.0, 1.0), 0.0, NO_ID);
   }
-  let r = unpack_reservoir(reservoirs[pixel_index]);
+  let r = unpack_reservoir(ReservoirTexel(frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_A], frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_B]));
   // restir/restir's surface_point: the camera ray through the pixel centre at the stored depth.
   let c = view.camera;
   let ndc = 2.0 * (vec2f(pixel) + 0.5) / vec2f(view.image_size) - vec2f(1.0);

@@ -68,6 +68,12 @@ struct Reservoir {
 }
 
 // Packed, 8 bytes: slot (20 bits), alias (1), M (5), q.x (11), q.y (11), W (16: e6m10 float).
+// The frame-scratch words (denoise/gbuffer FRAME_WORDS per pixel) that hold a reservoir between the
+// ReSTIR passes, and the final one from restir_lend until the path tracer has read it (word 0 is
+// FRAME_RADIANCE, which the path tracer writes afterwards; word 3 is free until the temporal pass).
+const RESTIR_SCRATCH_A: u32 = 0u;
+const RESTIR_SCRATCH_B: u32 = 3u;
+
 struct ReservoirTexel {
   a: u32,
   b: u32,

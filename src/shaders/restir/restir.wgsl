@@ -31,8 +31,6 @@
 const RESTIR_HISTORY_CAP: u32 = 20u;
 // The scratch words the initial, then temporal reservoir occupies between the passes (denoise/gbuffer FRAME_*):
 // FRAME_RADIANCE is written later by the path tracer, word 3 by the denoiser's temporal pass.
-const RESTIR_SCRATCH_A: u32 = 0u;
-const RESTIR_SCRATCH_B: u32 = 3u;
 // Geometric tests for reusing another pixel's reservoir (previous frame or neighbour).
 const RESTIR_NORMAL_COS: f32 = 0.906;
 const RESTIR_DEPTH_TOLERANCE: f32 = 0.1;
@@ -136,9 +134,21 @@ fn restir_initial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
   end_ray_count(local);
 }
 
+// restir_temporal binds no ray counters (with them it would bind 11 storage buffers, one more than a
+// browser gives a compute stage): it leaves its shadow-ray count in the high half of the pixel's
+// previous-depth word (an f16 whose high half the G-buffer leaves 0 and nothing else reads), and
+// restir_spatial counts it with its own.
+fn pass_temporal_rays(pixel_index: u32, rays: u32) {
+  let k = FRAME_WORDS * pixel_index + FRAME_PREVIOUS_DEPTH;
+  frame_scratch[k] = (frame_scratch[k] & 0xffffu) | (rays << 16u);
+}
+
+fn temporal_rays(pixel_index: u32) -> u32 {
+  return frame_scratch[FRAME_WORDS * pixel_index + FRAME_PREVIOUS_DEPTH] >> 16u;
+}
+
 @compute @workgroup_size(8, 8)
-fn restir_temporal(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
-  begin_ray_count(local);
+fn restir_temporal(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (restir.use_history != 0u && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
@@ -189,9 +199,8 @@ fn restir_temporal(@builtin(global_invocation_id) id: vec3u, @builtin(local_invo
         write_scratch_reservoir(pixel_index, Reservoir(s.point, w, s.m));
       }
     }
-    count_rays(0u, shadow_rays);
+    pass_temporal_rays(pixel_index, shadow_rays);
   }
-  end_ray_count(local);
 }
 
 // The largest number of neighbours restir_spatial takes (its arrays are this long).
@@ -273,7 +282,21 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
       }
     }
     reservoirs[pixel_index] = pack_reservoir(out);
-    count_rays(0u, shadow_rays);
+    count_rays(0u, shadow_rays + temporal_rays(pixel_index));
   }
   end_ray_count(local);
+}
+
+// Lends the frame's final reservoirs to the path tracer in the frame scratch's words A and B (free again
+// once restir_spatial has read its neighbours' there; the path tracer then writes its radiance over
+// word A after reading them): path_trace_frame binds no buffer of its own for them, since a browser
+// gives a compute stage 10 storage buffers and the path tracer's scene and records take them all.
+@compute @workgroup_size(8, 8)
+fn restir_lend(@builtin(global_invocation_id) id: vec3u) {
+  if (all(id.xy < view.image_size)) {
+    let pixel_index = id.y * view.image_size.x + id.x;
+    let t = reservoirs[pixel_index];
+    frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_A] = t.a;
+    frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_B] = t.b;
+  }
 }
