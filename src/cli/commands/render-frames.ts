@@ -19,6 +19,8 @@ import { readJsonFile } from '../read-files.ts';
 export interface FrameModeOptions {
   readonly denoise?: boolean;
   readonly temporal?: boolean;
+  /** --restir: a real-time frame's direct light; like --temporal, the switch turns frame mode on. */
+  readonly restir?: boolean;
   readonly path?: string;
   /** The --path file, read and checked before the GPU started (render.ts checkRenderOptions). */
   readonly cameraPath?: CameraPath;
@@ -31,7 +33,7 @@ export interface FrameModeOptions {
   readonly fps?: number;
 }
 
-export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
+export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.restir || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
 
 export interface FrameModeResult {
   readonly frames: number;
