@@ -29,6 +29,17 @@ export interface InputHandlers {
 /** A press that moves this far (CSS pixels) before release is a drag (mouse look), not a click. */
 const DRAG_THRESHOLD = 4;
 
+/**
+ * When a key event happened (performance.now() time base): its timeStamp, taken when the browser
+ * received the input, not when the page's busy main thread got round to handling it; a key pressed
+ * during a long task is timed from the press. Never later than now (a clock of another origin is not
+ * trusted).
+ */
+function eventTime(e: Event): number {
+  const now = performance.now();
+  return e.timeStamp > 0 && e.timeStamp <= now ? e.timeStamp : now;
+}
+
 export class Input {
   /** Held movement keys over time: the camera moves by how long each was held. */
   private readonly keys = new KeyTimeline(performance.now());
@@ -57,11 +68,11 @@ export class Input {
       if ((k.code === 'KeyE' || k.code === 'Space') && !k.repeat) handlers.onUse?.(k.code);
       if (k.code === 'KeyE') k.preventDefault();
       if (isMovementKey(k.code)) {
-        this.keys.press(k.code, performance.now());
+        this.keys.press(k.code, eventTime(k));
         k.preventDefault();
       }
     });
-    this.listen(window, 'keyup', (e) => this.keys.release((e as KeyboardEvent).code, performance.now()));
+    this.listen(window, 'keyup', (e) => this.keys.release((e as KeyboardEvent).code, eventTime(e)));
     // Keys released while the window had no focus never send keyup.
     this.listen(window, 'blur', () => this.keys.releaseAll(performance.now()));
     this.listen(canvas, 'mousedown', (e) => {
