@@ -1,7 +1,8 @@
 /**
  * The real-time frame's path tracer (entries frame_gbuffer then path_trace_frame of
  * shaders/passes/path-trace-frame.wgsl, which imports passes/path-trace): the G-buffer of the pixel
- * centres, then `samples` paths per pixel written, not added, as demodulated radiance. Compiled with CAPTURE_PRIMARY = 1, so the progressive kernel
+ * centres and, once their neighbours' are written, the pixels' emission (frame_gbuffer twice), then
+ * `samples` paths per pixel written, not added, as demodulated radiance. Compiled with CAPTURE_PRIMARY = 1, so the progressive kernel
  * (PathTracePass, CAPTURE_PRIMARY = 0) is untouched by the G-buffer writes.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -29,6 +30,9 @@ export interface FrameTarget {
 }
 
 export class PathTraceFramePass {
+  /** The emission pass's bind-group keys, one per surface-record buffer (the centres pass is keyed by the buffer itself). */
+  private readonly emissionKeys = new WeakMap<GPUBuffer, object>();
+
   private constructor(
     /** Its kernels: the generic variants and, once the renderer specialises, the scene's own. */
     readonly kernels: TracingKernels,
@@ -37,7 +41,12 @@ export class PathTraceFramePass {
     private readonly params: UniformParams<UniformValues>,
     /** The G-buffer's own `params` (its tile may differ from the paths' in one submission). */
     private readonly gbufferParams: UniformParams<UniformValues>,
+    /** The emission pass's `params` (the tile without the G-buffer's ring). */
+    private readonly emissionParams: UniformParams<UniformValues>,
     private readonly frame: UniformParams<UniformValues>,
+    /** `frame` for the G-buffer's centres (the tile whose rays count) and its emission pass (emission_pass = 1). */
+    private readonly gbufferFrame: UniformParams<UniformValues>,
+    private readonly emissionFrame: UniformParams<UniformValues>,
   ) {}
 
   static async create(device: GPUDevice): Promise<PathTraceFramePass> {
@@ -45,7 +54,9 @@ export class PathTraceFramePass {
       TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }),
       TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }),
     ]);
-    return new PathTraceFramePass(kernels, gbufferKernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'frame'));
+    const params = () => new UniformParams(device, PATH_TRACE_MODULE);
+    const frame = () => new UniformParams(device, MODULE, 'frame');
+    return new PathTraceFramePass(kernels, gbufferKernels, params(), params(), params(), frame(), frame(), frame());
   }
 
   async prepare(features: SceneFeatures, spectral = false): Promise<void> {
@@ -64,33 +75,44 @@ export class PathTraceFramePass {
 
   /**
    * The G-buffer of d.tile's pixel centres alone (with ReSTIR: the whole image, which the reservoir
-   * passes read before any band's paths). It has its own parameters, so that it and a band's paths
-   * (another tile) can go in one submission.
+   * passes read before any band's paths), then its pixels' emission. It has its own parameters, so
+   * that it and a band's paths (another tile) can go in one submission. The centres are traced over
+   * the tile and one pixel around it (within the image): the emission pass looks at each pixel's
+   * neighbours, which must be this frame's wherever the frame is cut into bands, so that a banded
+   * frame equals a whole one.
    */
   encodeGbuffer(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
-    this.gbufferParams.write(pathTraceParams(d));
-    this.writeFrame(view, previousCamera, target);
-    this.gbufferKernels.dispatch(encoder, 'frame G-buffer', scene, view, target.surface, () => this.bindings(target, this.gbufferParams), d.tile, false, timer);
+    const t = d.tile;
+    const x0 = Math.max(t.x - 1, 0), y0 = Math.max(t.y - 1, 0);
+    const ring = { x: x0, y: y0, width: Math.min(t.x + t.width + 1, view.width) - x0, height: Math.min(t.y + t.height + 1, view.height) - y0 };
+    this.gbufferParams.write(pathTraceParams({ ...d, tile: ring }));
+    this.emissionParams.write(pathTraceParams(d));
+    const frame = this.frameValues(view, previousCamera, target);
+    this.gbufferFrame.write({ ...frame, emission_pass: 0, core_min: [t.x, t.y], core_max: [t.x + t.width, t.y + t.height] });
+    this.emissionFrame.write({ ...frame, emission_pass: 1 });
+    this.gbufferKernels.dispatch(encoder, 'frame G-buffer', scene, view, target.surface, () => this.bindings(target, this.gbufferParams, this.gbufferFrame), ring, false, timer);
+    // Its own bind group (other parameters, same target): keyed by a token of the target's surface records.
+    let key = this.emissionKeys.get(target.surface);
+    if (!key) this.emissionKeys.set(target.surface, (key = {}));
+    this.gbufferKernels.dispatch(encoder, 'frame emission', scene, view, key, () => this.bindings(target, this.emissionParams, this.emissionFrame), t, false, timer);
   }
 
   /** The paths of d.tile alone, over a G-buffer already recorded for it. */
   encodePaths(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
     this.params.write(pathTraceParams(d));
-    this.writeFrame(view, previousCamera, target);
-    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.surface, () => this.bindings(target, this.params), d.tile, d.spectral ?? false, timer);
+    this.frame.write(this.frameValues(view, previousCamera, target));
+    this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.surface, () => this.bindings(target, this.params, this.frame), d.tile, d.spectral ?? false, timer);
   }
 
-  private writeFrame(view: ViewUniform, previousCamera: Camera, target: FrameTarget): void {
-    this.frame.write({ previous_camera: cameraUniform(previousCamera, view.width / view.height), restir: target.restir ? 1 : 0 });
+  private frameValues(view: ViewUniform, previousCamera: Camera, target: FrameTarget): UniformValues {
+    return { previous_camera: cameraUniform(previousCamera, view.width / view.height), restir: target.restir ? 1 : 0 };
   }
 
-  private bindings(target: FrameTarget, params: UniformParams<UniformValues>): Record<string, GPUBuffer> {
-    return { params: params.buffer, frame: this.frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters };
+  private bindings(target: FrameTarget, params: UniformParams<UniformValues>, frame: UniformParams<UniformValues>): Record<string, GPUBuffer> {
+    return { params: params.buffer, frame: frame.buffer, frame_scratch: target.scratch, surface_records: target.surface, frame_records: target.frameRecords, ray_counters: target.rayCounters };
   }
 
   destroy(): void {
-    this.params.destroy();
-    this.gbufferParams.destroy();
-    this.frame.destroy();
+    for (const u of [this.params, this.gbufferParams, this.emissionParams, this.frame, this.gbufferFrame, this.emissionFrame]) u.destroy();
   }
 }

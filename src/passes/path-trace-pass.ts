@@ -80,7 +80,7 @@ export class TracingKernels {
   private spectralKernels?: SceneKernels;
   private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
-  private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<GPUBuffer, GPUBindGroup>>();
+  private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<object, GPUBindGroup>>();
 
   /** The kernel specialised to one uploaded scene, used instead of the generic variants while set. */
   private active?: { readonly scene: SceneResources; readonly kernel: ComputeKernel };
@@ -125,7 +125,7 @@ export class TracingKernels {
   }
 
   /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
-  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: GPUBuffer, targets: () => Record<string, NamedResource>, tile: Tile, spectral: boolean, timer?: GpuTimer): void {
+  dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: object, targets: () => Record<string, NamedResource>, tile: Tile, spectral: boolean, timer?: GpuTimer): void {
     // Specialised kernels are compiled in RGB: spectral dispatches use the generic spectral variants.
     const kernel = !spectral && this.active?.scene === scene ? this.active.kernel : this.variants(spectral).get(scene.features);
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });

@@ -6,7 +6,7 @@
  * the queues compacted by atomics and their sizes driving indirect dispatches (generate traces the
  * camera rays itself, in pixel tiles, so extension starts at the second bounce). All of a frame's
  * dispatches are one compute pass ('path trace (wavefront)'), so one timestamp pair times the whole
- * path tracing, as 'frame G-buffer' + 'path trace (frame)' time the megakernel's.
+ * path tracing, as 'frame G-buffer' + 'frame emission' + 'path trace (frame)' time the megakernel's.
  */
 import { LanternError } from '../errors.ts';
 import { ComputeKernel, PLAIN_SCENE, SceneKernels, TRACING_FEATURES, type NamedResource } from '../gpu/kernel.ts';

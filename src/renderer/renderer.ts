@@ -807,8 +807,8 @@ export class Renderer {
   /**
    * The path tracing of one real-time frame alone, by settings.integrator: `samples` paths per pixel
    * with the random streams of frame `sampleIndex` (default 0), no filter, the history kept. With a
-   * timer its passes are timed ('frame G-buffer' and 'path trace (frame)' for the megakernel;
-   * 'frame G-buffer' and 'path trace (wavefront)' for the wavefront);
+   * timer its passes are timed ('frame G-buffer', 'frame emission' and 'path trace (frame)' for the
+   * megakernel; 'frame G-buffer', 'frame emission' and 'path trace (wavefront)' for the wavefront);
    * `breakdown` times the wavefront's stages apart instead (WavefrontFramePass.encode names them).
    * ReSTIR does not run here (Denoiser.encodeTraceOnly); renderFrame times its passes.
    * For timing the two integrators (bench) and comparing them (readFrameTrace). Returns which traced.
@@ -1227,11 +1227,11 @@ export class Renderer {
 /** Timestamp slots a split frame leaves for the passes after its bands (temporal, à-trous ×5, tone map, present, debug). */
 const TIMER_ROOM_AFTER_BANDS = 12;
 /**
- * The most timed passes one band records: its G-buffer and paths (2), or with ReSTIR the first band's
- * whole-image G-buffer, 'restir initial', 'restir temporal', 'restir spatial', 'restir lend' and its
- * paths (6).
+ * The most timed passes one band records: its G-buffer, emission and paths (3), or with ReSTIR the
+ * first band's whole-image G-buffer and emission, 'restir initial', 'restir temporal', 'restir
+ * spatial', 'restir lend' and its paths (7).
  */
-const TIMER_SLOTS_PER_BAND = 6;
+const TIMER_SLOTS_PER_BAND = 7;
 
 /** The request with the timer while it has room for a band's passes and those after the bands. */
 function timedWhileRoom(request: FrameRequest, timer: GpuTimer | undefined): FrameRequest {

@@ -308,19 +308,25 @@ function lampScene(): Scene {
 }
 
 describe('first-hit emission at an edge', () => {
-  it('gives a pixel whose centre sees an emitter the part of the pixel the emitter covers, the same every frame', async () => {
-    // A black square in front of the emitting wall, its right edge a quarter of the way into pixel
-    // column 30: pixel 30's centre sees the wall, which covers 3/4 of it (3 of the 4 × 4 sub-pixel
-    // columns); pixel 29 is wholly the square's. With no bounce the image is first-hit emission alone,
-    // so a frame is exact: 0.75 in pixel 30 whichever material each frame's sample hit (the emission
-    // taken as the whole wall's, or as each sample's own, would give 1 or 0 by the sample).
+  // A black square in front of the emitting wall, its right edge at image x = `edge`, inside pixel
+  // column 30; pixel 29 is wholly the square's. With no bounce the image is first-hit emission alone,
+  // so a frame is exact: pixel 30 reads the part of it the wall covers, whichever material each
+  // frame's sample hit. At 30.25 its centre sees the wall, which covers 3/4 of it (3 of the 4 × 4
+  // sub-pixel columns): the emission taken as the whole wall's, or as each sample's own, would give 1
+  // or 0 by the sample. At 30.75 its centre sees the square and the wall covers 1/4: a neighbour's
+  // centre is on the wall, so the pixel's emission is measured too, where each sample's own would
+  // again give 1 or 0 (and, accumulated while the camera moves, carry the wall's light across the edge).
+  it.each([
+    [30.25, 0.75],
+    [30.75, 0.25],
+  ])('gives the pixel of an emitter’s edge at x = %f the part it covers (%f), the same every frame', async (edge, covered) => {
     // The projection is linear in x on the square's plane: solve it for the edge's image position.
     const at = (x: number) => project(camera(0), [x, 0, OCCLUDER_Z])[0];
-    const edgeX = (30.25 - at(0)) / (at(1) - at(0));
+    const edgeX = (edge - at(0)) / (at(1) - at(0));
     // The square spans edgeX − 2 … edgeX, left or right of the edge as the image has it.
     const squareX = at(1) > at(0) ? edgeX - 1 : edgeX + 1;
     await renderer.setScene(wallScene(squareX, { albedo: 0, emission: 0, sameMaterial: false }));
-    expect(project(camera(0), [edgeX, 0, OCCLUDER_Z])[0]).toBeCloseTo(30.25, 4);
+    expect(project(camera(0), [edgeX, 0, OCCLUDER_Z])[0]).toBeCloseTo(edge, 4);
     renderer.updateSettings({ maxBounces: 0, temporal: true, denoise: true, denoiseView: 'output' });
     renderer.setCamera(camera(0));
     renderer.resetHistory();
@@ -331,9 +337,9 @@ describe('first-hit emission at an edge', () => {
       values.push([px(img, 29, 24), px(img, 30, 24), px(img, 31, 24)]);
     }
     // (Within 0.01: the filters carry a trace of the samples' own radiance across the edge.)
-    for (const [inside, edge, wall] of values) {
+    for (const [inside, edgePixel, wall] of values) {
       expect(inside).toBeLessThan(0.01);
-      expect(Math.abs(edge! - 0.75)).toBeLessThan(0.01);
+      expect(Math.abs(edgePixel! - covered)).toBeLessThan(0.01);
       expect(Math.abs(wall! - 1)).toBeLessThan(0.01);
     }
   });

@@ -107,8 +107,8 @@ describe('split frames', () => {
       expect(count('path trace (frame)')).toBe(chunks);
       if (restir) {
         // The whole image's G-buffer and reservoirs once, with the first chunk, before its paths.
-        expect(passes.slice(0, 6)).toEqual(['frame G-buffer', 'restir initial', 'restir temporal', 'restir spatial', 'restir lend', 'path trace (frame)']);
-        expect(['frame G-buffer', 'restir initial', 'restir temporal', 'restir spatial', 'restir lend'].map(count)).toEqual([1, 1, 1, 1, 1]);
+        expect(passes.slice(0, 7)).toEqual(['frame G-buffer', 'frame emission', 'restir initial', 'restir temporal', 'restir spatial', 'restir lend', 'path trace (frame)']);
+        expect(['frame G-buffer', 'frame emission', 'restir initial', 'restir temporal', 'restir spatial', 'restir lend'].map(count)).toEqual([1, 1, 1, 1, 1, 1]);
       } else {
         expect(count('frame G-buffer')).toBe(chunks);
         expect(passes.some((p) => p.startsWith('restir'))).toBe(false);

@@ -8,9 +8,10 @@
 // accumulation averages like any other noise (docs/denoise.md, "Depth of field"). Each sample's emission seen at its first hit is kept apart
 // (it needs no filtering) and the rest is divided by its first-hit albedo, so textures and lights are
 // not blurred by the spatial filter (Schied et al. 2017, "Spatiotemporal Variance-Guided Filtering", §4).
-// A sample's first-hit emission is replaced by the pixel's box-filtered emission at the centre hit
-// wherever the sample saw the same surface (centre_emission): lamp textures are then steady from the
-// first frame; at silhouettes it joins the illumination, which the temporal pass accumulates
+// On and around emitters a sample's first-hit emission is replaced by the pixel's box-filtered
+// emission (pixel_emission, traced on a sub-pixel grid): lamp textures and lamp edges are then steady
+// from the first frame; elsewhere a silhouette sample's emission joins the illumination, which the
+// temporal pass accumulates, where the pixel stands still, and stays apart where it moves
 // (split_sample).
 // With ReSTIR on (frame.restir), restir/restir runs over the whole image between the two entries and
 // each path's first bounce shades the pixel's final reservoir (integrator/path, override RESTIR, set
@@ -27,6 +28,13 @@ struct FrameParams {
   // 1: the first bounce takes its direct light from the pixel's final reservoir, lent in the frame
   // scratch (ReSTIR DI, restir/restir's restir_lend).
   restir: u32,
+  // frame_gbuffer's pass: 0, the pixel-centre records; 1, the pixel emission (pixel_emission), once
+  // the records of the pixel's neighbours are written.
+  emission_pass: u32,
+  // The centres pass traces a ring of pixels around its tile for the emission pass; it counts the
+  // rays of the tile's own pixels only, [core_min, core_max), each pixel's once in a frame of bands.
+  core_min: vec2u,
+  core_max: vec2u,
 }
 
 @group(2) @binding(3) var<uniform> frame: FrameParams;
@@ -61,30 +69,41 @@ struct CentreTexel {
   on_screen: bool,
   // Linear depth seen from the previous camera (MISS_DEPTH for a miss).
   previous_depth: f32,
-  // Emission seen through the pixel at this surface (centre_emission), 0 for a miss.
-  emission: vec3f,
 }
 
-// Sub-pixel points per axis over which centre_emission averages the emitting texture.
+// Sub-pixel points per axis over which pixel_emission averages what emits in the pixel.
 const EMISSION_GRID: u32 = 4u;
 
-// The emission the pixel sees from the centre hit's material: the mean over EMISSION_GRID² points of
-// the pixel of what each point's own ray finds there, 0 where that ray meets another material (or
-// nothing, or the emitter's back). So a lamp texture is box-filtered over the pixel's footprint as the
-// converged image averages it, and a lamp's edge covers the pixel by the fraction it really covers:
-// the samples that see another material than the centre's add their whole radiance to the filtered
-// illumination (split_sample), so the two parts sum to the pixel, and the part kept apart here is
-// steady from frame to frame (the Cornell light's rim pixels, whose centre is on the light, flipped
-// between the full light and the ceiling with each sample while this extended the light over the
-// whole pixel). 0 where the centre does not emit toward the camera: only emitting pixels trace the
-// EMISSION_GRID² rays.
-// Rays centre_emission traced for this thread's pixel (counted with the G-buffer's).
+// Rays pixel_emission traced for this thread's pixel (counted with the G-buffer's).
 var<private> emission_rays: u32 = 0u;
 
-fn centre_emission(pixel: vec2u, hit: Hit, surface: Surface, ray: Ray) -> vec3f {
-  let material = materials[surface.material];
-  let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
-  if (!(cos_emitter > 0.0) || all(material.emission <= vec3f(0.0))) {
+// Whether a material emits at all (its emission factor; a texture only modulates it). The centre
+// records' id is the material's index.
+fn material_emits(id: u32) -> bool {
+  return id != NO_ID && any(materials[id].emission > vec3f(0.0));
+}
+
+// The first-hit emission of the pixel: the mean over EMISSION_GRID² points of the pixel of the
+// emission each point's own ray meets (0 where it meets nothing that emits toward the camera), so a
+// lamp texture is box-filtered over the pixel's footprint as the converged image averages it, and a
+// lamp's edge covers the pixel by the fraction it really covers. Traced only where the centre or a
+// centre next to it (3×3) is on an emitting material: the lamps and the ring of pixels around them,
+// whose samples then leave their own first-hit emission out (split_sample), so that the part kept
+// apart from the filters is steady from frame to frame. Elsewhere it is 0 and the samples' own
+// emission counts. (The Cornell light's rim pixels flipped between the whole light and the ceiling
+// with each sample before the grid; with the ring's emission in the temporally accumulated
+// illumination instead, moving the camera carried the light off the lamp's edge, see split_sample.)
+fn pixel_emission(pixel: vec2u) -> vec3f {
+  var near = false;
+  for (var dy = -1; dy <= 1; dy++) {
+    for (var dx = -1; dx <= 1; dx++) {
+      let q = vec2i(pixel) + vec2i(dx, dy);
+      if (all(q >= vec2i(0)) && all(q < vec2i(view.image_size))) {
+        near = near || material_emits(surface_records[u32(q.y) * view.image_size.x + u32(q.x)].id);
+      }
+    }
+  }
+  if (!near) {
     return vec3f(0.0);
   }
   var sum = vec3f(0.0);
@@ -97,7 +116,8 @@ fn centre_emission(pixel: vec2u, hit: Hit, surface: Surface, ray: Ray) -> vec3f 
         continue;
       }
       let s = surface_at(h, r);
-      if (s.material != surface.material || !(emitter_cosine(material, -dot(s.geometric_normal, r.direction)) > 0.0)) {
+      let material = materials[s.material];
+      if (!(emitter_cosine(material, -dot(s.geometric_normal, r.direction)) > 0.0)) {
         continue;
       }
       // The grid does the filtering: read level 0.
@@ -113,19 +133,17 @@ fn centre_texel(pixel: vec2u) -> CentreTexel {
   let hit = trace_closest(ray);
   if (hit.triangle == NO_TRIANGLE) {
     let previous = project_offset(frame.previous_camera, view.image_size, ray.direction);
-    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH, vec3f(0.0));
+    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH);
   }
   let surface = surface_at(hit, ray);
   let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
   // Where the point was: moved with its instance, seen by the previous camera.
   let previous = project_point(frame.previous_camera, view.image_size, previous_world_point(hit.instance, surface.position));
   let depth = dot(surface.position - view.camera.position, view.camera.forward);
-  let emission = centre_emission(pixel, hit, surface, ray);
-  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z, emission);
+  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z);
 }
 
-// Writes the centre's records: the surface, the motion words and (for path_trace_frame to read)
-// the centre emission in the frame record.
+// Writes the centre's records: the surface and the motion words.
 fn write_centre(pixel_index: u32, c: CentreTexel) {
   surface_records[pixel_index] = c.surface;
   frame_scratch[FRAME_WORDS * pixel_index + FRAME_MOTION] = pack_motion(c.motion, c.on_screen);
@@ -134,13 +152,16 @@ fn write_centre(pixel_index: u32, c: CentreTexel) {
 
 // One sample split into the demodulated illumination the filters see and the first-hit emission
 // added back after them (SVGF §4 keeps emission apart so that the filter does not blur lamps):
-// - through a pinhole, the pixel's emission is the centre's (centre_emission: the centre material's
-//   emission over the part of the pixel that sees it), the same for every sample, so lamps are steady
-//   from the first frame; a sample that saw the centre's material leaves its own emission out (the
-//   centre's counts it), one that saw another surface (a silhouette: the edge of a lamp, the sky
-//   behind a wall) puts its whole radiance in the illumination, which the temporal accumulation
-//   averages over frames like any other noise (kept apart, it would flicker at full strength every
-//   frame: the Cornell light's rim made a still view change by 0.14 RMSE a frame);
+// - through a pinhole, on and around emitters the pixel's emission is pixel_emission's (what emits
+//   over the part of the pixel that sees it), the same for every sample, so lamps and their edges are
+//   steady from the first frame: a sample that met a surface leaves its own emission out there (and
+//   where it met the centre's material, whose emission the grid counts);
+// - elsewhere a sample that saw another surface than the centre's (a silhouette: the sky behind a
+//   wall, a lamp too thin for the grid to be traced) puts its whole radiance in the illumination where
+//   the pixel stands still (`still`: its surface has not moved on the screen), which the temporal
+//   accumulation averages over frames like any other noise; where the pixel moves, the emission it
+//   saw stays apart: reprojected, a history holding emitted light is resampled bilinearly into the
+//   neighbours of the same surface and carries the light off the emitter's edge;
 // - where both it and the centre see the environment, or a thin lens spreads the samples, its own
 //   emission stays apart (the sky is not blurred; defocus is the samples' truth).
 struct SampleSplit {
@@ -148,33 +169,53 @@ struct SampleSplit {
   emission: vec3f,
 }
 
-fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, centre_emission: vec3f) -> SampleSplit {
+fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, grid_emission: vec3f, still: bool) -> SampleSplit {
   let apart = SampleSplit(max(radiance - emitted, vec3f(0.0)) / demodulation(p.albedo), emitted);
   if (view.camera.aperture_radius != 0.0 || (p.id == NO_PRIMARY_ID && centre_id == NO_ID)) {
     return apart;
   }
-  if (p.id == centre_id) {
-    return SampleSplit(apart.illumination, centre_emission);
+  if (p.id != NO_PRIMARY_ID && (p.id == centre_id || any(grid_emission > vec3f(0.0)))) {
+    return SampleSplit(apart.illumination, grid_emission);
   }
-  return SampleSplit(radiance / demodulation(p.albedo), centre_emission);
+  if (!still) {
+    return SampleSplit(apart.illumination, grid_emission + emitted);
+  }
+  return SampleSplit(radiance / demodulation(p.albedo), grid_emission);
 }
 
+// Whether the pixel's centre surface stands still on the screen since the previous frame (its motion
+// under a hundredth of a pixel): a still camera and no moving instance there.
+fn pixel_still(pixel_index: u32) -> bool {
+  let motion = unpack_motion(frame_scratch[FRAME_WORDS * pixel_index + FRAME_MOTION]);
+  return !is_off_screen_motion(motion) && all(abs(motion) < vec2f(STILL_MOTION));
+}
+
+// Motion (pixels) below which a pixel counts as still (pixel_still).
+const STILL_MOTION: f32 = 0.01;
+
 // The G-buffer of the surface through each pixel centre, a pass of its own before the paths (albedo
-// and emission come from the samples; the record keeps the centre's emission for them meanwhile).
-// Apart, this ray's traversal and surface evaluation are not compiled into the path kernel a second
-// time: measured on the H200 (E1M1, 1080p), the frame took 10.9 ms with them inside and 7.7 ms
-// without (docs/perf.md).
+// and emission come from the samples; the record keeps pixel_emission for them meanwhile), dispatched
+// twice: the centres (emission_pass 0, over the tile and a pixel around it, so that the second pass
+// finds every neighbour's record of this frame; a record written twice is the same), then the pixel
+// emission (emission_pass 1, over the tile). Apart, this ray's traversal and surface evaluation are
+// not compiled into the path kernel a second time: measured on the H200 (E1M1, 1080p), the frame
+// took 10.9 ms with them inside and 7.7 ms without (docs/perf.md). One entry point for both passes:
+// one pipeline to compile.
 @compute @workgroup_size(8, 8)
 fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let pixel = params.tile_origin + id.xy;
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
-    let texel = centre_texel(pixel);
-    write_centre(pixel_index, texel);
-    frame_records[pixel_index].emission = pack_rgb9e5(texel.emission);
-    // The pixel-centre ray and an emitting centre's sub-pixel rays count as extension rays.
-    count_rays(1u + emission_rays, 0u);
+    if (frame.emission_pass == 0u) {
+      write_centre(pixel_index, centre_texel(pixel));
+      // The pixel-centre ray counts as an extension ray.
+      count_rays(select(0u, 1u, all(pixel >= frame.core_min) && all(pixel < frame.core_max)), 0u);
+    } else {
+      frame_records[pixel_index].emission = pack_rgb9e5(pixel_emission(pixel));
+      // So do the emission grid's rays.
+      count_rays(emission_rays, 0u);
+    }
   }
   end_ray_count(local);
 }
@@ -188,6 +229,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
     let centre_id = surface_records[pixel_index].id;
     let centre = unpack_rgb9e5(frame_records[pixel_index].emission);
+    let still = pixel_still(pixel_index);
     var illumination = vec3f(0.0);
     var albedo = vec3f(0.0);
     var emission = vec3f(0.0);
@@ -204,7 +246,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
       let path = trace_path(camera_sample_ray(image_point, &rng), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
-      let split = split_sample(primary, radiance, emitted, centre_id, centre);
+      let split = split_sample(primary, radiance, emitted, centre_id, centre, still);
       illumination += split.illumination;
       albedo += primary.albedo;
       emission += split.emission;

@@ -204,7 +204,7 @@ fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   let emitted = select(vec3f(0.0), emission_u.xyz, is_finite_vec3(emission_u.xyz));
   let p = PrimaryHit(albedo_id.xyz, emitted, bitcast<u32>(albedo_id.w));
   let centre = unpack_rgb9e5(frame_records[slot].emission);
-  let split = split_sample(p, radiance, emitted, surface_records[slot].id, centre);
+  let split = split_sample(p, radiance, emitted, surface_records[slot].id, centre, pixel_still(slot));
   var illumination = split.illumination;
   var albedo = p.albedo;
   var emission = split.emission;
