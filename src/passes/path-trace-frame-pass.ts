@@ -2,8 +2,9 @@
  * The real-time frame's path tracer (entries frame_gbuffer then path_trace_frame of
  * shaders/passes/path-trace-frame.wgsl, which imports passes/path-trace): the G-buffer of the pixel
  * centres and, once their neighbours' are written, the pixels' emission (frame_gbuffer twice), then
- * `samples` paths per pixel written, not added, as demodulated radiance. Compiled with CAPTURE_PRIMARY = 1, so the progressive kernel
- * (PathTracePass, CAPTURE_PRIMARY = 0) is untouched by the G-buffer writes.
+ * `samples` paths per pixel written, not added, as demodulated radiance. Compiled with
+ * CAPTURE_PRIMARY = 1, so the progressive kernel (PathTracePass, CAPTURE_PRIMARY = 0) is untouched by
+ * the G-buffer writes.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';

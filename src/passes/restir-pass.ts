@@ -7,8 +7,9 @@
  * RESTIR). The reservoir under way lives in two words of the frame scratch between the passes; the
  * frame's final reservoirs go to a buffer free until the frame's filters run (the Denoiser lends the
  * current moments), restir_lend copies them back into those two scratch words for the path tracer
- * (which has no storage binding to spare in a browser), and keepHistory copies them to the history (8 bytes a pixel, the only buffer of
- * ReSTIR's own) once the frame is finished, so a frame given up leaves the history as it was.
+ * (which has no storage binding to spare in a browser), and keepHistory copies them to the history
+ * (8 bytes a pixel, the only buffer of ReSTIR's own) once the frame is finished, so a frame given up
+ * leaves the history as it was.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';

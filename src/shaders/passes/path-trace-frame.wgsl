@@ -83,6 +83,21 @@ fn material_emits(id: u32) -> bool {
   return id != NO_ID && any(materials[id].emission > vec3f(0.0));
 }
 
+// Whether the centre of the pixel or of a neighbour (3×3) is on an emitting material (this frame's
+// records: the centres pass covers the tile and a pixel around it).
+fn near_emitter(pixel: vec2u) -> bool {
+  let lo = max(vec2i(pixel) - 1, vec2i(0));
+  let hi = min(vec2i(pixel) + 1, vec2i(view.image_size) - 1);
+  for (var y = lo.y; y <= hi.y; y++) {
+    for (var x = lo.x; x <= hi.x; x++) {
+      if (material_emits(surface_records[u32(y) * view.image_size.x + u32(x)].id)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 // The first-hit emission of the pixel: the mean over EMISSION_GRID² points of the pixel of the
 // emission each point's own ray meets (0 where it meets nothing that emits toward the camera), so a
 // lamp texture is box-filtered over the pixel's footprint as the converged image averages it, and a
@@ -94,16 +109,7 @@ fn material_emits(id: u32) -> bool {
 // with each sample before the grid; with the ring's emission in the temporally accumulated
 // illumination instead, moving the camera carried the light off the lamp's edge, see split_sample.)
 fn pixel_emission(pixel: vec2u) -> vec3f {
-  var near = false;
-  for (var dy = -1; dy <= 1; dy++) {
-    for (var dx = -1; dx <= 1; dx++) {
-      let q = vec2i(pixel) + vec2i(dx, dy);
-      if (all(q >= vec2i(0)) && all(q < vec2i(view.image_size))) {
-        near = near || material_emits(surface_records[u32(q.y) * view.image_size.x + u32(q.x)].id);
-      }
-    }
-  }
-  if (!near) {
+  if (!near_emitter(pixel)) {
     return vec3f(0.0);
   }
   var sum = vec3f(0.0);
@@ -228,7 +234,8 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
     let centre_id = surface_records[pixel_index].id;
-    let centre = unpack_rgb9e5(frame_records[pixel_index].emission);
+    // pixel_emission, left in the frame record by the G-buffer's emission pass.
+    let grid = unpack_rgb9e5(frame_records[pixel_index].emission);
     let still = pixel_still(pixel_index);
     var illumination = vec3f(0.0);
     var albedo = vec3f(0.0);
@@ -246,7 +253,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
       let path = trace_path(camera_sample_ray(image_point, &rng), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
-      let split = split_sample(primary, radiance, emitted, centre_id, centre, still);
+      let split = split_sample(primary, radiance, emitted, centre_id, grid, still);
       illumination += split.illumination;
       albedo += primary.albedo;
       emission += split.emission;

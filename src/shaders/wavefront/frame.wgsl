@@ -203,8 +203,8 @@ fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   let radiance = select(vec3f(0.0), path_radiance, is_finite_vec3(path_radiance));
   let emitted = select(vec3f(0.0), emission_u.xyz, is_finite_vec3(emission_u.xyz));
   let p = PrimaryHit(albedo_id.xyz, emitted, bitcast<u32>(albedo_id.w));
-  let centre = unpack_rgb9e5(frame_records[slot].emission);
-  let split = split_sample(p, radiance, emitted, surface_records[slot].id, centre, pixel_still(slot));
+  let grid = unpack_rgb9e5(frame_records[slot].emission);
+  let split = split_sample(p, radiance, emitted, surface_records[slot].id, grid, pixel_still(slot));
   var illumination = split.illumination;
   var albedo = p.albedo;
   var emission = split.emission;
