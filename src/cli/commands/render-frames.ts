@@ -35,6 +35,13 @@ export interface FrameModeOptions {
 
 export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.restir || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
 
+/** Samples per pixel when --spp is not given: 64 for a progressive render, 1 a frame in frame mode (the real-time chain's budget). */
+export const DEFAULT_SPP = 64;
+export const DEFAULT_FRAME_SPP = 1;
+
+/** --spp, or its default for the mode: a frame-mode render is the real-time chain, whose frames are 1 spp unless asked otherwise. */
+export const samplesPerPixel = (o: FrameModeOptions & { spp?: number }): number => o.spp ?? (isFrameMode(o) ? DEFAULT_FRAME_SPP : DEFAULT_SPP);
+
 export interface FrameModeResult {
   readonly frames: number;
   readonly seconds: number;

@@ -20,7 +20,7 @@ import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
-import { isFrameMode, renderFrames, type FrameModeOptions } from './render-frames.ts';
+import { DEFAULT_FRAME_SPP, DEFAULT_SPP, isFrameMode, renderFrames, samplesPerPixel, type FrameModeOptions } from './render-frames.ts';
 import { World } from '../../scene/world.ts';
 import { processSpans } from '../process-clock.ts';
 import { Timeline } from '../timeline.ts';
@@ -30,7 +30,7 @@ import { escapeControls } from '../terminal-text.ts';
 interface RenderOptions extends FrameModeOptions, EnvironmentOptions, LensOptions, Readonly<Record<string, unknown>> {
   width: number;
   height: number;
-  spp: number;
+  spp?: number;
   out?: string;
   exr?: string;
   camera?: number[];
@@ -54,7 +54,7 @@ export function registerRender(program: Command, context: CliContext): void {
     'generic',
     'specialised compiles kernels for this scene while rendering starts with the generic ones and switches when they are ready (the same estimate); it pays on long renders on a GPU (docs/perf.md)',
   )
-    .option('-s, --spp <samples>', 'samples per pixel', integerOption('--spp', 1, 1_000_000), 64)
+    .option('-s, --spp <samples>', `samples per pixel (default ${DEFAULT_SPP}; frame mode: each frame's, default ${DEFAULT_FRAME_SPP})`, integerOption('--spp', 1, 1_000_000))
     .option('-o, --out <file.png>', 'write the tone-mapped image as PNG (default: <scene>.png when no --exr is given)', pathOption('--out'))
     .option('--exr <file.exr>', 'write the linear radiance estimate as OpenEXR (float32 RGB)', pathOption('--exr'))
     .option('--json', 'print what was done as JSON')
@@ -124,20 +124,21 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   if (world && !isFrameMode(o)) renderer.applySceneUpdate(world.advanceTo(o.time, renderer.camera!));
   const debug = s.debugView !== 'none';
   // A debug view that replaces the image needs no path tracing.
-  const spp = debug && s.debugLayout === 'replace' ? 0 : o.spp;
+  const samples = samplesPerPixel(o);
+  const spp = debug && s.debugLayout === 'replace' ? 0 : samples;
   timeline?.end('image + camera + settings', setUp);
 
   if (isFrameMode(o)) {
     if (o.kernel === 'specialised') context.note('frame mode renders with the generic kernels (--kernel specialised applies to progressive renders)');
     const camera = renderer.camera!;
-    const result = await renderFrames(renderer, camera, o.spp, { ...o, ...(cameraPath ? { cameraPath } : {}) }, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
+    const result = await renderFrames(renderer, camera, samples, { ...o, ...(cameraPath ? { cameraPath } : {}) }, { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) }, world ? { world, start: o.time, fps: o.fps } : undefined);
     // The integrator that traced the frames (the path recipe's --integrator), and what the wavefront's own buffers hold.
     const integrator = s.recipe === 'path' ? { integrator: renderer.frameIntegrator, ...(renderer.frameIntegrator === 'wavefront' ? { wavefrontBytes: renderer.wavefrontBytes } : {}) } : {};
     // The real-time chain's memory (the path recipe's): bytes per pixel in all and per buffer.
     const memory = s.recipe === 'path' ? { denoiserBytesPerPixel: renderer.denoiserMemory.bytesPerPixel, denoiserBuffers: renderer.denoiserMemory.buffers } : {};
-    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, ...integrator, sppPerFrame: o.spp, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...memory, ...result };
+    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, ...integrator, sppPerFrame: samples, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...memory, ...result };
     const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
-    context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${o.spp} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
+    context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${samples} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
     renderer.destroy();
     return;
   }
