@@ -345,6 +345,41 @@ describe('first-hit emission at an edge', () => {
   });
 });
 
+describe('demodulation at a silhouette', () => {
+  // A grey square (albedo 0.2) in front of nothing, under a uniform sky of radiance 1, one bounce:
+  // the square's radiance is 0.2 and the sky's 1. Its right edge at x = 30.75 covers 3/4 of pixel
+  // column 30 (the centre on the square), which therefore converges to 0.75 · 0.2 + 0.25 · 1 = 0.4. Each sample
+  // divided by its own first-hit albedo made every sample 1 (0.2/0.2, 1/1), so the accumulated history
+  // held 1, and the output was that times the last frame's sample albedo: 0.2 or 1, never 0.4. Divided
+  // by the centre's albedo (one for the whole material), history × albedo is the pixel's mean.
+  it('accumulates a pixel that straddles a flat-albedo surface and the sky to the mean of both', async () => {
+    const edge = 30.75;
+    const at = (x: number) => project(camera(0), [x, 0, OCCLUDER_Z])[0];
+    const edgeX = (edge - at(0)) / (at(1) - at(0));
+    const squareX = at(1) > at(0) ? edgeX - 1 : edgeX + 1;
+    const b = new MeshBuilder('square');
+    const grey = b.material({ kind: 'diffuse', name: 'grey', albedo: [0.2, 0.2, 0.2], emission: [0, 0, 0] });
+    b.quad(grey, [squareX - 1, -1, OCCLUDER_Z], [squareX - 1, 1, OCCLUDER_Z], [squareX + 1, 1, OCCLUDER_Z], [squareX + 1, -1, OCCLUDER_Z]);
+    const meshes = [b.build()];
+    await renderer.setScene({ name: 'square', meshes, instances: placeEachOnce(meshes), materials: b.materials, camera: camera(0), environment: { kind: 'constant', radiance: [1, 1, 1] } });
+    // Sobol: a pixel's samples over the 16 frames are stratified, so they cover the pixel evenly (white
+    // noise would leave the coverage's own sampling error, ±0.1 here).
+    renderer.updateSettings({ maxBounces: 1, temporal: true, denoise: false, clampK: 0, historyCap: 32, denoiseView: 'output', sampler: 'sobol' });
+    renderer.setCamera(camera(0));
+    renderer.resetHistory();
+    let img: LinearImage | undefined;
+    for (let f = 0; f < 16; f++) {
+      renderer.renderFrame(1);
+      if (f >= 14) img = await renderer.readFrame();
+    }
+    const inside = px(img!, 29, 24), edgePixel = px(img!, 30, 24), sky = px(img!, 31, 24);
+    expect(Math.abs(inside - 0.2)).toBeLessThan(0.02);
+    expect(Math.abs(sky - 1)).toBeLessThan(0.02);
+    expect(Math.abs(edgePixel - 0.4)).toBeLessThan(0.04);
+    renderer.updateSettings({ clampK: 1.25, sampler: 'auto' });
+  });
+});
+
 describe('a textured lamp seen by a moving camera', () => {
   it('is much closer to the converged image than the raw frame, and leaves no trail', async () => {
     const r = renderer;

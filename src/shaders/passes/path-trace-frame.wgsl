@@ -69,6 +69,9 @@ struct CentreTexel {
   on_screen: bool,
   // Linear depth seen from the previous camera (MISS_DEPTH for a miss).
   previous_depth: f32,
+  // The albedo there (1 for a miss; a texture read at the pixel's footprint): the pixel's
+  // demodulation factor where it is one for the material (pixel_demodulation).
+  albedo: vec3f,
 }
 
 // Sub-pixel points per axis over which pixel_emission averages what emits in the pixel.
@@ -139,14 +142,18 @@ fn centre_texel(pixel: vec2u) -> CentreTexel {
   let hit = trace_closest(ray);
   if (hit.triangle == NO_TRIANGLE) {
     let previous = project_offset(frame.previous_camera, view.image_size, ray.direction);
-    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH);
+    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH, vec3f(1.0));
   }
   let surface = surface_at(hit, ray);
+  if (SCENE_HAS_GENERAL_MATERIALS) {
+    texture_lod = texture_lod_at(surface, hit.triangle, path_settings().pixel_spread * hit.t, ray.direction);
+  }
+  let albedo = material_albedo(materials[surface.material], surface.uv).rgb;
   let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
   // Where the point was: moved with its instance, seen by the previous camera.
   let previous = project_point(frame.previous_camera, view.image_size, previous_world_point(hit.instance, surface.position));
   let depth = dot(surface.position - view.camera.position, view.camera.forward);
-  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z);
+  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z, albedo);
 }
 
 // Writes the centre's records: the surface and the motion words.
@@ -170,13 +177,14 @@ fn write_centre(pixel_index: u32, c: CentreTexel) {
 //   neighbours of the same surface and carries the light off the emitter's edge;
 // - where both it and the centre see the environment, or a thin lens spreads the samples, its own
 //   emission stays apart (the sky is not blurred; defocus is the samples' truth).
+// `factor` is the albedo the sample is divided by (pixel_demodulation).
 struct SampleSplit {
   illumination: vec3f,
   emission: vec3f,
 }
 
-fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, grid_emission: vec3f, still: bool) -> SampleSplit {
-  let apart = SampleSplit(max(radiance - emitted, vec3f(0.0)) / demodulation(p.albedo), emitted);
+fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, grid_emission: vec3f, still: bool, factor: vec3f) -> SampleSplit {
+  let apart = SampleSplit(max(radiance - emitted, vec3f(0.0)) / demodulation(factor), emitted);
   if (view.camera.aperture_radius != 0.0 || (p.id == NO_PRIMARY_ID && centre_id == NO_ID)) {
     return apart;
   }
@@ -186,7 +194,7 @@ fn split_sample(p: PrimaryHit, radiance: vec3f, emitted: vec3f, centre_id: u32, 
   if (!still) {
     return SampleSplit(apart.illumination, grid_emission + emitted);
   }
-  return SampleSplit(radiance / demodulation(p.albedo), grid_emission);
+  return SampleSplit(radiance / demodulation(factor), grid_emission);
 }
 
 // Whether the pixel's centre surface stands still on the screen since the previous frame (its motion
@@ -198,6 +206,38 @@ fn pixel_still(pixel_index: u32) -> bool {
 
 // Motion (pixels) below which a pixel counts as still (pixel_still).
 const STILL_MOTION: f32 = 0.01;
+
+// What a pixel's samples are divided by and its filtered illumination multiplied by again
+// (demodulation, SVGF §4). The output is remodulation × mean(radiance / demodulation), the mean
+// radiance exactly when both factors are one number for the pixel; only then is the history an honest
+// average over frames. Each sample's own first-hit albedo (fixed false; the remodulation the frame's
+// mean of them) keeps texture detail finer than the filters out of the illumination, but biases the
+// accumulated image wherever a pixel's samples see surfaces of different albedo: a silhouette (the
+// Cornell box's wall edges against the void read 0.22 for 0.02, whatever the sample count). So
+// where the centre's albedo is one number for its whole material (no texture) or the centre sees
+// nothing (albedo 1), every sample is divided by it (frame_gbuffer left it in the frame record) and
+// the output multiplied by it. A textured centre keeps the samples' own albedo: one texel does not
+// stand for the pixel, and the spatial filter, which mixes the pixel's illumination with its
+// neighbours', then brightened a bright texel's pixel among dark ones ×20 (E1M1, docs/denoise.md).
+struct Demodulation {
+  fixed: bool,
+  albedo: vec3f,
+}
+
+fn pixel_demodulation(pixel_index: u32) -> Demodulation {
+  let id = surface_records[pixel_index].id;
+  let fixed = id == NO_ID || materials[id].base_color_texture == NO_TEXTURE;
+  return Demodulation(fixed, select(vec3f(1.0), unpack_rgb9e5(frame_records[pixel_index].albedo), fixed));
+}
+
+// The factor for one sample, and the frame record's remodulation albedo from the samples' mean.
+fn sample_factor(d: Demodulation, p: PrimaryHit) -> vec3f {
+  return select(p.albedo, d.albedo, d.fixed);
+}
+
+fn remodulation_albedo(d: Demodulation, samples_mean: vec3f) -> vec3f {
+  return select(samples_mean, d.albedo, d.fixed);
+}
 
 // The G-buffer of the surface through each pixel centre, a pass of its own before the paths (albedo
 // and emission come from the samples; the record keeps pixel_emission for them meanwhile), dispatched
@@ -214,9 +254,15 @@ fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoca
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
     if (frame.emission_pass == 0u) {
-      write_centre(pixel_index, centre_texel(pixel));
+      let c = centre_texel(pixel);
+      write_centre(pixel_index, c);
+      let core = all(pixel >= frame.core_min) && all(pixel < frame.core_max);
+      if (core) {
+        // The tile's own pixels only: a ring pixel of the previous band already holds its frame record.
+        frame_records[pixel_index].albedo = pack_rgb9e5(c.albedo);
+      }
       // The pixel-centre ray counts as an extension ray.
-      count_rays(select(0u, 1u, all(pixel >= frame.core_min) && all(pixel < frame.core_max)), 0u);
+      count_rays(select(0u, 1u, core), 0u);
     } else {
       frame_records[pixel_index].emission = pack_rgb9e5(pixel_emission(pixel));
       // So do the emission grid's rays.
@@ -237,6 +283,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     // pixel_emission, left in the frame record by the G-buffer's emission pass.
     let grid = unpack_rgb9e5(frame_records[pixel_index].emission);
     let still = pixel_still(pixel_index);
+    let demodulate = pixel_demodulation(pixel_index);
     var illumination = vec3f(0.0);
     var albedo = vec3f(0.0);
     var emission = vec3f(0.0);
@@ -253,7 +300,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
       let path = trace_path(camera_sample_ray(image_point, &rng), &rng, path_settings());
       let radiance = select(vec3f(0.0), path.radiance, is_finite_vec3(path.radiance));
       let emitted = select(vec3f(0.0), primary.emission, is_finite_vec3(primary.emission));
-      let split = split_sample(primary, radiance, emitted, centre_id, grid, still);
+      let split = split_sample(primary, radiance, emitted, centre_id, grid, still, sample_factor(demodulate, primary));
       illumination += split.illumination;
       albedo += primary.albedo;
       emission += split.emission;
@@ -262,7 +309,7 @@ fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_inv
     }
     let inv = 1.0 / f32(params.samples);
     frame_scratch[FRAME_WORDS * pixel_index + FRAME_RADIANCE] = pack_rgb9e5(illumination * inv);
-    frame_records[pixel_index] = FrameTexel(pack_rgb9e5(albedo * inv), pack_rgb9e5(emission * inv));
+    frame_records[pixel_index] = FrameTexel(pack_rgb9e5(remodulation_albedo(demodulate, albedo * inv)), pack_rgb9e5(emission * inv));
     count_rays(extension_rays, shadow_rays);
   }
   // The same ray counters as the progressive kernel, so the viewer's rays per second stay honest.

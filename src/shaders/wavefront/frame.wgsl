@@ -204,7 +204,8 @@ fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   let emitted = select(vec3f(0.0), emission_u.xyz, is_finite_vec3(emission_u.xyz));
   let p = PrimaryHit(albedo_id.xyz, emitted, bitcast<u32>(albedo_id.w));
   let grid = unpack_rgb9e5(frame_records[slot].emission);
-  let split = split_sample(p, radiance, emitted, surface_records[slot].id, grid, pixel_still(slot));
+  let demodulate = pixel_demodulation(slot);
+  let split = split_sample(p, radiance, emitted, surface_records[slot].id, grid, pixel_still(slot), sample_factor(demodulate, p));
   var illumination = split.illumination;
   var albedo = p.albedo;
   var emission = split.emission;
@@ -221,5 +222,5 @@ fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   }
   let inv = 1.0 / f32(params.samples);
   frame_scratch[FRAME_WORDS * slot + FRAME_RADIANCE] = pack_rgb9e5(illumination * inv);
-  frame_records[slot] = FrameTexel(pack_rgb9e5(albedo * inv), pack_rgb9e5(emission * inv));
+  frame_records[slot] = FrameTexel(pack_rgb9e5(remodulation_albedo(demodulate, albedo * inv)), pack_rgb9e5(emission * inv));
 }
