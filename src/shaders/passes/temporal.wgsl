@@ -171,7 +171,8 @@ fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
       if (overshoot > CHANGE_OVERSHOOT) {
         history_length = min(history_length, CHANGED_HISTORY);
       }
-      h.illumination = ycocg_to_rgb(clamped);
+      // The box is clamped per YCoCg axis, so its corners may lie outside the RGB cube: no negative light.
+      h.illumination = max(ycocg_to_rgb(clamped), vec3f(0.0));
     }
     let alpha = 1.0 / history_length;
     out = History(mix(h.illumination, current, alpha), history_length, mix(h.moments, frame_moments, alpha));
