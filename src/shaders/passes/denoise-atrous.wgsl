@@ -51,6 +51,8 @@ struct DenoiseAtrousParams {
 @group(2) @binding(4) var<storage, read_write> b: array<vec2u>;
 
 const LOG2_E: f32 = 1.4426950408889634;
+// 1/(2·ln 2): pow(cos θ, σ) ≈ exp(−σ·θ²/2) = exp2(−σ·θ²/(2·ln 2)).
+const NORMAL_EXPONENT: f32 = 0.7213475204444817;
 
 // The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
 fn b3(d: i32) -> f32 {
@@ -131,12 +133,17 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   let p = vec2i(id.xy);
   let i = texel_index(p);
   let centre = source(i);
-  let g = unpack_surface(surface_records[i]);
+  let g = surface_records[i];
+  let g_normal = unpack2x16snorm(g.normal);
   let miss = is_miss_depth(g.linear_depth);
   let l_p = luminance(centre.rgb);
   // The edge-stopping weights are folded into one exp2 per tap (their exponents add): exp(−Δz/s_z) ·
-  // dot(n, n_q)^σ_n · exp(−Δl/s_l) = exp2(σ_n·log2(dot) − (Δz/s_z + Δl/s_l)·log2(e)): two
-  // transcendental calls a tap instead of four (pow is a log2 and an exp2).
+  // w_n · exp(−Δl/s_l). The normal term, dot(n, n_q)^σ_n ≈ exp(−σ_n·θ²/2) for the angle θ between
+  // the normals, is taken in the octahedral map the normals are stored in (denoise/gbuffer), where a
+  // small angle θ is a distance of θ to √2·θ: w_n = exp2(−σ_n/(2·ln 2)·|e − e_q|²). No normal is
+  // decoded, and a tap needs one transcendental call instead of four (decode's normalise, pow's log2
+  // and exp2). Across the map's seam (normals near −z) the distance is large and the weight 0: the
+  // filter stops there as at an edge (docs/denoise.md, "GPU time").
   let inv_luminance_scale = 1.0 / (params.sigma_luminance * sqrt(max(blurred_variance(p), 0.0)) + 1e-10);
   let slope = vec2f(depth_slope(p, vec2i(1, 0), g.linear_depth), depth_slope(p, vec2i(0, 1), g.linear_depth));
 
@@ -164,8 +171,8 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
           let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
           let depth_scale = params.sigma_depth * dot(slope, offset) + 1e-3 * g.linear_depth;
           exponent -= abs(g.linear_depth - gq.linear_depth) / depth_scale * LOG2_E;
-          // A normal at 90° or more: log2(1e-30) · 128 underflows exp2 to 0, as pow(0, 128) is 0.
-          exponent += params.sigma_normal * log2(max(dot(g.normal, unpack_normal(gq.normal)), 1e-30));
+          let d = g_normal - unpack2x16snorm(gq.normal);
+          exponent -= params.sigma_normal * NORMAL_EXPONENT * dot(d, d);
         }
         w *= exp2(exponent);
       }
