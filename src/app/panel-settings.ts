@@ -54,7 +54,7 @@ export const TOOLTIPS: Readonly<Record<string, string>> = {
   maxBounces: 'Longest path in bounces: 1 is direct light only; more lets light reach corners by bouncing.',
   toneMapper: 'The curve that maps the scene’s light to screen brightness (ACES keeps highlights from clipping).',
   spectral: 'Trace wavelengths instead of RGB: glass splits white light into colours. Slower.',
-  sampler: 'Where the random numbers come from: Sobol spreads samples evenly (noise the denoiser removes well); random is plain white noise.',
+  sampler: 'Where the random numbers come from: Sobol spreads samples evenly; random is white noise; auto uses Sobol to converge and random in the real-time denoiser.',
   'torch.enabled': 'The light carried at the camera, as in Doom.',
   'torch.color': 'Colour of the torch light (linear RGB).',
   'torch.intensity': 'Strength of the torch in watts per steradian; 0 is off.',

@@ -27,7 +27,7 @@ import { RestirPass, type RestirTarget } from '../passes/restir-pass.ts';
 import { readBuffer } from '../gpu/readback.ts';
 import type { Tile, TracingKernels } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
-import type { Integrator, RenderSettings } from './settings.ts';
+import { resolveSampler, type Integrator, type RenderSettings } from './settings.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 
 /** Bytes of the frame scratch per pixel: four words (FRAME_* of shaders/denoise/gbuffer.wgsl), at the end the output vec4f. */
@@ -400,7 +400,7 @@ export class Denoiser {
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
     const image = { x: 0, y: 0, width: b.width, height: b.height };
-    const dispatch = { tile: o.tile ?? image, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
+    const dispatch = { tile: o.tile ?? image, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: resolveSampler(s.sampler, 'real-time'), spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
     const restir = o.restir ? this.restirTarget(b, r) : undefined;
     // The path kernel always binds the reservoirs' buffer (and reads it only with ReSTIR).
     const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters, restir: restir !== undefined };

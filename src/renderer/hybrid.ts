@@ -23,7 +23,7 @@ import { pathTraceParams, TracingKernels } from '../passes/path-trace-pass.ts';
 import { UniformParams, type UniformValues } from '../passes/uniform-params.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { PreparedScene } from './prepare.ts';
-import type { RenderSettings } from './settings.ts';
+import { resolveSampler, type RenderSettings } from './settings.ts';
 
 const MODULE = 'passes/hybrid';
 const VEC4_BYTES = 16;
@@ -181,7 +181,7 @@ export class Hybrid {
     this.raster.encode(encoder, { scene: r.scene, view: r.view, visibility: b.visibilityView, depth: b.depthView, draws: rasterDraws(r.prepared), jitter, near: Math.max(r.sceneSize * NEAR_FRACTION, 1e-6), ...(r.timer ? { timer: r.timer } : {}) });
 
     const tile = { x: 0, y: 0, width: b.width, height: b.height };
-    this.params.write(pathTraceParams({ tile, sampleIndex: this.frameIndex, samples: 1, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, ...(r.torch ? { torch: r.torch } : {}) }));
+    this.params.write(pathTraceParams({ tile, sampleIndex: this.frameIndex, samples: 1, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: resolveSampler(s.sampler, 'real-time'), ...(r.torch ? { torch: r.torch } : {}) }));
     this.hybridParams.write({
       previous_camera: cameraUniform(previousCamera, aspect),
       jitter,

@@ -49,7 +49,7 @@ import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
 import { primaryRay, ViewUniform } from '../gpu/view.ts';
 import { describeSpecialisation, specialiseScene, type SpecialiseOptions } from '../gpu/specialisation.ts';
-import { LIGHT_SAMPLING } from '../passes/variants.ts';
+import { LIGHT_SAMPLING, resolveSampler } from '../passes/variants.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
@@ -737,7 +737,7 @@ export class Renderer {
     const { resources, targets } = this.ready();
     const s = this.settingsValue;
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
-    const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: s.sampler, torch, spectral: s.spectral };
+    const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: resolveSampler(s.sampler, 'progressive'), torch, spectral: s.spectral };
     this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
   }
 

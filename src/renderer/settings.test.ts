@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { SHADER_MODULES } from '../shaders/index.ts';
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, LIGHT_SAMPLING, SAMPLERS, TONE_MAPPERS, validateSettings, type RenderSettings } from './settings.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DEFAULT_SETTINGS, LIGHT_SAMPLING, SAMPLERS, SAMPLER_SETTINGS, TONE_MAPPERS, resolveSampler, validateSettings, type RenderSettings } from './settings.ts';
 
 /** The u32 constants named PREFIX_* in a WGSL module, by name. */
 function wgslConstants(module: string, prefix: string): Map<string, number> {
@@ -23,6 +23,16 @@ describe('closed lists mirror their WGSL constants by position', () => {
     const constants = wgslConstants(module, prefix);
     expect(constants.size).toBe(names.length);
     names.forEach((name, i) => expect(constants.get(wgslName(name)), `${prefix}_${wgslName(name)}`).toBe(i));
+  });
+});
+
+describe('the sampler setting', () => {
+  it("defaults to 'auto': Sobol for a progressive render, PCG for the real-time chain; a named sampler is used by both", () => {
+    expect(DEFAULT_SETTINGS.sampler).toBe('auto');
+    expect(resolveSampler('auto', 'progressive')).toBe('sobol');
+    expect(resolveSampler('auto', 'real-time')).toBe('random');
+    for (const s of SAMPLERS) for (const chain of ['progressive', 'real-time'] as const) expect(resolveSampler(s, chain)).toBe(s);
+    expect([...SAMPLER_SETTINGS]).toEqual(['auto', ...SAMPLERS]);
   });
 });
 

@@ -12,8 +12,8 @@ import {
 } from './settings-schema.ts';
 
 // The closed lists live beside the passes that turn them into WGSL constants (passes sit below the renderer).
-import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, SAMPLERS, TONE_MAPPERS, WIREFRAME_LEVELS } from '../passes/variants.ts';
-export { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, SAMPLERS, TONE_MAPPERS } from '../passes/variants.ts';
+import { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, SAMPLER_SETTINGS, TONE_MAPPERS, WIREFRAME_LEVELS } from '../passes/variants.ts';
+export { DEBUG_LAYOUTS, DEBUG_VIEWS, DENOISE_VIEWS, LIGHT_SAMPLING, SAMPLERS, SAMPLER_SETTINGS, TONE_MAPPERS, resolveSampler } from '../passes/variants.ts';
 export type { DebugLayout, DebugView, DenoiseView, LightSampling, Sampler, ToneMapper } from '../passes/variants.ts';
 
 /** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
@@ -85,9 +85,9 @@ export const RENDER_SETTINGS = {
     name: 'spectral', description: 'spectral rendering: four wavelengths per path (hero wavelength), RGB lifted to spectra, glass disperses (docs/spectral.md)', words: ['0', '1'], default: false,
     cli: { flag: '--spectral', switch: true }, link: 'spectral', restarts: true, panel: { folder: 'render', label: 'spectral' },
   }),
-  sampler: choice(SAMPLERS, {
-    name: 'sampler', description: "where the path tracers' random numbers come from: 'sobol', an Owen-scrambled Sobol sequence per pixel (its samples stratified, also across real-time frames) with neighbouring pixels given stratified points, so that a frame's error is blue noise the denoiser removes well; 'random', independent PCG numbers (white noise)", default: 'sobol',
-    cli: { flag: '--sampler', argument: '<sobol|random>' }, link: 'sampler', restarts: true, panel: { folder: 'render', label: 'sampler' },
+  sampler: choice(SAMPLER_SETTINGS, {
+    name: 'sampler', description: "where the path tracers' random numbers come from: 'sobol', an Owen-scrambled Sobol sequence per pixel (its samples stratified, also across real-time frames) with neighbouring pixels given stratified points, so that a frame's error is blue noise; 'random', independent PCG numbers (white noise); 'auto', Sobol for progressive renders and PCG for the real-time chain (docs/denoise.md)", default: 'auto',
+    cli: { flag: '--sampler', argument: '<auto|sobol|random>' }, link: 'sampler', restarts: true, panel: { folder: 'render', label: 'sampler' },
   }),
   seed: integer({
     name: 'seed', description: 'seed of every random stream (same seed, scene and settings: same image)', min: 0, max: 0xffffffff, default: 1,
