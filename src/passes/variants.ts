@@ -27,7 +27,7 @@ export type Sampler = (typeof SAMPLERS)[number];
  * where the Sobol points' structure shared by neighbouring pixels within a frame (the blue noise) moves
  * the 3×3 box that clamps the temporal history, frame by frame: measured on the H200 (Cornell box
  * 960×540, 4 spp, still) relMSE 0.00044 with Sobol against 0.00022 with PCG, whose path tracing is also
- * 7–14 % cheaper (docs/denoise.md, "The sampler").
+ * 6–13 % cheaper (docs/denoise.md, "The sampler").
  */
 export const SAMPLER_SETTINGS = ['auto', ...SAMPLERS] as const;
 export type SamplerSetting = (typeof SAMPLER_SETTINGS)[number];

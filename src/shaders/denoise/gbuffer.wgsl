@@ -40,7 +40,7 @@ struct SurfaceTexel {
 struct FrameTexel {
   // The remodulation albedo, rgb9e5: the centre's albedo where the pixel's samples are divided by it
   // (a material without texture, or the sky: path-trace-frame's pixel_demodulation), else the mean
-  // first-hit albedo of the frame's samples (1 for a miss). frame_gbuffer leaves the centre's here.
+  // first-hit albedo of the frame's samples (1 for a miss).
   albedo: u32,
   // Mean first-hit emission of the samples, rgb9e5: added back after filtering, never filtered.
   // frame_gbuffer leaves here the emission at the pixel-centre hit, filtered over the pixel.

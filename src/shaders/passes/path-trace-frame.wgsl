@@ -69,9 +69,6 @@ struct CentreTexel {
   on_screen: bool,
   // Linear depth seen from the previous camera (MISS_DEPTH for a miss).
   previous_depth: f32,
-  // The albedo there (1 for a miss; a texture read at the pixel's footprint): the pixel's
-  // demodulation factor where it is one for the material (pixel_demodulation).
-  albedo: vec3f,
 }
 
 // Sub-pixel points per axis over which pixel_emission averages what emits in the pixel.
@@ -142,18 +139,14 @@ fn centre_texel(pixel: vec2u) -> CentreTexel {
   let hit = trace_closest(ray);
   if (hit.triangle == NO_TRIANGLE) {
     let previous = project_offset(frame.previous_camera, view.image_size, ray.direction);
-    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH, vec3f(1.0));
+    return CentreTexel(pack_surface(-ray.direction, MISS_DEPTH, NO_ID), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, MISS_DEPTH);
   }
   let surface = surface_at(hit, ray);
-  if (SCENE_HAS_GENERAL_MATERIALS) {
-    texture_lod = texture_lod_at(surface, hit.triangle, path_settings().pixel_spread * hit.t, ray.direction);
-  }
-  let albedo = material_albedo(materials[surface.material], surface.uv).rgb;
   let normal = select(surface.shading_normal, -surface.shading_normal, dot(surface.shading_normal, ray.direction) > 0.0);
   // Where the point was: moved with its instance, seen by the previous camera.
   let previous = project_point(frame.previous_camera, view.image_size, previous_world_point(hit.instance, surface.position));
   let depth = dot(surface.position - view.camera.position, view.camera.forward);
-  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z, albedo);
+  return CentreTexel(pack_surface(normal, depth, surface.material), previous.xy - (vec2f(pixel) + 0.5), previous.z > 0.0, previous.z);
 }
 
 // Writes the centre's records: the surface and the motion words.
@@ -215,8 +208,9 @@ const STILL_MOTION: f32 = 0.01;
 // accumulated image wherever a pixel's samples see surfaces of different albedo: a silhouette (the
 // Cornell box's wall edges against the void read 0.22 for 0.02, whatever the sample count). So
 // where the centre's albedo is one number for its whole material (no texture) or the centre sees
-// nothing (albedo 1), every sample is divided by it (frame_gbuffer left it in the frame record) and
-// the output multiplied by it. A textured centre keeps the samples' own albedo: one texel does not
+// nothing (albedo 1), every sample is divided by it and the output multiplied by it: the material's
+// base colour, read from the material table (no texture, so nothing to evaluate at the hit), rounded
+// as the frame record stores it so that the two factors are the same number. A textured centre keeps the samples' own albedo: one texel does not
 // stand for the pixel, and the spatial filter, which mixes the pixel's illumination with its
 // neighbours', then brightened a bright texel's pixel among dark ones ×20 (E1M1, docs/denoise.md).
 struct Demodulation {
@@ -226,8 +220,11 @@ struct Demodulation {
 
 fn pixel_demodulation(pixel_index: u32) -> Demodulation {
   let id = surface_records[pixel_index].id;
-  let fixed = id == NO_ID || materials[id].base_color_texture == NO_TEXTURE;
-  return Demodulation(fixed, select(vec3f(1.0), unpack_rgb9e5(frame_records[pixel_index].albedo), fixed));
+  if (id == NO_ID) {
+    return Demodulation(true, vec3f(1.0));
+  }
+  let material = materials[id];
+  return Demodulation(material.base_color_texture == NO_TEXTURE, unpack_rgb9e5(pack_rgb9e5(material.base_color)));
 }
 
 // The factor for one sample, and the frame record's remodulation albedo from the samples' mean.
@@ -254,15 +251,9 @@ fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoca
   if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
     let pixel_index = pixel.y * view.image_size.x + pixel.x;
     if (frame.emission_pass == 0u) {
-      let c = centre_texel(pixel);
-      write_centre(pixel_index, c);
-      let core = all(pixel >= frame.core_min) && all(pixel < frame.core_max);
-      if (core) {
-        // The tile's own pixels only: a ring pixel of the previous band already holds its frame record.
-        frame_records[pixel_index].albedo = pack_rgb9e5(c.albedo);
-      }
+      write_centre(pixel_index, centre_texel(pixel));
       // The pixel-centre ray counts as an extension ray.
-      count_rays(select(0u, 1u, core), 0u);
+      count_rays(select(0u, 1u, all(pixel >= frame.core_min) && all(pixel < frame.core_max)), 0u);
     } else {
       frame_records[pixel_index].emission = pack_rgb9e5(pixel_emission(pixel));
       // So do the emission grid's rays.
