@@ -28,6 +28,9 @@ export interface DenoisePasses {
   readonly output: ImagePass<UniformValues>;
 }
 
+/** Whether a timed pass (its GpuTimer label) belongs to the real-time denoising chain: the temporal pass, an à-trous iteration or the debug views' output. */
+export const isDenoiseChainPass = (label: string): boolean => label === 'temporal' || label === 'denoise output' || /^a-trous \d+$/.test(label);
+
 export async function createDenoisePasses(device: GPUDevice): Promise<DenoisePasses> {
   const [temporal, atrous, output] = await Promise.all([
     ImagePass.create(device, 'passes/temporal', 'temporal_accumulate', 'temporal'),
@@ -101,15 +104,20 @@ export function atrousSchedule(feedback: boolean): readonly AtrousIteration[] {
       ];
 }
 
-/** Parameters of the real-time chain's iteration i (shaders/passes/denoise-atrous.wgsl). */
+/**
+ * Parameters of the real-time chain's iteration i (shaders/passes/denoise-atrous.wgsl), whose bind
+ * group has the buffer of `it.source` as source_words and the other as other_words (renderer/denoiser.ts).
+ */
 export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): UniformValues => {
   const result = it.result === 'output' ? SCRATCH_LOW : it.result;
+  // The copy goes to other_words, which must then be the colour history.
+  if (it.copyHistory && !(it.source.array === 'a' && it.b === 'history')) throw new Error('atrous: the history copy needs the source in the frame scratch');
   return {
     ...atrousParams(iteration),
-    source_array: it.source.array === 'a' ? 0 : 1,
     source_stride: it.source.stride,
     source_offset: it.source.offset,
-    result_array: result.array === 'a' ? 0 : 1,
+    // 0: the source's buffer, 1: the other.
+    result_array: result.array === it.source.array ? 0 : 1,
     result_stride: result.stride,
     result_offset: result.offset,
     // ATROUS_PLAIN, ATROUS_COPY_HISTORY, ATROUS_OUTPUT.

@@ -94,7 +94,8 @@ interface TraceOptions {
 
 interface ParityGroups {
   readonly temporal: Record<number, GPUBindGroup>;
-  readonly atrous: readonly Record<number, GPUBindGroup>[];
+  /** Each schedule's iterations (atrousSchedule: index 0 without feedback, 1 with). */
+  readonly atrous: readonly (readonly Record<number, GPUBindGroup>[])[];
   readonly output: Record<number, GPUBindGroup>;
 }
 
@@ -324,7 +325,7 @@ export class Denoiser {
     if (s.denoise && s.denoiseView === 'output') {
       atrousSchedule(feedback).forEach((it, i) => {
         this.passes.atrous.write(denoiseAtrousParams(i, it), i);
-        this.passes.atrous.encode(encoder, groups.atrous[i]!, b.width, b.height, r.timer, `a-trous ${i + 1}`);
+        this.passes.atrous.encode(encoder, groups.atrous[feedback ? 1 : 0]![i]!, b.width, b.height, r.timer, `a-trous ${i + 1}`);
       });
     } else {
       const fullHistory = unlimited ? 256 : (s.historyCap as number);
@@ -454,13 +455,17 @@ export class Denoiser {
     if (reservoirBytes > momentBytes) throw new Error(`a ReSTIR reservoir (${reservoirBytes} B) does not fit in a moments texel (${momentBytes} B)`);
     const reservoirs = restir ? this.device.createBuffer({ label: 'ReSTIR reservoirs', size: pixels * reservoirBytes, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST }) : undefined;
     const { temporal, atrous, output } = this.passes;
-    const schedule = atrousSchedule(true);
     const groups = [0, 1].map((p): ParityGroups => {
       const surface = surfaces[p]!, previousMoments = moments[1 - p]!;
       return {
         temporal: temporal.bindGroups(view, { frame_scratch: scratch, surface_records: surface, previous_surface_records: surfaces[1 - p]!, history, previous_moments: previousMoments, moments: moments[p]! }),
-        // Both schedules bind the same buffers to each iteration (atrousSchedule): only their parameters differ.
-        atrous: schedule.map((it, i) => atrous.bindGroups(view, { surface_records: surface, frame_records: frameRecords, a: scratch, b: it.b === 'history' ? history : previousMoments }, i)),
+        atrous: [false, true].map((feedback) =>
+          atrousSchedule(feedback).map((it, i) => {
+            const inScratch = it.source.array === 'a';
+            const other = it.b === 'history' ? history : previousMoments;
+            return atrous.bindGroups(view, { surface_records: surface, frame_records: frameRecords, source_words: inScratch ? scratch : other, other_words: inScratch ? other : scratch }, i);
+          }),
+        ),
         output: output.bindGroups(view, { surface_records: surface, frame_records: frameRecords, moments: moments[p]!, frame_scratch: scratch, history }),
       };
     });

@@ -6,11 +6,11 @@
 //
 // The packed twin of passes/atrous (which the hybrid recipe keeps for its vec4f buffers): the guide is
 // the pixel-centre surface record, and source and result are illumination pairs (two words: f16 rgb,
-// f16 σ, denoise/gbuffer) that live in one of two bound word arrays, `a` and `b`, at a stride and
-// offset the host chooses per iteration. So the iterations ping-pong inside the frame scratch (words
-// 0–1 and 2–3 of each pixel), the colour history and the moments the temporal pass has finished with
-// (renderer/denoiser.ts has the schedule), and the last iteration remodulates and writes the frame's
-// linear output (vec4f) over the frame scratch. Expects the view (group 1) and denoise/gbuffer.
+// f16 σ, denoise/gbuffer) that live in one of two bound word arrays at a stride and offset the host
+// chooses per iteration. So the iterations ping-pong inside the frame scratch (words 0–1 and 2–3 of
+// each pixel), the colour history and the moments the temporal pass has finished with (renderer/
+// denoiser.ts has the schedule), and the last iteration remodulates and writes the frame's linear
+// output (vec4f) over the frame scratch. Expects the view (group 1) and denoise/gbuffer.
 
 #import lib/color
 #import view/bindings
@@ -18,9 +18,11 @@
 
 // What an iteration writes besides its filtered pair.
 const ATROUS_PLAIN: u32 = 0u;
-// Also copies the source's own pair to `b` (stride 2): the unfiltered history when feedback is off.
+// Also copies the source's own pair to other_words (stride 2; the source is in the frame scratch, the
+// colour history bound as other_words): the unfiltered history when feedback is off.
 const ATROUS_COPY_HISTORY: u32 = 1u;
-// Instead of a pair: remodulates (albedo) and adds the emission, writing the output vec4f into `a`.
+// Instead of a pair: remodulates (albedo) and adds the emission, writing the output vec4f into the
+// result array (the frame scratch), 16 bytes a pixel.
 const ATROUS_OUTPUT: u32 = 2u;
 
 struct DenoiseAtrousParams {
@@ -30,11 +32,10 @@ struct DenoiseAtrousParams {
   sigma_luminance: f32,
   sigma_normal: f32,
   sigma_depth: f32,
-  // Where the source pair of pixel i is: array (0: a, 1: b), words stride · i + offset.
-  source_array: u32,
+  // Where the source pair of pixel i is in `source_words`: words stride · i + offset.
   source_stride: u32,
   source_offset: u32,
-  // Where the result pair goes (ignored by ATROUS_OUTPUT).
+  // Where the result pair goes: the array (0: source_words, 1: other_words), words stride · i + offset.
   result_array: u32,
   result_stride: u32,
   result_offset: u32,
@@ -45,10 +46,13 @@ struct DenoiseAtrousParams {
 @group(2) @binding(0) var<uniform> params: DenoiseAtrousParams;
 @group(2) @binding(1) var<storage, read> surface_records: array<SurfaceTexel>;
 @group(2) @binding(2) var<storage, read> frame_records: array<FrameTexel>;
-// Both read_write: a pass may read one pixel's words of an array while writing others' (or its own).
-// Bound as word pairs (every stride and offset is even), so that a tap's pair is one 8-byte load.
-@group(2) @binding(3) var<storage, read_write> a: array<vec2u>;
-@group(2) @binding(4) var<storage, read_write> b: array<vec2u>;
+// The buffer that holds the source pairs, and the other of the two (the frame scratch, and the colour
+// history or the previous moments: the host binds each iteration's source buffer as source_words, so
+// that no tap chooses between arrays). Both read_write: a pass may read one pixel's words of an array
+// while writing others' (WebGPU forbids two bindings of one buffer when either is writable). Bound as
+// word pairs (every stride and offset is even), so that a tap's pair is one 8-byte load.
+@group(2) @binding(3) var<storage, read_write> source_words: array<vec2u>;
+@group(2) @binding(4) var<storage, read_write> other_words: array<vec2u>;
 
 const LOG2_E: f32 = 1.4426950408889634;
 // 1/(2·ln 2): pow(cos θ, σ) ≈ exp(−σ·θ²/2) = exp2(−σ·θ²/(2·ln 2)).
@@ -69,23 +73,15 @@ fn inside(q: vec2i) -> bool {
 
 // rgb: illumination, a: variance of the source at pixel i.
 fn source(i: u32) -> vec4f {
-  let k = (params.source_stride * i + params.source_offset) >> 1u;
-  var p: vec2u;
-  if (params.source_array == 0u) {
-    p = a[k];
-  } else {
-    p = b[k];
-  }
-  return unpack_illumination(p);
+  return unpack_illumination(source_words[(params.source_stride * i + params.source_offset) >> 1u]);
 }
 
-fn store_result(i: u32, value: vec4f) {
-  let k = (params.result_stride * i + params.result_offset) >> 1u;
-  let p = pack_illumination(value.rgb, value.a);
+// Writes pair k of the array params.result_array names.
+fn store_pair(k: u32, p: vec2u) {
   if (params.result_array == 0u) {
-    a[k] = p;
+    source_words[k] = p;
   } else {
-    b[k] = p;
+    other_words[k] = p;
   }
 }
 
@@ -186,13 +182,12 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
     let f = frame_records[i];
     let c = frame_emission(f) + filtered.rgb * demodulation(frame_albedo(f));
     let k = (FRAME_WORDS / 2u) * i;
-    a[k] = bitcast<vec2u>(c.rg);
-    a[k + 1u] = bitcast<vec2u>(vec2f(c.b, 1.0));
+    store_pair(k, bitcast<vec2u>(c.rg));
+    store_pair(k + 1u, bitcast<vec2u>(vec2f(c.b, 1.0)));
     return;
   }
   if (params.mode == ATROUS_COPY_HISTORY) {
-    let own = pack_illumination(centre.rgb, centre.a);
-    b[i] = own;
+    other_words[i] = pack_illumination(centre.rgb, centre.a);
   }
-  store_result(i, filtered);
+  store_pair((params.result_stride * i + params.result_offset) >> 1u, pack_illumination(filtered.rgb, filtered.a));
 }

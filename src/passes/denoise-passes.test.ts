@@ -1,0 +1,41 @@
+import { describe, expect, it } from 'vitest';
+import { atrousSchedule, denoiseAtrousParams, isDenoiseChainPass, type PairRegion } from './denoise-passes.ts';
+
+/** The words a region's pairs occupy for the first pixels. */
+const words = (r: PairRegion, pixels = 8) => new Set(Array.from({ length: pixels }, (_, i) => [r.stride * i + r.offset, r.stride * i + r.offset + 1]).flat().map((w) => `${r.array}${w}`));
+
+describe('the à-trous schedule of the real-time chain', () => {
+  for (const feedback of [false, true]) {
+    it(`${feedback ? 'with' : 'without'} feedback: each iteration reads what the last wrote, never its own result's words, and ends in the output`, () => {
+      const schedule = atrousSchedule(feedback);
+      expect(schedule).toHaveLength(5);
+      schedule.forEach((it, i) => {
+        const p = denoiseAtrousParams(i, it);
+        if (it.result === 'output') {
+          expect(i).toBe(schedule.length - 1);
+          // The output overwrites every word of the frame scratch: the source must lie elsewhere.
+          expect(it.source.array).toBe('b');
+          expect(p).toMatchObject({ mode: 2, result_array: 1 });
+          return;
+        }
+        const next = schedule[i + 1]!;
+        expect(next.source).toEqual(it.result);
+        // Bound as source_words and other_words (renderer/denoiser.ts): 0 is the source's own buffer.
+        expect(p.result_array).toBe(it.result.array === it.source.array ? 0 : 1);
+        expect(p).toMatchObject({ source_stride: it.source.stride, source_offset: it.source.offset, result_stride: it.result.stride, result_offset: it.result.offset });
+        const read = words(it.source);
+        for (const w of words(it.result)) expect(read.has(w)).toBe(false);
+        expect(p.mode).toBe(it.copyHistory ? 1 : 0);
+      });
+      // Without feedback the first iteration keeps the unfiltered history (into other_words: the history).
+      expect(schedule[0]!.copyHistory).toBe(!feedback);
+    });
+  }
+});
+
+describe('isDenoiseChainPass', () => {
+  it("names the real-time chain's passes and not the hybrid recipe's GI filter", () => {
+    for (const label of ['temporal', 'a-trous 1', 'a-trous 5', 'denoise output']) expect(isDenoiseChainPass(label)).toBe(true);
+    for (const label of ['a-trous GI 1', 'a-trous', 'path trace (frame)', 'frame G-buffer', 'taa']) expect(isDenoiseChainPass(label)).toBe(false);
+  });
+});
