@@ -42,6 +42,12 @@ export function settingOption(entry: SettingEntry): Option {
 }
 
 /** Adds the options of these settings (all that have a flag unless told which) to a command. */
+/** The mode a setting applies to, as its description begins ('frame mode:', 'hybrid:'); undefined: every mode. */
+export const settingMode = (entry: SettingEntry): 'frame' | 'hybrid' | undefined => {
+  const d = entry.spec.description;
+  return d.startsWith('frame mode:') ? 'frame' : d.startsWith('hybrid:') ? 'hybrid' : undefined;
+};
+
 export function withSettingOptions(command: Command, which: (entry: SettingEntry) => boolean = () => true): Command {
   for (const entry of CLI_SETTINGS) if (which(entry)) command.addOption(settingOption(entry));
   return command;

@@ -204,6 +204,10 @@ describe('bad input', () => {
     [['bench', 'cornell', '--ray-order', 'hilbert'], /--ray-order must be one of tiles, scanline, not 'hilbert'/],
     [['bench', 'cornell', '--protocol', 'tinybvh-closeup'], /--protocol traces a bare mesh: 'cornell' is not a PLY mesh/],
     [['bench'], /bench needs a scene/],
+    [['bench', 'cornell', '--temporal'], /--temporal applies to --real-time only/],
+    [['bench', 'cornell', '--clamp-k', '2'], /--clamp-k applies to --real-time only/],
+    [['bench', 'cornell', '--spp', '4'], /--spp applies to --real-time only/],
+    [['bench', '--protocol', 'tinybvh-closeup', '--real-time'], /--protocol times traversal only/],
     [['render', 'cornell', '--camera', '1e308,0,0,0,0,0'], /--camera takes numbers from -10000000 to 10000000, not 1e\+308/],
     [['render', 'cornell', '--history-cap', '8'], /--history-cap applies to frame mode only/],
     [['render', 'cornell', '--frames', '2', '--light-samples', '2'], /--light-samples applies to the hybrid recipe only/],
@@ -316,6 +320,23 @@ describe('lantern info and bench', () => {
     const away = JSON.parse(lantern(['bench', 'cornell', '-W', '32', '-H', '32', '-r', '1', '--warmups', '0', '--no-path-tracing', '--camera', '278,273,-800,278,273,-1800', '--json']).stdout);
     expect(away.primary.hitFraction).toBe(0);
     expect(away.diffuse.rays).toBe(0);
+  });
+
+  it('bench --real-time times the real-time frames pass by pass, the denoising chain apart', () => {
+    const r = lantern(['bench', 'cornell', '-W', '32', '-H', '24', '-r', '3', '--warmups', '1', '--real-time', '--temporal', '--denoise', '--json']);
+    expect(r.code, r.rawStderr).toBe(0);
+    const b = JSON.parse(r.stdout);
+    expect(b).toMatchObject({ timing: 'gpu-timestamps', recipe: 'path', integrator: 'megakernel', temporal: true, denoise: true, frames: 3, sppPerFrame: 1, denoiserBytesPerPixel: 72 });
+    // Only the frame's passes: no ray or path-tracing throughput figures.
+    expect(b.primary).toBeUndefined();
+    const passes = Object.keys(b.passMs);
+    expect(passes).toEqual(expect.arrayContaining(['path trace (frame)', 'temporal', 'a-trous 1', 'a-trous 2', 'a-trous 3', 'a-trous 4', 'a-trous 5']));
+    const chain = passes.filter((p) => p === 'temporal' || p.startsWith('a-trous')).reduce((sum, p) => sum + b.passMs[p], 0);
+    // Medians of per-frame sums against sums of per-pass medians: close, not equal.
+    expect(b.chainMs).toBeGreaterThan(0.5 * chain);
+    expect(b.chainMs).toBeLessThan(2 * chain);
+    expect(b.chainMs).toBeLessThan(b.frameMs);
+    expect(b.framesPerSecond).toBeGreaterThan(0);
   });
 
   it('bench --kernel specialised times the kernels specialised to the scene and reports their compile time', () => {

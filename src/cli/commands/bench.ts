@@ -5,11 +5,12 @@ import type { CliContext } from '../context.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import type { SettingEntry } from '../../renderer/settings-schema.ts';
 import { choiceOption, integerOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
-import type { KernelKind } from '../../renderer/renderer.ts';
+import type { KernelKind, Renderer } from '../../renderer/renderer.ts';
 import { SPECIALISATION_PARTS, UNROLL_PRIMITIVE_LIMIT, type SpecialisationPart } from '../../gpu/specialisation.ts';
 import { LanternError } from '../../errors.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
-import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
+import { CLI_SETTINGS, settingMode, settingOption, settingsFromOptions, withSettingOptions } from '../setting-options.ts';
+import { benchmarkFrames } from '../../renderer/frame-benchmark.ts';
 import { DRAGON_ALIAS, sceneHelp } from '../scene-source.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
@@ -42,6 +43,8 @@ interface BenchOptions extends EnvironmentOptions, LensOptions, Readonly<Record<
   levels: 'scene' | 'single' | 'two';
   billboards: boolean;
   tlasInstances: number;
+  realTime: boolean;
+  spp?: number;
 }
 
 /** --levels: the scene as it says (moving instances in a top level), nothing moving (one BVH), or every instance moving (every mesh its own bottom level). */
@@ -63,8 +66,10 @@ function adjustScene(levels: BenchOptions['levels'], billboards: boolean): ((sce
   };
 }
 
-/** The settings that change what path tracing costs: those that change the estimate. */
-const benchSetting = (entry: SettingEntry) => entry.spec.restarts;
+/** The settings that change what path tracing costs (those that change the estimate), and with --real-time the frame mode's. */
+const benchSetting = (entry: SettingEntry) => entry.spec.restarts || settingMode(entry) === 'frame';
+/** --real-time: untimed frames before the timed ones last at least this long (the GPU's clocks rise). */
+const FRAME_WARMUP_SECONDS = 1;
 
 export function registerBench(program: Command, context: CliContext): void {
   const command = program
@@ -90,6 +95,8 @@ export function registerBench(program: Command, context: CliContext): void {
     .option('--protocol <name>', `reproduce a published workload exactly: ${BENCH_PROTOCOLS.join(', ')} (tinybvh v1.6.7's speed test on the bare Stanford Dragon: its camera, 45° at 16:9, tiles, rays only)`, choiceOption('--protocol', BENCH_PROTOCOLS))
     .option('--reorder', 'sort the diffuse rays by direction octant and origin (Morton order) before tracing them, as a sorting stage would (the sort is not timed)', false)
     .option('--no-path-tracing', 'time traversal only (the default with --protocol)')
+    .option('--real-time', "time the real-time frame instead: --repeats frames of --spp samples at the camera, rendered back to back (after --warmups frames and at least a second of them) with nothing read back, as the viewer renders them; add --temporal and --denoise for the denoising chain (the median GPU time of each pass, of the chain and of the frame)", false)
+    .option('--spp <samples>', 'with --real-time: samples per pixel in each frame (default 1)', integerOption('--spp', 1, 4096))
     .option('--json', 'print the figures as JSON')
     .action((sceneArg: string | undefined, options: BenchOptions) => context.run(() => bench(sceneArg, options, context)));
 }
@@ -123,6 +130,7 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
   if (protocol) {
     if (o.camera || o.fov !== undefined) throw new LanternError('--protocol sets the camera: drop --camera and --fov');
   }
+  checkRealTimeOptions(o, protocol);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
   const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), protocol ? protocolScene : adjustScene(o.levels, o.billboards));
   await renderer.resize(o.width, o.height);
@@ -142,6 +150,10 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
   for (const p of parts ?? []) if (!(SPECIALISATION_PARTS as readonly string[]).includes(p)) throw new LanternError(`--specialise: unknown part '${p}'`, `Parts are: ${SPECIALISATION_PARTS.join(', ')}`);
   const specialisation = o.kernel === 'specialised' ? await renderer.requestSpecialisation({ ...(o.unrollLimit !== undefined ? { unrollLimit: o.unrollLimit } : {}), ...(parts ? { parts: parts as SpecialisationPart[] } : {}) }) : undefined;
   if (o.kernel === 'specialised' && renderer.kernel !== 'specialised') throw new Error('bench: the specialised kernels were compiled but are not in use');
+  if (o.realTime) {
+    await benchRealTime(renderer, prepared, loadMs, o, context);
+    return;
+  }
   const diagonal = sceneDiagonal(prepared);
   const result = await runBenchmark(renderer, { triangles: prepared.triangles, diagonal, repeats: o.repeats, warmups: o.warmups, rayOrder: o.rayOrder, reorder: o.reorder, pathTracing: o.pathTracing && !protocol });
   const levels = benchmarkLevels(prepared, o.tlasInstances, o.repeats);
@@ -187,6 +199,60 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
       `  diffuse rays    ${f(result.diffuse.mraysPerSecond)} Mrays/s (${f(result.diffuse.ms, 3)} ms for ${result.diffuse.rays.toLocaleString('en-US')} rays, one per primary hit${result.reordered ? ', reordered' : ''}; ${f(100 * result.diffuse.hitFraction)} % hit)`,
       `  kernel          ${specialisation ? `specialised (${specialisation.description}), compiled in ${f(specialisation.compileMs, 0)} ms` : 'generic'}`,
       ...(p ? [`  path tracing    ${report.spectral ? '(spectral) ' : ''}${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`] : []),
+    ].join('\n'),
+  );
+}
+
+/** Frame-mode settings apply to --real-time only, as --spp does; --protocol times rays alone. */
+function checkRealTimeOptions(o: BenchOptions, protocol: BenchProtocol | undefined): void {
+  if (o.realTime) {
+    if (protocol) throw new LanternError('--protocol times traversal only: it does not apply with --real-time', 'Leave one out');
+    return;
+  }
+  if (o.spp !== undefined) throw new LanternError('--spp applies to --real-time only', 'Add --real-time, or leave it out');
+  for (const entry of CLI_SETTINGS) {
+    if (entry.spec.restarts || settingMode(entry) !== 'frame' || o[settingOption(entry).attributeName()] === undefined) continue;
+    throw new LanternError(`${entry.spec.cli!.flag} applies to --real-time only`, 'Add --real-time, or leave it out');
+  }
+}
+
+/** `bench --real-time`: frames of the real-time recipe back to back (renderer/frame-benchmark.ts). */
+async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs: number, o: BenchOptions, context: CliContext): Promise<void> {
+  const s = renderer.settings;
+  if (s.recipe === 'hybrid') await renderer.enableHybrid();
+  else await renderer.enableRealTime();
+  const spp = o.spp ?? 1;
+  const frames = await benchmarkFrames(renderer, { spp, frames: o.repeats, warmups: o.warmups, warmupSeconds: FRAME_WARMUP_SECONDS });
+  const memory = renderer.denoiserMemory;
+  const timing = renderer.gpu.hasTimestamps ? 'gpu-timestamps' : 'wall-clock';
+  const report = {
+    scene: prepared.scene.name,
+    triangles: prepared.triangles.count,
+    lights: prepared.packed.counts.lights,
+    loadMs,
+    adapter: renderer.gpu.adapterName,
+    timing,
+    width: o.width,
+    height: o.height,
+    recipe: s.recipe,
+    ...(s.recipe === 'path' ? { integrator: renderer.frameIntegrator, temporal: s.temporal, denoise: s.denoise, restir: s.restir } : {}),
+    warmups: o.warmups,
+    ...(memory.bytesPerPixel > 0 ? { denoiserBytesPerPixel: memory.bytesPerPixel } : {}),
+    ...frames,
+  };
+  renderer.destroy();
+  if (o.json) {
+    context.print(JSON.stringify(report, null, 2));
+    return;
+  }
+  const ms = (x: number) => `${x.toFixed(3)} ms`;
+  const features = s.recipe === 'hybrid' ? ['hybrid recipe'] : [renderer.frameIntegrator, ...(s.restir ? ['ReSTIR'] : []), ...(s.temporal ? ['temporal'] : []), ...(s.denoise ? ['à-trous'] : [])];
+  context.print(
+    [
+      `Lantern bench --real-time: ${report.scene} at ${o.width}×${o.height} on ${report.adapter} (${timing === 'gpu-timestamps' ? 'GPU timestamps' : 'no timestamp queries: wall clock only'}, medians of ${o.repeats} frames after ${o.warmups} and at least ${FRAME_WARMUP_SECONDS} s of warm-up frames)`,
+      `  frame           ${frames.frameMs !== undefined ? `${ms(frames.frameMs)} of GPU time, ` : ''}${frames.framesPerSecond.toFixed(1)} frames/s by the wall clock (${spp} spp; ${features.join(', ')})`,
+      ...(frames.chainMs !== undefined ? [`  denoising chain ${ms(frames.chainMs)}${memory.bytesPerPixel > 0 ? `, ${memory.bytesPerPixel} bytes a pixel` : ''}`] : []),
+      ...Object.entries(frames.passMs).map(([name, t]) => `    ${name.padEnd(24)}${ms(t)}`),
     ].join('\n'),
   );
 }

@@ -6,7 +6,7 @@ import { parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
 import { checkReadableFile, readJsonFile } from '../read-files.ts';
 import { checkOutputPath } from '../output-files.ts';
 import { checkSceneOptionsApply, parseSceneArgument, readLightTable, sceneLoadOptions } from '../scene-source.ts';
-import { CLI_SETTINGS, settingOption } from '../setting-options.ts';
+import { CLI_SETTINGS, settingMode, settingOption } from '../setting-options.ts';
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
@@ -63,14 +63,11 @@ export function registerRender(program: Command, context: CliContext): void {
     .option('--path <path.json>', 'frame mode: a camera path (keyframes of position, target, fov over time; see the README)', pathOption('--path'))
     .option('--time <seconds>', "the moment of a moving scene to render (Doom's animated textures and lights, the dungeon's phantom); frame mode: the first frame's", numberOption('--time', 0, 1e6), 0)
     .option('--fps <n>', 'frame mode without --path: frames per second of scene time', numberOption('--fps', 0.001, 1000), 30)
-    .option('--warmup <seconds>', 'frame mode: render frames for this long first and throw them away, so that the GPU clocks are up when the timed frames start', numberOption('--warmup', 0, 60))
+    .option('--warmup <seconds>', 'frame mode: render frames for this long first and throw them away, so that the GPU clocks are up when the timed frames start (they fall again while each frame is read back and written: `bench --real-time` times passes with them up)', numberOption('--warmup', 0, 60))
     .action((sceneArg: string, options: RenderOptions, command: Command) =>
       context.run(() => render(sceneArg, options, context, (name) => command.getOptionValueSource(name) === 'cli')),
     );
 }
-
-/** A setting's mode, from its description's prefix in the schema ('frame mode: ...', 'hybrid: ...'). */
-const settingMode = (description: string): 'frame' | 'hybrid' | undefined => (description.startsWith('frame mode:') ? 'frame' : description.startsWith('hybrid:') ? 'hybrid' : undefined);
 
 /**
  * Everything that can be checked before the GPU starts and the scene loads: options given where they
@@ -80,7 +77,7 @@ const settingMode = (description: string): 'frame' | 'hybrid' | undefined => (de
 export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (option: string) => boolean, png: string | undefined): CameraPath | undefined {
   const frameMode = isFrameMode(o);
   for (const entry of CLI_SETTINGS) {
-    const mode = settingMode(entry.spec.description);
+    const mode = settingMode(entry);
     // A switch such as --temporal turns frame mode on; what else is given must fit the mode.
     if (!mode || entry.spec.cli?.switch || o[settingOption(entry).attributeName()] === undefined) continue;
     if (mode === 'frame' && !frameMode) throw new LanternError(`${entry.spec.cli!.flag} applies to frame mode only`, 'Add --frames, --path, --denoise, --temporal or --mode hybrid, or leave it out');
