@@ -240,13 +240,13 @@ async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs
     ...(memory.bytesPerPixel > 0 ? { denoiserBytesPerPixel: memory.bytesPerPixel } : {}),
     ...frames,
   };
+  const features = s.recipe === 'hybrid' ? ['hybrid recipe'] : [renderer.frameIntegrator, ...(s.restir ? ['ReSTIR'] : []), ...(s.temporal ? ['temporal'] : []), ...(s.denoise ? ['à-trous'] : [])];
   renderer.destroy();
   if (o.json) {
     context.print(JSON.stringify(report, null, 2));
     return;
   }
   const ms = (x: number) => `${x.toFixed(3)} ms`;
-  const features = s.recipe === 'hybrid' ? ['hybrid recipe'] : [renderer.frameIntegrator, ...(s.restir ? ['ReSTIR'] : []), ...(s.temporal ? ['temporal'] : []), ...(s.denoise ? ['à-trous'] : [])];
   context.print(
     [
       `Lantern bench --real-time: ${report.scene} at ${o.width}×${o.height} on ${report.adapter} (${timing === 'gpu-timestamps' ? 'GPU timestamps' : 'no timestamp queries: wall clock only'}, medians of ${o.repeats} frames after ${o.warmups} and at least ${FRAME_WARMUP_SECONDS} s of warm-up frames)`,
