@@ -326,7 +326,7 @@ describe('lantern info and bench', () => {
     const r = lantern(['bench', 'cornell', '-W', '32', '-H', '24', '-r', '3', '--warmups', '1', '--real-time', '--temporal', '--denoise', '--json']);
     expect(r.code, r.rawStderr).toBe(0);
     const b = JSON.parse(r.stdout);
-    expect(b).toMatchObject({ timing: 'gpu-timestamps', recipe: 'path', integrator: 'megakernel', temporal: true, denoise: true, frames: 3, sppPerFrame: 1, denoiserBytesPerPixel: 72 });
+    expect(b).toMatchObject({ timing: 'gpu-timestamps', recipe: 'path', integrator: 'megakernel', temporal: true, denoise: true, restir: false, frames: 3, sppPerFrame: 1, denoiserBytesPerPixel: 72 });
     // Only the frame's passes: no ray or path-tracing throughput figures.
     expect(b.primary).toBeUndefined();
     const passes = Object.keys(b.passMs);

@@ -224,6 +224,8 @@ async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs
   const spp = o.spp ?? 1;
   const frames = await benchmarkFrames(renderer, { spp, frames: o.repeats, warmups: o.warmups, warmupSeconds: FRAME_WARMUP_SECONDS });
   const memory = renderer.denoiserMemory;
+  // ReSTIR runs only in the megakernel's RGB paths (renderer/denoiser.ts usesRestir): say so where it was asked for and no ReSTIR pass was timed.
+  const restirRan = frames.frameMs === undefined ? s.restir : Object.keys(frames.passMs).some((name) => name.startsWith('restir'));
   const timing = renderer.gpu.hasTimestamps ? 'gpu-timestamps' : 'wall-clock';
   const report = {
     scene: prepared.scene.name,
@@ -235,12 +237,13 @@ async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs
     width: o.width,
     height: o.height,
     recipe: s.recipe,
-    ...(s.recipe === 'path' ? { integrator: renderer.frameIntegrator, temporal: s.temporal, denoise: s.denoise, restir: s.restir } : {}),
+    ...(s.recipe === 'path' ? { integrator: renderer.frameIntegrator, temporal: s.temporal, denoise: s.denoise, restir: restirRan } : {}),
     warmups: o.warmups,
     ...(memory.bytesPerPixel > 0 ? { denoiserBytesPerPixel: memory.bytesPerPixel } : {}),
     ...frames,
   };
-  const features = s.recipe === 'hybrid' ? ['hybrid recipe'] : [renderer.frameIntegrator, ...(s.restir ? ['ReSTIR'] : []), ...(s.temporal ? ['temporal'] : []), ...(s.denoise ? ['à-trous'] : [])];
+  const restir = s.restir ? [restirRan ? 'ReSTIR' : 'ReSTIR asked for but not run: the wavefront and spectral paths keep one light sample a bounce'] : [];
+  const features = s.recipe === 'hybrid' ? ['hybrid recipe'] : [renderer.frameIntegrator, ...restir, ...(s.temporal ? ['temporal'] : []), ...(s.denoise ? ['à-trous'] : [])];
   renderer.destroy();
   if (o.json) {
     context.print(JSON.stringify(report, null, 2));
