@@ -124,6 +124,8 @@ describe('Radiance .hdr decoder', () => {
     expectLanternError(() => decodeHdr(bytes(good.replace('#?RADIANCE', '#?PFM'))), /not a Radiance/);
     expectLanternError(() => decodeHdr(bytes(good.replace('-Y 2 +X 8', '-Y 100000 +X 100000'))), /too large/);
     expectLanternError(() => decodeHdr(bytes(good.replace('-Y 2 +X 8', '-Y 0 +X 8'))), /empty/);
+    // A few bytes that claim 4096 × 4096 pixels: refused before 192 MiB of floats are allocated.
+    expectLanternError(() => decodeHdr(bytes(good.replace('-Y 2 +X 8', '-Y 4096 +X 4096'))), /truncated: 4096 scanlines need at least 16384 bytes, \d+ are left/);
   });
 
   it('reports truncation and malformed runs, never hangs', () => {

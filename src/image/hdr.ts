@@ -31,6 +31,8 @@ const RLE_MIN_WIDTH = 8;
 const RLE_MAX_WIDTH = 0x7fff;
 /** A count byte above this starts a run of (count − RUN_FLAG) copies. */
 const RUN_FLAG = 128;
+/** The fewest bytes any scanline takes: one pixel (a flat scanline starts with a literal pixel, and a run-length one has a 4-byte header). */
+const MIN_SCANLINE_BYTES = 4;
 /** Radiance's exponent bias (128) plus the 8 bits of the mantissa. */
 const EXPONENT_OFFSET = 136;
 
@@ -99,6 +101,10 @@ export function decodeHdr(bytes: Uint8Array, name = 'image.hdr'): HdrImage {
     throw new LanternError(`${name}: image of ${width}×${height} pixels is too large`, `use a map of at most ${HDR_MAX_PIXELS / (1024 * 1024)} Mpx, sides up to ${HDR_MAX_SIDE}`);
   }
   checkLimit('imagePixels', width * height, `${name}: ${width}×${height} pixels`);
+  // A truncated file that claims a large image fails here, before its pixels are allocated.
+  if (bytes.length - pos < height * MIN_SCANLINE_BYTES) {
+    throw fail(`truncated: ${height} scanlines need at least ${height * MIN_SCANLINE_BYTES} bytes, ${bytes.length - pos} are left`);
+  }
 
   const rgb = new Float32Array(width * height * 3);
   const scanline = new Uint8Array(width * 4);
