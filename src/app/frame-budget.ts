@@ -23,6 +23,7 @@
  * the wait before the next, so the scale settles instead of following the noise (measured in the
  * page on SwiftShader with the median alone: a resize every few seconds).
  */
+import { median } from '../math/median.ts';
 
 /** What kind of adapter renders: a CPU implementation (SwiftShader, WARP, llvmpipe) or a real GPU. */
 export type AdapterKind = 'software' | 'hardware';
@@ -329,12 +330,6 @@ export class ChunkSizer {
 function stepForPixels(canvasPixels: number, pixels: number): number {
   for (let step = 0; step < SCALE_STEPS.length; step++) if (canvasPixels * SCALE_STEPS[step]! ** 2 <= pixels) return step;
   return SCALE_STEPS.length - 1;
-}
-
-function median(values: readonly number[]): number {
-  const sorted = [...values].sort((a, b) => a - b);
-  const n = sorted.length;
-  return n % 2 === 1 ? sorted[(n - 1) / 2]! : (sorted[n / 2 - 1]! + sorted[n / 2]!) / 2;
 }
 
 /** Two significant figures, no trailing zeros: 0.35×, 0.125× is 0.13×, 1×. */

@@ -15,6 +15,7 @@ import { TraceRaysPass } from '../passes/trace-rays-pass.ts';
 import type { TriangleList } from '../scene/triangles.ts';
 import { countHits, diffuseRaysFromHits, reorderRays, type HitWords, type RayWords } from './benchmark-rays.ts';
 import type { Renderer } from './renderer.ts';
+import { median } from '../math/median.ts';
 
 export interface ThroughputFigure {
   /** Median GPU milliseconds of one pass. */
@@ -69,12 +70,6 @@ export interface BenchmarkOptions {
   /** Whether to time path tracing too; default true. */
   readonly pathTracing?: boolean;
 }
-
-const median = (xs: number[]): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  const m = s.length >> 1;
-  return s.length % 2 ? s[m]! : (s[m - 1]! + s[m]!) / 2;
-};
 
 /** Wall time of path tracing run before any measurement, so the GPU is at its working clocks. */
 const WARM_UP_MS = 1000;

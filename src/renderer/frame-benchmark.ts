@@ -9,6 +9,7 @@
 import { GpuTimer } from '../gpu/timestamps.ts';
 import { isDenoiseChainPass } from '../passes/denoise-passes.ts';
 import type { Renderer } from './renderer.ts';
+import { median } from '../math/median.ts';
 
 export interface FrameBenchmarkOptions {
   /** Samples per pixel in each frame. */
@@ -32,12 +33,6 @@ export interface FrameBenchmarkResult {
   /** Frames per second by the wall clock over the timed frames (CPU work and submission included). */
   readonly framesPerSecond: number;
 }
-
-export const median = (xs: readonly number[]): number => {
-  const sorted = [...xs].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 === 1 ? sorted[mid]! : (sorted[mid - 1]! + sorted[mid]!) / 2;
-};
 
 /** Times frames of the renderer's recipe (enableRealTime or enableHybrid first) at its current camera and settings. */
 export async function benchmarkFrames(renderer: Renderer, o: FrameBenchmarkOptions): Promise<FrameBenchmarkResult> {

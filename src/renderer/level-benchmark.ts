@@ -10,6 +10,7 @@ import { buildMeshBlas, refitMeshBlas } from '../bvh/levels.ts';
 import { buildTlas } from '../bvh/tlas.ts';
 import { seededRandom as makeRandom } from '../math/seeded-random.ts';
 import { updateGeometry, type PreparedScene } from './prepare.ts';
+import { median } from '../math/median.ts';
 
 export interface LevelBenchmark {
   /** Instances the measured top level was built over, and the median milliseconds of a build. */
@@ -20,7 +21,6 @@ export interface LevelBenchmark {
   readonly updateMs: number;
 }
 
-const median = (xs: number[]) => [...xs].sort((a, b) => a - b)[xs.length >> 1]!;
 
 function timed(repeats: number, f: () => void): number {
   for (let i = 0; i < 3; i++) f();

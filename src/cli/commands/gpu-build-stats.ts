@@ -10,6 +10,7 @@ import { GpuBvhBuilder, readBackBvh, type GpuBvh } from '../../gpu/build/gpu-bvh
 import { bvhStats } from '../../bvh/stats.ts';
 import type { TriangleList } from '../../scene/triangles.ts';
 import { acquireNodeGpu } from '../dawn.ts';
+import { median } from '../../math/median.ts';
 
 /** The builders `--builder` names. */
 export const BUILDERS = ['cpu', 'gpu'] as const;
@@ -53,11 +54,6 @@ export interface GpuBuildReport {
   /** sahCost / cpuSahCost. */
   readonly sahRatio: number;
 }
-
-const median = (xs: readonly number[]): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length % 2 ? s[(s.length - 1) / 2]! : (s[s.length / 2 - 1]! + s[s.length / 2]!) / 2;
-};
 
 async function buildOnce(device: GPUDevice, builder: GpuBvhBuilder, positions: Float32Array, count: number, keepTree: boolean): Promise<{ built: GpuBvh; bvh?: Bvh }> {
   const built = await builder.build(positions, count);

@@ -15,6 +15,7 @@ import { isEmptyUpdate } from '../../scene/dynamics.ts';
 import type { World } from '../../scene/world.ts';
 import { writeFile } from '../output-files.ts';
 import { readJsonFile } from '../read-files.ts';
+import { median } from '../../math/median.ts';
 
 export interface FrameModeOptions {
   readonly denoise?: boolean;
@@ -111,7 +112,6 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   await renderer.finish();
   const seconds = (performance.now() - start) / 1000;
   timer?.destroy();
-  const median = (xs: number[]) => [...xs].sort((a, b) => a - b)[xs.length >> 1]!;
   const gpuMs = timer ? Object.fromEntries([...samples].map(([name, ms]) => [name, median(ms)])) : undefined;
   const frameChangeRmse = changes.length > 0 ? changes.reduce((a, b) => a + b, 0) / changes.length : undefined;
   return { frames, seconds, ...(gpuMs ? { gpuMs } : {}), ...(frameChangeRmse !== undefined ? { frameChangeRmse } : {}), outputs: out };
