@@ -28,14 +28,20 @@ export interface DenoisePasses {
   readonly output: ImagePass<UniformValues>;
 }
 
+/** The chain's passes as GpuTimer labels them (renderer/denoiser.ts). */
+const TEMPORAL_LABEL = 'temporal';
+const OUTPUT_LABEL = 'denoise output';
+/** Iteration i's label (0-based): 'a-trous 1' … 'a-trous 5'. */
+export const atrousLabel = (iteration: number): string => `a-trous ${iteration + 1}`;
+
 /** Whether a timed pass (its GpuTimer label) belongs to the real-time denoising chain: the temporal pass, an à-trous iteration or the debug views' output. */
-export const isDenoiseChainPass = (label: string): boolean => label === 'temporal' || label === 'denoise output' || /^a-trous \d+$/.test(label);
+export const isDenoiseChainPass = (label: string): boolean => label === TEMPORAL_LABEL || label === OUTPUT_LABEL || ATROUS_STEPS.some((_, i) => atrousLabel(i) === label);
 
 export async function createDenoisePasses(device: GPUDevice): Promise<DenoisePasses> {
   const [temporal, atrous, output] = await Promise.all([
-    ImagePass.create(device, 'passes/temporal', 'temporal_accumulate', 'temporal'),
+    ImagePass.create(device, 'passes/temporal', 'temporal_accumulate', TEMPORAL_LABEL),
     ImagePass.create(device, 'passes/denoise-atrous', 'denoise_atrous_step', 'a-trous', ATROUS_STEPS.length),
-    ImagePass.create(device, 'passes/denoise-output', 'denoise_output', 'denoise output'),
+    ImagePass.create(device, 'passes/denoise-output', 'denoise_output', OUTPUT_LABEL),
   ]);
   return { temporal, atrous, output };
 }

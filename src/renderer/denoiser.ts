@@ -19,7 +19,7 @@ import { LanternError } from '../errors.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
-import { atrousSchedule, createDenoisePasses, denoiseAtrousParams, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
+import { atrousLabel, atrousSchedule, createDenoisePasses, denoiseAtrousParams, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass, type FrameTarget } from '../passes/path-trace-frame-pass.ts';
 import { WavefrontFramePass } from '../passes/wavefront-frame-pass.ts';
@@ -325,7 +325,7 @@ export class Denoiser {
     if (s.denoise && s.denoiseView === 'output') {
       atrousSchedule(feedback).forEach((it, i) => {
         this.passes.atrous.write(denoiseAtrousParams(i, it), i);
-        this.passes.atrous.encode(encoder, groups.atrous[feedback ? 1 : 0]![i]!, b.width, b.height, r.timer, `a-trous ${i + 1}`);
+        this.passes.atrous.encode(encoder, groups.atrous[feedback ? 1 : 0]![i]!, b.width, b.height, r.timer, atrousLabel(i));
       });
     } else {
       const fullHistory = unlimited ? 256 : (s.historyCap as number);

@@ -210,9 +210,10 @@ const STILL_MOTION: f32 = 0.01;
 // where the centre's albedo is one number for its whole material (no texture) or the centre sees
 // nothing (albedo 1), every sample is divided by it and the output multiplied by it: the material's
 // base colour, read from the material table (no texture, so nothing to evaluate at the hit), rounded
-// as the frame record stores it so that the two factors are the same number. A textured centre keeps the samples' own albedo: one texel does not
-// stand for the pixel, and the spatial filter, which mixes the pixel's illumination with its
-// neighbours', then brightened a bright texel's pixel among dark ones ×20 (E1M1, docs/denoise.md).
+// as the frame record stores it so that the two factors are the same number. A textured centre keeps
+// the samples' own albedo: one texel does not stand for the pixel, and the spatial filter, which
+// mixes the pixel's illumination with its neighbours', then brightened a bright texel's pixel among
+// dark ones ×20 (E1M1, docs/denoise.md).
 struct Demodulation {
   fixed: bool,
   albedo: vec3f,
