@@ -74,6 +74,7 @@ describe('the light a scene brings', () => {
     // The texture repeats: u in [3, 3.5] is the white half again.
     expect(lit(3, 3.5)).toBeCloseTo(1, 10);
     expect(lit(-1, -0.5)).toBeCloseTo(1, 10);
+    expect(lit(65536.5, 65537)).toBeCloseTo(0, 10);
     // KHR_texture_transform moves the white half's uvs onto the black half.
     expect(lit(0, 0.5, { emissionTexture: { texture: 0, transform: { offset: [0.5, 0], rotation: 0, scale: [1, 1] } } })).toBeCloseTo(0, 10);
     // A panorama-mapped emitter (Doom's sky) reads the whole texture.
@@ -197,10 +198,10 @@ describe('the default-light decision', () => {
   });
 
   it('writes the share with two figures', () => {
-    expect(describeShare(0.0031)).toBe('0.31 %');
-    expect(describeShare(0.4234)).toBe('42 %');
-    expect(describeShare(3.14159)).toBe('3.1 times');
-    expect(describeShare(1e-9)).toBe('less than 0.001 %');
-    expect(describeShare(0)).toBe('none');
+    expect(describeShare(0.0031)).toBe('0.31 % of the light of a default sky');
+    expect(describeShare(0.4234)).toBe('42 % of the light of a default sky');
+    expect(describeShare(3.14159)).toBe('3.1 times the light of a default sky');
+    expect(describeShare(1e-9)).toBe('less than 0.001 % of the light of a default sky');
+    expect(describeShare(0)).toBe('none of the light of a default sky');
   });
 });

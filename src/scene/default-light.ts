@@ -39,7 +39,7 @@ export const DEFAULT_SKY: Extract<Environment, { kind: 'sky' }> = Object.freeze(
  * the sky is added: 1/16, four stops. Four stops under a well-exposed image, mid-grey reads about
  * 0.1 in sRGB, where the image stops being lit; a Cornell box's ceiling light of the original
  * measurements (radiance ~12 in luminance) gives about a third of the sky's light, DamagedHelmet's
- * glowing details about 1 %.
+ * glowing details about half a per cent.
  */
 export const OWN_LIGHT_SHARE = 1 / 16;
 
@@ -68,18 +68,19 @@ export function decideDefaultLight(scene: Pick<Scene, 'meshes' | 'instances' | '
   const note = !own.hasLights
     ? 'the model has no light of its own; a default sky lights it'
     : sky
-      ? `its emitters give ${describeShare(share)} of the light of a default sky; a default sky lights it`
-      : `its own lights light it (${describeShare(share)} of the light of a default sky); no sky is added`;
+      ? `its emitters give ${describeShare(share)}; a default sky lights it`
+      : `its own lights light it (${describeShare(share)}); no sky is added`;
   return { sky, share, hasLights: own.hasLights, note };
 }
 
-/** "0.31 %", "42 %", "3.1 times", "less than 0.001 %": two figures, as the estimate deserves no more. */
+/** "0.31 % of the light of a default sky", "3.1 times …": two figures, as the estimate deserves no more. */
 export function describeShare(share: number): string {
-  if (!(share > 0)) return 'none';
-  if (share >= 2) return `${Number(share.toPrecision(2))} times`;
+  const sky = 'the light of a default sky';
+  if (!(share > 0)) return `none of ${sky}`;
+  if (share === Infinity) return `more than ${sky} (nothing in the scene reflects)`;
+  if (share >= 2) return `${Number(share.toPrecision(2))} times ${sky}`;
   const percent = share * 100;
-  if (percent < 0.001) return 'less than 0.001 %';
-  return `${Number(percent.toPrecision(2))} %`;
+  return percent < 0.001 ? `less than 0.001 % of ${sky}` : `${Number(percent.toPrecision(2))} % of ${sky}`;
 }
 
 /**
@@ -101,6 +102,7 @@ export function ownIrradiance(scene: Pick<Scene, 'meshes' | 'instances' | 'mater
     // Areas scale by |det|^(2/3) under a similarity; for a shear or non-uniform scale that is the
     // mean over orientations, close enough for an estimate.
     const areaScale = Math.abs(determinant3(instance.worldFromObject)) ** (2 / 3);
+    if (!Number.isFinite(areaScale)) continue;
     area += sums.area * areaScale;
     power += sums.power * areaScale;
     hasLights ||= sums.emits;
@@ -118,7 +120,7 @@ export function ownIrradiance(scene: Pick<Scene, 'meshes' | 'instances' | 'mater
   return { irradiance: 2 ** (scene.camera.exposureStops ?? 0) * (fromPower + directional), hasLights };
 }
 
-/** The luminous power of a point or spot light (W, from W/sr), or the irradiance of a directional one. */
+/** The power of a point or spot light (its intensity over its solid angle), or the irradiance of a directional one; luminance. */
 function punctualPowerOrIrradiance(light: PunctualLight): number {
   const y = luminance(light.color);
   switch (light.kind) {
@@ -144,38 +146,43 @@ interface MeshLight {
 function meshLight(mesh: Mesh, instance: Instance, materials: readonly Material[], means: EmissionMeans): MeshLight {
   let area = 0, power = 0, emits = false;
   const materialOf = (own: number) => materials[instance.material ?? own];
-  /** Adds one primitive: its area, and its power with the texture's mean given by `textureMean`. */
-  const add = (material: Material | undefined, a: number, textureMean: (ref: TextureRef) => number) => {
-    if (!material) return;
+  /** Adds a primitive's area; returns the power it emits before its emission texture (π L a; 0: none). */
+  const surface = (material: Material | undefined, a: number): number => {
+    // A degenerate or non-finite primitive (validation refuses the latter later) adds nothing.
+    if (!material || !(a > 0 && a < Infinity)) return 0;
     if (material.kind !== 'emissive') area += a;
     const y = luminance(material.emission);
-    if (!(y > 0)) return;
+    if (!(y > 0)) return 0;
     emits = true;
-    const texture = material.emissionTexture;
-    const mean = texture === undefined ? 1 : material.emissionMapping?.kind === 'panorama' ? means.whole(texture.texture) : textureMean(texture);
-    power += Math.PI * y * mean * a * (material.twoSidedEmission ? 2 : 1);
+    return Math.PI * y * a * (material.twoSidedEmission ? 2 : 1);
   };
+  /** The whole emission texture's mean (1 without one): a panorama-mapped emitter's, an analytic shape's (its uv covers the texture). */
+  const wholeMean = (material: Material) => (material.emissionTexture ? means.whole(material.emissionTexture.texture) : 1);
 
   const p = mesh.positions, idx = mesh.indices;
   for (let t = 0; t < idx.length / 3; t++) {
-    const i0 = idx[3 * t]! * 3, i1 = idx[3 * t + 1]! * 3, i2 = idx[3 * t + 2]! * 3;
-    const ax = p[i1]! - p[i0]!, ay = p[i1 + 1]! - p[i0 + 1]!, az = p[i1 + 2]! - p[i0 + 2]!;
-    const bx = p[i2]! - p[i0]!, by = p[i2 + 1]! - p[i0 + 1]!, bz = p[i2 + 2]! - p[i0 + 2]!;
+    const v0 = idx[3 * t]!, v1 = idx[3 * t + 1]!, v2 = idx[3 * t + 2]!;
+    const ax = p[3 * v1]! - p[3 * v0]!, ay = p[3 * v1 + 1]! - p[3 * v0 + 1]!, az = p[3 * v1 + 2]! - p[3 * v0 + 2]!;
+    const bx = p[3 * v2]! - p[3 * v0]!, by = p[3 * v2 + 1]! - p[3 * v0 + 1]!, bz = p[3 * v2 + 2]! - p[3 * v0 + 2]!;
     const cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-    const a = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
-    add(materialOf(mesh.materialIds[t]!), a, (ref) => means.overTriangle(ref, mesh, idx[3 * t]!, idx[3 * t + 1]!, idx[3 * t + 2]!));
+    const material = materialOf(mesh.materialIds[t]!);
+    const emitted = surface(material, 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz));
+    if (emitted === 0) continue;
+    const texture = material!.emissionTexture;
+    power += emitted * (texture && material!.emissionMapping?.kind !== 'panorama' ? means.overTriangle(texture, mesh, v0, v1, v2) : wholeMean(material!));
   }
-  // Analytic shapes: their uv covers the whole texture (u around, v along), so the texture's mean.
   const spheres = mesh.spheres;
   for (let s = 0; s < (spheres?.radii.length ?? 0); s++) {
-    const r = spheres!.radii[s]!;
-    add(materialOf(spheres!.materialIds[s]!), 4 * Math.PI * r * r, (ref) => means.whole(ref.texture));
+    const r = spheres!.radii[s]!, material = materialOf(spheres!.materialIds[s]!);
+    const emitted = surface(material, 4 * Math.PI * r * r);
+    if (emitted > 0) power += emitted * wholeMean(material!);
   }
   const capsules = mesh.capsules;
   for (let c = 0; c < (capsules?.radii.length ?? 0); c++) {
-    const r = capsules!.radii[c]!, e = capsules!.endpoints;
+    const r = capsules!.radii[c]!, e = capsules!.endpoints, material = materialOf(capsules!.materialIds[c]!);
     const h = Math.hypot(e[6 * c + 3]! - e[6 * c]!, e[6 * c + 4]! - e[6 * c + 1]!, e[6 * c + 5]! - e[6 * c + 2]!);
-    add(materialOf(capsules!.materialIds[c]!), 2 * Math.PI * r * h + 4 * Math.PI * r * r, (ref) => means.whole(ref.texture));
+    const emitted = surface(material, 2 * Math.PI * r * h + 4 * Math.PI * r * r);
+    if (emitted > 0) power += emitted * wholeMean(material!);
   }
   return { area, power, emits };
 }
@@ -223,9 +230,9 @@ class EmissionMeans {
     let u0 = Infinity, u1 = -Infinity, v0 = Infinity, v1 = -Infinity;
     const tr = ref.transform;
     const c = Math.cos(tr?.rotation ?? 0), s = Math.sin(tr?.rotation ?? 0);
-    const [sx, sy] = tr?.scale ?? [1, 1];
-    const [ox, oy] = tr?.offset ?? [0, 0];
-    for (const i of [i0, i1, i2]) {
+    const sx = tr?.scale[0] ?? 1, sy = tr?.scale[1] ?? 1, ox = tr?.offset[0] ?? 0, oy = tr?.offset[1] ?? 0;
+    for (let k = 0; k < 3; k++) {
+      const i = k === 0 ? i0 : k === 1 ? i1 : i2;
       const u = uvs?.[2 * i] ?? 0, v = uvs?.[2 * i + 1] ?? 0;
       // KHR_texture_transform, as the packer writes it (gpu/pack/material-pack.ts transformWriter).
       const tu = c * sx * u + s * sy * v + ox, tv = -s * sx * u + c * sy * v + oy;
@@ -234,8 +241,11 @@ class EmissionMeans {
       v0 = Math.min(v0, tv);
       v1 = Math.max(v1, tv);
     }
-    if (![u0, u1, v0, v1].every(Number.isFinite)) return t.total / (t.width * t.height);
-    return t.meanOver(u0 * t.width, u1 * t.width, v0 * t.height, v1 * t.height);
+    // Coordinates that are not numbers (validation refuses them later): the texture's mean.
+    if (!Number.isFinite(u0 + u1 + v0 + v1)) return t.total / (t.width * t.height);
+    // Moved by whole repeats into the first one, so that far-off coordinates keep their precision.
+    const du = Math.floor(u0), dv = Math.floor(v0);
+    return t.meanOver((u0 - du) * t.width, (u1 - du) * t.width, (v0 - dv) * t.height, (v1 - dv) * t.height);
   }
 
   private table(index: number): SumTable | undefined {
