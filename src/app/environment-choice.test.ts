@@ -1,6 +1,10 @@
 import { describe, expect, it } from 'vitest';
+import { IDENTITY } from '../math/mat4.ts';
+import { withDefaultLight } from '../scene/default-light.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
-import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, environmentOfLink, linkOfEnvironment } from './environment-choice.ts';
+import { withEnvironment } from '../scene/environment-override.ts';
+import { diffuse } from '../scene/types.ts';
+import { choiceOfEnvironment, DEFAULT_ENVIRONMENT_CHOICE, environmentOfChoice, environmentOfLink, lightingNoteOf, linkOfEnvironment } from './environment-choice.ts';
 import { formatViewParams, parseViewParams } from './view-params.ts';
 
 const image: EnvironmentImage = { name: 'studio.hdr', width: 2, height: 1, rgb: new Float32Array(6).fill(1) };
@@ -30,5 +34,21 @@ describe('environment choice', () => {
     expect(environmentOfLink(view)).toEqual(sky);
     expect(linkOfEnvironment(environmentOfChoice({ ...DEFAULT_ENVIRONMENT_CHOICE, kind: 'map' }, image))).toEqual({});
     expect(environmentOfLink({ envIntensity: 2 })).toBeUndefined();
+  });
+
+  it('overrides the default sky a model got: none leaves it dark, and the page then says nothing of the sky', () => {
+    // A model without light: the loader gives it the default sky and a note (scene/default-light.ts).
+    const mesh = { name: 'tri', positions: new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), indices: new Uint32Array([0, 1, 2]), materialIds: new Uint32Array([0]) };
+    const model = withDefaultLight({ name: 'model', meshes: [mesh], instances: [{ id: 0, mesh: 0, worldFromObject: IDENTITY }], materials: [diffuse('white', [0.8, 0.8, 0.8])], camera: { position: [0, 0, 3], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 40 } });
+    expect(model.environment?.kind).toBe('sky');
+    expect(lightingNoteOf(model, environmentOfChoice({ ...DEFAULT_ENVIRONMENT_CHOICE, kind: 'scene' }, image))).toBe('model: the model has no light of its own; a default sky lights it');
+    const none = environmentOfChoice({ ...DEFAULT_ENVIRONMENT_CHOICE, kind: 'none' }, image)!;
+    expect(lightingNoteOf(model, none)).toBeUndefined();
+    expect(lightingNoteOf(model, environmentOfChoice({ ...DEFAULT_ENVIRONMENT_CHOICE, kind: 'sky' }, undefined))).toBeUndefined();
+    // What the viewer shows under the choice (renderer/prepare.ts withPreparedEnvironment): no sky, and the daylight exposure gone with it.
+    const dark = withEnvironment(model, none);
+    expect(dark.environment).toEqual({ kind: 'none' });
+    expect(dark.camera.exposureStops).toBeCloseTo(0, 12);
+    expect(lightingNoteOf(dark, undefined)).toBeUndefined();
   });
 });

@@ -5,6 +5,7 @@
  */
 import { skyEnvironment } from '../scene/environment-override.ts';
 import type { Environment, EnvironmentImage } from '../scene/environment.ts';
+import type { Scene } from '../scene/types.ts';
 import { DEFAULT_TURBIDITY, type ViewParams } from './view-params.ts';
 
 export const ENVIRONMENT_CHOICES = ['scene', 'sky', 'map', 'none'] as const;
@@ -69,4 +70,13 @@ export function environmentOfLink(view: Pick<ViewParams, 'sky' | 'envIntensity'>
 export function linkOfEnvironment(environment: Environment | undefined): Pick<ViewParams, 'sky' | 'envIntensity'> {
   if (environment?.kind !== 'sky') return {};
   return { sky: { elevation: environment.sunElevationDeg, azimuth: environment.sunAzimuthDeg, turbidity: environment.turbidity }, ...(environment.intensity !== 1 ? { envIntensity: environment.intensity } : {}) };
+}
+
+/**
+ * What the page says of how a loaded scene is lit (scene/default-light.ts: a default sky, or its own
+ * emitters), as information; undefined when the panel or a link gives the environment instead, as
+ * the note is then about light that is not shown.
+ */
+export function lightingNoteOf(scene: Pick<Scene, 'name' | 'lightingNote'>, override: Environment | undefined): string | undefined {
+  return override === undefined && scene.lightingNote ? `${scene.name}: ${scene.lightingNote}` : undefined;
 }

@@ -28,7 +28,7 @@ import type { Pose } from './camera-controller.ts';
 import { Input } from './input.ts';
 import { SettingsPanel } from './panel.ts';
 import { pathRelativeTo, walkEntries, type PathedFile, type WalkEntry } from './dropped-files.ts';
-import { environmentOfLink } from './environment-choice.ts';
+import { environmentOfLink, lightingNoteOf } from './environment-choice.ts';
 import { SceneLoader } from './scene-loader.ts';
 import type { SceneRequest } from './scene-request.ts';
 import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
@@ -69,13 +69,15 @@ let messageTimer: ReturnType<typeof setTimeout> | undefined;
 /**
  * Shows one message (it replaces the last). Info expires after INFO_MESSAGE_MS; warnings and errors
  * stay until closed (×) or replaced. `details` (a scene's loading warnings) fold under the text,
- * which then reads as their count, and open on a click.
+ * which then reads as their count, and open on a click. `note` (information shown with warnings: how
+ * a scene is lit) is a line of its own above them, in the colour of information.
  */
-function showMessage(text: string, kind: 'info' | 'warning' | 'error', details: readonly string[] = []): void {
+function showMessage(text: string, kind: 'info' | 'warning' | 'error', details: readonly string[] = [], note?: string): void {
   clearTimeout(messageTimer);
   messageBox.hidden = false;
   message.hidden = false;
   message.dataset.kind = kind;
+  let body: Node = document.createTextNode(text);
   if (details.length > 0) {
     const fold = document.createElement('details');
     const summary = document.createElement('summary');
@@ -83,8 +85,10 @@ function showMessage(text: string, kind: 'info' | 'warning' | 'error', details: 
     const list = document.createElement('div');
     list.textContent = details.map((d) => `· ${d}`).join('\n');
     fold.append(summary, list);
-    message.replaceChildren(fold);
-  } else message.textContent = text;
+    body = fold;
+  }
+  const noteLine = note !== undefined ? [Object.assign(document.createElement('div'), { className: 'note', textContent: note })] : [];
+  message.replaceChildren(...noteLine, body);
   if (kind === 'info') messageTimer = setTimeout(clearMessage, INFO_MESSAGE_MS);
 }
 function clearMessage(): void {
@@ -201,7 +205,11 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, lab
     panel?.readFromViewer();
     // Each warning once (a texture missing from ten materials is one problem), one per line.
     const warnings = [...new Set([...loaded.warnings, ...ignored.map((p) => `ignored in the link: ${p}`)])];
-    if (warnings.length > 0) showMessage(`${loaded.prepared.scene.name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`} (click to see)`, 'warning', warnings);
+    // How the scene is lit and why is information, not one of the warnings.
+    const name = loaded.prepared.scene.name;
+    const lighting = lightingNoteOf(loaded.prepared.scene, viewer.environment);
+    if (warnings.length > 0) showMessage(`${name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`} (click to see)`, 'warning', warnings, lighting);
+    else if (lighting) showMessage(lighting, 'info');
     shownLabel = label;
   } catch (e) {
     if (token === loadToken) showMessage(describeError(e), 'error');

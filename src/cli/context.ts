@@ -8,7 +8,10 @@ import { escapeControls } from './terminal-text.ts';
 export interface CliContext {
   readonly verbose: () => boolean;
   print(line: string): void;
+  /** Information on stderr: `lantern: line`. */
   note(line: string): void;
+  /** A warning on stderr (what a loader worked around): `lantern: warning: line`, apart from information. */
+  warn(line: string): void;
   /** Runs a command body; reports failures as one line (a stack trace with --verbose) and sets the exit code. */
   run(body: () => Promise<void>): Promise<void>;
 }
@@ -21,6 +24,7 @@ export function createCliContext(verbose: () => boolean): CliContext {
     verbose,
     print: (line) => process.stdout.write(`${escapeControls(line, { keepLines: true })}\n`),
     note: (line) => process.stderr.write(`lantern: ${escapeControls(line, { keepLines: true })}\n`),
+    warn: (line) => process.stderr.write(`lantern: warning: ${escapeControls(line, { keepLines: true })}\n`),
     async run(body) {
       try {
         await body();

@@ -14,6 +14,7 @@ import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
 import { loadPreparedInThread, reflectBindingsInThread } from './scene-thread.ts';
 import { PATH_TRACE_ENTRY, PATH_TRACE_MODULE } from '../passes/path-trace-pass.ts';
+import type { CliContext } from './context.ts';
 import type { Timeline } from './timeline.ts';
 
 export interface Session {
@@ -22,16 +23,20 @@ export interface Session {
   readonly loadMs: number;
 }
 
-/** `adjust` changes the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step. */
-export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
-  const loading = loadPreparedInThread(sceneArg, note, sceneOptions, environment, adjust, timeline);
+/**
+ * `report` hears of what the loader worked around (warn) and of information (note: the GPU fallback,
+ * how the scene is lit); `adjust` changes the loaded scene before it is prepared (bench --levels);
+ * `timeline` hears of every start-up step.
+ */
+export async function openSession(sceneArg: string, report: Pick<CliContext, 'note' | 'warn'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
+  const loading = loadPreparedInThread(sceneArg, report.warn, sceneOptions, environment, adjust, timeline);
   // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
   loading.catch(() => undefined);
   // The path tracer's second parse (its bindings) on a thread of its own; never fails (see there).
   const bindings = reflectBindingsInThread(PATH_TRACE_MODULE, [PATH_TRACE_ENTRY], GPUShaderStage.COMPUTE, timeline);
   let renderer: Renderer | undefined;
   try {
-    const gpu = await acquireNodeGpu({ onNote: note, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
+    const gpu = await acquireNodeGpu({ onNote: report.note, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
     if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
     // The tone mapper compiles and the path tracer is reflected while the scene loads; then only
     // the variant this scene needs compiles, and the scene uploads.
@@ -47,6 +52,9 @@ export async function openSession(sceneArg: string, note: (message: string) => v
     throw e;
   }
   const { prepared, loadMs } = await loading;
+  // How the scene is lit when it keeps its own light (a default sky, or its emitters): information.
+  // An environment given on the command line replaced it, and the note with it.
+  if (prepared.scene.lightingNote) report.note(`${prepared.scene.name}: ${prepared.scene.lightingNote}`);
   await renderer.setScene(prepared);
   return { renderer, prepared, loadMs };
 }

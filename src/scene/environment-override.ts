@@ -12,7 +12,9 @@ export function withEnvironment(scene: Scene, environment: Environment): Scene {
   const isSky = environment.kind === 'sky';
   const shift = (isSky ? DAYLIGHT_EXPOSURE_STOPS : 0) - (wasSky ? DAYLIGHT_EXPOSURE_STOPS : 0);
   const camera = shift === 0 ? scene.camera : { ...scene.camera, exposureStops: (scene.camera.exposureStops ?? 0) + shift };
-  return { ...scene, environment, camera };
+  // The note on how the scene's own light was chosen no longer applies (scene/default-light.ts).
+  const { lightingNote: _replaced, ...rest } = scene;
+  return { ...rest, environment, camera };
 }
 
 /** The sky of `--sky elevation,azimuth[,turbidity]` (degrees; turbidity 1–10, default 3). */

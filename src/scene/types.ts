@@ -467,6 +467,12 @@ export interface Scene {
    * Wolfenstein map: 64 × 1 × 64 tiles). Absent: the grid's resolution is chosen from the primitives.
    */
   readonly tileGrid?: { readonly origin: Vec3; readonly cellSize: Vec3; readonly dims: readonly [number, number, number] };
-  /** What the loader had to work around (a missing texture, no light so a default sky): shown once to the user. */
+  /** What the loader had to work around (a missing texture, an unsupported extension): shown once to the user. */
   readonly warnings?: readonly string[];
+  /**
+   * Whether the default sky was added or the scene's own lights light it, and why
+   * (scene/default-light.ts): information for the user, not a warning. Dropped when another
+   * environment replaces the scene's own (scene/environment-override.ts), as it then says nothing.
+   */
+  readonly lightingNote?: string;
 }

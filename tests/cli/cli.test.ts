@@ -195,6 +195,7 @@ describe('bad input', () => {
     [['render', 'cornell', '--sky', '30'], /--sky/],
     [['render', 'cornell', '--env', 'nowhere.hdr'], /--env: cannot read 'nowhere\.hdr'/],
     [['render', 'cornell', '--sky', '30,0', '--env', 'x.hdr'], /--sky and --env both give the environment/],
+    [['render', 'cornell', '--env', 'none', '--env-intensity', '2'], /--env-intensity and --env-rotation have nothing to act on with --env none/],
     [['render', 'cornell', '--aperture', '-1'], /--aperture must be a number ≥ 0/],
     [['render', 'cornell', '--focus-distance', '0', '--aperture', '1'], /--focus-distance must be a number > 0/],
     [['render', 'cornell', '--aperture', '1', '--f-number', '2'], /--aperture and --f-number both give the aperture/],
@@ -266,24 +267,65 @@ describe('bad input', () => {
   });
 });
 
-const GLTF = '../shared/assets/gltf';
+// Beside the checkout; a worktree finds them in the shared folder.
+const GLTF = existsSync('../shared/assets/gltf') ? '../shared/assets/gltf' : '/work/shared/assets/gltf';
 const haveGltf = existsSync(GLTF);
 
+/** Mean of a PNG's colour channels, 0–255. */
+function meanPixel(path: string): number {
+  const image = decodePng(readFileSync(path));
+  const channels = image.data.length / (image.width * image.height);
+  let sum = 0;
+  for (let i = 0; i < image.data.length; i += channels) sum += image.data[i]! + image.data[i + 1]! + image.data[i + 2]!;
+  return sum / (3 * image.width * image.height);
+}
+
 describe.skipIf(!haveGltf)('glTF from the command line (needs ../shared/assets/gltf)', () => {
-  it('info names a missing texture once and reports the materials and lights', () => {
+  it('info names a missing texture once as a warning, and how the model is lit apart, as information', () => {
     const r = lantern(['info', `${GLTF}/Lantern/glTF/Lantern.gltf`, '--json']);
     expect(r.code).toBe(0);
     expect(r.stderr.match(/Lantern_baseColor\.png/g)).toHaveLength(1);
+    expect(r.stderr).toMatch(/^lantern: warning: Lantern_baseColor\.png is missing/m);
     const info = JSON.parse(r.stdout);
-    expect(info).toMatchObject({ scene: 'Lantern', materialKinds: { 'metallic-roughness': 1 }, environment: 'none' });
+    // Its glowing glass gives a few per cent of a sky's light: the default sky lights it.
+    expect(info).toMatchObject({ scene: 'Lantern', materialKinds: { 'metallic-roughness': 1 }, environment: 'sky' });
     expect(info.emissiveTriangles).toBeGreaterThan(0);
+    expect(info.notes).toEqual([expect.stringMatching(/^its emitters give [\d.]+ % of the light of a default sky; a default sky lights it$/)]);
+    expect(info.warnings.some((w: string) => /sky/.test(w))).toBe(false);
   });
 
-  it('renders a .glb under the sky given on the command line', () => {
+  it('renders a .glb under the sky given on the command line, and says nothing of a default sky', () => {
     const out = join(dir, 'duck.png');
-    const r = lantern(['render', `${GLTF}/Duck/glTF-Binary/Duck.glb`, '--width', '16', '--height', '16', '--spp', '2', '--sky', '30,45,3', '--out', out]);
+    const r = lantern(['render', `${GLTF}/Duck/glTF-Binary/Duck.glb`, '--width', '16', '--height', '16', '--spp', '2', '--sky', '30,45,3', '--out', out, '--json']);
     expect(r.code, r.stderr).toBe(0);
     expect(existsSync(out)).toBe(true);
+    expect(r.stderr).not.toMatch(/sky|light of its own/);
+    expect(JSON.parse(r.stdout).notes).toBeUndefined();
+  });
+
+  it('--env none leaves a model without light in the dark, with no default sky and no word of one', () => {
+    const out = join(dir, 'duck-dark.png');
+    const r = lantern(['render', `${GLTF}/Duck/glTF-Binary/Duck.glb`, '--width', '8', '--height', '8', '--spp', '1', '--env', 'none', '--out', out]);
+    expect(r.code, r.stderr).toBe(0);
+    expect(meanPixel(out)).toBe(0);
+    expect(r.stderr).not.toMatch(/sky|light of its own/);
+  });
+
+  const HELMET = `${GLTF}/DamagedHelmet/glTF-Binary/DamagedHelmet.glb`;
+  it('DamagedHelmet: its glowing details cannot light it, so the default sky does, and the render is not black', (context) => {
+    if (!existsSync(HELMET)) {
+      console.warn(`skipped: ${HELMET} is absent`);
+      context.skip();
+    }
+    const out = join(dir, 'helmet.png');
+    const r = lantern(['render', HELMET, '--width', '16', '--height', '16', '--spp', '4', '--out', out, '--json']);
+    expect(r.code, r.stderr).toBe(0);
+    // Said once, as information (no "warning"), on stderr and apart in the JSON.
+    expect(r.stderr).toMatch(/^lantern: DamagedHelmet: its emitters give 0\.\d+ % of the light of a default sky; a default sky lights it$/m);
+    expect(r.stderr).not.toMatch(/warning/);
+    expect(JSON.parse(r.stdout).notes).toEqual([expect.stringMatching(/a default sky lights it$/)]);
+    // Black but for a few glowing pixels before (no environment at all): now lit by daylight.
+    expect(meanPixel(out)).toBeGreaterThan(30);
   });
 });
 

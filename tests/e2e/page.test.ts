@@ -381,6 +381,9 @@ describe('the page', () => {
     await page.setInputFiles('#open-file', asset('Duck/glTF-Binary/Duck.glb'));
     await waitNewScene(page, loads);
     expect(await page.locator('#scene option:checked').textContent()).toBe('Duck.glb');
+    // No light of its own: the default sky, said as information (it was a warning).
+    expect(await page.locator('#message').getAttribute('data-kind')).toBe('info');
+    expect(await messageText(page)).toBe('Duck: the model has no light of its own; a default sky lights it');
     expect(await page.evaluate(() => window.lantern.scene)).not.toBe('furnace');
     const after = await settledImage(page, 2);
     const [r, g, b] = meanRgb(after, 0, 1, 0, 1);
@@ -448,6 +451,9 @@ describe('the page', () => {
     expect(text).toContain(missing);
     expect(text.split(missing).length - 1).toBe(1);
     expect(await page.locator('#message').getAttribute('data-kind')).toBe('warning');
+    // How it is lit is a line of information above the warnings, not one of them.
+    expect(await page.locator('#message .note').textContent()).toMatch(/^Lantern: its emitters give [\d.]+ % of the light of a default sky; a default sky lights it$/);
+    expect(await page.locator('#message details').textContent()).not.toMatch(/sky/);
     const img = await settledImage(page, 2);
     const [r, g, b] = meanRgb(img, 0, 1, 0, 1);
     expect(r + g + b).toBeGreaterThan(10);

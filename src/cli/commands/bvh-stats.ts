@@ -113,7 +113,7 @@ export function registerBvhStats(program: Command, context: CliContext): void {
       // a scene big enough for render to use them (so small scenes and the tests spawn none).
       let pool = options.threads !== undefined ? nodeBvhPool(options.threads) : undefined;
       pool?.start();
-      const loaded = await loadSceneArgument(sceneArg, sceneLoadOptions(options, context.note));
+      const loaded = await loadSceneArgument(sceneArg, sceneLoadOptions(options, context.warn));
       const scene = options.bare ? withoutStudio(loaded) : loaded;
       if (!scene) throw new LanternError(`--bare takes the mesh out of its studio: '${loaded.name}' is not a PLY mesh (or molecule) in the studio`);
       validateScene(scene);

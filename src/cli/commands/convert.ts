@@ -19,7 +19,7 @@ export function registerConvert(program: Command, context: CliContext): void {
       context.run(async () => {
         if (!o.out.toLowerCase().endsWith('.glb')) throw new LanternError(`--out must name a .glb file, not '${o.out}'`);
         checkOutputPath('--out', o.out, 'file');
-        const scene = await loadSceneArgument(sceneArg, sceneLoadOptions(o, context.note));
+        const scene = await loadSceneArgument(sceneArg, sceneLoadOptions(o, context.warn));
         validateScene(scene);
         const glb = await sceneToGlb(scene, { generator: 'Lantern', ...(o.metersPerUnit !== undefined ? { metersPerUnit: o.metersPerUnit } : {}) });
         writeFile(o.out, glb);

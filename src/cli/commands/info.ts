@@ -20,7 +20,7 @@ export function registerInfo(program: Command, context: CliContext): void {
       context.run(async () => {
         const t0 = performance.now();
         const argument = parseSceneArgument(sceneArg);
-        const given = sceneLoadOptions(options, context.note);
+        const given = sceneLoadOptions(options, context.warn);
         if (argument.kind === 'builtin') checkSceneOptionsApply(given, undefined);
         const sceneOptions = loadOptions(given);
         let loaded: Scene;
@@ -41,7 +41,7 @@ export function registerInfo(program: Command, context: CliContext): void {
         const { scene, triangles, bvh, packed } = prepared;
         const summary = sceneSummary(prepared);
         if (options.json) {
-          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.kindCounts.triangle, spheres: triangles.kindCounts.sphere, capsules: triangles.kindCounts.capsule, primitives: triangles.count, ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [] }, null, 2));
+          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.kindCounts.triangle, spheres: triangles.kindCounts.sphere, capsules: triangles.kindCounts.capsule, primitives: triangles.count, ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [], notes: scene.lightingNote ? [scene.lightingNote] : [] }, null, 2));
           return;
         }
         const kinds = Object.entries(summary.materialKinds).map(([k, n]) => `${n} ${k}`).join(', ');
@@ -57,6 +57,8 @@ export function registerInfo(program: Command, context: CliContext): void {
             `${scene.name}: ${describePrimitives(triangles)} in ${scene.meshes.length} mesh(es) placed by ${scene.instances.length} instance(s) (loaded and prepared in ${loadMs.toFixed(1)} ms)`,
             `materials: ${scene.materials.length} (${kinds})`,
             `lights: ${lights}`,
+            // How it is lit and why (scene/default-light.ts): information, apart from the warnings on stderr.
+            ...(scene.lightingNote ? [`lighting: ${scene.lightingNote}`] : []),
             ...(summary.sprites > 0 ? [`sprites: ${summary.sprites} (things drawn), ${summary.emittingSprites} of them emitting`] : []),
             `textures: ${packed.counts.textures}, on the GPU ${mib(summary.textureBytes)} (atlas pages with mip levels: ${packed.atlas.pages.length} sRGB + ${packed.linearAtlas.pages.length} linear)`,
             formatBvhStats(bvh),

@@ -105,7 +105,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   const cameraPath = checkRenderOptions(sceneArg, o, given, png);
   const timeline = o.timings ? new Timeline() : undefined;
   for (const span of timeline ? processSpans() : []) timeline!.add(span);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), undefined, timeline);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), undefined, timeline);
   const setUp = performance.now();
   await renderer.resize(o.width, o.height);
   const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
@@ -133,7 +133,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
     const integrator = s.recipe === 'path' ? { integrator: renderer.frameIntegrator, ...(renderer.frameIntegrator === 'wavefront' ? { wavefrontBytes: renderer.wavefrontBytes } : {}) } : {};
     // The real-time chain's memory (the path recipe's): bytes per pixel in all and per buffer.
     const memory = s.recipe === 'path' ? { denoiserBytesPerPixel: renderer.denoiserMemory.bytesPerPixel, denoiserBuffers: renderer.denoiserMemory.buffers } : {};
-    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, ...integrator, sppPerFrame: samples, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...memory, ...result };
+    const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, ...integrator, sppPerFrame: samples, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...memory, ...result, ...(prepared.scene.lightingNote ? { notes: [prepared.scene.lightingNote] } : {}) };
     const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
     context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${samples} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
     renderer.destroy();
@@ -187,6 +187,8 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
     },
     ...(legend ? { debug: { view: legend.view, layout: s.debugLayout, label: legend.label, ...(legend.scale ? { scale: { min: legend.scale.min, max: legend.scale.max, auto: legend.scale.auto } } : {}) } } : {}),
     outputs: { ...(png ? { png } : {}), ...(o.exr ? { exr: o.exr } : {}) },
+    // Information (how the scene is lit and why), apart from warnings; also on stderr.
+    ...(prepared.scene.lightingNote ? { notes: [prepared.scene.lightingNote] } : {}),
     ...(timeline ? { timeline: timeline.toJSON() } : {}),
   };
   if (timeline && !o.json) process.stderr.write(`${escapeControls(timeline.format(), { keepLines: true })}\n`);

@@ -23,7 +23,7 @@ export function registerTextures(program: Command, context: CliContext): void {
       context.run(async () => {
         checkOutputPath('--out', o.out, 'folder');
         const { stack } = openWads(wad);
-        const graphics = new DoomGraphics(stack, { onWarning: context.note });
+        const graphics = new DoomGraphics(stack, { onWarning: context.warn });
         let count = 0;
         for (const [kind, names, get] of [
           ['textures', graphics.textureNames(), (n: string) => graphics.texture(n)],

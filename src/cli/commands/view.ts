@@ -68,7 +68,7 @@ async function view(sceneArg: string, o: ViewOptions, context: CliContext): Prom
   const link = `${server.url}?${params}`;
   context.print(`Lantern viewer: ${link}`);
   if (!server.loopbackOnly) {
-    context.note(`warning: listening on ${o.host}, beyond this machine: anyone who can reach port ${new URL(server.url).port} can open the viewer and download the scene files it serves (use --host 127.0.0.1 to keep it local)`);
+    context.warn(`listening on ${o.host}, beyond this machine: anyone who can reach port ${new URL(server.url).port} can open the viewer and download the scene files it serves (use --host 127.0.0.1 to keep it local)`);
   }
   context.note('open it in a browser with WebGPU (Chrome, Edge); Ctrl-C stops the server');
   await new Promise<void>((resolve) => {

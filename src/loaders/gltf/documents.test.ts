@@ -191,6 +191,50 @@ describe('glTF loader on built documents', () => {
     expect(s.warnings).toEqual([]);
   });
 
+  /**
+   * A Cornell box in metres (0.55 m a side, open at the front, +z), its ceiling light 0.13 × 0.105 m of
+   * the original measurements' radiance (17, 12, 4): emissiveFactor × KHR_materials_emissive_strength.
+   */
+  function openCornellBox(strength: number): Document {
+    const doc = new Document();
+    const buffer = doc.createBuffer();
+    const white = doc.createMaterial('white').setBaseColorFactor([0.73, 0.73, 0.73, 1]).setMetallicFactor(0);
+    const light = doc.createMaterial('light').setBaseColorFactor([0.78, 0.78, 0.78, 1]).setMetallicFactor(0).setEmissiveFactor([1, 12 / 17, 4 / 17]);
+    light.setExtension('KHR_materials_emissive_strength', doc.createExtension(KHRMaterialsEmissiveStrength).createEmissiveStrength().setEmissiveStrength(strength));
+    const s = 0.55, lx = 0.065, lz = 0.0525, ly = s - 0.001;
+    const quad = (corners: number[], material: typeof white) =>
+      doc
+        .createPrimitive()
+        .setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float32Array(corners)).setBuffer(buffer))
+        .setIndices(doc.createAccessor().setType('SCALAR').setArray(new Uint32Array(QUAD_INDICES)).setBuffer(buffer))
+        .setMaterial(material);
+    const mesh = doc
+      .createMesh('box')
+      .addPrimitive(quad([0, 0, 0, s, 0, 0, s, 0, -s, 0, 0, -s], white)) // floor
+      .addPrimitive(quad([0, s, 0, 0, s, -s, s, s, -s, s, s, 0], white)) // ceiling
+      .addPrimitive(quad([0, 0, -s, s, 0, -s, s, s, -s, 0, s, -s], white)) // back
+      .addPrimitive(quad([0, 0, 0, 0, 0, -s, 0, s, -s, 0, s, 0], white)) // left
+      .addPrimitive(quad([s, 0, 0, s, s, 0, s, s, -s, s, 0, -s], white)) // right
+      .addPrimitive(quad([s / 2 - lx, ly, -s / 2 + lz, s / 2 - lx, ly, -s / 2 - lz, s / 2 + lx, ly, -s / 2 - lz, s / 2 + lx, ly, -s / 2 + lz], light)); // light, facing down
+    doc.createScene().addChild(doc.createNode('box').setMesh(mesh));
+    return doc;
+  }
+
+  it('lights a Cornell box open at the front by its ceiling light alone: no sky', async () => {
+    const s = await load(openCornellBox(17), [KHRMaterialsEmissiveStrength]);
+    expect(s.environment).toBeUndefined();
+    expect(s.camera.exposureStops ?? 0).toBe(0);
+    expect(s.lightingNote).toMatch(/^its own lights light it \(\d+ % of the light of a default sky\); no sky is added$/);
+  });
+
+  it('gives a model whose only emitter is tiny and dim the default sky, and says why', async () => {
+    // The same box with a light 1/1000 as strong: a pilot lamp, not a light.
+    const s = await load(openCornellBox(0.017), [KHRMaterialsEmissiveStrength]);
+    expect(s.environment).toMatchObject({ kind: 'sky' });
+    expect(s.lightingNote).toMatch(/^its emitters give 0\.\d+ % of the light of a default sky; a default sky lights it$/);
+    expect(s.warnings).toEqual([]);
+  });
+
   it('composes the hierarchy: world = parent · child, applied to a known vertex', async () => {
     const { doc, node } = oneMesh(QUAD, { indices: QUAD_INDICES });
     const s45 = Math.SQRT1_2;
@@ -271,7 +315,9 @@ describe('glTF loader on built documents', () => {
     const s = await load(doc);
     expect(s.meshes[0]!.indices.length).toBe(6);
     expect(s.warnings!.filter((w) => w.includes('points and lines'))).toHaveLength(1);
-    expect(s.warnings).toContain('the model has no light of its own; a default sky lights it');
+    // No light: the default sky, said as information apart from the warnings.
+    expect(s.lightingNote).toBe('the model has no light of its own; a default sky lights it');
+    expect(s.warnings!.some((w) => /sky/.test(w))).toBe(false);
     // Framed: the camera looks at the quad's centre from outside it.
     const c = s.camera;
     const toCentre = [0.5 - c.position[0], 0.5 - c.position[1], 0 - c.position[2]];

@@ -10,10 +10,10 @@
  */
 import type { Document, Node } from '@gltf-transform/core';
 import type { InstancedMesh, Light } from '@gltf-transform/extensions';
-import { DAYLIGHT_EXPOSURE_STOPS } from '../../scene/sky.ts';
 import { LanternError } from '../../errors.ts';
 import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../../math/aabb.ts';
 import { fromTrs, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
+import { withDefaultLight } from '../../scene/default-light.ts';
 import { frameBounds } from '../../scene/framing.ts';
 import type { Camera, Instance, Material, Mesh, PunctualLight, Scene } from '../../scene/types.ts';
 import { convertCamera } from './cameras.ts';
@@ -23,9 +23,6 @@ import { convertMaterial, defaultMaterial } from './materials.ts';
 import { convertMesh } from './meshes.ts';
 import { TextureTable } from './textures.ts';
 import type { Warnings } from './warnings.ts';
-
-/** What lights a model that brings no light of its own: a clear afternoon sky. */
-const DEFAULT_SKY = { kind: 'sky', sunElevationDeg: 40, sunAzimuthDeg: 30, turbidity: 3, groundAlbedo: 0.3, intensity: 1 } as const;
 
 export async function assembleScene(name: string, source: GltfSource, warnings: Warnings): Promise<Scene> {
   const { doc } = source;
@@ -120,22 +117,20 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
   if (materials.length === 0) materials.push(defaultMaterial());
 
   if (!camera) camera = frameBounds(worldBounds(meshes, instances));
-  const emits = lights.length > 0 || materials.some((m) => m.emission.some((c) => c > 0));
-  if (!emits) warnings.add('the model has no light of its own; a default sky lights it');
 
-  return {
+  // The default sky where the model's own emitters and lights are too dim to light it (its exposure
+  // comes with it), decided by what they deliver: scene/default-light.ts.
+  return withDefaultLight({
     name,
     meshes,
     instances,
     materials,
     textures: textures.textures,
-    // The sky is in photometric units (cd/m²): expose for daylight unless the file's own lights do the lighting.
-    camera: emits ? camera : { ...camera, exposureStops: (camera.exposureStops ?? 0) + DAYLIGHT_EXPOSURE_STOPS },
-    ...(emits ? {} : { environment: DEFAULT_SKY }),
+    camera,
     lights,
     metersPerUnit: 1,
     warnings: warnings.list,
-  };
+  });
 }
 
 /** The per-instance transforms of EXT_mesh_gpu_instancing (absent attributes: identity parts). */
