@@ -28,6 +28,7 @@ import { determinant3 } from '../math/mat4.ts';
 import { luminance } from '../math/vec3.ts';
 import type { Environment } from './environment.ts';
 import { withEnvironment } from './environment-override.ts';
+import { punctualPower } from './punctual-power.ts';
 import { DAYLIGHT_EXPOSURE_STOPS, SkyModel } from './sky.ts';
 import type { Instance, Material, Mesh, PunctualLight, Scene, Texture, TextureRef } from './types.ts';
 
@@ -109,7 +110,8 @@ export function ownIrradiance(scene: Pick<Scene, 'meshes' | 'instances' | 'mater
   }
   let directional = 0;
   for (const light of scene.lights ?? []) {
-    const p = punctualPowerOrIrradiance(light);
+    // A directional light's irradiance E, not its power: see the E / 4 above.
+    const p = light.kind === 'directional' ? light.irradiance * luminance(light.color) : punctualPower(light, 0);
     if (!(p > 0)) continue;
     hasLights = true;
     if (light.kind === 'directional') directional += p / 4;
@@ -118,20 +120,6 @@ export function ownIrradiance(scene: Pick<Scene, 'meshes' | 'instances' | 'mater
   // A scene of emitters only has nothing for a sky to light: its own light is all there is to see.
   const fromPower = power > 0 ? (area > 0 ? power / area : Infinity) : 0;
   return { irradiance: 2 ** (scene.camera.exposureStops ?? 0) * (fromPower + directional), hasLights };
-}
-
-/** The power of a point or spot light (its intensity over its solid angle), or the irradiance of a directional one; luminance. */
-function punctualPowerOrIrradiance(light: PunctualLight): number {
-  const y = luminance(light.color);
-  switch (light.kind) {
-    case 'point':
-      return 4 * Math.PI * light.intensity * y;
-    case 'spot':
-      // The cone's solid angle, to halfway between its inner and outer edge (as the light table counts it).
-      return 2 * Math.PI * (1 - Math.cos((light.innerConeAngle + light.outerConeAngle) / 2)) * light.intensity * y;
-    case 'directional':
-      return light.irradiance * y;
-  }
 }
 
 interface MeshLight {

@@ -9,6 +9,7 @@ import { makeStructuredView } from 'webgpu-utils';
 import { buildAliasTable } from '../../math/alias-table.ts';
 import { luminance, normalize, scale } from '../../math/vec3.ts';
 import type { PunctualLight } from '../../scene/types.ts';
+import { punctualPower } from '../../scene/punctual-power.ts';
 import type { StructLayout } from '../wgsl/reflect.ts';
 import type { ShaderDataDefinitions } from 'webgpu-utils';
 import { StructArray } from './struct-array.ts';
@@ -44,20 +45,6 @@ export interface PackedLights {
   readonly sunSelectPmf: number;
   readonly punctualCount: number;
   readonly warnings: readonly string[];
-}
-
-/** A punctual light's power (luminance): 4πI for a point, the cone's solid angle × I for a spot, E·πR² for a directional light. */
-export function punctualPower(light: PunctualLight, sceneRadius: number): number {
-  switch (light.kind) {
-    case 'point':
-      return 4 * Math.PI * light.intensity * luminance(light.color);
-    case 'spot': {
-      const half = (light.innerConeAngle + light.outerConeAngle) / 2;
-      return 2 * Math.PI * (1 - Math.cos(half)) * light.intensity * luminance(light.color);
-    }
-    case 'directional':
-      return light.irradiance * luminance(light.color) * Math.PI * sceneRadius * sceneRadius;
-  }
 }
 
 export function packLights(inputs: LightInputs, layouts: { lightSlot: StructLayout }, defs: ShaderDataDefinitions): PackedLights {
