@@ -12,6 +12,7 @@ import { observeStages } from '../gpu/stage-log.ts';
 import { bsdfTableData } from '../gpu/pack/bsdf-tables.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
+import { checkSceneFiles } from './scene-precheck.ts';
 import { loadPreparedInThread, reflectBindingsInThread } from './scene-thread.ts';
 import { PATH_TRACE_ENTRY, PATH_TRACE_MODULE } from '../passes/path-trace-pass.ts';
 import type { Timeline } from './timeline.ts';
@@ -24,6 +25,8 @@ export interface Session {
 
 /** `adjust` changes the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step. */
 export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
+  // A damaged file is refused before the GPU starts (and before Dawn has printed anything).
+  checkSceneFiles(sceneArg);
   const loading = loadPreparedInThread(sceneArg, note, sceneOptions, environment, adjust, timeline);
   // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
   loading.catch(() => undefined);
