@@ -10,6 +10,7 @@ import { Renderer } from '../renderer/renderer.ts';
 import type { Scene } from '../scene/types.ts';
 import { observeStages } from '../gpu/stage-log.ts';
 import { bsdfTableData } from '../gpu/pack/bsdf-tables.ts';
+import type { CliContext } from './context.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
 import { checkSceneFiles } from './scene-precheck.ts';
@@ -23,18 +24,21 @@ export interface Session {
   readonly loadMs: number;
 }
 
-/** `adjust` changes the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step. */
-export async function openSession(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
+/**
+ * `output` takes the command's notes and Dawn's own lines (shown with --verbose); `adjust` changes the
+ * loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step.
+ */
+export async function openSession(sceneArg: string, output: Pick<CliContext, 'note' | 'dawnOutput'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
   // A damaged file is refused before the GPU starts (and before Dawn has printed anything).
   checkSceneFiles(sceneArg);
-  const loading = loadPreparedInThread(sceneArg, note, sceneOptions, environment, adjust, timeline);
+  const loading = loadPreparedInThread(sceneArg, output.note, sceneOptions, environment, adjust, timeline);
   // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
   loading.catch(() => undefined);
   // The path tracer's second parse (its bindings) on a thread of its own; never fails (see there).
   const bindings = reflectBindingsInThread(PATH_TRACE_MODULE, [PATH_TRACE_ENTRY], GPUShaderStage.COMPUTE, timeline);
   let renderer: Renderer | undefined;
   try {
-    const gpu = await acquireNodeGpu({ onNote: note, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
+    const gpu = await acquireNodeGpu({ onNote: output.note, onDawnOutput: output.dawnOutput, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
     if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
     // The tone mapper compiles and the path tracer is reflected while the scene loads; then only
     // the variant this scene needs compiles, and the scene uploads.

@@ -132,7 +132,7 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
   }
   checkRealTimeOptions(o, protocol);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), protocol ? protocolScene : adjustScene(o.levels, o.billboards));
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), protocol ? protocolScene : adjustScene(o.levels, o.billboards));
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   await renderer.accelSettled();

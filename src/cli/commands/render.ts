@@ -105,7 +105,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   const cameraPath = checkRenderOptions(sceneArg, o, given, png);
   const timeline = o.timings ? new Timeline() : undefined;
   for (const span of timeline ? processSpans() : []) timeline!.add(span);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context.note, o, environmentFromOptions(o), undefined, timeline);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), undefined, timeline);
   const setUp = performance.now();
   await renderer.resize(o.width, o.height);
   const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
