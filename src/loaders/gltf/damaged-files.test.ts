@@ -4,6 +4,8 @@
  * runs before the GPU starts (checkGltfFile) says the same from the GLB's head alone.
  */
 import { Document, WebIO } from '@gltf-transform/core';
+import { EXTMeshoptCompression } from '@gltf-transform/extensions';
+import { MeshoptEncoder } from 'meshoptimizer/encoder';
 import { describe, expect, it } from 'vitest';
 import { LanternError } from '../../errors.ts';
 import { checkGltfFile } from './document.ts';
@@ -87,6 +89,20 @@ describe('a damaged glTF file', () => {
     // The headers (file, JSON chunk, BIN chunk) and the JSON: not the 190 kB of the BIN chunk.
     expect(check.bytesRead).toBeLessThanOrEqual(u32(glb, 12) + 64);
     expect(glb.length).toBeGreaterThan(190_000);
+  });
+
+  it('a meshopt-compressed GLB is not damaged: its fallback buffer holds nothing to check views against', async () => {
+    const doc = new Document();
+    const buffer = doc.createBuffer();
+    const positions = new Float32Array(3 * 4096).map((_, i) => (i * 0.37) % 1);
+    const prim = doc.createPrimitive().setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(positions).setBuffer(buffer));
+    doc.createScene().addChild(doc.createNode().setMesh(doc.createMesh().addPrimitive(prim)));
+    doc.createExtension(EXTMeshoptCompression).setRequired(true).setEncoderOptions({ method: EXTMeshoptCompression.EncoderMethod.QUANTIZE });
+    await MeshoptEncoder.ready;
+    const glb = await new WebIO().registerExtensions([EXTMeshoptCompression]).registerDependencies({ 'meshopt.encoder': MeshoptEncoder }).writeBinary(doc);
+    const scene = await loadGltf({ name: 'meshopt.glb', bytes: glb }, async () => undefined);
+    expect(scene.meshes[0]!.positions.length).toBe(positions.length);
+    expect(earlyCheck(glb).message).toBeUndefined();
   });
 
   it('truncated: the length its header gives and the length it has', async () => {
