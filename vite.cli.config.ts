@@ -1,10 +1,12 @@
 import { defineConfig } from 'vite';
+import { NODE_BUNDLE_DEFINE } from './scripts/node-bundle.ts';
 
 // The CLI as an ES module for Node: dist/cli/lantern.mjs, with bvh-worker.mjs beside it (the BVH build's
 // worker threads; the code both use lands in one more .mjs there). Everything is bundled except Dawn (a native
 // addon, and the only package the GPU machine's prepare script carries), so the bundle runs anywhere
 // `webgpu` can be imported. Shaders are inlined at build time by import.meta.glob.
 export default defineConfig({
+  define: NODE_BUNDLE_DEFINE,
   build: {
     ssr: true,
     outDir: 'dist/cli',

@@ -1,7 +1,7 @@
 import { defineConfig } from 'vitest/config';
 
 // Three projects, one `npm test`, run one after another (sequence.groupOrder):
-// - unit: pure TypeScript beside the code it tests (src/**/*.test.ts), no GPU, the fuzz suite (tests/fuzz)
+// - unit: pure TypeScript beside the code it tests (src/**/*.test.ts, scripts/), no GPU, the fuzz suite (tests/fuzz)
 //         and the layering check
 //         over src/ (tests/architecture). Two files at a time: they are single-threaded CPU work.
 // - gpu:  WebGPU through Dawn on SwiftShader (tests/gpu), one file at a time: SwiftShader's threads
@@ -17,7 +17,7 @@ export default defineConfig({
     projects: [
       {
         extends: true,
-        test: { name: 'unit', include: ['src/**/*.test.ts', 'tests/architecture/**/*.test.ts', 'tests/fuzz/**/*.test.ts'], testTimeout: 60_000, maxWorkers: 2 },
+        test: { name: 'unit', include: ['src/**/*.test.ts', 'scripts/**/*.test.ts', 'tests/architecture/**/*.test.ts', 'tests/fuzz/**/*.test.ts'], testTimeout: 60_000, maxWorkers: 2 },
       },
       {
         extends: true,

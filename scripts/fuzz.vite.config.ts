@@ -1,9 +1,11 @@
 import { defineConfig } from 'vite';
+import { NODE_BUNDLE_DEFINE } from './node-bundle.ts';
 
 // The long fuzz run (`npm run fuzz -- --minutes N`) as plain Node modules: dist/fuzz/fuzz.mjs drives,
 // fuzz-worker.mjs runs the cases (a worker can be cut off when a case hangs). Bundled like the CLI,
 // so the loaders run exactly as `lantern info` runs them.
 export default defineConfig({
+  define: NODE_BUNDLE_DEFINE,
   build: {
     ssr: true,
     outDir: 'dist/fuzz',

@@ -12,6 +12,8 @@ export interface CliContext {
   note(line: string): void;
   /** A warning on stderr (what a loader worked around): `lantern: warning: line`, apart from information. */
   warn(line: string): void;
+  /** Dawn's and the Vulkan loader's own output (their look for a GPU): on stderr with --verbose only. */
+  dawnOutput(text: string): void;
   /** Runs a command body; reports failures as one line (a stack trace with --verbose) and sets the exit code. */
   run(body: () => Promise<void>): Promise<void>;
 }
@@ -25,6 +27,9 @@ export function createCliContext(verbose: () => boolean): CliContext {
     print: (line) => process.stdout.write(`${escapeControls(line, { keepLines: true })}\n`),
     note: (line) => process.stderr.write(`lantern: ${escapeControls(line, { keepLines: true })}\n`),
     warn: (line) => process.stderr.write(`lantern: warning: ${escapeControls(line, { keepLines: true })}\n`),
+    dawnOutput: (text) => {
+      if (verbose()) process.stderr.write(escapeControls(text, { keepLines: true }));
+    },
     async run(body) {
       try {
         await body();

@@ -3,9 +3,20 @@
  * back to SwiftShader, the CPU Vulkan implementation Debian's `chromium` package installs: slow, but
  * exact enough for tests and small renders. On a machine with a GPU (or with VK_ICD_FILENAMES /
  * VK_DRIVER_FILES set) the system's driver is used as is.
+ *
+ * Dawn and the Vulkan loader write their own diagnostics straight to file descriptor 2 (C's stderr,
+ * not Node's process.stderr), and on a machine without a driver the first look for one prints
+ * `vkCreateInstance: Found no drivers!` and a `VK_ERROR_INCOMPATIBLE_DRIVER` trace: lines that read
+ * like a failure before Lantern's own note. Node cannot redirect its own descriptor 2, so that first
+ * look runs in a child process whose stderr is kept (probeSystemGpu): Lantern shows it with
+ * --verbose (onDawnOutput) and drops it otherwise. Where the child found an adapter, this process
+ * looks again and finds it without a word; where it found none, SwiftShader is used at once.
  */
+import { execFile } from 'node:child_process';
 import { existsSync } from 'node:fs';
+import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
+import { pathToFileURL } from 'node:url';
 import { acquireGpu, type GpuContext } from '../gpu/device.ts';
 import { LanternError } from '../errors.ts';
 import type { StageListener } from '../gpu/stage-log.ts';
@@ -49,6 +60,8 @@ export interface NodeGpuOptions {
   readonly forceSwiftShader?: boolean;
   /** Hears how long each step took: loading Dawn, the adapter, the device (start-up timelines). */
   readonly onStage?: StageListener;
+  /** Hears what Dawn and the Vulkan loader printed while looking for the system's GPU (the CLI shows it with --verbose). */
+  readonly onDawnOutput?: (text: string) => void;
 }
 
 /**
@@ -67,27 +80,73 @@ function environmentDawnOptions(): string[] {
 
 export async function acquireNodeGpu(options: NodeGpuOptions = {}): Promise<GpuContext> {
   const t0 = performance.now();
-  const { create } = await loadDawn();
-  options.onStage?.({ stage: 'load Dawn', startMs: t0, endMs: performance.now() });
   const dawnOptions = [...DEFAULT_DAWN_OPTIONS, ...(options.dawnOptions ?? []), ...environmentDawnOptions()];
   // The Vulkan loader complains on every start without it.
   process.env.XDG_RUNTIME_DIR ??= tmpdir();
   const driverChosen = process.env.VK_ICD_FILENAMES !== undefined || process.env.VK_DRIVER_FILES !== undefined;
+  const probeFirst = !options.forceSwiftShader && !driverChosen;
+  // The child looks for the system's GPU while this process loads Dawn.
+  const probing = probeFirst ? probeSystemGpu(dawnOptions) : undefined;
+  const { create } = await loadDawn();
+  options.onStage?.({ stage: 'load Dawn', startMs: t0, endMs: performance.now() });
   const stages = options.onStage ? { onStage: options.onStage } : {};
   if (options.forceSwiftShader) useSwiftShader();
-  else if (!driverChosen) {
-    // Where a GPU answers, its adapter is the one to use: no second instance, no second enumeration.
+  else if (probing) {
     const t1 = performance.now();
-    const instance = createInstance(create, dawnOptions);
-    const adapter = await instance.requestAdapter({ powerPreference: 'high-performance' });
-    options.onStage?.({ stage: 'adapter', startMs: t1, endMs: performance.now() });
-    if (adapter) return acquireGpu(instance, { adapter, ...stages });
+    const probe = await probing;
+    if (probe?.output) options.onDawnOutput?.(probe.output);
+    options.onStage?.({ stage: 'look for a GPU (child process)', startMs: t1, endMs: performance.now() });
+    // Where the child found a GPU, this process finds it too, and its adapter is the one to use. A
+    // probe that could not run says nothing either way: this process looks itself then, as it did
+    // before the probe existed (Dawn's lines reach stderr).
+    if (probe?.found !== false) {
+      const t2 = performance.now();
+      const instance = createInstance(create, dawnOptions);
+      const adapter = await instance.requestAdapter({ powerPreference: 'high-performance' });
+      options.onStage?.({ stage: 'adapter', startMs: t2, endMs: performance.now() });
+      if (adapter) return acquireGpu(instance, { adapter, ...stages });
+    }
     if (existsSync(SWIFTSHADER_ICD)) {
       useSwiftShader();
       options.onNote?.('no GPU adapter found; rendering on the CPU with SwiftShader (slow)');
     }
   }
   return acquireGpu(createInstance(create, dawnOptions), stages);
+}
+
+/** What the child process's look for the system's GPU found, and what Dawn and Vulkan printed meanwhile. */
+interface SystemGpuProbe {
+  readonly found: boolean;
+  readonly output: string;
+}
+
+/**
+ * The child's program: Dawn (the `webgpu` module this process would load, by URL) asked for an adapter
+ * with this process's options, the answer on stdout. Exits at once: Dawn's threads would keep it alive.
+ */
+const PROBE_PROGRAM = `
+const { create } = await import(process.env.LANTERN_PROBE_DAWN);
+const adapter = await create(JSON.parse(process.env.LANTERN_PROBE_OPTIONS)).requestAdapter({ powerPreference: 'high-performance' });
+process.stdout.write(adapter ? 'found' : 'none', () => process.exit(0));
+`;
+
+/** A driver that takes longer than this to answer is looked for in this process instead. */
+const PROBE_TIMEOUT_MS = 30_000;
+
+/** Undefined when the probe could not run or answer (no Node to start, a crash, a timeout). */
+function probeSystemGpu(dawnOptions: readonly string[]): Promise<SystemGpuProbe | undefined> {
+  let dawnUrl: string;
+  try {
+    dawnUrl = pathToFileURL(createRequire(import.meta.url).resolve('webgpu')).href;
+  } catch {
+    return Promise.resolve(undefined);
+  }
+  const env = { ...process.env, LANTERN_PROBE_DAWN: dawnUrl, LANTERN_PROBE_OPTIONS: JSON.stringify(dawnOptions) };
+  return new Promise((resolve) => {
+    execFile(process.execPath, ['--input-type=module', '--eval', PROBE_PROGRAM], { env, timeout: PROBE_TIMEOUT_MS, maxBuffer: 1 << 20, encoding: 'utf8' }, (error, stdout, stderr) => {
+      resolve(error || (stdout !== 'found' && stdout !== 'none') ? undefined : { found: stdout === 'found', output: stderr });
+    });
+  });
 }
 
 function useSwiftShader(): void {

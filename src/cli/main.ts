@@ -31,7 +31,7 @@ async function runCommand(): Promise<void> {
   program
     .name('lantern')
     .description('Lantern: a WebGPU path tracer, headless')
-    .option('-v, --verbose', 'show stack traces and details on errors')
+    .option('-v, --verbose', "show stack traces and details on errors, and Dawn's own diagnostics (its look for a GPU driver)")
     .option(`${LIMITS_OPTION} <list>`, `raise the size limits on input files, name=value,… (${LIMIT_NAMES.join(', ')}); also ${LIMITS_ENV}`)
     .showHelpAfterError('(run with --help for usage)')
     // Usage errors quote the command line, which may hold anything a script passed on.

@@ -77,7 +77,8 @@ export function parseSceneArgument(arg: string): SceneArgument {
   const reference = parseSceneReference(arg);
   // A word that is neither a built-in nor a file of a known kind is most likely a misspelt built-in.
   if (!reference.format && !formatByName(arg) && !isFile(arg)) {
-    throw new LanternError(`unknown scene '${arg}'`, `Give ${sceneHelp()}; built-in scenes are ${builtinSceneNames().join(', ')}`);
+    // One line: the built-ins once, and where the kinds of file are listed (sceneHelp, too long here).
+    throw new LanternError(`unknown scene '${arg}': no such file, nor a built-in scene (${builtinSceneNames().join(', ')})`, '`lantern render --help` lists what a scene can be');
   }
   return { kind: 'files', paths: reference.paths, ...(reference.part ? { part: reference.part } : {}) };
 }

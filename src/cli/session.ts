@@ -10,11 +10,12 @@ import { Renderer } from '../renderer/renderer.ts';
 import type { Scene } from '../scene/types.ts';
 import { observeStages } from '../gpu/stage-log.ts';
 import { bsdfTableData } from '../gpu/pack/bsdf-tables.ts';
+import type { CliContext } from './context.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
+import { checkSceneFiles } from './scene-precheck.ts';
 import { loadPreparedInThread, reflectBindingsInThread } from './scene-thread.ts';
 import { PATH_TRACE_ENTRY, PATH_TRACE_MODULE } from '../passes/path-trace-pass.ts';
-import type { CliContext } from './context.ts';
 import type { Timeline } from './timeline.ts';
 
 export interface Session {
@@ -24,19 +25,21 @@ export interface Session {
 }
 
 /**
- * `report` hears of what the loader worked around (warn) and of information (note: the GPU fallback,
- * how the scene is lit); `adjust` changes the loaded scene before it is prepared (bench --levels);
- * `timeline` hears of every start-up step.
+ * `output` hears of what the loader worked around (warn), of information (note: the GPU fallback,
+ * how the scene is lit) and of Dawn's own lines (dawnOutput, shown with --verbose); `adjust` changes
+ * the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step.
  */
-export async function openSession(sceneArg: string, report: Pick<CliContext, 'note' | 'warn'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
-  const loading = loadPreparedInThread(sceneArg, report.warn, sceneOptions, environment, adjust, timeline);
+export async function openSession(sceneArg: string, output: Pick<CliContext, 'note' | 'warn' | 'dawnOutput'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
+  // A damaged file is refused before the GPU starts (and before Dawn has printed anything).
+  checkSceneFiles(sceneArg);
+  const loading = loadPreparedInThread(sceneArg, output.warn, sceneOptions, environment, adjust, timeline);
   // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
   loading.catch(() => undefined);
   // The path tracer's second parse (its bindings) on a thread of its own; never fails (see there).
   const bindings = reflectBindingsInThread(PATH_TRACE_MODULE, [PATH_TRACE_ENTRY], GPUShaderStage.COMPUTE, timeline);
   let renderer: Renderer | undefined;
   try {
-    const gpu = await acquireNodeGpu({ onNote: report.note, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
+    const gpu = await acquireNodeGpu({ onNote: output.note, onDawnOutput: output.dawnOutput, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
     if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
     // The tone mapper compiles and the path tracer is reflected while the scene loads; then only
     // the variant this scene needs compiles, and the scene uploads.
@@ -54,7 +57,7 @@ export async function openSession(sceneArg: string, report: Pick<CliContext, 'no
   const { prepared, loadMs } = await loading;
   // How the scene is lit when it keeps its own light (a default sky, or its emitters): information.
   // An environment given on the command line replaced it, and the note with it.
-  if (prepared.scene.lightingNote) report.note(`${prepared.scene.name}: ${prepared.scene.lightingNote}`);
+  if (prepared.scene.lightingNote) output.note(`${prepared.scene.name}: ${prepared.scene.lightingNote}`);
   await renderer.setScene(prepared);
   return { renderer, prepared, loadMs };
 }

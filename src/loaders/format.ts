@@ -102,6 +102,13 @@ export interface SceneFormat extends FileFormat {
    * nothing else beside it. Formats without siblings leave it out.
    */
   siblings?(main: NamedBytes): readonly string[];
+  /**
+   * Checks a main file's own structure from its size and the few byte ranges it reads, without
+   * reading the file whole (a truncated or damaged container), so that a front end can refuse it
+   * before slow work starts: the CLI does, before the GPU starts. Throws a LanternError; open() and
+   * the scene's load find the same again. Formats without it are checked when they are read.
+   */
+  checkFile?(name: string, size: number, read: (offset: number, length: number) => Uint8Array): void;
 }
 
 export interface ScenePart {

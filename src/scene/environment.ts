@@ -5,8 +5,8 @@
  * - +y is up. Radiance is linear RGB (Rec. 709 primaries) in the scene's radiance units.
  * - Lat-long images: row-major, top row = +y (zenith) first. The image centre (u = 0.5, v = 0.5) is
  *   the direction -z (straight ahead of Lantern's default camera) and u grows toward +x, so a
- *   panorama appears unmirrored, as in Blender, Mitsuba and most HDRI viewers:
- *   u = 0.5 + atan2(x, -z) / 2π, v = acos(y) / π.
+ *   panorama appears unmirrored: u = 0.5 + atan2(x, -z) / 2π, v = acos(y) / π. Mitsuba 3 and
+ *   Blender centre their maps elsewhere (the rotations that match them: docs/environment.md).
  * - Azimuths are measured about +y from +z toward +x, in degrees (a sun at azimuth 0 lies toward +z,
  *   at 90 toward +x). Elevations are degrees above the horizon (the xz plane).
  * - `rotationDeg` turns a map about +y in the same sense (+z toward +x).

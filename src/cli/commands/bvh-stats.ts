@@ -121,7 +121,7 @@ export function registerBvhStats(program: Command, context: CliContext): void {
       const { positions, count, kinds } = list;
       if (!builders.includes('cpu')) {
         // The GPU builder alone, beside the CPU binned SAH it is measured against.
-        const report = await gpuBuildReport(list, BVH_LAYOUTS[0]!.build(positions, kinds), options.gpuRepeats, context.note, options.gpuTiming);
+        const report = await gpuBuildReport(list, BVH_LAYOUTS[0]!.build(positions, kinds), options.gpuRepeats, context, options.gpuTiming);
         context.print(options.json ? JSON.stringify({ scene: scene.name, primitives: count, gpuBuild: report }, null, 2) : `${scene.name}: ${describePrimitives(list)}\n${formatGpuBuildReport(report)}`);
         return;
       }
@@ -135,7 +135,7 @@ export function registerBvhStats(program: Command, context: CliContext): void {
       const twoLevel = levelStats(scene, list);
       if (options.threads === undefined && count >= PARALLEL_MIN_PRIMITIVES) pool = nodeBvhPool();
       const build = await buildTimes(positions, kinds, layouts[0]!.bvh, pool);
-      const gpuBuild = builders.includes('gpu') ? await gpuBuildReport(list, layouts[0]!.bvh, options.gpuRepeats, context.note, options.gpuTiming) : undefined;
+      const gpuBuild = builders.includes('gpu') ? await gpuBuildReport(list, layouts[0]!.bvh, options.gpuRepeats, context, options.gpuTiming) : undefined;
       if (options.json) {
         const { grid, ...levels } = twoLevel;
         const gridJson = { dims: grid.dims, cellSize: grid.cellSize, lo: grid.lo, hi: grid.hi, ...grid.stats, gpuBytes: gridBytes(grid) };

@@ -9,6 +9,7 @@ import type { Bvh } from '../../bvh/types.ts';
 import { GpuBvhBuilder, readBackBvh, type GpuBvh } from '../../gpu/build/gpu-bvh-builder.ts';
 import { bvhStats } from '../../bvh/stats.ts';
 import type { TriangleList } from '../../scene/triangles.ts';
+import type { CliContext } from '../context.ts';
 import { acquireNodeGpu } from '../dawn.ts';
 import { median } from '../../math/median.ts';
 
@@ -65,11 +66,11 @@ async function buildOnce(device: GPUDevice, builder: GpuBvhBuilder, positions: F
   }
 }
 
-export async function gpuBuildReport(list: TriangleList, cpu: Bvh, repeats: number, note: (line: string) => void, timing: (typeof GPU_TIMINGS)[number] = 'stages'): Promise<GpuBuildReport> {
+export async function gpuBuildReport(list: TriangleList, cpu: Bvh, repeats: number, output: Pick<CliContext, 'note' | 'dawnOutput'>, timing: (typeof GPU_TIMINGS)[number] = 'stages'): Promise<GpuBuildReport> {
   if (list.kindCounts.sphere + list.kindCounts.capsule > 0) {
     throw new LanternError('the GPU BVH builder handles triangles only; this scene has spheres or capsules', 'run bvh-stats with --builder cpu');
   }
-  const gpu = await acquireNodeGpu({ onNote: note });
+  const gpu = await acquireNodeGpu({ onNote: output.note, onDawnOutput: output.dawnOutput });
   try {
     const { device } = gpu;
     const builder = await GpuBvhBuilder.create(device, { timing });

@@ -41,7 +41,7 @@ export function registerInfo(program: Command, context: CliContext): void {
         const { scene, triangles, bvh, packed } = prepared;
         const summary = sceneSummary(prepared);
         if (options.json) {
-          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.kindCounts.triangle, spheres: triangles.kindCounts.sphere, capsules: triangles.kindCounts.capsule, primitives: triangles.count, ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [], notes: scene.lightingNote ? [scene.lightingNote] : [] }, null, 2));
+          context.print(JSON.stringify({ scene: scene.name, meshes: scene.meshes.length, instances: scene.instances.length, triangles: triangles.kindCounts.triangle, spheres: triangles.kindCounts.sphere, capsules: triangles.kindCounts.capsule, primitives: triangles.count, bounds: worldBounds(bvh.bounds), ...summary, loadMs, bvh: bvh.stats, warnings: scene.warnings ?? [], notes: scene.lightingNote ? [scene.lightingNote] : [] }, null, 2));
           return;
         }
         const kinds = Object.entries(summary.materialKinds).map(([k, n]) => `${n} ${k}`).join(', ');
@@ -66,6 +66,11 @@ export function registerInfo(program: Command, context: CliContext): void {
         );
       }),
     );
+}
+
+/** The scene's world-space box: the BVH root's (node 0), min and max xyz. */
+function worldBounds(bounds: Float32Array): { min: number[]; max: number[] } {
+  return { min: [...bounds.subarray(0, 3)], max: [...bounds.subarray(3, 6)] };
 }
 
 /** What `info` reports beyond the BVH: materials by kind, the environment, the GPU memory of textures. */

@@ -10,6 +10,7 @@ import type { CliContext } from '../context.ts';
 import { formatLensLink } from '../../renderer/lens-link.ts';
 import { integerOption, pathOption } from '../options.ts';
 import { lensNumber } from '../lens-option.ts';
+import { checkSceneFiles } from '../scene-precheck.ts';
 import { checkSceneOptionsApply, openSceneFiles, parseSceneArgument, sceneHelp } from '../scene-source.ts';
 import { startViewServer, type OfferedFile } from '../view-server.ts';
 
@@ -47,6 +48,7 @@ export function registerView(program: Command, context: CliContext): void {
  */
 async function sceneFiles(arg: string, skill?: number): Promise<{ files: OfferedFile[]; location: (urls: readonly string[]) => SceneLocation }> {
   const argument = parseSceneArgument(arg);
+  checkSceneFiles(arg);
   const options = skill !== undefined ? { skill } : {};
   if (argument.kind === 'builtin') {
     checkSceneOptionsApply(options, undefined);

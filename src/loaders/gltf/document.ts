@@ -13,13 +13,14 @@ import { MeshoptDecoder } from 'meshoptimizer/decoder';
 import { LanternError } from '../../errors.ts';
 import { decodeDataUri } from './data-uri.ts';
 import { dracoDecoder } from './draco.ts';
+import { byteSizes, GLB_MAGIC, glbChunks, isGlb, type ReadRange } from './glb.ts';
 import type { Warnings } from './warnings.ts';
 
 /** Loose view of the raw glTF JSON: only what is read before glTF-Transform takes over. */
 interface GltfJson {
   asset?: unknown;
   buffers?: { uri?: string; byteLength?: number; extensions?: { EXT_meshopt_compression?: { fallback?: boolean } } }[];
-  bufferViews?: { buffer?: number; extensions?: { EXT_meshopt_compression?: { buffer?: number } } }[];
+  bufferViews?: { buffer?: number; byteOffset?: number; byteLength?: number; extensions?: { EXT_meshopt_compression?: { buffer?: number } } }[];
   images?: { uri?: string; bufferView?: number; mimeType?: string; name?: string }[];
   accessors?: { bufferView?: number; sparse?: { indices?: { bufferView?: number }; values?: { bufferView?: number } } }[];
   meshes?: { primitives?: { attributes?: Record<string, number>; indices?: number; extensions?: { KHR_draco_mesh_compression?: { bufferView?: number } } }[] }[];
@@ -37,9 +38,6 @@ export interface GltfSource {
   readonly imageMissing: readonly boolean[];
 }
 
-const GLB_MAGIC = 0x46546c67; // 'glTF'
-const CHUNK_JSON = 0x4e4f534a;
-const CHUNK_BIN = 0x004e4942;
 /** The resource key glTF-Transform uses for a GLB's binary chunk. */
 const GLB_BUFFER = '@glb.bin';
 
@@ -65,22 +63,33 @@ export async function readGltfSource(
   const resources: Record<string, Uint8Array> = {};
   // Resources are keyed "__lantern…": glTF-Transform treats "__"-prefixed URIs as internal names.
   const missingBuffers = new Map<number, string>();
+  // The bytes each buffer holds here (none for a meshopt fallback), for the views' bounds below.
+  const bufferLengths: (number | undefined)[] = [];
   buffers.forEach((def, i) => {
     if (def.uri === undefined) {
       // EXT_meshopt_compression's fallback buffer holds no bytes; the decoder fills its views.
       if (def.extensions?.EXT_meshopt_compression?.fallback) return;
       if (i !== 0 || !bin) throw new LanternError(`${main.name}: buffer ${i} has no uri and there is no GLB binary chunk`, 'the file is damaged; re-export it');
+      checkBinChunk(main.name, json, bin.length);
       resources[GLB_BUFFER] = bin;
+      bufferLengths[i] = bin.length;
       return;
     }
     const key = `__lantern_buffer_${i}`;
     const bytes = bufferBytes[i];
     if (!bytes) missingBuffers.set(i, def.uri);
+    else if (def.byteLength !== undefined && bytes.length < def.byteLength) {
+      const [has, declared] = byteSizes(bytes.length, def.byteLength);
+      const which = def.uri.startsWith('data:') ? `buffer ${i} (a data: URI)` : `buffer ${i} ('${def.uri}')`;
+      throw new LanternError(`${main.name}: ${which} has ${has}, the model declares ${declared}`, 'The buffer file is truncated or from another export: get the model again');
+    }
     // glTF-Transform cannot parse around a missing buffer: a zero-filled stand-in takes its place,
     // and the primitives that read it are dropped (missingData below).
     resources[key] = bytes ?? new Uint8Array(def.byteLength ?? 0);
+    bufferLengths[i] = resources[key].length;
     def.uri = key;
   });
+  checkBufferViews(main.name, json, bufferLengths);
 
   const imageNames: string[] = [];
   const imageMissing: boolean[] = [];
@@ -168,35 +177,62 @@ export function gltfSiblings(main: { name: string; bytes: Uint8Array }): string[
 
 function splitContainer(main: { name: string; bytes: Uint8Array }): { json: GltfJson; bin?: Uint8Array } {
   const { bytes, name } = main;
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  if (bytes.length >= 12 && view.getUint32(0, true) === GLB_MAGIC) {
-    const length = Math.min(view.getUint32(8, true), bytes.length);
-    let json: GltfJson | undefined;
-    let bin: Uint8Array | undefined;
-    for (let at = 12; at + 8 <= length; ) {
-      const chunkLength = view.getUint32(at, true);
-      const type = view.getUint32(at + 4, true);
-      const data = bytes.subarray(at + 8, at + 8 + chunkLength);
-      if (type === CHUNK_JSON && !json) json = parseJson(name, data);
-      else if (type === CHUNK_BIN && !bin) bin = data;
-      at += 8 + chunkLength;
-    }
-    if (!json) throw new LanternError(`${name}: a GLB file without a JSON chunk`, 'the file is damaged or truncated; re-export it');
-    return bin ? { json, bin } : { json };
-  }
-  const json = parseJson(name, bytes);
-  return { json };
+  const read: ReadRange = (offset, length) => bytes.subarray(offset, offset + length);
+  if (!isGlb(bytes.length, read)) return { json: parseJson(name, bytes) };
+  const chunks = glbChunks(name, bytes.length, read);
+  const json = parseJson(name, read(chunks.json.offset, chunks.json.length), 'its JSON chunk');
+  return chunks.bin ? { json, bin: read(chunks.bin.offset, chunks.bin.length) } : { json };
 }
 
-function parseJson(name: string, bytes: Uint8Array): GltfJson {
+/**
+ * What can be told of a GLB from its size and a few ranges of it, before it is read whole: a truncated
+ * file, a chunk past the end, a JSON chunk that is not glTF JSON, a BIN chunk shorter than the buffer
+ * it holds. A .gltf is JSON throughout (parsing it is its load's work): nothing is checked early. The
+ * loader finds all of these again (splitContainer, readGltfSource).
+ */
+export function checkGltfFile(name: string, size: number, read: ReadRange): void {
+  if (!isGlb(size, read)) return;
+  const chunks = glbChunks(name, size, read);
+  const json = parseJson(name, read(chunks.json.offset, chunks.json.length), 'its JSON chunk');
+  checkBinChunk(name, json, chunks.bin?.length);
+}
+
+/** The GLB's buffer (the first, without a uri) must fit in the BIN chunk; it may be up to 3 bytes shorter (padding). */
+function checkBinChunk(name: string, json: GltfJson, binLength: number | undefined): void {
+  const first = json.buffers?.[0];
+  if (binLength === undefined || !first || first.uri !== undefined || first.byteLength === undefined || binLength >= first.byteLength) return;
+  const [has, declared] = byteSizes(binLength, first.byteLength);
+  throw new LanternError(`${name} is truncated: its BIN chunk holds ${has}, its buffer 0 declares ${declared}`, 'Re-export the model, or get the file again');
+}
+
+/**
+ * Every buffer view must lie inside its buffer's bytes (`lengths[i]` for buffer i, undefined for one
+ * that holds none: a meshopt fallback); past the end, glTF-Transform fails with "Invalid typed array
+ * length".
+ */
+function checkBufferViews(name: string, json: GltfJson, lengths: readonly (number | undefined)[]): void {
+  (json.bufferViews ?? []).forEach((v, i) => {
+    const has = v.buffer === undefined ? undefined : lengths[v.buffer];
+    const end = (v.byteOffset ?? 0) + (v.byteLength ?? 0);
+    if (has === undefined || end <= has) return;
+    const [needs, holds] = byteSizes(end, has);
+    throw new LanternError(`${name} is damaged: bufferView ${i} ends at ${needs} into buffer ${v.buffer}, which holds ${holds}`, 'Re-export the model, or get the file again');
+  });
+}
+
+/** The glTF JSON of a .gltf file or of a GLB's JSON chunk (`what`), or a LanternError saying why not. */
+function parseJson(name: string, bytes: Uint8Array, what?: string): GltfJson {
   let json: unknown;
+  let why = '';
   try {
     json = JSON.parse(new TextDecoder().decode(bytes));
-  } catch {
-    json = undefined;
+  } catch (e) {
+    why = (e as Error).message;
   }
+  if (what && why) throw new LanternError(`${name} is damaged: ${what} is not JSON (${why})`, 'Re-export the model, or get the file again');
   if (typeof json !== 'object' || json === null || typeof (json as GltfJson).asset !== 'object') {
-    throw new LanternError(`${name} is not a glTF file (neither GLB nor JSON with an "asset" object)`);
+    if (what) throw new LanternError(`${name} is damaged: ${what} has no "asset" object`, 'Re-export the model');
+    throw new LanternError(`${name} is not a glTF file (neither GLB nor JSON with an "asset" object${why ? `: ${why}` : ''})`);
   }
   return json as GltfJson;
 }

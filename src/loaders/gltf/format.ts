@@ -1,7 +1,7 @@
 /** The glTF 2.0 entry of the loader registry: a .glb, or a .gltf with its .bin and images beside it. */
 import { WarningCap } from '../../budgets.ts';
 import type { SceneFormat } from '../format.ts';
-import { gltfSiblings, sniffGltf } from './document.ts';
+import { checkGltfFile, gltfSiblings, sniffGltf } from './document.ts';
 import { loadGltf } from './index.ts';
 
 export const GLTF_FORMAT: SceneFormat = {
@@ -15,6 +15,7 @@ export const GLTF_FORMAT: SceneFormat = {
   stacks: false,
   example: 'model.glb',
   siblings: (main) => gltfSiblings(main),
+  checkFile: checkGltfFile,
   async open(set, options = {}) {
     const file = set.files[0]!;
     return {
