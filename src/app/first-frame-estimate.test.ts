@@ -87,6 +87,9 @@ describe('the wait for the pipelines under way', () => {
     expect(known).toEqual({ tracer: 20_000 });
     // Nothing new: the same record (the page then has nothing to save).
     expect(withMeasuredCompiles(next, compiles)).toBe(next);
+    // The record stays small: the least recently measured go first.
+    const capped = withMeasuredCompiles(next, [at('frame', 2_000, 9_000), at('tracer', 3_000, 14_000)], 2);
+    expect(Object.entries(capped)).toEqual([['frame', 7_000], ['tracer', 11_000]]);
     // The frame kernel, never measured, is now expected to take the mean of those measured (or the software figure, longer).
     expect(remainingCompileMs(batch(compiles), 2_000, next, SWIFTSHADER)).toBe(Math.max(6_250, remainingCompileMs(batch([at('frame')]), 2_000, {}, SWIFTSHADER)));
     expect(remainingCompileMs(batch(compiles), 2_000, withMeasuredCompiles(next, [at('tracer', 0, 30_000)]), SWIFTSHADER)).toBe(15_250);

@@ -98,17 +98,28 @@ export interface CompileTimesRecord {
   readonly ms: Readonly<Record<string, number>>;
 }
 
-/** `known` with the compiles of `compiles` that are done (the latest measurement of a pipeline wins), or `known` itself when none is new. */
-export function withMeasuredCompiles(known: Readonly<Record<string, number>>, compiles: readonly PipelineCompile[]): Readonly<Record<string, number>> {
+/** Pipelines a record remembers at most (the least recently measured go first): a few recipes' worth, a few kB. */
+export const MAX_REMEMBERED_COMPILES = 200;
+
+/**
+ * `known` with the compiles of `compiles` that are done (the latest measurement of a pipeline wins,
+ * and counts as the most recent), or `known` itself when none is new; at most `limit` pipelines.
+ */
+export function withMeasuredCompiles(known: Readonly<Record<string, number>>, compiles: readonly PipelineCompile[], limit = MAX_REMEMBERED_COMPILES): Readonly<Record<string, number>> {
   let out: Record<string, number> | undefined;
   for (const c of compiles) {
     if (c.startMs === undefined || c.endMs === undefined) continue;
     const ms = c.endMs - c.startMs;
     if (known[c.key] === ms) continue;
     out ??= { ...known };
+    // Taken out and put back: the key order is the order of measurement.
+    delete out[c.key];
     out[c.key] = ms;
   }
-  return out ?? known;
+  if (!out) return known;
+  const keys = Object.keys(out);
+  for (const key of keys.slice(0, Math.max(0, keys.length - limit))) delete out[key];
+  return out;
 }
 
 /** A compile under way longer than expected is expected to need at least this fraction of its expected time more (never "done" before it is). */

@@ -174,12 +174,12 @@ function showStatus(v: Viewer): void {
   else if (v.state === 'starting' || (v.awaitingFirstFrame && compiling)) parts = compiling ? waitParts('', 'shaders') : [part(10, 'starting the GPU…')];
   else if (v.awaitingFirstFrame) parts = [part(10, 'rendering the first frame…')];
   else {
-    // A debug view that replaces the image traces no paths: no samples to count.
     const r = v.settings.render;
     const fps = frameRate(s.framesPerSecond);
     parts = [
       // A recipe switched to compiles while the frames go on with the one before.
       ...waitParts('', v.compilingFor ?? 'shaders'),
+      // A debug view that replaces the image traces no paths: no samples to count.
       part(9, r.debugView !== 'none' && r.debugLayout === 'replace' ? 'debug view' : `${s.samples} spp`),
       part(8, fps, fps.replace(/ \(.*\)$/, '')),
       part(5, `${s.width}×${s.height}`),

@@ -373,7 +373,7 @@ export class Viewer {
 
   /** Whether the viewer has been played and waits for its first frame on screen (the GPU starting, pipelines compiling, the frame). */
   get awaitingFirstFrame(): boolean {
-    return this.playedAt !== undefined && this.firstFrameMs === undefined && this.state !== 'failed';
+    return this.playedAt !== undefined && this.firstFrameMs === undefined && (this.state === 'starting' || this.state === 'playing');
   }
 
   /** The frame budget: on or off, what it chose, its one-line account. */
