@@ -37,7 +37,9 @@ import type { ResourceCount } from '../gpu/resource-count.ts';
 import type { ThinLens } from '../scene/types.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
 import { frameRate } from './number-format.ts';
-import { adapterKey, describeEstimate, estimateFirstFrame, type AdapterFacts, type FirstFrameRecord } from './first-frame-estimate.ts';
+import { adapterKey, describeEstimate, estimateFirstFrame, frameMs, remainingCompileMs, roughDuration, withMeasuredCompiles, type AdapterFacts, type CompileTimesRecord, type FirstFrameRecord } from './first-frame-estimate.ts';
+import { fitStatus, part, type StatusPart } from './status-line.ts';
+import type { CompileProgress } from '../gpu/pipeline-compiles.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 const canvas = $<HTMLCanvasElement>('view');
@@ -49,6 +51,7 @@ const mapSelect = $<HTMLSelectElement>('map');
 const playButton = $<HTMLButtonElement>('play');
 const progress = $<HTMLProgressElement>('progress');
 const stats = $<HTMLSpanElement>('stats');
+const statusBox = $<HTMLDivElement>('status');
 const message = $<HTMLDivElement>('message');
 const messageBox = $<HTMLDivElement>('message-box');
 const dropZone = $<HTMLDivElement>('drop-zone');
@@ -109,6 +112,8 @@ let panel: SettingsPanel | undefined;
 /** Where the current scene came from (for links); undefined for files opened from this computer. */
 let current: SceneLocation | undefined;
 let loading: string | undefined;
+/** How far the scene's loading has got (0–1), while `loading`. */
+let loadFraction = 0;
 /** Where the open file set was served from (links can name it), or undefined for local files. */
 let fileSource: { format: string; urls: readonly string[]; skill?: number } | undefined;
 let loadToken = 0;
@@ -137,23 +142,88 @@ function showViewer(v: Viewer): void {
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
   playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
   playButton.title = navigator.gpu ? '' : NO_WEBGPU;
-  const hidden = document.hidden && v.state === 'playing' ? ' · paused while the tab is hidden' : '';
-  const budget = v.budgetText(true);
-  // A debug view that replaces the image traces no paths: no samples to count.
-  const r = v.settings.render;
-  const spp = r.debugView !== 'none' && r.debugLayout === 'replace' ? 'debug view' : `${s.samples} spp`;
-  stats.textContent =
-    loading !== undefined ? `loading: ${loading}…`
-    : !navigator.gpu ? 'no WebGPU in this browser'
-    : v.state === 'idle' ? 'press Play to start'
-    : v.state === 'starting' ? 'starting the GPU…'
-    : `${spp} · ${frameRate(s.framesPerSecond)} · ${s.width}×${s.height} · ${s.adapter}${budget ? ` · ${budget}` : ''}${hidden}`;
-  // Cut to its line on a narrow header (style.css): the whole reading, with the budget's reasons, is the tooltip.
-  stats.title = s.budget ? `${stats.textContent}\n${s.budget}` : stats.textContent;
+  showStatus(v);
   panel?.showStats();
   showLegend(v.legend);
   showStart(v);
   if (v.state === 'playing') onPlaying();
+}
+
+/**
+ * The status line and the bar beside it: what the page waits for (the scene loading, the pipelines
+ * compiling, with how many of how many and the time left) or, while playing, the readings. Fitted
+ * to its width (status-line.ts: the least important figures go first); the whole line and the
+ * budget's reasons are the tooltip.
+ */
+function showStatus(v: Viewer): void {
+  const s = v.stats;
+  const c = v.compiles;
+  noteCompiles(c);
+  const compiling = c !== undefined && c.done < c.needed ? c : undefined;
+  progress.hidden = loading === undefined && !compiling;
+  progress.value = compiling ? compiling.done / compiling.needed : loadFraction;
+  const waitParts = (prefix: string, what: string) => {
+    if (!compiling) return [];
+    const { done, needed } = compiling;
+    const leftMs = adapterFacts ? remainingCompileMs(compiling, performance.now(), knownCompileTimes(), adapterFacts) + (v.awaitingFirstFrame ? frameMs(adapterFacts, expectedPixels()) : 0) : undefined;
+    return [
+      part(10, `${prefix}compiling ${what}, ${done} of ${needed}`, `compiling, ${done} of ${needed}`, `${done}/${needed} compiled`),
+      leftMs === undefined ? undefined : part(6, `about ${roughDuration(leftMs)} left`, `~${roughDuration(leftMs)}`),
+    ];
+  };
+  let parts: (StatusPart | undefined)[];
+  if (loading !== undefined) parts = compiling ? waitParts('loading: ', 'shaders') : [part(10, `loading: ${loading}…`)];
+  else if (!navigator.gpu) parts = [part(10, 'no WebGPU in this browser')];
+  else if (v.state === 'idle') parts = [part(10, 'press Play to start')];
+  else if (v.state === 'starting' || (v.awaitingFirstFrame && compiling)) parts = compiling ? waitParts('', 'shaders') : [part(10, 'starting the GPU…')];
+  else if (v.awaitingFirstFrame) parts = [part(10, 'rendering the first frame…')];
+  else {
+    const r = v.settings.render;
+    const fps = frameRate(s.framesPerSecond);
+    parts = [
+      // A recipe switched to compiles while the frames go on with the one before.
+      ...waitParts('', v.compilingFor ?? 'shaders'),
+      // A debug view that replaces the image traces no paths: no samples to count.
+      part(9, r.debugView !== 'none' && r.debugLayout === 'replace' ? 'debug view' : `${s.samples} spp`),
+      part(8, fps, fps.replace(/ \(.*\)$/, '')),
+      part(5, `${s.width}×${s.height}`),
+      part(3, v.budgetText(true), v.budget.on ? `budget ${v.budget.scale.toFixed(2)}×` : undefined),
+      part(2, s.adapter),
+      document.hidden && v.state === 'playing' ? part(9, 'paused while the tab is hidden', 'paused (hidden)') : undefined,
+    ];
+  }
+  stats.textContent = fitStatus(parts, (text) => {
+    stats.textContent = text;
+    return stats.scrollWidth <= stats.clientWidth;
+  });
+  const whole = parts.flatMap((p) => (p ? [p.forms[0]] : [])).join(' · ');
+  stats.title = s.budget && v.state !== 'idle' ? `${whole}\n${s.budget}` : whole;
+}
+
+/** Pipeline compile times measured on this computer (this adapter's), merged as compiles complete and kept for the next visit. */
+let compileTimes: CompileTimesRecord | undefined;
+function knownCompileTimes(): Readonly<Record<string, number>> {
+  if (!adapterFacts) return {};
+  const adapter = adapterKey(adapterFacts);
+  if (compileTimes?.adapter !== adapter) {
+    let stored: Partial<CompileTimesRecord> | undefined;
+    try {
+      stored = JSON.parse(storage()?.getItem(COMPILE_TIMES_KEY) ?? 'null') ?? undefined;
+    } catch {
+      stored = undefined;
+    }
+    const ms = stored?.adapter === adapter && stored.ms && typeof stored.ms === 'object' ? Object.fromEntries(Object.entries(stored.ms).filter(([, v]) => typeof v === 'number' && v >= 0)) : {};
+    compileTimes = { adapter, ms };
+  }
+  return compileTimes.ms;
+}
+function noteCompiles(c: CompileProgress | undefined): void {
+  if (!c || !adapterFacts) return;
+  const known = knownCompileTimes();
+  const next = withMeasuredCompiles(known, c.compiles);
+  if (next === known) return;
+  compileTimes = { adapter: compileTimes!.adapter, ms: next };
+  remember(COMPILE_TIMES_KEY, JSON.stringify(compileTimes));
 }
 
 /** The debug view's legend under the image: what it shows and, for scalar views, the colour scale with its numbers. */
@@ -182,14 +252,13 @@ let shownLabel: PickerLabel | undefined;
 /** Loads a scene in the worker and shows it; a failure leaves the current scene as it was, and the pickers naming it. */
 async function show(request: SceneRequest, where: SceneLocation | undefined, label: PickerLabel, view: ViewParams = {}): Promise<void> {
   const token = ++loadToken;
-  progress.hidden = false;
-  progress.value = 0;
+  loadFraction = 0;
   loading = 'starting';
   showViewer(viewer);
   try {
     const loaded = await loader.load(request, (stage, fraction) => {
       if (token !== loadToken) return;
-      progress.value = fraction;
+      loadFraction = fraction;
       loading = stage;
       showViewer(viewer);
     });
@@ -216,7 +285,6 @@ async function show(request: SceneRequest, where: SceneLocation | undefined, lab
   } finally {
     if (token === loadToken) {
       loading = undefined;
-      progress.hidden = true;
       showPicked();
       showViewer(viewer);
     }
@@ -375,6 +443,8 @@ const NO_WEBGPU = 'This browser has no WebGPU: see the notes over the image for 
 /** localStorage keys: whether the controls were shown once; first frames measured per adapter. */
 const HELP_SEEN_KEY = 'lantern.helpSeen';
 const FIRST_FRAME_KEY = 'lantern.firstFrame';
+/** Pipeline compile times per adapter (first-frame-estimate.ts CompileTimesRecord): the next visit's estimate of each compile. */
+const COMPILE_TIMES_KEY = 'lantern.compileTimes';
 
 /** localStorage, or undefined where the browser refuses it (private modes, file: pages). */
 function storage(): Storage | undefined {
@@ -531,6 +601,14 @@ document.addEventListener('keydown', (e) => {
 startPlay.addEventListener('click', () => playButton.click());
 
 // ---- wiring ----
+
+// The status line follows its width (a window resized, the panel shown or hidden) and, while the
+// page waits, the time left; its text never changes its size (style.css), so this cannot loop.
+new ResizeObserver(() => showStatus(viewer)).observe(statusBox);
+setInterval(() => {
+  const c = viewer.compiles;
+  if ((c && c.done < c.needed) || viewer.awaitingFirstFrame) showStatus(viewer);
+}, 1000);
 
 new ResizeObserver((entries) => {
   const entry = entries[0];

@@ -17,6 +17,7 @@
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import { acquireGpu, type GpuContext } from '../gpu/device.ts';
+import { observeCompiles, setCompileConcurrency, type CompileProgress } from '../gpu/pipeline-compiles.ts';
 import { checkSceneFits } from '../gpu/scene-limits.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
 import { GpuTimer } from '../gpu/timestamps.ts';
@@ -79,6 +80,22 @@ export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPe
 
 /** Whether these settings ask for a real-time recipe: the denoiser's chain (temporal and/or spatial) or the hybrid recipe. */
 export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise' | 'recipe'>) => s.temporal || s.denoise || s.recipe === 'hybrid';
+
+/**
+ * Pipelines compiled at a time on the page: Chromium compiles them on its GPU process's thread pool
+ * (max(3, cores - 1) foreground workers), and compiles filling it stop the page's frames
+ * (gpu/pipeline-compiles.ts). One worker is left free.
+ */
+const pageCompileConcurrency = () => Math.max(2, (navigator.hardwareConcurrency || 2) - 2);
+
+/** What a settings change compiles before it applies, in words for the loading line (undefined: nothing new). */
+function compiledFor(before: RenderSettings, after: RenderSettings): string | undefined {
+  if (after.recipe === 'hybrid' && before.recipe !== 'hybrid') return 'the hybrid recipe';
+  if (isRealTime(after) && !isRealTime(before)) return 'the real-time chain';
+  if (after.debugView !== 'none' && before.debugView === 'none') return 'the debug views';
+  if (after.spectral && !before.spectral) return 'spectral rendering';
+  return undefined;
+}
 
 /** Compiles what a real-time recipe in these settings needs. */
 async function enableRecipe(renderer: Renderer, s: RenderSettings): Promise<void> {
@@ -229,6 +246,10 @@ export class Viewer {
   /** When the first Play was pressed, until its first frame is done (then firstFrameMs holds the wait). */
   private playedAt?: number;
   private firstFrameMs?: number;
+  /** The device's batch of pipeline compiles as last reported (gpu/pipeline-compiles.ts), under way or done. */
+  private compilesValue?: CompileProgress;
+  /** What a settings change under way compiles for ('the hybrid recipe'), while it waits; frames go on with the settings before it. */
+  private compilingForValue?: string;
   private legendValue?: DebugLegend;
   /** Real-time frames since the estimate last restarted (scene, settings, size). */
   private realTimeFrames = 0;
@@ -334,6 +355,25 @@ export class Viewer {
     if (this.scaleFixed) return short ? '' : describeFixedScale(this.settings.scale);
     if (!this.budgetValue) return 'budget: measuring the GPU at the first frames';
     return this.budgetValue.describe(!short);
+  }
+
+  /**
+   * The pipeline compiles of the viewer's device: the batch under way (done < needed) or the last one.
+   * Start-up, a scene whose variants are new, a recipe switched to, ReSTIR and the wavefront
+   * integrator in the background all compile in batches; the page shows what it waits for.
+   */
+  get compiles(): CompileProgress | undefined {
+    return this.compilesValue;
+  }
+
+  /** What the settings change under way compiles for ('the hybrid recipe'), while the frames go on with the previous settings. */
+  get compilingFor(): string | undefined {
+    return this.compilingForValue;
+  }
+
+  /** Whether the viewer has been played and waits for its first frame on screen (the GPU starting, pipelines compiling, the frame). */
+  get awaitingFirstFrame(): boolean {
+    return this.playedAt !== undefined && this.firstFrameMs === undefined && (this.state === 'starting' || this.state === 'playing');
   }
 
   /** The frame budget: on or off, what it chose, its one-line account. */
@@ -594,10 +634,17 @@ export class Viewer {
     const before = this.settings;
     const render = { ...before.render, ...changes.render };
     const next = { ...before, ...changes, render };
-    // Compile what the new settings need before the frame loop sees them.
-    if (this.renderer && render.debugView !== 'none') await this.renderer.enableDebugViews();
-    if (this.renderer) await enableRecipe(this.renderer, render);
-    if (this.renderer && render.spectral) await this.renderer.enableSpectral();
+    // Compile what the new settings need before the frame loop sees them: until then frames go on
+    // with the settings as they were, so the image keeps coming (the page says what compiles).
+    this.compilingForValue = this.renderer ? compiledFor(before.render, render) : undefined;
+    if (this.compilingForValue) this.hooks.onChange(this);
+    try {
+      if (this.renderer && render.debugView !== 'none') await this.renderer.enableDebugViews();
+      if (this.renderer) await enableRecipe(this.renderer, render);
+      if (this.renderer && render.spectral) await this.renderer.enableSpectral();
+    } finally {
+      this.compilingForValue = undefined;
+    }
     this.settings = next;
     // A scale given (the panel, a link) fixes the resolution: the budget is off from then on.
     const fixing = changes.scale !== undefined && !this.scaleFixed;
@@ -745,12 +792,19 @@ export class Viewer {
     const [gpu, displayHz] = await Promise.all([acquireGpu(navigator.gpu), measureDisplayRate()]);
     const context = this.canvas.getContext('webgpu');
     if (!context) throw new LanternError('the canvas has no WebGPU context', 'Reload the page; if it persists, the browser has WebGPU disabled');
-    context.configure({ device: gpu.device, format: navigator.gpu.getPreferredCanvasFormat(), alphaMode: 'opaque' });
+    const format = navigator.gpu.getPreferredCanvasFormat();
+    context.configure({ device: gpu.device, format, alphaMode: 'opaque' });
+    // Every compile from here on is counted, so the page can say what it waits for.
+    setCompileConcurrency(gpu.device, pageCompileConcurrency());
+    observeCompiles(gpu.device, (progress) => {
+      this.compilesValue = progress;
+      this.hooks.onChange(this);
+    });
     // What the first frame needs and nothing more, compiled side by side: the path tracer for the
     // loaded scene alone (its upload overlaps the compile), the tone mapper and the present pass;
     // then whatever the settings ask for (debug views, a real-time recipe, spectral), together.
     const s = this.settings.render;
-    const renderer = await Renderer.create(gpu, { presentation: true, ...(this.loaded ? { features: this.loaded.prepared.packed.features } : {}) });
+    const renderer = await Renderer.create(gpu, { presentation: format, ...(this.loaded ? { features: this.loaded.prepared.packed.features } : {}) });
     // The renderer's idle policy: kernels specialised to the scene once it has gone this long without an
     // edit. Not on SwiftShader (a CPU): compiling them there takes minutes of the CPU the page runs on.
     if (!/swiftshader/i.test(gpu.adapterName)) renderer.setIdleSpecialisation(SPECIALISE_AFTER_IDLE_MS);

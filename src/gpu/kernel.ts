@@ -5,6 +5,7 @@
  */
 import { LanternError } from '../errors.ts';
 import type { SceneFeatures } from './pack/scene-pack.ts';
+import { compileComputePipeline } from './pipeline-compiles.ts';
 import { reportStage, timedStage } from './stage-log.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
 import { bindingsKnown, entryPointBindings, isReflected, reflectModule, type BindingSlot, type ReflectedShader } from './wgsl/reflect.ts';
@@ -126,14 +127,7 @@ export class ComputeKernel extends BindGroupFactory {
     const layout = device.createPipelineLayout({ label, bindGroupLayouts: layouts });
     let pipeline: GPUComputePipeline;
     try {
-      const constants = options.constants ?? {};
-      const detail = Object.entries(constants).map(([k, v]) => `${k}=${v}`).join(' ');
-      pipeline = await timedStage(
-        device,
-        `pipeline ${label}`,
-        () => device.createComputePipelineAsync({ label, layout, compute: { module, entryPoint: options.entryPoint, constants } }),
-        detail,
-      );
+      pipeline = await compileComputePipeline(device, { label, layout, compute: { module, entryPoint: options.entryPoint, constants: options.constants ?? {} } });
     } catch (e) {
       throw new LanternError(`could not create the compute pipeline ${label}: ${(e as Error).message}`, undefined, { cause: e });
     }

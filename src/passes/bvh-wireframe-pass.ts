@@ -4,6 +4,7 @@
  * hardware clips lines at the near plane; its bind group layouts come from reflection.
  */
 import { BindGroupFactory, compileShader, createBindGroupLayouts } from '../gpu/kernel.ts';
+import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -26,7 +27,7 @@ export class BvhWireframePass {
     const module = await compileShader(device, shader.linked);
     const slots = entryPointBindings(shader, ['wireframe_vertex', 'wireframe_fragment'], GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT);
     const layouts = createBindGroupLayouts(device, MODULE, slots);
-    const pipeline = await device.createRenderPipelineAsync({
+    const pipeline = await compileRenderPipeline(device, {
       label: MODULE,
       layout: device.createPipelineLayout({ label: MODULE, bindGroupLayouts: layouts }),
       vertex: { module, entryPoint: 'wireframe_vertex' },

@@ -32,9 +32,10 @@ export class DebugViewPass {
     private readonly params: UniformParams<{ view_kind: number }>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<DebugViewPass> {
+  /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<DebugViewPass> {
     // The traversal with scene/bvh.wgsl's work counters compiled in; variants by alpha tests only.
-    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, TRAVERSAL_FEATURES, { BVH_COUNT_WORK: 1 });
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, TRAVERSAL_FEATURES, { BVH_COUNT_WORK: 1 }, first);
     return new DebugViewPass(kernels, new UniformParams(device, MODULE));
   }
 

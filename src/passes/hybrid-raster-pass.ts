@@ -9,6 +9,7 @@
  */
 import { compileShader, createBindGroupLayouts, BindGroupFactory, FEATURE_CONSTANTS } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
+import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -67,14 +68,17 @@ export class HybridRasterPass {
     private readonly params: UniformParams<UniformValues>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<HybridRasterPass> {
+  /** `first`: the features of the scene to be rendered, where known: its pipelines start compiling at once (prepare reports their errors). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<HybridRasterPass> {
     const shader = reflectModule(MODULE);
     const slots = entryPointBindings(shader, ENTRIES, GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT);
     const layouts = createBindGroupLayouts(device, MODULE, slots);
     const layout = device.createPipelineLayout({ label: MODULE, bindGroupLayouts: layouts });
     const module = await compileShader(device, shader.linked);
     const declared = new Set(Object.values(FEATURE_CONSTANTS).filter((name) => new RegExp(`override\\s+${name}\\b`).test(shader.linked.code)));
-    return new HybridRasterPass(device, new BindGroupFactory(device, MODULE, layouts, slots), layout, module, declared, new UniformParams(device, MODULE, 'raster'));
+    const pass = new HybridRasterPass(device, new BindGroupFactory(device, MODULE, layouts, slots), layout, module, declared, new UniformParams(device, MODULE, 'raster'));
+    if (first) pass.prepare(first).catch(() => undefined); // prepare(first) again reports a failure
+    return pass;
   }
 
   private key(f: SceneFeatures): string {
@@ -90,7 +94,7 @@ export class HybridRasterPass {
       const constants: Record<string, number> = {};
       for (const name of RASTER_FEATURES) if (this.declared.has(FEATURE_CONSTANTS[name])) constants[FEATURE_CONSTANTS[name]] = f[name] ? 1 : 0;
       const make = (vertex: string, fragment: string) =>
-        this.device.createRenderPipelineAsync({
+        compileRenderPipeline(this.device, {
           label: `${MODULE}:${vertex}`,
           layout: this.layout,
           vertex: { module: this.module, entryPoint: vertex, constants },

@@ -50,10 +50,11 @@ export class PathTraceFramePass {
     private readonly emissionFrame: UniformParams<UniformValues>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<PathTraceFramePass> {
+  /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<PathTraceFramePass> {
     const [kernels, gbufferKernels] = await Promise.all([
-      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }),
-      TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }),
+      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }, first),
+      TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }, first),
     ]);
     const params = () => new UniformParams(device, PATH_TRACE_MODULE);
     const frame = () => new UniformParams(device, MODULE, 'frame');

@@ -1,34 +1,44 @@
 /**
  * Present (shaders/passes/present.wgsl): draws the tone-mapped image onto a canvas texture, scaled to
- * fit. A render pipeline per canvas format; the bind group layout comes from reflection.
+ * fit. One render pipeline, for the canvas's format, compiled asynchronously when the pass is made;
+ * the bind group layout comes from reflection.
  */
 import { BindGroupFactory, compileShader, createBindGroupLayouts } from '../gpu/kernel.ts';
+import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
 
 const MODULE = 'passes/present';
 
 export class PresentPass {
-  private readonly pipelines = new Map<GPUTextureFormat, GPURenderPipeline>();
   private readonly groups = new WeakMap<GPUTexture, GPUBindGroup>();
 
   private constructor(
-    private readonly device: GPUDevice,
-    private readonly module: GPUShaderModule,
     private readonly bindings: BindGroupFactory,
     private readonly sampler: GPUSampler,
+    /** The canvas format the pipeline draws into. */
+    readonly format: GPUTextureFormat,
+    private readonly pipeline: GPURenderPipeline,
   ) {}
 
-  static async create(device: GPUDevice): Promise<PresentPass> {
+  static async create(device: GPUDevice, format: GPUTextureFormat): Promise<PresentPass> {
     const shader = reflectModule(MODULE);
     const module = await compileShader(device, shader.linked);
     const slots = entryPointBindings(shader, ['present_vertex', 'present_fragment'], GPUShaderStage.VERTEX | GPUShaderStage.FRAGMENT);
     const layouts = createBindGroupLayouts(device, MODULE, slots);
     const sampler = device.createSampler({ label: 'present', magFilter: 'linear', minFilter: 'linear' });
-    return new PresentPass(device, module, new BindGroupFactory(device, MODULE, layouts, slots), sampler);
+    const pipeline = await compileRenderPipeline(device, {
+      label: `present ${format}`,
+      layout: device.createPipelineLayout({ label: 'present', bindGroupLayouts: layouts }),
+      vertex: { module, entryPoint: 'present_vertex' },
+      fragment: { module, entryPoint: 'present_fragment', targets: [{ format }] },
+      primitive: { topology: 'triangle-list' },
+    });
+    return new PresentPass(new BindGroupFactory(device, MODULE, layouts, slots), sampler, format, pipeline);
   }
 
   encode(encoder: GPUCommandEncoder, image: GPUTexture, target: GPUTexture, timer?: GpuTimer): void {
+    if (target.format !== this.format) throw new Error(`present: the pipeline draws into ${this.format}, not ${target.format} (enablePresentation with the canvas's format)`);
     let group = this.groups.get(image);
     if (!group) {
       group = this.bindings.bindGroup(0, { image: image.createView(), image_sampler: this.sampler });
@@ -39,24 +49,9 @@ export class PresentPass {
       ...(timer ? { timestampWrites: timer.timestampWrites('present') } : {}),
       colorAttachments: [{ view: target.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 1] }],
     });
-    pass.setPipeline(this.pipeline(target.format));
+    pass.setPipeline(this.pipeline);
     pass.setBindGroup(0, group);
     pass.draw(3);
     pass.end();
-  }
-
-  private pipeline(format: GPUTextureFormat): GPURenderPipeline {
-    let p = this.pipelines.get(format);
-    if (!p) {
-      p = this.device.createRenderPipeline({
-        label: `present ${format}`,
-        layout: this.device.createPipelineLayout({ label: 'present', bindGroupLayouts: [...this.bindings.layouts] }),
-        vertex: { module: this.module, entryPoint: 'present_vertex' },
-        fragment: { module: this.module, entryPoint: 'present_fragment', targets: [{ format }] },
-        primitive: { topology: 'triangle-list' },
-      });
-      this.pipelines.set(format, p);
-    }
-    return p;
   }
 }

@@ -58,8 +58,9 @@ export class RestirPass {
     private readonly restir: UniformParams<UniformValues>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<RestirPass> {
-    const [initial, temporal, spatial, lend] = await Promise.all(['restir_initial', 'restir_temporal', 'restir_spatial', 'restir_lend'].map((entry) => TracingKernels.create(device, MODULE, entry)));
+  /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<RestirPass> {
+    const [initial, temporal, spatial, lend] = await Promise.all(['restir_initial', 'restir_temporal', 'restir_spatial', 'restir_lend'].map((entry) => TracingKernels.create(device, MODULE, entry, {}, first)));
     return new RestirPass(initial!, temporal!, spatial!, lend!, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, MODULE, 'restir'));
   }
 

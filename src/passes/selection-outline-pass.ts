@@ -46,9 +46,10 @@ export class SelectionOutlinePass {
     private readonly params: UniformParams<{ first: number; end: number; material: number; color: Vec3 }>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<SelectionOutlinePass> {
+  /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<SelectionOutlinePass> {
     const [maskKernels, outlineKernel] = await Promise.all([
-      SceneKernels.create(device, { module: MODULE, entryPoint: 'selection_mask' }, TRAVERSAL_FEATURES),
+      SceneKernels.create(device, { module: MODULE, entryPoint: 'selection_mask' }, TRAVERSAL_FEATURES, {}, first),
       ComputeKernel.create(device, { module: MODULE, entryPoint: 'selection_outline' }),
     ]);
     return new SelectionOutlinePass(device, maskKernels, outlineKernel, new UniformParams(device, MODULE));

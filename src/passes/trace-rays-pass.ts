@@ -79,8 +79,9 @@ export class TraceRaysPass {
     private readonly params: UniformParams<{ ray_count: number }>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<TraceRaysPass> {
-    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'trace_rays' }, TRAVERSAL_FEATURES);
+  /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<TraceRaysPass> {
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'trace_rays' }, TRAVERSAL_FEATURES, {}, first);
     return new TraceRaysPass(device, kernels, new UniformParams(device, MODULE));
   }
 

@@ -68,8 +68,9 @@ export class WavefrontFramePass {
     private readonly frame: UniformParams<UniformValues>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<WavefrontFramePass> {
-    const rgb = await sceneKernelSet(device, {});
+  /** `first`: the features of the scene to be rendered, where known: its variants are compiled instead of a plain scene's. */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<WavefrontFramePass> {
+    const rgb = await sceneKernelSet(device, {}, first);
     const args = await Promise.all(ARGS_ENTRIES.map((entryPoint) => ComputeKernel.create(device, { module: MODULE, entryPoint })));
     const argsKernels = Object.fromEntries(ARGS_ENTRIES.map((e, i) => [e, args[i]!])) as Record<ArgsEntry, ComputeKernel>;
     return new WavefrontFramePass(device, rgb, argsKernels, new UniformParams(device, PATH_TRACE_MODULE), new UniformParams(device, 'passes/path-trace-frame', 'frame'));
@@ -232,10 +233,10 @@ function kernelSet(device: GPUDevice, extra: Record<string, number>): Record<Sce
   return Object.fromEntries(SCENE_ENTRIES.map((entryPoint) => [entryPoint, new SceneKernels(device, { module: MODULE, entryPoint }, TRACING_FEATURES, constants)])) as Record<SceneEntry, SceneKernels>;
 }
 
-/** The RGB set with the plain scene's variants compiled, so that WGSL errors surface at creation. */
-async function sceneKernelSet(device: GPUDevice, extra: Record<string, number>): Promise<Record<SceneEntry, SceneKernels>> {
+/** The RGB set with the variants of `first` (default: a plain scene) compiled, so that WGSL errors surface at creation. */
+async function sceneKernelSet(device: GPUDevice, extra: Record<string, number>, first: SceneFeatures = PLAIN_SCENE): Promise<Record<SceneEntry, SceneKernels>> {
   const set = kernelSet(device, extra);
-  await Promise.all(SCENE_ENTRIES.map((e) => set[e].prepare(PLAIN_SCENE)));
+  await Promise.all(SCENE_ENTRIES.map((e) => set[e].prepare(first)));
   return set;
 }
 

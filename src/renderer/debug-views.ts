@@ -68,8 +68,9 @@ export class DebugViews {
     private readonly compose: DebugComposePass,
   ) {}
 
-  static async create(device: GPUDevice): Promise<DebugViews> {
-    const [trace, wireframe, compose] = await Promise.all([DebugViewPass.create(device), BvhWireframePass.create(device), DebugComposePass.create(device)]);
+  /** `first`: the features of the scene to be shown, where known (its traversal variant compiles instead of a plain scene's). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<DebugViews> {
+    const [trace, wireframe, compose] = await Promise.all([DebugViewPass.create(device, first), BvhWireframePass.create(device), DebugComposePass.create(device)]);
     return new DebugViews(device, trace, wireframe, compose);
   }
 

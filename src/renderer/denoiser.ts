@@ -158,8 +158,9 @@ export class Denoiser {
     private readonly passes: DenoisePasses,
   ) {}
 
-  static async create(device: GPUDevice): Promise<Denoiser> {
-    const [frame, passes] = await Promise.all([PathTraceFramePass.create(device), createDenoisePasses(device)]);
+  /** `first`: the features of the scene to be rendered, where known (its frame kernels compile instead of a plain scene's). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<Denoiser> {
+    const [frame, passes] = await Promise.all([PathTraceFramePass.create(device, first), createDenoisePasses(device)]);
     return new Denoiser(device, frame, passes);
   }
 
@@ -175,7 +176,7 @@ export class Denoiser {
    */
   async enableWavefront(): Promise<void> {
     if (!this.wavefrontPending) {
-      this.wavefrontPending = WavefrontFramePass.create(this.device).then(async (w) => {
+      this.wavefrontPending = WavefrontFramePass.create(this.device, this.firstPrepared(false)).then(async (w) => {
         await Promise.all([...this.preparedFor.values()].map((p) => this.prepareWavefront(w, p.features, p.spectral)));
         this.wavefront = w;
         return w;
@@ -188,7 +189,7 @@ export class Denoiser {
   /** Compiles the ReSTIR passes for every scene prepared so far and later; frames use them once ready for their scene. */
   async enableRestir(): Promise<void> {
     if (!this.restirPending) {
-      this.restirPending = RestirPass.create(this.device).then(async (r) => {
+      this.restirPending = RestirPass.create(this.device, this.firstPrepared(false)).then(async (r) => {
         await Promise.all([...this.preparedFor.values()].filter((p) => !p.spectral).map((p) => this.prepareRestir(r, p.features)));
         this.restir = r;
         return r;
@@ -196,6 +197,12 @@ export class Denoiser {
       this.restirPending.catch(() => (this.restirPending = undefined));
     }
     await this.restirPending;
+  }
+
+  /** The features of the first scene prepared in this mode (what a pass made now compiles first), if any. */
+  private firstPrepared(spectral: boolean): SceneFeatures | undefined {
+    for (const p of this.preparedFor.values()) if (p.spectral === spectral) return p.features;
+    return undefined;
   }
 
   private async prepareRestir(r: RestirPass, features: SceneFeatures): Promise<void> {

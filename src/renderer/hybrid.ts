@@ -137,10 +137,11 @@ export class Hybrid {
     private readonly hybridParams: UniformParams<UniformValues>,
   ) {}
 
-  static async create(device: GPUDevice): Promise<Hybrid> {
-    const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, { CAPTURE_PRIMARY: 1 });
+  /** `first`: the features of the scene to be rendered, where known (its tracing variants compile instead of a plain scene's). */
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<Hybrid> {
+    const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, { CAPTURE_PRIMARY: 1 }, first);
     const [raster, resolve, shade, reflect, gi, compose, taa, atrous] = await Promise.all([
-      HybridRasterPass.create(device),
+      HybridRasterPass.create(device, first),
       traced('hybrid_resolve'),
       traced('hybrid_shade'),
       traced('hybrid_reflect'),

@@ -181,18 +181,29 @@ export class Renderer {
    * for that scene alone starts compiling, and setScene awaits it (and reports its errors). Without,
    * a plain scene's variant is compiled here, so errors show at once, and setScene compiles the
    * scene's. `features` may be a promise (a scene still loading elsewhere): the path tracer is
-   * reflected meanwhile, and the tone mapper compiled. `presentation`: the browser's present pass
-   * too (enablePresentation), compiled alongside.
+   * reflected meanwhile, and the tone mapper compiled. `presentation`: the canvas's format, for the
+   * browser's present pass (enablePresentation), compiled alongside.
    */
-  static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: boolean } = {}): Promise<Renderer> {
+  static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: GPUTextureFormat } = {}): Promise<Renderer> {
     const { device } = gpu;
     // The small passes first: they compile while the path tracer is reflected and its scene awaited.
-    const [tonemap, present, pathTrace] = await Promise.all([
+    const [tonemap, present, pathTrace, features] = await Promise.all([
       TonemapPass.create(device),
-      options.presentation ? PresentPass.create(device) : undefined,
+      options.presentation ? PresentPass.create(device, options.presentation) : undefined,
       PathTracePass.create(device, options.features),
+      options.features,
     ]);
-    return new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap, present);
+    const renderer = new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap, present);
+    renderer.expectedFeatures = features;
+    return renderer;
+  }
+
+  /** The features of the scene setScene will get, as Renderer.create was told, until one is set. */
+  private expectedFeatures?: SceneFeatures;
+
+  /** The features of the scene (or of the one about to be set): what a recipe enabled now compiles for first. */
+  private get sceneFeatures(): SceneFeatures | undefined {
+    return this.prepared?.packed.features ?? this.expectedFeatures;
   }
 
   get device(): GPUDevice {
@@ -382,7 +393,7 @@ export class Renderer {
     if (!camera) throw new Error('Renderer: setCamera() before pick()');
     if (!(x >= 0 && x < targets.width && y >= 0 && y < targets.height)) throw new LanternError(`pixel (${x}, ${y}) is outside the ${targets.width}×${targets.height} image`);
     const ray = primaryRay(camera, targets.width, targets.height, Math.floor(x) + 0.5, Math.floor(y) + 0.5);
-    this.tracePass ??= TraceRaysPass.create(this.device);
+    this.tracePass ??= TraceRaysPass.create(this.device, prepared.packed.features);
     const pass = await this.tracePass;
     const device = this.device;
     const rays = createBufferWithData(device, 'pick ray', packRays([ray]), GPUBufferUsage.STORAGE);
@@ -431,7 +442,7 @@ export class Renderer {
       throw new LanternError(`scene '${prepared.scene.name}' has no instance ${instanceIndex}`);
     }
     if (!this.selectionPass) {
-      const pass = await SelectionOutlinePass.create(this.device);
+      const pass = await SelectionOutlinePass.create(this.device, prepared.packed.features);
       this.selectionPass ??= pass;
     }
     await this.selectionPass.prepare(prepared.packed.features);
@@ -755,7 +766,7 @@ export class Renderer {
   /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output; the wavefront one where settings.integrator asks for it). */
   async enableRealTime(): Promise<void> {
     const created = !this.denoiser;
-    this.denoiser ??= await Denoiser.create(this.device);
+    this.denoiser ??= await Denoiser.create(this.device, this.sceneFeatures);
     if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
     if (this.settingsValue.integrator === 'wavefront') await this.enableWavefront();
     if (this.settingsValue.restir) await this.enableRestir();
@@ -920,7 +931,7 @@ export class Renderer {
 
   /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
   async enableHybrid(): Promise<void> {
-    this.hybrid ??= await Hybrid.create(this.device);
+    this.hybrid ??= await Hybrid.create(this.device, this.sceneFeatures);
     if (this.prepared) await this.hybrid.prepare(this.prepared.packed.features);
   }
 
@@ -1003,14 +1014,14 @@ export class Renderer {
     this.device.queue.submit([encoder.finish()]);
   }
 
-  /** Compiles the present pipeline (browser only; the CLI never draws to a surface). */
-  async enablePresentation(): Promise<void> {
-    this.presentPass ??= await PresentPass.create(this.device);
+  /** Compiles the present pipeline for targets of `format` (a canvas's; browser only: the CLI never draws to a surface). */
+  async enablePresentation(format: GPUTextureFormat): Promise<void> {
+    if (this.presentPass?.format !== format) this.presentPass = await PresentPass.create(this.device, format);
   }
 
   /** Compiles the debug views' pipelines (readImage does it by itself; present needs it done first). */
   async enableDebugViews(): Promise<void> {
-    this.debugViews ??= await DebugViews.create(this.device);
+    this.debugViews ??= await DebugViews.create(this.device, this.sceneFeatures);
     if (this.prepared) await this.debugViews.prepare(this.prepared.packed.features);
   }
 

@@ -3,7 +3,9 @@
  * after the pickers, controls that do not apply (disabled, saying why), the scene picker after a
  * failed load, messages (folded warnings, ×, expiry), the controls help, the layout at 420 and
  * 1280 pixels wide, and a browser without WebGPU. One browser; most tests never press Play (no
- * shader compile); the one that does renders at 1/20 of a small canvas.
+ * shader compile); the one that does renders at 1/20 of a small canvas, and checks what the page
+ * says while it waits (compiling shaders, k of n) and that its status line fits at 420, 640 and
+ * 1280 pixels (issue #27).
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
@@ -137,8 +139,8 @@ describe('the page for a new user', () => {
     await page.close();
   });
 
-  it('shows the controls on the first Play only, and on ? at any time; a second visit estimates from the first', async () => {
-    const { page, errors } = await open('scene=cornell&scale=0.05', { width: 320, height: 240 });
+  it('shows the controls on the first Play only, and on ? at any time; says what the first frame waits for; fits the status line; a second visit estimates from the first', async () => {
+    const { page, errors } = await open('scene=cornell&scale=0.05', { width: 420, height: 240 });
     const help = page.locator('#help');
     expect(await help.isHidden()).toBe(true);
     await page.keyboard.press('?');
@@ -152,13 +154,61 @@ describe('the page for a new user', () => {
     expect(await help.isHidden()).toBe(true);
 
     await page.locator('#start-play').click();
-    await withPageReport(page, 'the first frame', () => expect.poll(() => page.evaluate(() => window.lantern.firstFrameMs), { timeout: 180_000 }).toBeGreaterThan(0));
+    // Until the first frame, the loading line says what it waits for, with the bar: the pipelines
+    // compiling, how many of how many, and the count goes up as they complete.
+    const waiting: { done: number; needed: number; bar: number | undefined }[] = [];
+    await withPageReport(page, 'the first frame', () =>
+      expect
+        .poll(
+          async () => {
+            const s = await page.evaluate(() => {
+              const bar = document.getElementById('progress') as HTMLProgressElement;
+              return { text: document.getElementById('stats')!.textContent ?? '', bar: bar.hidden ? undefined : bar.value, firstFrameMs: window.lantern.firstFrameMs };
+            });
+            const m = /^compiling shaders, (\d+) of (\d+)/.exec(s.text);
+            if (m) waiting.push({ done: Number(m[1]), needed: Number(m[2]), bar: s.bar });
+            return s.firstFrameMs;
+          },
+          { timeout: 180_000, interval: 200 },
+        )
+        .toBeGreaterThan(0),
+    );
+    expect(waiting.length, 'the loading line said "compiling shaders, k of n"').toBeGreaterThan(0);
+    expect(waiting.every((w) => w.done < w.needed && w.bar !== undefined && Math.abs(w.bar - w.done / w.needed) < 1e-6)).toBe(true);
+    expect(waiting.some((w, i) => i > 0 && w.done > waiting[i - 1]!.done), `k went up: ${JSON.stringify(waiting.map((w) => `${w.done}/${w.needed}`))}`).toBe(true);
     expect(await help.isVisible()).toBe(true);
     expect(await page.locator('#start').isHidden()).toBe(true);
     // The status line never rounds a slow rate to nothing.
     expect(await page.locator('#stats').textContent()).not.toMatch(/\b0\.0 fps/);
     await page.keyboard.press('?');
     expect(await help.isHidden()).toBe(true);
+
+    // The status line at its longest (slow frames, the budget's account) fits at 420, 640 and 1280
+    // pixels: never cut ("…"), never wider than its box; the figures that stay include the samples.
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await row(page, /^auto resolution$/).locator('.tp-ckbv_w').click();
+    await page.evaluate(() => window.lantern.delayFrames(1500));
+    const status = () =>
+      page.evaluate(() => {
+        const s = document.getElementById('stats')!;
+        return { text: s.textContent ?? '', whole: s.title, scroll: s.scrollWidth, client: s.clientWidth, overflow: getComputedStyle(s).textOverflow };
+      });
+    const long = async () => {
+      const { whole } = await status();
+      return / a frame\)/.test(whole) && /budget: /.test(whole);
+    };
+    await expect.poll(long, { timeout: 60_000 }).toBe(true);
+    for (const width of [420, 640, 1280]) {
+      await page.setViewportSize({ width, height: 800 });
+      // The line is fitted again as its box resizes, and at every frame.
+      await waitForPage(page, (n) => window.lantern.samples !== n, await page.evaluate(() => window.lantern.samples), 60_000, `a frame at ${width} px`);
+      const s = await status();
+      expect(s.scroll, `${width} px: "${s.text}" (of "${s.whole}")`).toBeLessThanOrEqual(s.client);
+      expect(s.overflow, `${width} px`).not.toBe('ellipsis');
+      expect(s.text).toMatch(/^\d+ spp · /);
+    }
+    await page.evaluate(() => window.lantern.delayFrames(0));
+    await page.setViewportSize({ width: 420, height: 240 });
 
     // The same browser again: no help by itself, and the wait measured before is the estimate.
     await page.reload();

@@ -76,4 +76,31 @@ describe('start-up compiles', () => {
       renderer.destroy();
     }
   });
+
+  it('compile a recipe enabled before or after the scene for that scene alone, not a plain scene first (issue #27)', async () => {
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('cornell'));
+    // The Cornell box is not the plain scene (its small BVH takes the shallow stack): a plain variant would be compiled for nothing.
+    expect(prepared.packed.features.shallowStack).toBe(true);
+    const frameKernels = (spans: readonly StageSpan[]) => spans.filter((s) => /^pipeline .*:(path_trace_frame|frame_gbuffer)$/.test(s.stage));
+    // The page's order: the renderer told the scene's features, the real-time chain enabled, then the scene set.
+    for (const order of ['recipe first', 'scene first'] as const) {
+      const spans = await recordStages();
+      const renderer = await Renderer.create(gpu, { features: prepared.packed.features });
+      try {
+        await renderer.resize(8, 8);
+        if (order === 'scene first') await renderer.setScene(prepared);
+        await renderer.enableRealTime();
+        if (order === 'recipe first') await renderer.setScene(prepared);
+        renderer.renderFrame(1);
+        expect((await renderer.readFrame()).radiance.some((v) => v > 0)).toBe(true);
+        const compiled = frameKernels(spans);
+        expect(compiled.map((s) => s.stage).sort(), order).toEqual(['pipeline passes/path-trace-frame:frame_gbuffer', 'pipeline passes/path-trace-frame:path_trace_frame']);
+        for (const s of compiled) expect(s.detail!.split(' '), `${order}: ${s.stage}`).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features)));
+      } finally {
+        renderer.destroy();
+        observeStages(gpu.device, undefined);
+      }
+    }
+  });
 });
