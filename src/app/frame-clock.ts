@@ -1,0 +1,74 @@
+/**
+ * One frame's motion in the viewer: the camera moved by the keys held since the last frame (however
+ * long the frame took: key-timeline.ts) and the world advanced by that same time, taking turns in
+ * slices of at most SLICE_SECONDS, what one frame does at 30 fps. A long frame plays as a run of
+ * short ones: a door opened during it lets the walker through when it would at 30 fps, a lift
+ * carries them down, a walk-over line fires where it is crossed, a closing door reopens on them.
+ * The world itself steps in fixed ticks (scene/world.ts), so how the frames fall changes nothing in
+ * it. Pure: the tests drive it with a controller, a world and spans of held keys.
+ */
+import type { SceneUpdate } from '../scene/dynamics.ts';
+import { mergeUpdates, type World } from '../scene/world.ts';
+import type { CameraController, HeldSpan } from './camera-controller.ts';
+
+/** The longest turn of the camera or the world within a frame: one frame at 30 fps. */
+export const SLICE_SECONDS = 1 / 30;
+
+/**
+ * The most world time one frame plays. The page stops its frames while the tab is hidden and starts
+ * its clock again when it shows (viewer.ts loop), so a longer frame is not play: a machine that slept
+ * with the page open, a debugger that held it. Far longer than a frame at the frame budget's
+ * resolution floor on a CPU adapter (a few seconds), so every frame of play is followed exactly; a
+ * longer one plays the world this long, spread over the frame (held keys still move the camera by
+ * their whole time).
+ */
+export const MAX_WORLD_SECONDS = 10;
+
+export interface PlayedFrame {
+  /** Whether the camera moved or turned. */
+  readonly moved: boolean;
+  /** What the world changed over the frame, merged (undefined: nothing). */
+  readonly update?: SceneUpdate;
+}
+
+/**
+ * Plays a frame of `held` spans (their seconds are the frame's time): the camera and, with `animate`,
+ * the world in turns; without it the world only sees the view (billboards turn; the clock holds).
+ * The walker's moves go to the world's walk-over lines, the world's heights to the walker.
+ */
+export function playFrame(c: CameraController, world: World | undefined, held: readonly HeldSpan[], animate: boolean): PlayedFrame {
+  if (!world) return { moved: c.advance(held) };
+  const total = held.reduce((sum, h) => sum + h.seconds, 0);
+  const slices = animate ? Math.max(1, Math.ceil(total / SLICE_SECONDS - 1e-9)) : 1;
+  const worldSlice = animate ? Math.min(total, MAX_WORLD_SECONDS) / slices : 0;
+  const updates: SceneUpdate[] = [];
+  let moved = false;
+  // Where the slices have got to in `held`: span index and seconds of it taken.
+  let span = 0;
+  let taken = 0;
+  for (let i = 0; i < slices; i++) {
+    const last = i === slices - 1;
+    const piece: HeldSpan[] = [];
+    for (let want = total / slices; span < held.length && (want > 0 || last); ) {
+      const h = held[span]!;
+      const rest = h.seconds - taken;
+      const take = last ? rest : Math.min(rest, want);
+      if (take > 0) piece.push({ input: h.input, seconds: take });
+      if (take < rest) {
+        taken += take;
+        break;
+      }
+      want -= take;
+      span++;
+      taken = 0;
+    }
+    moved = c.advance(piece) || moved;
+    for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
+    const camera = c.camera();
+    const update = world.advance(worldSlice, { position: camera.position, forward: camera.forward, walking: c.mode === 'walk' });
+    if (!update) continue;
+    c.setSectorHeights(update.walkHeights);
+    updates.push(update);
+  }
+  return updates.length > 0 ? { moved, update: mergeUpdates(updates) } : { moved };
+}
