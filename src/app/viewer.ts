@@ -342,11 +342,9 @@ export class Viewer {
     return this.budgetValue.describe(!short);
   }
 
-  /** The frame budget: on or off, what it chose, its one-line account. */
+  /** The frame budget: on or off, the scale that renders (its choice, or the user's), its one-line account. */
   get budget(): BudgetState {
-    const on = !this.scaleFixed;
-    const choice = this.budgetValue?.choice;
-    return { on, scale: on && choice ? choice.scale : this.settings.scale, samplesPerFrame: this.samplesPerFrame(), text: this.budgetText() };
+    return { on: !this.scaleFixed, scale: this.settings.scale, samplesPerFrame: this.samplesPerFrame(), text: this.budgetText() };
   }
 
   /** How far the frame under way has got (undefined between frames). */
@@ -769,7 +767,7 @@ export class Viewer {
     this.timer = gpu.hasTimestamps ? new GpuTimer(gpu.device) : undefined;
     // A new device may be another adapter (a lost GPU replaced by the fallback): the budget measures it afresh.
     const adapter = adapterKind({ name: gpu.adapterName, isFallbackAdapter: gpu.adapter.info.isFallbackAdapter });
-    this.budgetValue = new FrameBudget({ adapter, displayHz, canvasPixels: Math.max(1, this.canvas.width * this.canvas.height), baseSamples: this.settings.samplesPerFrame });
+    this.budgetValue = new FrameBudget({ adapter, displayHz, canvasWidth: Math.max(1, this.canvas.width), canvasHeight: Math.max(1, this.canvas.height), baseSamples: this.settings.samplesPerFrame });
     this.chunks = new ChunkSizer(adapter);
     this.frameValue = undefined;
     await this.resizeRenderer();
@@ -813,7 +811,9 @@ export class Viewer {
 
   private async resizeRenderer(): Promise<void> {
     if (!this.renderer) return;
-    const scale = this.scaleFixed || !this.budgetValue ? this.settings.scale : this.budgetValue.choice.scale;
+    // settings.scale says what renders (budget.scale, the panel's resolution); a link carries it only once the user fixes it.
+    if (!this.scaleFixed && this.budgetValue) this.settings = { ...this.settings, scale: this.budgetValue.choice.scale };
+    const scale = this.settings.scale;
     const w = Math.max(1, Math.round(this.canvas.width * scale));
     const h = Math.max(1, Math.round(this.canvas.height * scale));
     await this.renderer.resize(w, h);
@@ -921,7 +921,6 @@ export class Viewer {
     const renderer = this.renderer;
     if (this.scaleFixed || !this.budgetValue || !renderer) return;
     const { scale } = this.budgetValue.choice;
-    // settings.scale says what renders (the panel shows it); a link carries it only once the user fixes it.
     if (this.settings.scale !== scale) this.settings = { ...this.settings, scale };
     const w = Math.max(1, Math.round(this.canvas.width * scale)), h = Math.max(1, Math.round(this.canvas.height * scale));
     if (w !== renderer.width || h !== renderer.height) await this.resizeRenderer();
@@ -1052,7 +1051,7 @@ export class Viewer {
     const gpuTimed = budget?.adapter === 'hardware' && timer !== undefined && frame.chunks <= MAX_TIMED_CHUNKS && this.gpuPasses.length > 0;
     const ms = gpuTimed ? this.gpuPasses.reduce((sum, p) => sum + p.ms, 0) : busyMs;
     if (!this.scaleFixed && budget && frame.pixels > 0) {
-      budget.observe({ ms, gpuTimed, pixels: frame.width * frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
+      budget.observe({ ms, gpuTimed, width: frame.width, height: frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
     }
   }
 
