@@ -100,12 +100,12 @@ export class World {
   private ticks = 0;
   private stepped = false;
   /** The animators with Animator.moving, stepped tick by tick, and the others, stepped once an advance. */
-  private readonly integrating: readonly Animator[];
-  private readonly timeless: readonly Animator[];
+  private readonly everyTick: readonly Animator[];
+  private readonly once: readonly Animator[];
 
   private constructor(private readonly animators: readonly Animator[]) {
-    this.integrating = animators.filter((a) => a.moving);
-    this.timeless = animators.filter((a) => !a.moving);
+    this.everyTick = animators.filter((a) => a.moving);
+    this.once = animators.filter((a) => !a.moving);
   }
 
   /** The world of `scene`, or undefined when nothing in it moves. */
@@ -149,13 +149,13 @@ export class World {
       this.stepped = true;
       for (const a of this.animators) a.step(this.now, 0, view, out, true);
     }
-    let busy = this.integrating.filter((a) => a.moving!(view));
+    let busy = this.everyTick.filter((a) => a.moving!(view));
     for (let k = from + 1; k <= target && busy.length > 0; k++) {
       for (const a of busy) a.step(k / TICKS_PER_SECOND, TICK, view, out, false);
       busy = busy.filter((a) => a.moving!(view));
     }
     this.ticks = Math.max(from, target);
-    for (const a of this.timeless) a.step(this.now, (this.ticks - from) / TICKS_PER_SECOND, view, out, false);
+    for (const a of this.once) a.step(this.now, (this.ticks - from) / TICKS_PER_SECOND, view, out, false);
     return out.build();
   }
 
