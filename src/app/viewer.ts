@@ -271,7 +271,9 @@ export class Viewer {
     private readonly hooks: ViewerHooks,
   ) {
     document.addEventListener('visibilitychange', () => {
-      // Hidden tabs get no frames; coming back resumes where it was.
+      // Hidden tabs get no frames; coming back resumes where it was, and the time hidden is not
+      // played (a frame asked for before hiding runs only now: its time starts here).
+      if (!document.hidden) this.input.restartClock(performance.now());
       if (!document.hidden && this.state === 'playing') this.loop();
       this.hooks.onChange(this);
     });
