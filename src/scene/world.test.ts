@@ -150,20 +150,21 @@ const doomNone = { texture: () => undefined, flat: () => undefined };
 const FREEDOOM1 = '/usr/share/games/doom/freedoom1.wad';
 
 describe('the world follows elapsed time, however the frames fall', () => {
-  it("a Doom door (use key) and lift (walk-over line): one 3 s frame, or 8 s, is ninety (240) frames of 1/30 s", () => {
+  it('a Doom door (use key) and lift (walk-over line): one frame of 3 s (7 s, 8 s) is 90 (210, 240) frames of 1/30 s', () => {
     const door = doomMapToScene(twoRooms({}, 'door'), doomNone).scene;
     // In room A, 28 units from the door's face, facing it (within the use key's 64 units).
     const atDoor: Viewpoint = { position: [100, 41, -64], forward: [1, 0, 0], walking: true };
     const lift = doomMapToScene(twoRooms({ floorHeight: 64, ceilingHeight: 128 }, 'lift', { floorHeight: 64 }), doomNone).scene;
-    for (const seconds of [3, 8]) {
+    // Up at 70 units a second to its top (124, 4 under the rooms' ceilings) by 1.77 s, a 150-tic wait
+    // (4.29 s), down again from 6.06 s to 7.83 s.
+    for (const [seconds, ceiling] of [[3, 124], [7, 124 - 70 * (7 - 124 / 70 - 150 / 35)], [8, 0]] as const) {
       const d = expectFrameFree(door, seconds, atDoor, (w) => expect(w.use(atDoor)).toBe(true));
-      // 70 units a second to the top (124 − 4 below room A's ceiling... the door's top), a 150-tic wait, then down.
-      const ceiling = d.world.walkHeights.get(door.dynamics!.movers!.movers[0]!.sector)![1];
-      if (seconds === 3) expect(ceiling).toBe(124);
-      else expect(ceiling).toBeLessThan(124);
+      expect(d.world.walkHeights.get(door.dynamics!.movers!.movers[0]!.sector)![1]).toBeCloseTo(ceiling, 6);
+    }
+    // Down at 140 units a second (0.46 s), a 3 s wait at the bottom, back up by 3.9 s.
+    for (const [seconds, floor] of [[3, 0], [8, 64]] as const) {
       const l = expectFrameFree(lift, seconds, { position: [60, 41, -64], forward: [1, 0, 0] }, (w) => w.walked(120, -64, 136, -64));
-      // Down at 140 units a second, a 3 s wait at the bottom, back up by 3.9 s.
-      expect(l.world.walkHeights.get(lift.dynamics!.movers!.movers[0]!.sector)![0]).toBe(seconds === 3 ? 0 : 64);
+      expect(l.world.walkHeights.get(lift.dynamics!.movers!.movers[0]!.sector)![0]).toBe(floor);
     }
   });
 
