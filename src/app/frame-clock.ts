@@ -41,8 +41,10 @@ export interface PlayedFrame {
 export function playFrame(c: CameraController, world: World | undefined, held: readonly HeldSpan[], animate: boolean): PlayedFrame {
   if (!world) return { moved: c.advance(held) };
   const total = held.reduce((sum, h) => sum + h.seconds, 0);
-  const slices = animate ? Math.max(1, Math.ceil(total / SLICE_SECONDS - 1e-9)) : 1;
-  const worldSlice = animate ? Math.min(total, MAX_WORLD_SECONDS) / slices : 0;
+  const worldSeconds = animate ? Math.min(total, MAX_WORLD_SECONDS) : 0;
+  // Past the bound the slices grow instead of multiplying (an hour's frame costs what two minutes do).
+  const slices = Math.max(1, Math.ceil(worldSeconds / SLICE_SECONDS - 1e-9));
+  const worldSlice = worldSeconds / slices;
   const updates: SceneUpdate[] = [];
   let moved = false;
   // Where the slices have got to in `held`: span index and seconds of it taken.
