@@ -1,24 +1,36 @@
 import { describe, expect, it } from 'vitest';
-import { adapterKind, ChunkSizer, CHUNK_TARGET_MS, describeFixedScale, displayRateHz, FrameBudget, SCALE_STEPS, SOFTWARE_PROBE_PIXELS, type FrameBudgetOptions } from './frame-budget.ts';
+import { adapterKind, ChunkSizer, CHUNK_TARGET_MS, describeFixedScale, displayRateHz, FrameBudget, MIN_SHORT_SIDE, SCALE_STEPS, type FrameBudgetOptions } from './frame-budget.ts';
 
-const CANVAS = 1280 * 800;
+const CANVAS = { canvasWidth: 1280, canvasHeight: 800 };
+const CANVAS_PIXELS = 1280 * 800;
+/** SwiftShader on the test machine: about 25 µs per pixel and sample (a 1280×800 frame ≈ 26 s). */
+const SWIFTSHADER = 25e-3;
+/**
+ * An adapter 32 times quicker: every image it can afford has 32 times the pixels (ten steps of √2),
+ * so the budget works well above its floor (269 × 168 on this canvas), where it makes the choices it
+ * made before it had one for SwiftShader, ten steps up.
+ */
+const QUICK_CPU = SWIFTSHADER / 32;
 
 /**
  * Runs the viewer's side of the budget against a simulated adapter: each frame costs
- * `msPerPixelSample(frame)` × pixels × samples, frames follow each other back to back (at most 60 a second).
+ * `msPerPixelSample(frame)` × pixels × samples, frames follow each other back to back (at most 60 a
+ * second); `canvas(frame)` may resize the canvas.
  */
-function simulate(options: FrameBudgetOptions, msPerPixelSample: (frame: number) => number, frames: number) {
+function simulate(options: FrameBudgetOptions, msPerPixelSample: (frame: number) => number, frames: number, canvas = (_frame: number) => [options.canvasWidth, options.canvasHeight] as const) {
   const budget = new FrameBudget(options);
   let at = 0;
-  const history: { scale: number; samples: number; ms: number; changed: boolean }[] = [];
+  const history: { scale: number; samples: number; ms: number; width: number; height: number; changed: boolean }[] = [];
   for (let i = 0; i < frames; i++) {
     const { scale, samplesPerFrame } = budget.choice;
-    const pixels = Math.round(options.canvasPixels * scale * scale);
-    const ms = msPerPixelSample(i) * pixels * samplesPerFrame;
+    // The viewer's render size (viewer.ts resizeRenderer).
+    const [cw, ch] = canvas(i);
+    const width = Math.max(1, Math.round(cw * scale)), height = Math.max(1, Math.round(ch * scale));
+    const ms = msPerPixelSample(i) * width * height * samplesPerFrame;
     // Frames are paced by the display (requestAnimationFrame) when the GPU is quicker.
     at += Math.max(ms, 1000 / 60);
-    const changed = budget.observe({ ms, gpuTimed: false, pixels, samples: samplesPerFrame, at });
-    history.push({ scale, samples: samplesPerFrame, ms, changed });
+    const changed = budget.observe({ ms, gpuTimed: false, width, height, samples: samplesPerFrame, at });
+    history.push({ scale, samples: samplesPerFrame, ms, width, height, changed });
   }
   return { budget, history };
 }
@@ -43,16 +55,17 @@ describe('displayRateHz', () => {
 });
 
 describe('FrameBudget', () => {
-  it('starts a software adapter with a small probe and settles at a few frames per second', () => {
-    // SwiftShader on the test machine: about 25 µs per pixel and sample (a 1280×800 frame ≈ 26 s).
-    const { budget, history } = simulate({ adapter: 'software', canvasPixels: CANVAS }, () => 25e-3, 40);
-    expect(CANVAS * history[0]!.scale ** 2).toBeLessThanOrEqual(SOFTWARE_PROBE_PIXELS);
+  it('starts a software adapter at its floor and settles at a few frames per second', () => {
+    const { budget, history } = simulate({ adapter: 'software', ...CANVAS }, () => QUICK_CPU, 40);
+    // The smallest image it may show: the short side at the floor (2^(−9/4) · 800 = 168).
+    expect(history[0]!.height).toBe(168);
+    expect(budget.choice.scale).toBeGreaterThan(0.4);
     const settled = history.slice(-10);
     for (const f of settled) {
       expect(f.ms).toBeLessThanOrEqual((1.25 * 1000) / 3);
       expect(f.ms).toBeGreaterThan(((0.8 / Math.SQRT2) * 1000) / 3);
     }
-    // The one jump after the probe, then nothing: the history is dropped once.
+    // The one jump after the first frame, then nothing: the history is dropped once.
     expect(history.filter((f) => f.changed)).toHaveLength(1);
     expect(budget.targetFps).toBe(3);
     expect(budget.describe()).toMatch(/^budget: 0\.\d+× \(software adapter, 3 fps target; last frame \d+ ms\)$/);
@@ -61,29 +74,29 @@ describe('FrameBudget', () => {
 
   it('holds the display rate on a real GPU, adding samples at full resolution when there is time to spare', () => {
     // A fast GPU: 1 ns per pixel-sample, a 1280×800 frame in 1 ms: full scale, the most samples.
-    const fast = simulate({ adapter: 'hardware', displayHz: 60, canvasPixels: CANVAS }, () => 1e-6, 400);
+    const fast = simulate({ adapter: 'hardware', displayHz: 60, ...CANVAS }, () => 1e-6, 400);
     expect(fast.budget.choice).toEqual({ scale: 1, samplesPerFrame: 4 });
     expect(fast.budget.describe()).toContain('· 4 spp (display 60 Hz, 60 fps target');
     // A weak GPU: 40 ns per pixel-sample (41 ms at full size): scaled to fit 16.7 ms.
-    const weak = simulate({ adapter: 'hardware', displayHz: 60, canvasPixels: CANVAS }, () => 40e-6, 60);
+    const weak = simulate({ adapter: 'hardware', displayHz: 60, ...CANVAS }, () => 40e-6, 60);
     const last = weak.history.slice(-10);
     for (const f of last) expect(f.ms).toBeLessThanOrEqual(1.25 * (1000 / 60));
     expect(weak.budget.choice.scale).toBeLessThan(1);
     expect(weak.budget.choice.samplesPerFrame).toBe(1);
     // A 144 Hz display aims at 6.9 ms instead.
-    const high = simulate({ adapter: 'hardware', displayHz: 144, canvasPixels: CANVAS }, () => 40e-6, 60);
+    const high = simulate({ adapter: 'hardware', displayHz: 144, ...CANVAS }, () => 40e-6, 60);
     expect(high.budget.choice.scale).toBeLessThan(weak.budget.choice.scale);
     for (const f of high.history.slice(-10)) expect(f.ms).toBeLessThanOrEqual(1.25 * (1000 / 144));
   });
 
   it('does not oscillate when the cost sits at a step boundary or the frames are noisy', () => {
     // The cost that puts the frame exactly on the target at some step, with ±15 % noise.
-    const noisy = (i: number) => 25e-3 * (1 + 0.15 * Math.sin(i * 2.1));
-    const { history } = simulate({ adapter: 'software', canvasPixels: CANVAS }, noisy, 200);
+    const noisy = (i: number) => QUICK_CPU * (1 + 0.15 * Math.sin(i * 2.1));
+    const { history } = simulate({ adapter: 'software', ...CANVAS }, noisy, 200);
     expect(history.filter((f) => f.changed).length).toBeLessThanOrEqual(2);
     for (let s = 0; s < SCALE_STEPS.length; s++) {
-      const cost = (1000 / 3 / (CANVAS * SCALE_STEPS[s]! ** 2)) * 1.0;
-      const run = simulate({ adapter: 'software', canvasPixels: CANVAS }, () => cost, 100);
+      const cost = (1000 / 3 / (CANVAS_PIXELS * SCALE_STEPS[s]! ** 2)) * 1.0;
+      const run = simulate({ adapter: 'software', ...CANVAS }, () => cost, 100);
       expect(run.history.filter((f) => f.changed).length).toBeLessThanOrEqual(1);
     }
   });
@@ -98,8 +111,8 @@ describe('FrameBudget', () => {
       t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
       return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
     };
-    const noisy = () => 25e-3 * 2 ** (2 * random() - 1);
-    const { history } = simulate({ adapter: 'software', canvasPixels: CANVAS }, noisy, 600);
+    const noisy = () => QUICK_CPU * 2 ** (2 * random() - 1);
+    const { history } = simulate({ adapter: 'software', ...CANVAS }, noisy, 600);
     const changes = history.map((f, i) => ({ ...f, i })).filter((f) => f.changed);
     // 600 frames at about 3 a second: over three minutes. A handful of resizes, most of them early,
     // none in the last minute and a half (the waits before stepping up have grown).
@@ -109,8 +122,8 @@ describe('FrameBudget', () => {
 
   it('follows the view: a costlier view scales down soon, a cheaper one scales up after a wait', () => {
     // The view changes at frame 30 to one 4× as costly, and at frame 80 back.
-    const cost = (i: number) => (i >= 30 && i < 80 ? 100e-3 : 25e-3);
-    const { history } = simulate({ adapter: 'software', canvasPixels: CANVAS }, cost, 160);
+    const cost = (i: number) => (i >= 30 && i < 80 ? 4 * QUICK_CPU : QUICK_CPU);
+    const { history } = simulate({ adapter: 'software', ...CANVAS }, cost, 160);
     const before = history[29]!.scale;
     // Down within a few frames of the change, by the whole factor at once (one resize, not a staircase).
     const downAt = history.findIndex((f, i) => i >= 30 && f.scale < before);
@@ -127,14 +140,43 @@ describe('FrameBudget', () => {
   });
 
   it('a single slow frame (a compile, an upload) moves nothing', () => {
-    const cost = (i: number) => (i === 20 ? 250e-3 : 25e-3);
-    const { history } = simulate({ adapter: 'software', canvasPixels: CANVAS }, cost, 40);
+    const cost = (i: number) => (i === 20 ? 10 * QUICK_CPU : QUICK_CPU);
+    const { history } = simulate({ adapter: 'software', ...CANVAS }, cost, 40);
     expect(history.filter((f) => f.changed)).toHaveLength(1);
   });
 
   it('never goes below the samples per frame the user asked for', () => {
-    const { budget } = simulate({ adapter: 'software', canvasPixels: CANVAS, baseSamples: 2 }, () => 25e-3, 40);
+    const { budget } = simulate({ adapter: 'software', ...CANVAS, baseSamples: 2 }, () => QUICK_CPU, 40);
     expect(budget.choice.samplesPerFrame).toBe(2);
+  });
+
+  it('holds its floor on a very slow adapter: the frame rate gives, not the resolution', () => {
+    // This machine's SwiftShader would fit 3 fps at 13,000 pixels (144 × 90: a mosaic); an adapter
+    // 40 times slower still, or a weak GPU at a 60 Hz display, at a few hundred.
+    for (const [options, cost] of [
+      [{ adapter: 'software', ...CANVAS }, SWIFTSHADER],
+      [{ adapter: 'software', ...CANVAS }, 1],
+      [{ adapter: 'hardware', displayHz: 60, ...CANVAS }, 5e-3],
+    ] as const) {
+      const { budget, history } = simulate(options, () => cost, 60);
+      for (const f of history) expect(Math.min(f.width, f.height)).toBeGreaterThanOrEqual(MIN_SHORT_SIDE);
+      // At the floor (256 × 160 would be under it: the steps give 269 × 168), and slower than the target.
+      expect(history.at(-1)).toMatchObject({ width: 269, height: 168 });
+      expect(history.at(-1)!.ms).toBeGreaterThan(budget.targetMs);
+      expect(budget.describe(false)).toMatch(/^budget: 0\.21× floor 160 px \(/);
+    }
+    // Where the floor fits, the account does not mention it.
+    expect(simulate({ adapter: 'software', ...CANVAS }, () => QUICK_CPU, 40).budget.describe(false)).not.toMatch(/floor/);
+  });
+
+  it('keeps the floor as the canvas changes: a smaller canvas raises the scale at once; one shorter than the floor renders whole', () => {
+    // The window halved at frame 20 (640 × 400): 0.21 of it would be 84 rows.
+    const { history } = simulate({ adapter: 'software', ...CANVAS }, () => SWIFTSHADER, 40, (i) => (i < 20 ? [1280, 800] : [640, 400]));
+    expect(history[20]!.height).toBe(84);
+    expect(history[21]).toMatchObject({ width: 269, height: 168 });
+    for (const f of history.slice(21)) expect(f.height).toBeGreaterThanOrEqual(MIN_SHORT_SIDE);
+    const tiny = simulate({ adapter: 'software', canvasWidth: 300, canvasHeight: 120 }, () => SWIFTSHADER, 20);
+    expect(tiny.history.every((f) => f.scale === 1)).toBe(true);
   });
 });
 

@@ -22,6 +22,12 @@
  * software adapter shares the CPU with everything else) a step up taken back within 15 s doubles
  * the wait before the next, so the scale settles instead of following the noise (measured in the
  * page on SwiftShader with the median alone: a resize every few seconds).
+ *
+ * Below a floor the budget lowers the frame rate instead of the resolution: the image's short side
+ * never goes under MIN_SHORT_SIDE pixels (or the canvas's own, where that is shorter). Without it a
+ * CPU adapter took E1M1 to 21 × 20 pixels and the Cornell box to 60 × 55 (Lantern issue #27),
+ * mosaics in which nothing can be recognised; the world keeps real time at any frame rate
+ * (app/frame-clock.ts), so a slow frame costs smoothness, not the game.
  */
 import { median } from '../math/median.ts';
 
@@ -37,8 +43,12 @@ export const DEFAULT_DISPLAY_HZ = 60;
 
 /** The resolution scales the budget chooses from: 2^(-k/4), from 1 down to 1/32. */
 export const SCALE_STEPS: readonly number[] = Array.from({ length: 21 }, (_, k) => 2 ** (-k / 4));
-/** Pixels of the first frame on a software adapter: small enough to come back in well under a second on SwiftShader. */
-export const SOFTWARE_PROBE_PIXELS = 160 * 100;
+/**
+ * The fewest pixels on the image's short side the budget renders: half the 320 × 200 that the
+ * Doom and Wolfenstein 3D maps this viewer plays were drawn for, where a door, a sprite or a
+ * texture's pattern is still several pixels across (a 16:10 canvas gets 256 × 160 at least).
+ */
+export const MIN_SHORT_SIDE = 160;
 /** Samples per frame the budget adds at full scale when a real GPU has time to spare. */
 export const MAX_BUDGET_SAMPLES = 4;
 
@@ -84,8 +94,9 @@ export interface FrameSample {
   readonly ms: number;
   /** Whether `ms` came from timestamp queries. */
   readonly gpuTimed: boolean;
-  /** Pixels rendered (the render size, not the canvas's). */
-  readonly pixels: number;
+  /** The image rendered, pixels (the render size, not the canvas's). */
+  readonly width: number;
+  readonly height: number;
   /** Paths per pixel traced. */
   readonly samples: number;
   /** When the frame finished (performance.now()), for the wait before a step up. */
@@ -103,8 +114,9 @@ export interface FrameBudgetOptions {
   readonly adapter: AdapterKind;
   /** The display's refresh rate (displayRateHz); the target on a real GPU. */
   readonly displayHz?: number;
-  /** Device pixels of the canvas at scale 1 (sets the software adapter's first, probing scale). */
-  readonly canvasPixels: number;
+  /** The canvas at scale 1, device pixels (the floor and the software adapter's first scale; frames update them). */
+  readonly canvasWidth: number;
+  readonly canvasHeight: number;
   /** The samples per frame the user asked for: the budget never goes below it. */
   readonly baseSamples?: number;
 }
@@ -128,16 +140,21 @@ export class FrameBudget {
   private framesSinceChange = 0;
   private calibrated = false;
   private last?: FrameSample;
+  /** The smallest scale's step: the image's short side at it is MIN_SHORT_SIDE or more (floorStep). */
+  private floor: number;
+  /** Whether the last fit wanted a scale below the floor (the frame rate gave instead). */
+  private floored = false;
 
   constructor(options: FrameBudgetOptions) {
     this.adapter = options.adapter;
     this.displayHz = options.displayHz ?? DEFAULT_DISPLAY_HZ;
     this.baseSamples = Math.max(1, Math.floor(options.baseSamples ?? 1));
     this.samples = this.baseSamples;
+    this.floor = floorStep(Math.min(options.canvasWidth, options.canvasHeight));
     // A real GPU starts at full resolution (the submissions are short whatever the frame costs); a
-    // software adapter starts with a probe of SOFTWARE_PROBE_PIXELS, since one frame at full size
+    // software adapter at the floor, the smallest image it may show, since one frame at full size
     // can take minutes there.
-    this.step = options.adapter === 'software' ? stepForPixels(options.canvasPixels, SOFTWARE_PROBE_PIXELS) : 0;
+    this.step = options.adapter === 'software' ? this.floor : 0;
   }
 
   /** Milliseconds per frame the budget aims for. */
@@ -166,13 +183,18 @@ export class FrameBudget {
 
   /** Reports a frame; returns whether the choice changed (the viewer then resizes before the next frame). */
   observe(frame: FrameSample): boolean {
-    if (!(frame.ms > 0 && frame.pixels > 0 && frame.samples > 0)) return false;
+    const pixels = frame.width * frame.height;
+    if (!(frame.ms > 0 && pixels > 0 && frame.samples > 0)) return false;
     this.last = frame;
-    this.costs.push(frame.ms / (frame.pixels * frame.samples));
+    this.costs.push(frame.ms / (pixels * frame.samples));
     if (this.costs.length > FRAMES_BEFORE_UP) this.costs.shift();
     this.framesSinceChange++;
     this.changedAt ??= frame.at;
-    const pixelsAtScale1 = frame.pixels / SCALE_STEPS[this.step]! ** 2;
+    const scale = SCALE_STEPS[this.step]!;
+    const pixelsAtScale1 = pixels / scale ** 2;
+    // The canvas may have been resized since: its short side now, as this frame was rendered at `scale`.
+    this.floor = floorStep(Math.min(frame.width, frame.height) / scale);
+    if (this.step > this.floor) return this.moveTo({ step: this.floor, samples: this.baseSamples }, frame.at);
     if (!this.calibrated) {
       // The first frame sets the cost: jump to what fits at once (down or up).
       this.calibrated = true;
@@ -201,6 +223,7 @@ export class FrameBudget {
     else if (this.step === 0 && this.samples < maxSamples && fitsUp(0, this.samples * 2)) to = { step: 0, samples: Math.min(this.samples * 2, maxSamples) };
     if (!to) return false;
     this.upAt = frame.at;
+    this.floored = false;
     return this.moveTo(to, frame.at);
   }
 
@@ -214,14 +237,20 @@ export class FrameBudget {
     const spp = samplesPerFrame > this.baseSamples ? ` · ${samplesPerFrame} spp` : '';
     const why = this.adapter === 'software' ? `software adapter, ${formatNumber(this.targetFps)} fps target` : `display ${formatNumber(this.displayHz)} Hz, ${formatNumber(this.targetFps)} fps target`;
     const last = this.last ? `last frame ${formatMs(this.last.ms)}${this.last.gpuTimed ? ' GPU' : ''}` : 'measuring';
-    return `budget: ${formatScale(scale)}${spp} (${why}${lastFrame ? `; ${last}` : ''})`;
+    // At the floor with frames over the target: the frame rate gives, not the resolution.
+    const floor = this.floored && this.step === this.floor ? ` floor ${MIN_SHORT_SIDE} px` : '';
+    return `budget: ${formatScale(scale)}${spp}${floor} (${why}${lastFrame ? `; ${last}` : ''})`;
   }
 
-  /** The largest scale (and, at full scale, samples) whose predicted frame fits AIM × the target; down to the smallest step. */
+  /**
+   * The largest scale (and, at full scale, samples) whose predicted frame fits AIM × the target; at
+   * the smallest, the floor (`floored` says so: the frame rate gives instead).
+   */
   private fit(pixelsAtScale1: number, cost: number): { step: number; samples: number } {
     const fits = (step: number, samples: number) => cost * pixelsAtScale1 * SCALE_STEPS[step]! ** 2 * samples <= AIM * this.targetMs;
+    this.floored = false;
     // Samples above the user's come off first: resolution matters more than fewer noisy frames.
-    for (let step = 0; step < SCALE_STEPS.length; step++) {
+    for (let step = 0; step <= this.floor; step++) {
       if (fits(step, this.baseSamples)) {
         if (step > 0) return { step, samples: this.baseSamples };
         let samples = this.baseSamples;
@@ -229,7 +258,8 @@ export class FrameBudget {
         return { step: 0, samples };
       }
     }
-    return { step: SCALE_STEPS.length - 1, samples: this.baseSamples };
+    this.floored = true;
+    return { step: this.floor, samples: this.baseSamples };
   }
 
   private moveTo(to: { step: number; samples: number }, at: number): boolean {
@@ -327,9 +357,14 @@ export class ChunkSizer {
   }
 }
 
-function stepForPixels(canvasPixels: number, pixels: number): number {
-  for (let step = 0; step < SCALE_STEPS.length; step++) if (canvasPixels * SCALE_STEPS[step]! ** 2 <= pixels) return step;
-  return SCALE_STEPS.length - 1;
+/**
+ * The step of the smallest scale whose image keeps MIN_SHORT_SIDE pixels on a canvas whose short
+ * side is `shortSide` (the viewer rounds the render size: so does this); 0 for a canvas shorter than that.
+ */
+function floorStep(shortSide: number): number {
+  let step = 0;
+  while (step + 1 < SCALE_STEPS.length && Math.round(shortSide * SCALE_STEPS[step + 1]!) >= MIN_SHORT_SIDE) step++;
+  return step;
 }
 
 /** Two significant figures, no trailing zeros: 0.35×, 0.125× is 0.13×, 1×. */

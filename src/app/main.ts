@@ -774,6 +774,8 @@ declare global {
       readonly frame: FrameProgress | undefined;
       /** Makes every frame wait `ms` after its GPU work: a deterministically slow adapter for tests (0: off). */
       delayFrames(ms: number): void;
+      /** Seconds the scene's world (doors, lifts, the phantom) has played. */
+      readonly worldSeconds: number;
     };
   }
 }
@@ -833,5 +835,8 @@ window.lantern = {
   },
   delayFrames(ms: number) {
     viewer.frameDelayMs = ms;
+  },
+  get worldSeconds() {
+    return viewer.worldSeconds;
   },
 };

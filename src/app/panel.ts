@@ -86,6 +86,9 @@ export class SettingsPanel {
   private readonly materialPanel: MaterialPanel;
   /** True while the panel takes values from the viewer: Tweakpane reports those as changes too. */
   private syncing = false;
+  /** The resolution and auto switch as last taken from the viewer (showScale follows the budget's changes). */
+  private shownScale = { scale: NaN, on: true };
+  private scaleBindings: { refresh(): void }[] = [];
   /** The controls that may be disabled or carry a tooltip, by their TOOLTIPS key (a setting's id, or the panel's own key). */
   private readonly controls = new Map<string, BladeApi[]>();
   /** The controls disabled now (notApplicable gave a reason). */
@@ -109,7 +112,7 @@ export class SettingsPanel {
     const p = this.params;
     const render = this.pane.addFolder({ title: 'Render' });
     this.control('samplesPerFrame', render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value })));
-    this.control(
+    const autoScale = this.control(
       'autoScale',
       render.addBinding(p, 'autoScale', { label: 'auto resolution' }).on('change', (e) => {
         if (this.syncing) return;
@@ -119,7 +122,8 @@ export class SettingsPanel {
       }),
     );
     // Down to the budget's smallest step (1/32: a software adapter at a large canvas).
-    this.control('scale', render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(1 / 32, p.scale), max: 2, step: 0.01 }).on('change', (e) => this.apply({ scale: e.value })));
+    const scale = this.control('scale', render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(1 / 32, p.scale), max: 2, step: 0.01 }).on('change', (e) => this.apply({ scale: e.value })));
+    this.scaleBindings = [autoScale, scale];
     this.control('accumulate', render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value })));
     this.control('animate', render.addBinding(p, 'animate', { label: 'animate scene' }).on('change', (e) => this.apply({ animate: e.value })));
 
@@ -402,6 +406,7 @@ export class SettingsPanel {
     const budget = this.viewer.budget;
     p.autoScale = budget.on;
     p.scale = budget.scale;
+    this.shownScale = { scale: budget.scale, on: budget.on };
     p.accumulate = s.accumulate;
     p.animate = s.animate;
     p.convergeWhenStill = s.convergeWhenStill;
@@ -565,8 +570,28 @@ export class SettingsPanel {
   }
   // ---- End of exposure and tone. ----
 
-  /** Refreshes the numbers (called on every frame; Tweakpane redraws monitors on its own interval). */
+  /**
+   * The resolution control shows the scale that renders: the frame budget's as it changes it, or the
+   * user's once fixed. Only a change on the viewer's side is taken (a slider being dragged is not
+   * pulled back while the viewer applies it).
+   */
+  private showScale(): void {
+    const { scale, on } = this.viewer.budget;
+    if (scale === this.shownScale.scale && on === this.shownScale.on) return;
+    this.shownScale = { scale, on };
+    this.syncing = true;
+    try {
+      this.params.scale = scale;
+      this.params.autoScale = on;
+      for (const b of this.scaleBindings) b.refresh();
+    } finally {
+      this.syncing = false;
+    }
+  }
+
+  /** Refreshes the numbers and the resolution control (called on every frame; Tweakpane redraws monitors on its own interval). */
   showStats(): void {
+    this.showScale();
     this.materialPanel.update();
     const s = this.viewer.stats;
     const m = this.monitor;

@@ -3,7 +3,8 @@
  * one frame per animation frame, with at most one frame in flight, so a slow GPU (or SwiftShader)
  * never piles up work. Each frame:
  *
- *   camera input → samples (path trace) → tone map + present → ray counters and pass timings read back
+ *   camera input and the world's time (frame-clock.ts) → samples (path trace) → tone map + present →
+ *   ray counters and pass timings read back
  *
  * It owns everything the page must survive: a canvas resize, a tab in the background (no frames
  * while hidden), a lost GPU device (a new device, the scene uploaded again, the view restored), and
@@ -31,6 +32,8 @@ import type { MaterialOverride } from './material-link.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
 import { CameraController, sceneSpeed, type HeldSpan, type MoveMode, type Pose } from './camera-controller.ts';
+import { playFrame } from './frame-clock.ts';
+import { KeyTimeline } from './key-timeline.ts';
 import { linkOfEnvironment } from './environment-choice.ts';
 import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
@@ -116,7 +119,11 @@ export interface ViewerInput {
   takeLook(): [number, number];
 }
 
-const NO_VIEWER_INPUT: ViewerInput = { takeHeld: () => [], restartClock: () => {}, takeLook: () => [0, 0] };
+/** Input with no keys and no mouse, until the page gives its own: its spans still measure each frame's time (the world's clock). */
+function idleInput(): ViewerInput {
+  const keys = new KeyTimeline(performance.now());
+  return { takeHeld: (now) => keys.take(now), restartClock: (now) => keys.restart(now), takeLook: () => [0, 0] };
+}
 
 export interface PassTime {
   readonly name: string;
@@ -221,7 +228,7 @@ export class Viewer {
   failure: unknown;
   settings: ViewerSettings = DEFAULT_VIEWER_SETTINGS;
   /** Where movement input comes from (the page's keyboard and mouse; tests may replace it). */
-  input: ViewerInput = NO_VIEWER_INPUT;
+  input: ViewerInput = idleInput();
 
   private loaded?: LoadedScene;
   private controllerValue?: CameraController;
@@ -232,7 +239,6 @@ export class Viewer {
   private context?: GPUCanvasContext;
   private timer?: GpuTimer;
   private looping = false;
-  private lastFrame = 0;
   private frames: { at: number; rays: number }[] = [];
   private gpuPasses: PassTime[] = [];
   private lastRayCount = 0;
@@ -286,7 +292,9 @@ export class Viewer {
     private readonly hooks: ViewerHooks,
   ) {
     document.addEventListener('visibilitychange', () => {
-      // Hidden tabs get no frames; coming back resumes where it was.
+      // Hidden tabs get no frames; coming back resumes where it was, and the time hidden is not
+      // played (a frame asked for before hiding runs only now: its time starts here).
+      if (!document.hidden) this.input.restartClock(performance.now());
       if (!document.hidden && this.state === 'playing') this.loop();
       this.hooks.onChange(this);
     });
@@ -376,11 +384,9 @@ export class Viewer {
     return this.playedAt !== undefined && this.firstFrameMs === undefined && (this.state === 'starting' || this.state === 'playing');
   }
 
-  /** The frame budget: on or off, what it chose, its one-line account. */
+  /** The frame budget: on or off, the scale that renders (its choice, or the user's), its one-line account. */
   get budget(): BudgetState {
-    const on = !this.scaleFixed;
-    const choice = this.budgetValue?.choice;
-    return { on, scale: on && choice ? choice.scale : this.settings.scale, samplesPerFrame: this.samplesPerFrame(), text: this.budgetText() };
+    return { on: !this.scaleFixed, scale: this.settings.scale, samplesPerFrame: this.samplesPerFrame(), text: this.budgetText() };
   }
 
   /** How far the frame under way has got (undefined between frames). */
@@ -817,7 +823,7 @@ export class Viewer {
     this.timer = gpu.hasTimestamps ? new GpuTimer(gpu.device) : undefined;
     // A new device may be another adapter (a lost GPU replaced by the fallback): the budget measures it afresh.
     const adapter = adapterKind({ name: gpu.adapterName, isFallbackAdapter: gpu.adapter.info.isFallbackAdapter });
-    this.budgetValue = new FrameBudget({ adapter, displayHz, canvasPixels: Math.max(1, this.canvas.width * this.canvas.height), baseSamples: this.settings.samplesPerFrame });
+    this.budgetValue = new FrameBudget({ adapter, displayHz, canvasWidth: Math.max(1, this.canvas.width), canvasHeight: Math.max(1, this.canvas.height), baseSamples: this.settings.samplesPerFrame });
     this.chunks = new ChunkSizer(adapter);
     this.frameValue = undefined;
     await this.resizeRenderer();
@@ -861,7 +867,9 @@ export class Viewer {
 
   private async resizeRenderer(): Promise<void> {
     if (!this.renderer) return;
-    const scale = this.scaleFixed || !this.budgetValue ? this.settings.scale : this.budgetValue.choice.scale;
+    // settings.scale says what renders (budget.scale, the panel's resolution); a link carries it only once the user fixes it.
+    if (!this.scaleFixed && this.budgetValue) this.settings = { ...this.settings, scale: this.budgetValue.choice.scale };
+    const scale = this.settings.scale;
     const w = Math.max(1, Math.round(this.canvas.width * scale));
     const h = Math.max(1, Math.round(this.canvas.height * scale));
     await this.renderer.resize(w, h);
@@ -882,10 +890,10 @@ export class Viewer {
   private loop(): void {
     if (this.looping) return;
     this.looping = true;
-    this.lastFrame = performance.now();
-    // Keys held while paused or hidden move nothing: held time counts from here.
-    this.input.restartClock(this.lastFrame);
-    const frame = async (now: number) => {
+    // Keys held while paused or hidden move nothing, and the world does not play that time: the
+    // frame's time (held spans, idle included) counts from here.
+    this.input.restartClock(performance.now());
+    const frame = async () => {
       const renderer = this.renderer;
       const context = this.context;
       if (this.state !== 'playing' || document.hidden || !renderer || !context || !this.loaded) {
@@ -894,12 +902,7 @@ export class Viewer {
         return;
       }
       try {
-        // An animation frame's time is when the frame began, which precedes loop()'s performance.now()
-        // when the main thread was busy past a frame boundary (a scene upload on a loaded CPU): the
-        // first step would go back in time, and World.advance refuses a negative dt. The world (doors,
-        // lifts, the phantom) advances by at most 0.1 s a frame; held keys move by their real held
-        // time (renderFrame), so a slow frame slows the game's clock but never eats input.
-        await this.renderFrame(renderer, context, Math.min(0.1, Math.max(0, (now - this.lastFrame) / 1000)));
+        await this.renderFrame(renderer, context);
       } catch (e) {
         this.looping = false;
         // A frame cut short by a lost device is the loss handler's business, not a failure.
@@ -907,7 +910,6 @@ export class Viewer {
         this.fail(e);
         return;
       }
-      this.lastFrame = now;
       this.hooks.onChange(this);
       requestAnimationFrame(frame);
     };
@@ -919,31 +921,20 @@ export class Viewer {
     return this.world !== undefined;
   }
 
-  /**
-   * Advances the loaded scene's world by `dt` (0 while animation is off: billboards still turn, the
-   * use key still answers) and applies what changed: walk-over lines hear the walker's moves, the
-   * renderer and the walker's heights take the update.
-   */
-  private stepWorld(renderer: Renderer, c: CameraController, dt: number): void {
-    const world = this.world;
-    if (!world || !this.loaded) return;
-    for (const [x0, z0, x1, z1] of c.takeWalked()) world.walked(x0, z0, x1, z1);
-    const update = world.advance(this.settings.animate ? dt : 0, { ...c.camera(), walking: c.mode === 'walk' });
-    if (!update) return;
-    c.setSectorHeights(update.walkHeights);
-    // Kept, so that a lost device is refilled with the scene as it is now.
-    this.loaded = { ...this.loaded, prepared: renderer.applySceneUpdate(update) };
+  /** Seconds the loaded scene's world has played (window.lantern.worldSeconds; 0 for a scene where nothing moves). */
+  get worldSeconds(): number {
+    return this.world?.seconds ?? 0;
   }
 
   /**
    * One animation frame's work: the frame under way goes on (one suspended by Pause, unless a change
    * overtook it), or a new one is planned: the budget's scale applied (between frames only), the
-   * camera moved by the input held since the last frame, the world stepped. Its GPU work goes in
+   * camera and the world moved through the time since the last frame. Its GPU work goes in
    * chunks of about CHUNK_TARGET_MS, each awaited: between them the page answers input, and Pause,
    * a change of settings, scene or size stop the frame (the loop starts a fresh one). Once every
    * chunk is done the frame is presented and measured.
    */
-  private async renderFrame(renderer: Renderer, context: GPUCanvasContext, dt: number): Promise<void> {
+  private async renderFrame(renderer: Renderer, context: GPUCanvasContext): Promise<void> {
     // A screenshot of a suspended frame may be finishing it (frameComplete).
     await this.frameSettled;
     let frame = this.frameValue;
@@ -953,7 +944,7 @@ export class Viewer {
     }
     if (!frame) {
       await this.applyBudget();
-      frame = this.frameValue = this.planFrame(renderer, dt);
+      frame = this.frameValue = this.planFrame(renderer);
     }
     let settle!: () => void;
     this.frameSettled = new Promise((resolve) => (settle = resolve));
@@ -986,22 +977,24 @@ export class Viewer {
     const renderer = this.renderer;
     if (this.scaleFixed || !this.budgetValue || !renderer) return;
     const { scale } = this.budgetValue.choice;
-    // settings.scale says what renders (the panel shows it); a link carries it only once the user fixes it.
     if (this.settings.scale !== scale) this.settings = { ...this.settings, scale };
     const w = Math.max(1, Math.round(this.canvas.width * scale)), h = Math.max(1, Math.round(this.canvas.height * scale));
     if (w !== renderer.width || h !== renderer.height) await this.resizeRenderer();
   }
 
   /** Input, world and the frame's parts by the settings (a real-time frame, the estimate beside a still view, the estimate alone, or nothing to trace). */
-  private planFrame(renderer: Renderer, dt: number): ViewerFrame {
+  private planFrame(renderer: Renderer): ViewerFrame {
     const c = this.controllerValue;
-    if (c) {
+    if (c && this.loaded) {
       const [lx, ly] = this.input.takeLook();
       if (lx !== 0 || ly !== 0) c.look(lx, ly);
-      // Held keys move by the time they were really held since the last frame, however long it took.
-      const held = this.input.takeHeld(performance.now());
-      if (c.advance(held) || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
-      this.stepWorld(renderer, c, dt);
+      // The time since the last frame, however long it took (the held spans cover it, idle time
+      // included): held keys move the camera by it and the world plays it (0 while animation is off:
+      // billboards still turn), in turns (frame-clock.ts).
+      const played = playFrame(c, this.world, this.input.takeHeld(performance.now()), this.settings.animate);
+      if (played.moved || lx !== 0 || ly !== 0) renderer.setCamera(this.cameraOf(c));
+      // Kept, so that a lost device is refilled with the scene as it is now.
+      if (played.update) this.loaded = { ...this.loaded, prepared: renderer.applySceneUpdate(played.update) };
     }
     if (!this.settings.accumulate) renderer.resetAccumulation();
     // The counters restart with the estimate (every camera move too): then the whole count is this frame's.
@@ -1114,7 +1107,7 @@ export class Viewer {
     const gpuTimed = budget?.adapter === 'hardware' && timer !== undefined && frame.chunks <= MAX_TIMED_CHUNKS && this.gpuPasses.length > 0;
     const ms = gpuTimed ? this.gpuPasses.reduce((sum, p) => sum + p.ms, 0) : busyMs;
     if (!this.scaleFixed && budget && frame.pixels > 0) {
-      budget.observe({ ms, gpuTimed, pixels: frame.width * frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
+      budget.observe({ ms, gpuTimed, width: frame.width, height: frame.height, samples: frame.samples * (frame.pixels / (frame.width * frame.height)), at: performance.now() });
     }
   }
 

@@ -5,7 +5,7 @@
  * (height − rest height); its walk-map sector gets the same heights. Triggers start them: use lines
  * (the use key, in front of the player) and walk-over lines. The behaviours follow vanilla Doom's
  * door and platform thinkers (p_doors.c T_VerticalDoor, EV_VerticalDoor; p_plats.c T_PlatRaise),
- * in seconds instead of tics. Pure.
+ * in seconds instead of tics; the World steps them at its ticks (scene/world.ts). Pure.
  */
 import { NO_SECTOR, type WalkMap } from './walk-map.ts';
 import type { AnimatorFactory, Animator, UpdateBuilder, Viewpoint } from './world.ts';
@@ -108,6 +108,11 @@ export class MoverAnimator implements Animator {
   /** Whether mover `i` is moving or waiting. */
   active(i: number): boolean {
     return this.motions.has(i);
+  }
+
+  /** Something is moving or waiting (a stepped mover always either moves or counts down its wait). */
+  moving(): boolean {
+    return this.motions.size > 0;
   }
 
   step(t: number, dt: number, view: Viewpoint, out: UpdateBuilder, first: boolean): void {

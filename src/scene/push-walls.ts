@@ -114,6 +114,12 @@ export class PushWallAnimator implements Animator {
     return this.shut.has(sector);
   }
 
+  /** A block is on its way. */
+  moving(): boolean {
+    for (const p of this.pushes.values()) if (!p.done) return true;
+    return false;
+  }
+
   step(_t: number, dt: number, _view: Viewpoint, out: UpdateBuilder, first: boolean): void {
     for (const [i, p] of this.pushes) {
       if (p.done) continue;

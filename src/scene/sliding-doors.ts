@@ -25,7 +25,7 @@
  *   (within `proximity` of its panel, measured across the panel, and within the doorway's width
  *   along it): deterministic, so a camera path or a still render at a given time sees the same
  *   doors open. An open door stays open while the viewer stands there (the game's OpenDoor on an
- *   open door restarts its wait).
+ *   open door restarts its wait: here its wait starts when the viewer leaves).
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
@@ -172,13 +172,31 @@ export class SlidingDoorAnimator implements Animator {
     return this.states[i]!.action === 'open';
   }
 
+  /**
+   * Whether a step seen from `view` would change a door: one slides, or waits to close, or stands
+   * closed with the viewer in front of it by proximity. An open door held open (the viewer in front,
+   * or a body in the doorway once its wait is over) is at rest until the view changes.
+   */
+  moving(view: Viewpoint): boolean {
+    const proximity = this.trigger(view) === 'proximity';
+    return this.set.doors.some((door, i) => {
+      const s = this.states[i]!;
+      const near = proximity && this.inFront(door, view);
+      if (s.action === 'closed') return near;
+      if (s.action === 'open') return near ? s.waited !== 0 : !(s.waited >= this.set.waitSeconds && this.blocked(i, view));
+      return true;
+    });
+  }
+
   step(_t: number, dt: number, view: Viewpoint, out: UpdateBuilder, first: boolean): void {
     this.view = view;
     const { doors, travelSeconds, waitSeconds } = this.set;
     doors.forEach((door, i) => {
       const s = this.states[i]!;
       const before = s.position;
-      if (this.trigger(view) === 'proximity' && this.inFront(door, view)) this.open(i);
+      // By proximity the viewer in front opens the door and holds it open: its wait starts once they leave.
+      const near = this.trigger(view) === 'proximity' && this.inFront(door, view);
+      if (near) this.open(i);
       let left = dt;
       // A few state changes per step at most (opening → open → closing …); the bound ends the loop.
       for (let guard = 0; guard < 4 && left > 0; guard++) {
@@ -194,14 +212,17 @@ export class SlidingDoorAnimator implements Animator {
             s.waited = 0;
           }
         } else if (s.action === 'open') {
-          s.waited += left;
-          left = 0;
-          if (s.waited >= waitSeconds) {
-            // CloseDoor: not on a body in the doorway; it tries again at every step.
-            if (!this.blocked(i)) {
-              s.action = 'closing';
-              left = s.waited - waitSeconds;
-            }
+          if (near) break;
+          const need = waitSeconds - s.waited;
+          if (need > left) {
+            s.waited += left;
+            left = 0;
+          } else {
+            s.waited = waitSeconds;
+            // CloseDoor: not on a body in the doorway; it tries again at every step, from the end of its wait.
+            if (this.blocked(i)) break;
+            left -= need;
+            s.action = 'closing';
           }
         } else if (s.action === 'closing') {
           if (this.blocked(i)) {
@@ -262,9 +283,8 @@ export class SlidingDoorAnimator implements Animator {
     return across <= this.set.proximity && along < grid.size / 2;
   }
 
-  /** Whether the player's body (the viewpoint) overlaps door `i`'s cell. */
-  private blocked(i: number): boolean {
-    const v = this.view;
+  /** Whether the player's body (the viewpoint, the last step's by default) overlaps door `i`'s cell. */
+  private blocked(i: number, v: Viewpoint | undefined = this.view): boolean {
     return v !== undefined && touches(this.outlines[i]!, v.position[0], v.position[2], this.set.bodyRadius);
   }
 }

@@ -1,8 +1,16 @@
 /**
  * Plays a scene's dynamics (scene/dynamics.ts): a clock, the viewer's position, the player's actions
- * in, SceneUpdates out. The viewer advances it every frame it plays; `lantern render --time t`
- * evaluates it once at t. Each kind of motion is an Animator made by one module from the scene's
- * data; the World only keeps time and merges what they change. Pure: no DOM, no GPU.
+ * in, SceneUpdates out. The viewer advances it every frame it plays, by the frame's real time;
+ * `lantern render --time t` brings it to t once, frame mode frame by frame. Each kind of motion is an
+ * Animator made by one module from the scene's data; the World only keeps time and merges what they
+ * change. Pure: no DOM, no GPU.
+ *
+ * Time runs in whole ticks of 1/TICKS_PER_SECOND s, whatever the frames: an advance by dt moves the
+ * clock by dt and the world to the tick nearest the clock. Animators whose state integrates over
+ * time (doors, lifts, push walls: Animator.moving) step once a tick while something of theirs
+ * moves; the others are functions of the time and the view and step once, at the advance's last
+ * tick. So the world after one 3 s frame is the world after ninety 1/30 s frames, exactly, and
+ * `render --time t` shows what the viewer shows at t.
  */
 import type { Vec3 } from '../math/vec3.ts';
 import { billboardAnimator } from './billboards.ts';
@@ -57,6 +65,14 @@ export interface Animator {
    * (everything on the first step, `first` true).
    */
   step(t: number, dt: number, view: Viewpoint, out: UpdateBuilder, first: boolean): void;
+  /**
+   * Present on animators whose state integrates over time and meets the walker on the way (doors,
+   * lifts, push walls): whether a step seen from `view` would change anything. While it says so the
+   * World steps it at every tick; otherwise its ticks are skipped, which changes nothing (a world at
+   * rest costs no ticks, however long the frame or far the --time). Animators without it are pure
+   * functions of the time and the view, stepped once at the last tick of each advance.
+   */
+  moving?(view: Viewpoint): boolean;
   /** The player pressed the use key at `view`; true when something answered (a door started to open). */
   use?(view: Viewpoint, t: number): boolean;
   /** The walker moved from (x0, z0) to (x1, z1) in the walk plane (walk-over triggers). */
@@ -69,11 +85,28 @@ export type AnimatorFactory = (scene: Scene) => Animator | undefined;
 /** Every kind of motion (scene/dynamics.ts lists them), in the order their updates are merged. */
 const ANIMATORS: readonly AnimatorFactory[] = [materialAnimator, moverAnimator, pathAnimator, billboardAnimator, slidingDoorAnimator, pushWallAnimator];
 
-export class World {
-  private time = 0;
-  private stepped = false;
+/**
+ * The world's ticks per second: a multiple of Doom's 35 and Wolfenstein's 70 tics a second and of the
+ * common frame rates (24, 30, 60, 120), so their frames and tics fall on whole ticks; fine enough
+ * (1.2 ms) that a phantom stepped at the nearest tick moves smoothly at any display rate.
+ */
+export const TICKS_PER_SECOND = 840;
+const TICK = 1 / TICKS_PER_SECOND;
 
-  private constructor(private readonly animators: readonly Animator[]) {}
+export class World {
+  /** Seconds given by advance and advanceTo (the world shows the tick nearest it). */
+  private clock = 0;
+  /** Ticks stepped. */
+  private ticks = 0;
+  private stepped = false;
+  /** The animators with Animator.moving, stepped tick by tick, and the others, stepped once an advance. */
+  private readonly everyTick: readonly Animator[];
+  private readonly once: readonly Animator[];
+
+  private constructor(private readonly animators: readonly Animator[]) {
+    this.everyTick = animators.filter((a) => a.moving);
+    this.once = animators.filter((a) => !a.moving);
+  }
 
   /** The world of `scene`, or undefined when nothing in it moves. */
   static of(scene: Scene, factories: readonly AnimatorFactory[] = ANIMATORS): World | undefined {
@@ -82,47 +115,60 @@ export class World {
     return animators.length > 0 ? new World(animators) : undefined;
   }
 
-  /** Seconds since the world started. */
+  /** Seconds since the world started (the sum of the advances). */
   get seconds(): number {
-    return this.time;
+    return this.clock;
+  }
+
+  /** The time the animators are at: the last tick stepped. */
+  private get now(): number {
+    // A quotient of whole numbers: tick 2520 is 3 s exactly (2520 · (1/840) is not).
+    return this.ticks / TICKS_PER_SECOND;
   }
 
   /** Advances the clock by `dt` seconds (0: only the view changed); undefined when nothing changed. */
   advance(dt: number, view: Viewpoint): SceneUpdate | undefined {
     if (!(dt >= 0) || !Number.isFinite(dt)) throw new RangeError(`World.advance: dt must be a finite number ≥ 0, got ${dt}`);
-    const first = !this.stepped;
-    this.time += dt;
-    this.stepped = true;
-    const out = new UpdateBuilder();
-    for (const a of this.animators) a.step(this.time, first ? 0 : dt, view, out, first);
-    const update = out.build();
+    this.clock += dt;
+    const update = this.stepTo(Math.round(this.clock * TICKS_PER_SECOND), view);
     return isEmptyUpdate(update) ? undefined : update;
   }
 
-  /**
-   * Advances the clock to `t` (≥ seconds) in steps of at most `maxStep` seconds (movers integrate
-   * their motion), returning everything that changed as one update (empty when nothing did).
-   */
-  advanceTo(t: number, view: Viewpoint, maxStep = 1 / 35): SceneUpdate {
-    if (!(t >= this.time) || !Number.isFinite(t)) throw new RangeError(`World.advanceTo: ${t} is not a finite time at or after ${this.time}`);
-    const updates: (SceneUpdate | undefined)[] = [];
-    if (!this.stepped) updates.push(this.advance(0, view));
-    const steps = Math.min(100_000, Math.ceil((t - this.time) / maxStep));
-    const from = this.time;
-    for (let i = 1; i <= steps; i++) updates.push(this.advance(from + ((t - from) * i) / steps - this.time, view));
-    return mergeUpdates(updates);
+  /** Advances the clock to `t` (≥ seconds), returning everything that changed as one update (empty when nothing did). */
+  advanceTo(t: number, view: Viewpoint): SceneUpdate {
+    if (!(t >= this.clock) || !Number.isFinite(t)) throw new RangeError(`World.advanceTo: ${t} is not a finite time at or after ${this.clock}`);
+    this.clock = t;
+    return this.stepTo(Math.round(t * TICKS_PER_SECOND), view);
+  }
+
+  /** Steps the animators to tick `target` (the integrating ones tick by tick while they move, the others once). */
+  private stepTo(target: number, view: Viewpoint): SceneUpdate {
+    const out = new UpdateBuilder();
+    const from = this.ticks;
+    if (!this.stepped) {
+      this.stepped = true;
+      for (const a of this.animators) a.step(this.now, 0, view, out, true);
+    }
+    let busy = this.everyTick.filter((a) => a.moving!(view));
+    for (let k = from + 1; k <= target && busy.length > 0; k++) {
+      for (const a of busy) a.step(k / TICKS_PER_SECOND, TICK, view, out, false);
+      busy = busy.filter((a) => a.moving!(view));
+    }
+    this.ticks = Math.max(from, target);
+    for (const a of this.once) a.step(this.now, (this.ticks - from) / TICKS_PER_SECOND, view, out, false);
+    return out.build();
   }
 
   /** The player pressed use; true when something answered. */
   use(view: Viewpoint): boolean {
     let answered = false;
-    for (const a of this.animators) if (a.use?.(view, this.time)) answered = true;
+    for (const a of this.animators) if (a.use?.(view, this.now)) answered = true;
     return answered;
   }
 
   /** The walker moved (walk-over triggers). */
   walked(x0: number, z0: number, x1: number, z1: number): void {
-    for (const a of this.animators) a.walked?.(x0, z0, x1, z1, this.time);
+    for (const a of this.animators) a.walked?.(x0, z0, x1, z1, this.now);
   }
 }
 

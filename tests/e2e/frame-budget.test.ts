@@ -2,7 +2,8 @@
  * The frame budget and short submissions in the page (Lantern issue #16): Pause and a settings change take effect while a
  * long frame renders (its GPU work goes in chunks of tens of milliseconds, and the page answers
  * between them), and held keys move by the time held when frames are slow (a test hook delays each
- * frame: a deterministic 0.5 fps).
+ * frame: a deterministic 0.5 fps), and so does the world (Lantern issue #27). The budget keeps its
+ * resolution floor, and the panel's resolution shows the scale that renders.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
@@ -32,6 +33,8 @@ async function open(query: string, viewport: { width: number; height: number }):
 }
 
 const frame = (page: Page) => page.evaluate(() => window.lantern.frame);
+/** A row of the settings panel by its label. */
+const row = (page: Page, label: RegExp) => page.locator('.tp-lblv').filter({ has: page.locator('.tp-lblv_l', { hasText: label }) });
 
 describe('short submissions', () => {
   it('Pause takes effect within a chunk of a frame that takes seconds, Play goes on with that frame, and a settings change starts a new one at once', async () => {
@@ -122,6 +125,78 @@ describe('slow frames', () => {
     expect(slow.seconds / quick.seconds).toBeGreaterThan(2);
     expect(slow.distance / slow.seconds / (quick.distance / quick.seconds)).toBeGreaterThan(0.9);
     expect(slow.distance / slow.seconds / (quick.distance / quick.seconds)).toBeLessThan(1.1);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it("at 0.5 fps the world keeps real time: the dungeon's phantom walks at its speed", async () => {
+    const { page, errors } = await open('scene=dungeon&scale=0.05', { width: 640, height: 400 });
+    await page.click('#play');
+    await waitForSamples(page, 1, 180_000);
+    await page.evaluate(() => window.lantern.delayFrames(2000));
+    // The world's clock where it moves (once a frame, as the frame is planned), on the page's clock.
+    const seen = await page.evaluate(async () => {
+      const changes: [number, number][] = [];
+      let last = window.lantern.worldSeconds;
+      for (const end = performance.now() + 12_000; performance.now() < end; ) {
+        await new Promise((resolve) => setTimeout(resolve, 50));
+        const w = window.lantern.worldSeconds;
+        if (w !== last) changes.push([performance.now() / 1000, (last = w)]);
+      }
+      return changes;
+    });
+    expect(seen.length).toBeGreaterThanOrEqual(3);
+    const [t0, w0] = seen[0]!, [t1, w1] = seen.at(-1)!;
+    // Slow frames (2 s apart or more), and the world played the time between them: the phantom's pose
+    // is a function of the world's time (scene/paths.ts; frame-clock.test.ts checks it at 0.5 fps).
+    // At most 0.1 s a frame, as before, would have been a twentieth.
+    expect((t1 - t0) / (seen.length - 1)).toBeGreaterThan(1.9);
+    expect((w1 - w0) / (t1 - t0)).toBeGreaterThan(0.95);
+    expect((w1 - w0) / (t1 - t0)).toBeLessThan(1.05);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+});
+
+describe('the resolution the budget chooses', () => {
+  it('keeps its floor on a software adapter, the panel shows the scale that renders, and a scale typed in fixes it', async () => {
+    const { page, errors } = await open('scene=cornell', { width: 640, height: 400 });
+    await page.click('#play');
+    await waitForSamples(page, 3, 180_000);
+    const resolution = row(page, /^resolution$/).locator('input');
+    const auto = row(page, /^auto resolution$/).locator('input');
+    /** The image of the last whole frame, the canvas, the budget, and what the resolution control shows, at one moment. */
+    const shown = async () => {
+      const state = await page.evaluate(async () => {
+        const image = await window.lantern.readImage();
+        const canvas = document.querySelector<HTMLCanvasElement>('#view')!;
+        return { width: image.width, height: image.height, canvasWidth: canvas.width, canvasHeight: canvas.height, budget: window.lantern.budget };
+      });
+      return { ...state, control: Number(await resolution.inputValue()) };
+    };
+    // The panel's resolution is the scale rendered (to its two decimals), not the 1 it showed before
+    // Play: SwiftShader cannot hold 3 fps at this canvas, so the budget scaled down, to no fewer than
+    // 160 rows (or the canvas's own).
+    await withPageReport(page, 'the resolution control', () =>
+      expect.poll(async () => {
+        const s = await shown();
+        return s.budget.scale < 1 && s.width === Math.round(s.canvasWidth * s.budget.scale) && Math.abs(s.control - s.budget.scale) <= 0.005;
+      }, { timeout: 60_000, interval: 500 }).toBe(true),
+    );
+    const s = await shown();
+    expect(s.budget.on).toBe(true);
+    expect(Math.min(s.width, s.height)).toBeGreaterThanOrEqual(Math.min(160, s.canvasWidth, s.canvasHeight));
+    expect(await auto.isChecked()).toBe(true);
+    // The user's choice: the budget is off, the scale is theirs (below the floor too), the control keeps it.
+    await resolution.fill('0.3');
+    await resolution.press('Enter');
+    await withPageReport(page, 'the fixed scale', () => expect.poll(async () => (await shown()).width, { timeout: 120_000, interval: 500 }).toBe(Math.round(s.canvasWidth * 0.3)));
+    const fixed = await page.evaluate(() => window.lantern.budget);
+    expect(fixed.on).toBe(false);
+    // Tweakpane's step of 0.01 gives 0.29999999999999993.
+    expect(fixed.scale).toBeCloseTo(0.3, 12);
+    expect(Number(await resolution.inputValue())).toBe(0.3);
+    expect(await auto.isChecked()).toBe(false);
     expect(errors).toEqual([]);
     await page.close();
   });
