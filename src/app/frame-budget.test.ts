@@ -21,10 +21,14 @@ function simulate(options: FrameBudgetOptions, msPerPixelSample: (frame: number)
   const budget = new FrameBudget(options);
   let at = 0;
   const history: { scale: number; samples: number; ms: number; width: number; height: number; changed: boolean }[] = [];
+  let last = [options.canvasWidth, options.canvasHeight].join();
   for (let i = 0; i < frames; i++) {
+    const [cw, ch] = canvas(i);
+    // The viewer tells the budget of a resized canvas before the next frame (viewer.ts resizeCanvas).
+    if ([cw, ch].join() !== last) budget.resizeCanvas(cw, ch);
+    last = [cw, ch].join();
     const { scale, samplesPerFrame } = budget.choice;
     // The viewer's render size (viewer.ts resizeRenderer).
-    const [cw, ch] = canvas(i);
     const width = Math.max(1, Math.round(cw * scale)), height = Math.max(1, Math.round(ch * scale));
     const ms = msPerPixelSample(i) * width * height * samplesPerFrame;
     // Frames are paced by the display (requestAnimationFrame) when the GPU is quicker.
@@ -172,11 +176,26 @@ describe('FrameBudget', () => {
   it('keeps the floor as the canvas changes: a smaller canvas raises the scale at once; one shorter than the floor renders whole', () => {
     // The window halved at frame 20 (640 × 400): 0.21 of it would be 84 rows.
     const { history } = simulate({ adapter: 'software', ...CANVAS }, () => SWIFTSHADER, 40, (i) => (i < 20 ? [1280, 800] : [640, 400]));
-    expect(history[20]!.height).toBe(84);
-    expect(history[21]).toMatchObject({ width: 269, height: 168 });
-    for (const f of history.slice(21)) expect(f.height).toBeGreaterThanOrEqual(MIN_SHORT_SIDE);
+    expect(history[20]).toMatchObject({ width: 269, height: 168 });
+    for (const f of history.slice(20)) expect(f.height).toBeGreaterThanOrEqual(MIN_SHORT_SIDE);
     const tiny = simulate({ adapter: 'software', canvasWidth: 300, canvasHeight: 120 }, () => SWIFTSHADER, 20);
     expect(tiny.history.every((f) => f.scale === 1)).toBe(true);
+  });
+
+  it('keeps the cost when the canvas grows: a canvas rendered whole, then 1280 × 800, does not render whole', () => {
+    // 300 × 120 is shorter than the floor, so it renders at 1× (0.9 s a frame here); 1280 × 800 at 1×
+    // would take 26 s. The first frame after the resize already has the floor's size, or one near it.
+    for (const grownAt of [0, 10]) {
+      const { history, budget } = simulate({ adapter: 'software', canvasWidth: 300, canvasHeight: 120 }, () => SWIFTSHADER, 30, (i) => (i < grownAt || grownAt === 0 && i === 0 ? [300, 120] : [1280, 800]));
+      const after = history.slice(Math.max(1, grownAt));
+      for (const f of after) expect(f.ms, `frame of ${f.width} × ${f.height}`).toBeLessThan(4 * budget.targetMs);
+      for (const f of after) expect(Math.min(f.width, f.height)).toBeGreaterThanOrEqual(MIN_SHORT_SIDE);
+    }
+    // Before any frame, a software adapter starts at the new canvas's floor.
+    const fresh = new FrameBudget({ adapter: 'software', canvasWidth: 300, canvasHeight: 120 });
+    expect(fresh.choice.scale).toBe(1);
+    expect(fresh.resizeCanvas(1280, 800)).toBe(true);
+    expect(Math.round(800 * fresh.choice.scale)).toBe(168);
   });
 });
 

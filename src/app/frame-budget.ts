@@ -181,6 +181,26 @@ export class FrameBudget {
     this.samples = Math.max(this.samples, this.baseSamples);
   }
 
+  /**
+   * The canvas was resized (device pixels at scale 1): the floor follows it, and the next frame keeps
+   * what it would cost rather than the scale. A smaller canvas may raise the scale to the new floor at
+   * once; a larger one lowers it at once where the frames measured so far predict the new size over
+   * budget (a software adapter that rendered a 300 × 120 canvas whole must not try 1280 × 800 whole:
+   * that frame takes minutes); before any frame, a software adapter starts at the new floor. Going up
+   * waits for frames, as always. Returns whether the choice changed.
+   */
+  resizeCanvas(width: number, height: number): boolean {
+    if (!(width > 0 && height > 0)) return false;
+    this.floor = floorStep(Math.min(width, height));
+    if (this.step > this.floor) return this.moveTo({ step: this.floor, samples: this.baseSamples }, this.changedAt ?? 0);
+    if (!this.calibrated) return this.adapter === 'software' && this.step !== this.floor ? this.moveTo({ step: this.floor, samples: this.samples }, 0) : false;
+    const cost = median(this.costs);
+    const pixelsAtScale1 = width * height;
+    if (cost * pixelsAtScale1 * SCALE_STEPS[this.step]! ** 2 * this.samples <= OVER * this.targetMs) return false;
+    const to = this.fit(pixelsAtScale1, cost);
+    return to.step > this.step || to.samples < this.samples ? this.moveTo(to, this.changedAt ?? 0) : false;
+  }
+
   /** Reports a frame; returns whether the choice changed (the viewer then resizes before the next frame). */
   observe(frame: FrameSample): boolean {
     const pixels = frame.width * frame.height;

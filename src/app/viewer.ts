@@ -723,6 +723,7 @@ export class Viewer {
     if (this.canvas.width === width && this.canvas.height === height) return;
     this.canvas.width = width;
     this.canvas.height = height;
+    this.budgetValue?.resizeCanvas(width, height);
     await this.resizeRenderer();
   }
 
