@@ -13,6 +13,7 @@ import { MeshoptDecoder } from 'meshoptimizer/decoder';
 import { LanternError } from '../../errors.ts';
 import { decodeDataUri } from './data-uri.ts';
 import { dracoDecoder } from './draco.ts';
+import { checkGltfCounts } from './preflight.ts';
 import type { Warnings } from './warnings.ts';
 
 /** Loose view of the raw glTF JSON: only what is read before glTF-Transform takes over. */
@@ -53,6 +54,7 @@ export async function readGltfSource(
 ): Promise<GltfSource> {
   const { json, bin } = splitContainer(main);
   checkRequiredExtensions(main.name, json);
+  checkGltfCounts(main.name, json);
 
   // Every external file is asked for at once: a resolver in a browser may answer over messages.
   const buffers = json.buffers ?? [];

@@ -138,18 +138,16 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
   };
 }
 
-/** The per-instance transforms of EXT_mesh_gpu_instancing (absent attributes: identity parts). */
-function instanceTransforms(batch: InstancedMesh): Mat4[] {
+/** The per-instance transforms of EXT_mesh_gpu_instancing (absent attributes: identity parts), one at a time: a million rows are a million matrices. */
+function* instanceTransforms(batch: InstancedMesh): Generator<Mat4> {
   const t = batch.getAttribute('TRANSLATION'), r = batch.getAttribute('ROTATION'), s = batch.getAttribute('SCALE');
   const count = t?.getCount() ?? r?.getCount() ?? s?.getCount() ?? 0;
-  const out: Mat4[] = [];
   for (let i = 0; i < count; i++) {
     const tr = t ? (t.getElement(i, [0, 0, 0]) as [number, number, number]) : ([0, 0, 0] as const);
     const q = r ? (r.getElement(i, [0, 0, 0, 1]) as [number, number, number, number]) : ([0, 0, 0, 1] as const);
     const sc = s ? (s.getElement(i, [1, 1, 1]) as [number, number, number]) : ([1, 1, 1] as const);
-    out.push(fromTrs(tr, q, sc));
+    yield fromTrs(tr, q, sc);
   }
-  return out;
 }
 
 /** The world-space box of all instances: each mesh's object box, its eight corners transformed. */
