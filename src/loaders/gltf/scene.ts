@@ -76,20 +76,27 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
       const slot = meshSlot.get(m);
       const nodeName = node.getName();
       const gpuInstances = node.getExtension<InstancedMesh>('EXT_mesh_gpu_instancing');
+      // A placement past the float range (scales of 1e308 multiplied) has no place to be drawn.
+      const outOfRange = () => warnings.add(`node ${index}'s transform is past the float range: the mesh it places is left out there`);
       if (slot !== undefined && gpuInstances) {
         // EXT_mesh_gpu_instancing: one placement per TRS row, each applied before the node's own
         // transform. Ids continue after the node indices, in file order, so they too are stable.
         for (const local of instanceTransforms(gpuInstances)) {
-          instances.push({ id: nodes.length + extraIds++, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject: multiply(worldFromObject, local) });
+          const placed = multiply(worldFromObject, local);
+          const id = nodes.length + extraIds++;
+          if (placed.every(Number.isFinite)) instances.push({ id, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject: placed });
+          else outOfRange();
         }
       } else if (slot !== undefined) {
-        instances.push({ id: index, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject });
+        if (worldFromObject.every(Number.isFinite)) instances.push({ id: index, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject });
+        else outOfRange();
       }
     }
     const cam = node.getCamera();
     if (cam && !camera) camera = convertCamera(cam, worldFromObject, warnings);
     const light = node.getExtension<Light>('KHR_lights_punctual');
-    if (light) lights.push(convertLight(light, worldFromObject, `light ${lights.length}`));
+    const placedLight = light ? convertLight(light, worldFromObject, `light ${lights.length}`, warnings) : undefined;
+    if (placedLight) lights.push(placedLight);
     return worldFromObject;
   };
   // Depth first in file order with an explicit stack: recursion as deep as the node hierarchy
