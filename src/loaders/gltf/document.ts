@@ -11,6 +11,7 @@ import { Logger, WebIO, type Document } from '@gltf-transform/core';
 import { ALL_EXTENSIONS, KHRDracoMeshCompression } from '@gltf-transform/extensions';
 import { MeshoptDecoder } from 'meshoptimizer/decoder';
 import { LanternError } from '../../errors.ts';
+import { siblingPath } from '../sibling-uri.ts';
 import { decodeDataUri } from './data-uri.ts';
 import { dracoDecoder } from './draco.ts';
 import { checkGltfCounts } from './preflight.ts';
@@ -156,7 +157,7 @@ export function sniffGltf(head: Uint8Array): boolean {
   return /"asset"\s*:/.test(new TextDecoder().decode(head));
 }
 
-/** The relative URIs (decoded) of the files a glTF refers to: external buffers and images. */
+/** The files a glTF refers to (external buffers and images), as paths relative to its folder. */
 export function gltfSiblings(main: { name: string; bytes: Uint8Array }): string[] {
   let json: GltfJson;
   try {
@@ -165,7 +166,8 @@ export function gltfSiblings(main: { name: string; bytes: Uint8Array }): string[
     return [];
   }
   const uris = [...(json.buffers ?? []), ...(json.images ?? [])].map((r) => r.uri).filter((u): u is string => typeof u === 'string' && !u.startsWith('data:'));
-  return [...new Set(uris.map((u) => { try { return decodeURIComponent(u); } catch { return u; } }))];
+  // Only what the model may name (sibling-uri.ts): the loader refuses the rest with a warning.
+  return [...new Set(uris.flatMap((u) => { const sibling = siblingPath(u); return sibling.ok ? [sibling.path] : []; }))];
 }
 
 function splitContainer(main: { name: string; bytes: Uint8Array }): { json: GltfJson; bin?: Uint8Array } {

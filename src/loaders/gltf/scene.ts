@@ -16,6 +16,7 @@ import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../../math
 import { fromTrs, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts';
 import { frameBounds } from '../../scene/framing.ts';
 import type { Camera, Instance, Material, Mesh, PunctualLight, Scene } from '../../scene/types.ts';
+import { SIBLING_RULE } from '../sibling-uri.ts';
 import { convertCamera } from './cameras.ts';
 import type { GltfSource } from './document.ts';
 import { convertLight } from './lights.ts';
@@ -119,6 +120,10 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
 
   if (instances.length === 0) {
     const missing = [...new Set(source.missingData.flat().filter((u) => u !== undefined))];
+    const refused = missing.filter((u) => warnings.refusal(u) !== undefined);
+    if (refused.length > 0) {
+      throw new LanternError(`${name}: nothing to show, the geometry is in ${refused.join(', ')}, which Lantern does not read (${warnings.refusal(refused[0]!)})`, `${SIBLING_RULE}: put the file in the model's folder and name it by a relative path`);
+    }
     if (missing.length > 0) {
       throw new LanternError(`${name}: nothing to show, the geometry is in ${missing.join(', ')}, which is missing`, `put ${missing.join(', ')} next to ${name}`);
     }
