@@ -113,7 +113,11 @@ export function checkGltfCounts(name: string, json: unknown): void {
   // What Lantern builds: each placed mesh's vertices once, every placement's triangles.
   const countOf = (accessor: unknown) => (isCount(accessor) ? (counts[accessor] ?? 0) : 0);
   const meshes = list(root.meshes);
+  // Once per mesh: half a million nodes may place one mesh of ten thousand primitives.
+  const sizes = new Map<number, { vertices: number; triangles: number }>();
   const meshSize = (mesh: number) => {
+    const known = sizes.get(mesh);
+    if (known) return known;
     let vertices = 0, triangles = 0;
     for (const p of list(obj(meshes[mesh])?.primitives)) {
       const primitive = obj(p);
@@ -123,6 +127,7 @@ export function checkGltfCounts(name: string, json: unknown): void {
       vertices += positions;
       triangles += mode === TRIANGLES ? Math.floor(corners / 3) : mode === STRIP || mode === FAN ? Math.max(0, corners - 2) : 0;
     }
+    sizes.set(mesh, { vertices, triangles });
     return { vertices, triangles };
   };
   const instancing = list(root.extensionsUsed).includes(INSTANCING);
@@ -130,7 +135,6 @@ export function checkGltfCounts(name: string, json: unknown): void {
   const scene = obj(scenes[isCount(root.scene) ? root.scene : 0]) ?? obj(scenes[0]);
   const pending = list(scene?.nodes).slice();
   const visited = new Set<unknown>();
-  const sized = new Set<number>();
   let vertices = 0, placements = 0, triangles = 0;
   while (pending.length > 0) {
     const index = pending.pop();
@@ -140,9 +144,8 @@ export function checkGltfCounts(name: string, json: unknown): void {
     if (!node) continue;
     for (const child of list(node.children)) pending.push(child);
     if (!isCount(node.mesh) || node.mesh >= meshes.length) continue;
+    if (!sizes.has(node.mesh)) vertices += meshSize(node.mesh).vertices;
     const size = meshSize(node.mesh);
-    if (!sized.has(node.mesh)) vertices += size.vertices;
-    sized.add(node.mesh);
     // One placement per EXT_mesh_gpu_instancing row (the longest of its attributes), else one.
     const rows = instancing ? Object.values(obj(obj(obj(node.extensions)?.[INSTANCING])?.attributes) ?? {}).map(countOf) : [];
     const copies = rows.length > 0 ? rows.reduce((a, b) => Math.max(a, b), 0) : 1;
