@@ -25,6 +25,10 @@ export interface Limits {
   readonly faces: number;
   /** Corners of one polygon (a PLY face list, a Doom sector's boundary). */
   readonly polygonVertices: number;
+  /** Instances one scene places (glTF: nodes with a mesh, and each EXT_mesh_gpu_instancing row). */
+  readonly instances: number;
+  /** Bytes one glTF's accessors and embedded images take once read (glTF-Transform copies or zero-fills each), summed from its JSON. */
+  readonly gltfBytes: number;
   /** Doom map records: linedefs, sidedefs, vertices, sectors and things, each. */
   readonly mapRecords: number;
   /** Lumps in one WAD directory. */
@@ -44,6 +48,8 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   vertices: 1 << 25, // 33.5 million
   faces: 1 << 25,
   polygonVertices: 1 << 16,
+  instances: 1 << 19, // 524,288
+  gltfBytes: 1 << 29, // 512 MiB
   mapRecords: 1 << 20, // 1,048,576
   lumps: 1 << 20,
   textureTexels: 1 << 27, // 134 million: 512 MiB of RGBA8

@@ -6,11 +6,12 @@
  */
 import { existsSync, readdirSync, statSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { basename, dirname, isAbsolute, join } from 'node:path';
+import { basename, dirname, join } from 'node:path';
 import { LanternError } from '../errors.ts';
 import { builtinScene, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
 import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts';
 import { describeSceneArguments, formatByName, formatOfFolder, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
+import { siblingPath } from '../loaders/sibling-uri.ts';
 import type { Scene } from '../scene/types.ts';
 import { iwadForMap, isBareMapName } from './iwads.ts';
 import { readFileOrExplain, readJsonFile } from './read-files.ts';
@@ -106,10 +107,15 @@ function folderArgument(arg: string): SceneArgument | undefined {
   return { kind: 'files', paths: found.names.map((name) => join(path, name)), ...(part ? { part: normalize(part) } : {}) };
 }
 
-/** Files beside the main one, by a path relative to it; absent files are the loader's business. */
+/**
+ * Files beside the main one, by a URI relative to it; absent files are the loader's business, and
+ * so are URIs the model may not name (sibling-uri.ts), which read as absent here too.
+ */
 function siblingsOf(mainPath: string): ResolveSibling {
   return (relativePath) => {
-    const path = isAbsolute(relativePath) ? relativePath : join(dirname(mainPath), relativePath);
+    const sibling = siblingPath(relativePath);
+    if (!sibling.ok) return Promise.resolve(undefined);
+    const path = join(dirname(mainPath), ...sibling.path.split('/'));
     return Promise.resolve(existsSync(path) && isFile(path) ? readFileOrExplain(path) : undefined);
   };
 }

@@ -4,7 +4,7 @@
  * images. PNG: https://www.w3.org/TR/png/ (chunks §5, filters §7.3 and §9).
  */
 import { convertIndexedToRgb, decode, type DecodedPng } from 'fast-png';
-import { zlibSync } from 'fflate';
+import { Unzlib, zlibSync } from 'fflate';
 import { checkLimit } from '../budgets.ts';
 import { LanternError } from '../errors.ts';
 
@@ -94,6 +94,7 @@ export function decodePng(bytes: Uint8Array, name = 'image.png'): RgbaImage {
     const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
     const [width, height] = [view.getUint32(16), view.getUint32(20)];
     checkLimit('imagePixels', width * height, `${name}: ${width}×${height} pixels`);
+    checkInflatedSize(bytes, name, rawBytes(width, height, bytes[24]!, bytes[25]!, bytes[28]!));
   }
   let png: DecodedPng;
   try {
@@ -128,6 +129,60 @@ export function decodePng(bytes: Uint8Array, name = 'image.png'): RgbaImage {
     rgba[4 * i + 3] = alpha ? Math.round((samples[s + channels - 1]! * 255) / max) : 255;
   }
   return { width, height, data: rgba };
+}
+
+/** Channels per pixel of each PNG colour type (grey, RGB, palette, grey + alpha, RGBA). */
+const CHANNELS: Readonly<Record<number, number>> = { 0: 1, 2: 3, 3: 1, 4: 2, 6: 4 };
+/** Adam7's seven passes: first column and row, and the steps between them. */
+const ADAM7 = [[0, 0, 8, 8], [4, 0, 8, 8], [0, 4, 4, 8], [2, 0, 4, 4], [0, 2, 2, 4], [1, 0, 2, 2], [0, 1, 1, 2]] as const;
+
+/** The bytes the image data inflates to (filter byte and packed samples per row, per pass when interlaced); undefined for a header fast-png will refuse. */
+function rawBytes(width: number, height: number, depth: number, colourType: number, interlace: number): number | undefined {
+  const channels = CHANNELS[colourType];
+  if (channels === undefined || ![1, 2, 4, 8, 16].includes(depth)) return undefined;
+  const rows = (w: number, h: number) => (w === 0 || h === 0 ? 0 : h * (1 + Math.ceil((w * channels * depth) / 8)));
+  if (interlace !== 1) return rows(width, height);
+  return ADAM7.reduce((n, [x0, y0, dx, dy]) => n + rows(Math.ceil(Math.max(0, width - x0) / dx), Math.ceil(Math.max(0, height - y0) / dy)), 0);
+}
+
+/** Slack over the exact size before a stream counts as too long (some encoders write a little more). */
+const INFLATE_SLACK = 64 * 1024;
+/** Deflate's largest expansion (a 258-byte match in two bits). */
+const DEFLATE_RATIO = 1032;
+/** Compressed bytes inflated at a time: one slice yields at most ~66 MB (16 KB slices were a third slower). */
+const INFLATE_SLICE = 64 * 1024;
+
+/**
+ * Inflates the IDAT chunks' zlib stream and counts it, keeping nothing, and refuses a stream that
+ * passes what the header's size needs: fast-png inflates the whole stream before it looks, so a
+ * 520 KB PNG of 16×16 pixels whose stream inflates to 512 MB took 8 s and 1.5 GB. A stream that is
+ * broken is left to fast-png, which says how. The check is a second inflate (on a 2048² RGB
+ * texture, half of fast-png's own decoding time again), skipped when the file is too small to
+ * inflate to more than twice what it needs.
+ */
+function checkInflatedSize(bytes: Uint8Array, name: string, expected: number | undefined): void {
+  if (expected === undefined || bytes.length * DEFLATE_RATIO <= 2 * expected + INFLATE_SLACK) return;
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  let total = 0;
+  const inflater = new Unzlib((chunk) => void (total += chunk.length));
+  try {
+    for (let at = 8; at + 8 <= bytes.length; ) {
+      const length = view.getUint32(at);
+      const type = view.getUint32(at + 4);
+      const data = bytes.subarray(at + 8, Math.min(bytes.length, at + 8 + length));
+      if (type === 0x49444154) {
+        // IDAT
+        for (let s = 0; s < data.length && total <= expected + INFLATE_SLACK; s += INFLATE_SLICE) inflater.push(data.subarray(s, s + INFLATE_SLICE));
+      }
+      if (total > expected + INFLATE_SLACK) break;
+      at += 12 + length;
+    }
+  } catch {
+    return;
+  }
+  if (total > expected + INFLATE_SLACK) {
+    throw new LanternError(`${name}: its image data inflates past the ${expected.toLocaleString('en-US')} bytes its ${view.getUint32(16)}×${view.getUint32(20)} pixels need`, 'the file is damaged or hostile');
+  }
 }
 
 /** 1/2/4-bit grey stays packed, most significant bits first, each row starting on a byte boundary. */

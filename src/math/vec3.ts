@@ -20,6 +20,11 @@ export function normalize(a: Vec3): Vec3 {
   return scale(a, 1 / len);
 }
 export const isFiniteVec3 = (a: Vec3): boolean => a.every(Number.isFinite);
+/** `a` at unit length, or undefined when it has none to scale (zero, or not finite): for directions read from files. */
+export function unitOrUndefined(a: Vec3): Vec3 | undefined {
+  const len = length(a);
+  return len > 0 && Number.isFinite(len) ? scale(a, 1 / len) : undefined;
+}
 
 /** Rec. 709 / sRGB luminance of a linear RGB triple. The WGSL twin is `luminance` in lib/color.wgsl. */
 export const luminance = (c: Vec3): number => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];

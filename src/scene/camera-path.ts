@@ -28,6 +28,12 @@ export interface CameraPath {
  */
 export const MAX_CAMERA_COORDINATE = 1e7;
 
+/**
+ * The largest keyframe time, in seconds either way (`--time` takes the same range): frames are
+ * spaced over end − start, which for times of ±1e308 is infinite, and every frame time NaN.
+ */
+export const MAX_PATH_SECONDS = 1e6;
+
 const isVec3 = (v: unknown): v is Vec3 =>
   Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x) && Math.abs(x) <= MAX_CAMERA_COORDINATE);
 
@@ -59,7 +65,7 @@ export function parseCameraPath(json: unknown, name = 'camera path'): CameraPath
   const out = keyframes.map((k: Record<string, unknown>, i): CameraKeyframe => {
     const where = `${name}: keyframe ${i}`;
     if (typeof k !== 'object' || k === null) throw new LanternError(`${where} is not an object`);
-    if (typeof k.time !== 'number' || !Number.isFinite(k.time)) throw new LanternError(`${where}: "time" must be a number of seconds`);
+    if (typeof k.time !== 'number' || !(Math.abs(k.time) <= MAX_PATH_SECONDS)) throw new LanternError(`${where}: "time" must be a number of seconds from -${MAX_PATH_SECONDS} to ${MAX_PATH_SECONDS}`);
     if (k.time <= previous) throw new LanternError(`${where}: times must increase (${k.time} follows ${previous})`);
     previous = k.time;
     if (!isVec3(k.position)) throw new LanternError(`${where}: "position" must be three numbers from -${MAX_CAMERA_COORDINATE} to ${MAX_CAMERA_COORDINATE}`);

@@ -2,8 +2,9 @@
  * The large or degenerate inputs of issue 17's table, built in code: each one once crashed, hung or
  * took gigabytes. They are legal (or nearly) files, so they test sizes and shapes, not parsing.
  */
-import { gzipSync } from 'node:zlib';
+import { constants, deflateRawSync, gzipSync } from 'node:zlib';
 import { encodeExr } from '../../src/image/exr.ts';
+import { encodePng } from '../../src/image/png.ts';
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from '../../src/loaders/doom/map-types.ts';
 import { NO_SIDEDEF } from '../../src/loaders/doom/map-types.ts';
 import { encodeFlat, encodeMap, encodePalette, encodePatch, encodePnames, encodeTextureLump, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
@@ -174,4 +175,179 @@ function indexOfAscii(bytes: Uint8Array, text: string): number {
     return i;
   }
   return -1;
+}
+
+// ---- glTF inputs of issue 27 (§6): counts, images, transforms and URIs that a few bytes of JSON ask for ----
+
+/** A .gltf (JSON text) from its object, with the asset, scene and node a viewer needs added. */
+function gltfText(json: Record<string, unknown>): Uint8Array {
+  return new TextEncoder().encode(JSON.stringify({ asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }], ...json }));
+}
+
+/** Three float positions (36 bytes) as a base64 data: URI buffer, for inputs that need some real data. */
+const TRIANGLE_BUFFER = { byteLength: 36, uri: `data:application/octet-stream;base64,${Buffer.from(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]).buffer).toString('base64')}` };
+const TRIANGLE_ACCESSOR = { bufferView: 0, componentType: 5126, count: 3, type: 'VEC3', min: [0, 0, 0], max: [1, 1, 0] };
+
+/**
+ * How a few hundred bytes of glTF JSON declare `count` elements without the bytes for them:
+ * - 'positions': a POSITION accessor with no buffer view (glTF-Transform zero-fills it: count × 12 bytes);
+ * - 'indices': an index accessor with no buffer view over a real triangle;
+ * - 'sparse': a sparse POSITION accessor whose sparse count is `count`, its indices and values in 36 bytes;
+ * - 'interleaved': a POSITION accessor of `count` elements over a 36-byte view with a byte stride;
+ * - 'instances': EXT_mesh_gpu_instancing with `count` translations and no buffer view.
+ */
+export type CountBomb = 'positions' | 'indices' | 'sparse' | 'interleaved' | 'instances';
+
+export function countBombGltf(kind: CountBomb, count: number): Uint8Array {
+  const buffers = [TRIANGLE_BUFFER];
+  const bufferViews: Array<Record<string, number>> = [{ buffer: 0, byteOffset: 0, byteLength: 36 }];
+  switch (kind) {
+    case 'positions':
+      return gltfText({ meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }], accessors: [{ componentType: 5126, count, type: 'VEC3' }] });
+    case 'indices':
+      return gltfText({ meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }], accessors: [TRIANGLE_ACCESSOR, { componentType: 5125, count, type: 'SCALAR' }], bufferViews, buffers });
+    case 'sparse':
+      return gltfText({
+        meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+        accessors: [{ componentType: 5126, count: 3, type: 'VEC3', sparse: { count, indices: { bufferView: 0, componentType: 5125 }, values: { bufferView: 0 } } }],
+        bufferViews, buffers,
+      });
+    case 'interleaved':
+      return gltfText({ meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }], accessors: [{ ...TRIANGLE_ACCESSOR, count }], bufferViews: [{ ...bufferViews[0]!, byteStride: 16 }], buffers });
+    case 'instances':
+      return gltfText({
+        extensionsUsed: ['EXT_mesh_gpu_instancing'],
+        nodes: [{ mesh: 0, extensions: { EXT_mesh_gpu_instancing: { attributes: { TRANSLATION: 1 } } } }],
+        meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+        accessors: [TRIANGLE_ACCESSOR, { componentType: 5126, count, type: 'VEC3' }],
+        bufferViews, buffers,
+      });
+  }
+}
+
+/**
+ * A GLB of `images` glTF images that all name one encoded image (PNG or JPEG, in one buffer view),
+ * each the base colour of its own material on its own pair of triangles: a PNG of zeros compresses
+ * about 1000:1, so 5792² (the most imagePixels admits) is 145 KB, and every image decoded on its own
+ * costs 134 MB and seconds.
+ */
+export function sharedImageGlb(images: number, image: Uint8Array): Uint8Array {
+  const positions = new Uint8Array(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0]).buffer);
+  const uvs = new Uint8Array(new Float32Array([0, 0, 1, 0, 0, 1, 1, 1]).buffer);
+  const bin = new Uint8Array(48 + 32 + ((image.length + 3) & ~3));
+  bin.set(positions, 0);
+  bin.set(uvs, 48);
+  bin.set(image, 80);
+  const primitives = Array.from({ length: images }, (_, i) => ({ attributes: { POSITION: 0, TEXCOORD_0: 1 }, mode: 5, material: i }));
+  const json = {
+    asset: { version: '2.0' },
+    scene: 0,
+    scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0 }],
+    meshes: [{ primitives }],
+    materials: primitives.map((_, i) => ({ pbrMetallicRoughness: { baseColorTexture: { index: i } } })),
+    textures: primitives.map((_, i) => ({ source: i })),
+    images: primitives.map(() => ({ bufferView: 2, mimeType: 'image/png' })),
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: 4, type: 'VEC3', min: [0, 0, 0], max: [1, 1, 0] },
+      { bufferView: 1, componentType: 5126, count: 4, type: 'VEC2' },
+    ],
+    bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 48 }, { buffer: 0, byteOffset: 48, byteLength: 32 }, { buffer: 0, byteOffset: 80, byteLength: image.length }],
+    buffers: [{ byteLength: bin.length }],
+  };
+  return glbOf(json, bin);
+}
+
+/** A GLB container of a JSON chunk and a binary chunk. */
+export function glbOf(json: unknown, bin: Uint8Array): Uint8Array {
+  const text = new TextEncoder().encode(JSON.stringify(json));
+  const jsonLength = (text.length + 3) & ~3;
+  const out = new Uint8Array(12 + 8 + jsonLength + 8 + bin.length);
+  const view = new DataView(out.buffer);
+  view.setUint32(0, 0x46546c67, true);
+  view.setUint32(4, 2, true);
+  view.setUint32(8, out.length, true);
+  view.setUint32(12, jsonLength, true);
+  view.setUint32(16, 0x4e4f534a, true);
+  out.fill(0x20, 20, 20 + jsonLength);
+  out.set(text, 20);
+  view.setUint32(20 + jsonLength, bin.length, true);
+  view.setUint32(24 + jsonLength, 0x004e4942, true);
+  out.set(bin, 28 + jsonLength);
+  return out;
+}
+
+/**
+ * A progressive greyscale JPEG of width × height with `scans` AC scans, each coded as end-of-band
+ * runs of 32,767 blocks (three bytes a run): each scan costs the decoder a pass over every block
+ * while the file grows by about 20 bytes a scan. One DC scan comes first, as encoders write it.
+ */
+export function progressiveJpeg(width: number, height: number, scans: number): Uint8Array {
+  const out: number[] = [0xff, 0xd8];
+  const segment = (marker: number, body: readonly number[]) => out.push(0xff, marker, (body.length + 2) >> 8, (body.length + 2) & 255, ...body);
+  segment(0xdb, [0, ...new Array<number>(64).fill(1)]); // DQT: table 0, all ones
+  segment(0xc2, [8, height >> 8, height & 255, width >> 8, width & 255, 1, 1, 0x11, 0]); // SOF2: one component, 1×1 sampling
+  // DHT: DC table 0 with one code of length 1 for category 0; AC table 0 with one code for EOB14 (0xE0).
+  segment(0xc4, [0x00, 1, ...new Array<number>(15).fill(0), 0x00]);
+  segment(0xc4, [0x10, 1, ...new Array<number>(15).fill(0), 0xe0]);
+  const blocks = Math.ceil(width / 8) * Math.ceil(height / 8);
+  const entropy = (bits: string) => {
+    const padded = bits + '1'.repeat((8 - (bits.length % 8)) % 8);
+    for (let i = 0; i < padded.length; i += 8) {
+      const byte = parseInt(padded.slice(i, i + 8), 2);
+      out.push(byte);
+      if (byte === 0xff) out.push(0); // stuffed
+    }
+  };
+  // DC first scan: one '0' bit (category 0) per block.
+  segment(0xda, [1, 1, 0x00, 0, 0, 0]);
+  entropy('0'.repeat(blocks));
+  // AC first scans over bands 1–63: EOB14 ('0') then 14 bits of run length (all ones: 16,384 + 16,383).
+  const run = '0' + '1'.repeat(14);
+  const acBits = run.repeat(Math.ceil(blocks / 32_767));
+  for (let s = 0; s < scans; s++) {
+    segment(0xda, [1, 1, 0x00, 1, 63, 0]);
+    entropy(acBits);
+  }
+  out.push(0xff, 0xd9);
+  return new Uint8Array(out);
+}
+
+/** A triangle and, on a node scaled to zero, a camera ('camera') or a KHR_lights_punctual light of that type. */
+export function zeroScaleGltf(what: 'camera' | 'spot' | 'directional' | 'point' | 'mesh'): Uint8Array {
+  const zero = { scale: [0, 0, 0] };
+  const triangle = { meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }], accessors: [TRIANGLE_ACCESSOR], bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 36 }], buffers: [TRIANGLE_BUFFER] };
+  if (what === 'mesh') return gltfText({ ...triangle, scenes: [{ nodes: [0, 1] }], nodes: [{ mesh: 0 }, { mesh: 0, ...zero }] });
+  if (what === 'camera') return gltfText({ ...triangle, scenes: [{ nodes: [0, 1] }], nodes: [{ mesh: 0 }, { camera: 0, ...zero }], cameras: [{ type: 'perspective', perspective: { yfov: 0.8, znear: 0.1 } }] });
+  return gltfText({
+    ...triangle,
+    extensionsUsed: ['KHR_lights_punctual'],
+    extensions: { KHR_lights_punctual: { lights: [{ type: what, intensity: 10, ...(what === 'spot' ? { spot: {} } : {}) }] } },
+    scenes: [{ nodes: [0, 1] }],
+    nodes: [{ mesh: 0 }, { extensions: { KHR_lights_punctual: { light: 0 } }, ...zero }],
+  });
+}
+
+/** A triangle whose buffer is an external file named by `uri` (a path out of the folder, an absolute one, a file: or http: URI). */
+export function externalBufferGltf(uri: string): Uint8Array {
+  return gltfText({ meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }], accessors: [TRIANGLE_ACCESSOR], bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 36 }], buffers: [{ byteLength: 36, uri }] });
+}
+
+/**
+ * A side × side PNG whose zlib stream inflates to `bytes` zeros (its pixels, then far more): deflate
+ * blocks of 64 MiB of zeros (64 KB each) repeated, so a 512 MB stream costs little to build.
+ */
+export function pngStreamBomb(side: number, bytes: number): Uint8Array {
+  const block = 64 * 2 ** 20;
+  const repeated = new Uint8Array(deflateRawSync(new Uint8Array(Math.min(bytes, block)), { level: 9, finishFlush: constants.Z_SYNC_FLUSH }));
+  const copies = Math.ceil(bytes / block);
+  const total = copies * Math.min(bytes, block);
+  const last = new Uint8Array(deflateRawSync(new Uint8Array(0)));
+  const stream = new Uint8Array(2 + copies * repeated.length + last.length + 4);
+  stream.set([0x78, 0x9c]);
+  for (let c = 0; c < copies; c++) stream.set(repeated, 2 + c * repeated.length);
+  stream.set(last, 2 + copies * repeated.length);
+  // Adler-32 of n zeros: A stays 1, B grows by 1 a byte.
+  new DataView(stream.buffer).setUint32(stream.length - 4, (((total % 65521) << 16) | 1) >>> 0);
+  return encodePng(side, side, new Uint8Array(side * side * 4), () => stream);
 }

@@ -5,7 +5,7 @@
  * naming the limit and the value found, without the memory it used to take.
  */
 import { describe, expect, it } from 'vitest';
-import { applyLimitsOption, configureLimits, DEFAULT_LIMITS, limits, parseLimits, withLimits, WarningCap } from '../../src/budgets.ts';
+import { applyLimitsOption, configureLimits, DEFAULT_LIMITS, limits, parseLimits, withLimits, WarningCap, type Limits } from '../../src/budgets.ts';
 import { LanternError } from '../../src/errors.ts';
 import { expectLanternError } from '../../src/expect-lantern-error.ts';
 import { decodeExr } from '../../src/image/exr.ts';
@@ -21,6 +21,11 @@ import { glb, gltfSeed, mutateWad } from './targets.ts';
 import { Rng } from './mutate.ts';
 import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
+import { countBombGltf, externalBufferGltf, pngStreamBomb, progressiveJpeg, sharedImageGlb, zeroScaleGltf } from './crafted.ts';
+import { decodePng, encodePng } from '../../src/image/png.ts';
+import type { ResolveSibling } from '../../src/loaders/format.ts';
+import { frameTime, parseCameraPath } from '../../src/scene/camera-path.ts';
+import type { Scene } from '../../src/scene/types.ts';
 
 const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad')]);
 
@@ -248,5 +253,213 @@ describe('the fuzzer itself', () => {
       const rng = new Rng(seed);
       expect(mutateWad(rng, empty)).toBeInstanceOf(Uint8Array);
     }
+  });
+});
+
+// ---- issue 27 §6: glTF counts, images, degenerate nodes, camera paths, URIs ----
+
+/** withLimits for async work: the limits stay changed until `f`'s promise settles. */
+async function withLimitsAsync<T>(changes: Partial<Limits>, f: () => Promise<T>): Promise<T> {
+  const before = limits();
+  configureLimits(changes);
+  try {
+    return await f();
+  } finally {
+    configureLimits(before);
+  }
+}
+
+/** The glTF loader as `lantern info` runs it: the scene and its warnings, or the LanternError. */
+async function loadGltfFile(name: string, bytes: Uint8Array, resolve: ResolveSibling = NO_SIBLINGS): Promise<{ scene: Scene; warnings: string[] }> {
+  const opened = await GLTF_FORMAT.open({ files: [{ name, bytes }], resolve });
+  const warnings: string[] = [];
+  const scene = await opened.scene(undefined, { onWarning: (w) => warnings.push(w) });
+  return { scene, warnings };
+}
+
+/** Awaits a refusal: a one-line LanternError whose message matches. */
+async function expectGltfRefusal(load: Promise<unknown>, pattern: RegExp): Promise<string> {
+  const thrown = await load.then(() => undefined, (e: unknown) => e);
+  expect(thrown).toBeInstanceOf(LanternError);
+  const message = (thrown as LanternError).userMessage;
+  expect(message).toMatch(pattern);
+  expect(message).not.toContain('\n');
+  return message;
+}
+
+const rssGrowth = async (f: () => Promise<unknown>) => {
+  const before = process.memoryUsage().rss;
+  await f();
+  return process.memoryUsage().rss - before;
+};
+
+describe('glTF counts read from the JSON before anything is allocated (issue 27)', () => {
+  it('refuses 1.5e8 vertices without a buffer view (268 bytes that aborted V8 at 2.5 GB) at the vertex limit, allocating nothing', async () => {
+    const bytes = countBombGltf('positions', 1.5e8);
+    expect(bytes.length).toBeLessThan(300);
+    const growth = await rssGrowth(() => expectGltfRefusal(loadGltfFile('positions.gltf', bytes), /vertices of the meshes it places: 150,000,000 is over the limit vertices=33,554,432/));
+    expect(growth).toBeLessThan(64 * 2 ** 20);
+  });
+
+  it('refuses what the limits refuse, not more: a zero-filled accessor under the vertex limit loads, one over it is refused', async () => {
+    await withLimitsAsync({ vertices: 3000 }, async () => {
+      const { scene } = await loadGltfFile('ok.gltf', countBombGltf('positions', 3000));
+      expect(scene.meshes[0]!.positions.length).toBe(9000);
+      await expectGltfRefusal(loadGltfFile('over.gltf', countBombGltf('positions', 3003)), /3,003 is over the limit vertices=3,000/);
+    });
+  });
+
+  it('counts the triangles of every placement against faces: 10,000 nodes placing one mesh', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const nodes = Array.from({ length: 10_000 }, () => ({ mesh: 0 }));
+    const bytes = glb({ ...json, nodes, scenes: [{ nodes: nodes.map((_, i) => i) }] }, bin);
+    await withLimitsAsync({ faces: 9_999 }, () => expectGltfRefusal(loadGltfFile('many.glb', bytes), /triangles in the scene .*: 10,000 is over the limit faces=9,999/));
+    await withLimitsAsync({ faces: 10_000 }, async () => expect((await loadGltfFile('many.glb', bytes)).scene.instances).toHaveLength(10_000));
+  });
+
+  it('refuses 1e9 indices without a buffer view (13 s and 3.9 GB) at the triangle limit', async () => {
+    await expectGltfRefusal(loadGltfFile('indices.gltf', countBombGltf('indices', 1e9)), /333,333,333 is over the limit faces=/);
+  });
+
+  it('refuses a sparse count of 1e9 over a 3-element accessor (it ran for minutes) as damaged', async () => {
+    await expectGltfRefusal(loadGltfFile('sparse.gltf', countBombGltf('sparse', 1e9)), /accessor 0: its sparse count 1,000,000,000 is not from 1 to its count 3/);
+  });
+
+  it('refuses 1e9 strided elements over a 36-byte view, naming the bytes it would read', async () => {
+    await expectGltfRefusal(loadGltfFile('interleaved.gltf', countBombGltf('interleaved', 1e9)), /accessor 0 reads 15,999,999,996 bytes of buffer view 0, which has 36/);
+  });
+
+  it('refuses 1e7 EXT_mesh_gpu_instancing rows (4.5 GB) at the instance limit', async () => {
+    await expectGltfRefusal(loadGltfFile('instances.gltf', countBombGltf('instances', 1e7)), /instances \(nodes with a mesh, EXT_mesh_gpu_instancing rows\): 10,000,000 is over the limit instances=/);
+    await withLimitsAsync({ instances: 1000 }, async () => expect((await loadGltfFile('instances.gltf', countBombGltf('instances', 1000))).scene.instances).toHaveLength(1000));
+  });
+
+  it('sums the bytes glTF-Transform copies: a thousand accessors reading one view are a thousand copies', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const accessors = [...(json.accessors as object[]), ...Array.from({ length: 1000 }, () => ({ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3' }))];
+    await withLimitsAsync({ gltfBytes: 1000 * 36 }, () => expectGltfRefusal(loadGltfFile('aliased.glb', glb({ ...json, accessors }, bin)), /bytes of accessor and image data to read: 36,\d{3} is over the limit gltfBytes=36,000/));
+  });
+
+  it('refuses a missing buffer that declares 10^12 bytes (its zero-filled stand-in threw a RangeError)', async () => {
+    const text = new TextDecoder().decode(externalBufferGltf('absent.bin')).replace('"byteLength":36,"uri"', '"byteLength":1000000000000,"uri"');
+    await expectGltfRefusal(loadGltfFile('huge.gltf', new TextEncoder().encode(text)), /buffer 0 declares 1,000,000,000,000 bytes/);
+  });
+});
+
+describe('glTF images charged before decoding, decoded once (issue 27)', () => {
+  it('makes one texture of 100 images sharing one PNG, charged once to the texel budget', async () => {
+    const png = encodePng(64, 64, new Uint8Array(64 * 64 * 4).fill(200));
+    // The budget holds the image once: each glTF image charged separately, the second was refused.
+    const { scene, warnings } = await withLimitsAsync({ textureTexels: 64 * 64 }, () => loadGltfFile('shared.glb', sharedImageGlb(100, png)));
+    expect(scene.textures).toHaveLength(1);
+    expect(scene.materials.every((m) => m.kind === 'metallic-roughness' && m.baseColorTexture?.texture === 0)).toBe(true);
+    expect(warnings.filter((w) => w.includes('replaced by a neutral one'))).toEqual([]);
+  });
+
+  it('refuses an image over the texel budget from its header, without decoding it', async () => {
+    // A valid IHDR of 4096² and a stream that is no zlib: decoded first, the warning was a decoding error.
+    const png = encodePng(4096, 4096, new Uint8Array(4096 * 4096 * 4), () => new Uint8Array([1, 2, 3, 4]));
+    const { warnings } = await withLimitsAsync({ textureTexels: 4096 * 4096 - 1 }, () => loadGltfFile('big.glb', sharedImageGlb(2, png)));
+    expect(warnings).toEqual([expect.stringMatching(/^texture image 0 \(material 'material 0'\) is replaced by a neutral one: texture texels \(with image 0, 4096×4096\): 16,777,216 is over the limit textureTexels=16,777,215/), expect.stringMatching(/no light of its own/)]);
+  });
+
+  it('does not decode a progressive JPEG of 30,000 scans (each a pass over the image: past 60 s); one of 32 decodes', async () => {
+    const flood = progressiveJpeg(1024, 1024, 30_000);
+    const { scene, warnings } = await loadGltfFile('scans.glb', sharedImageGlb(1, flood));
+    expect(warnings[0]).toMatch(/^texture image 0 \(material 'material 0'\) is replaced by a neutral one: it is a JPEG of more than 32 scans/);
+    expect(scene.textures![0]!.width).toBe(1);
+    // progressiveJpeg(…, n) writes a DC scan and n AC scans.
+    const most = await loadGltfFile('most.glb', sharedImageGlb(1, progressiveJpeg(256, 128, 31)));
+    expect([most.scene.textures![0]!.width, most.scene.textures![0]!.height]).toEqual([256, 128]);
+    const over = await loadGltfFile('over.glb', sharedImageGlb(1, progressiveJpeg(256, 128, 32)));
+    expect(over.scene.textures![0]!.width).toBe(1);
+  });
+
+  it('refuses a PNG whose stream inflates past its pixels (16² inflating to 512 MB: 8 s and 1.5 GB) after inflating a slice', () => {
+    const bomb = pngStreamBomb(16, 512 * 2 ** 20);
+    expect(bomb.length).toBeLessThan(600_000);
+    expectLanternError(() => decodePng(bomb, 'bomb.png'), /bomb\.png: its image data inflates past the 1,040 bytes its 16×16 pixels need/);
+    // The same construction at its real size decodes.
+    expect(decodePng(pngStreamBomb(16, 1040), 'exact.png').width).toBe(16);
+  });
+});
+
+describe('glTF nodes that collapse what they carry (issue 27)', () => {
+  it.each(['camera', 'spot', 'directional'] as const)('leaves out a %s on a zero-scaled node with a warning (it was an internal error)', async (what) => {
+    const { scene, warnings } = await loadGltfFile(`${what}.gltf`, zeroScaleGltf(what));
+    expect(warnings).toContainEqual(expect.stringMatching(what === 'camera' ? /^the camera 'camera' is left out: its node's transform collapses its view/ : new RegExp(`^the ${what} light 'light 0' is left out: its node's transform gives it no direction`)));
+    expect(scene.lights).toEqual([]);
+    // The framing of the model replaces a camera left out.
+    expect(Number.isFinite(scene.camera.forward[2])).toBe(true);
+  });
+
+  it('keeps a point light on a zero-scaled node: it needs no direction', async () => {
+    const { scene } = await loadGltfFile('point.gltf', zeroScaleGltf('point'));
+    expect(scene.lights).toEqual([expect.objectContaining({ kind: 'point', position: [0, 0, 0] })]);
+  });
+
+  it('leaves out a mesh whose node transform is past the float range (1e308 scales nested), keeping the rest', async () => {
+    const text = new TextDecoder().decode(zeroScaleGltf('mesh')).replace('"nodes":[{"mesh":0},{"mesh":0,"scale":[0,0,0]}]', '"nodes":[{"mesh":0},{"scale":[1e308,1e308,1e308],"children":[2]},{"mesh":0,"scale":[1e308,1e308,1e308]}]');
+    const { scene, warnings } = await loadGltfFile('far.gltf', new TextEncoder().encode(text));
+    expect(scene.instances.map((i) => i.id)).toEqual([0]);
+    expect(warnings).toContain("node 2's transform is past the float range: the mesh it places is left out there");
+  });
+});
+
+describe('camera paths at the edges of the float range (issue 27)', () => {
+  it('refuses keyframes at ±1e308 seconds (their span is infinite: NaN frame times, then an internal error), naming the keyframe', () => {
+    const path = { keyframes: [{ time: -1e308, position: [0, 0, 5], target: [0, 0, 0] }, { time: 1e308, position: [0, 1, 5], target: [0, 0, 0] }] };
+    expectLanternError(() => parseCameraPath(path, 'path.json'), /^path\.json: keyframe 0: "time" must be a number of seconds from -1000000 to 1000000$/);
+    const ok = parseCameraPath({ keyframes: [{ ...path.keyframes[0], time: -1e6 }, { ...path.keyframes[1], time: 1e6 }] });
+    expect(frameTime(ok, 15, 31)).toBe(0);
+  });
+});
+
+describe('what a glTF may name (issue 27)', () => {
+  /** A resolver that serves `files` and records what it was asked for. */
+  const recording = (files: Record<string, Uint8Array>) => {
+    const asked: string[] = [];
+    const resolve: ResolveSibling = (uri) => {
+      asked.push(uri);
+      return Promise.resolve(files[uri]);
+    };
+    return { asked, resolve };
+  };
+  const triangle = new Uint8Array(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]).buffer);
+
+  it.each([
+    ['../../../../../../etc/hostname', "it leads out of the model's folder"],
+    ['%2e%2e/secret.bin', "it leads out of the model's folder"],
+    ['/etc/hostname', 'it is an absolute path'],
+    ['file:///etc/hostname', 'it is a URL (file:), not a path beside the model'],
+    ['https://example.com/x.bin', 'it is a URL (https:), not a path beside the model'],
+  ])('never asks for %s, and says why in one line', async (uri, reason) => {
+    const { asked, resolve } = recording({ [uri]: triangle });
+    const message = await expectGltfRefusal(loadGltfFile('escape.gltf', externalBufferGltf(uri), resolve), /nothing to show/);
+    expect(message).toBe(`escape: nothing to show, the geometry is in ${uri}, which Lantern does not read (${reason}). A model may name only files in its own folder and below: put the file in the model's folder and name it by a relative path`);
+    expect(asked).toEqual([]);
+  });
+
+  it('reads files below its folder, by the decoded path, each once however many images name it', async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const png = encodePng(2, 2, new Uint8Array(16).fill(9));
+    const images = Array.from({ length: 3 }, () => ({ uri: 'tex/../tex/wood%20grain.png' }));
+    const { asked, resolve } = recording({ 'tex/../tex/wood%20grain.png': png });
+    const { scene, warnings } = await loadGltfFile('model.glb', glb({ ...json, images, textures: [{ source: 0 }, { source: 1 }, { source: 2 }] }, bin), resolve);
+    expect(asked).toEqual(['tex/../tex/wood%20grain.png']);
+    expect(scene.textures![0]!.width).toBe(2);
+    expect(warnings.filter((w) => w.includes('missing') || w.includes('not read'))).toEqual([]);
+  });
+
+  it("names a refused texture as a missing one, with the reason, and loads the rest", async () => {
+    const { json, bin } = gltfSeed(new Rng(1));
+    const { scene, warnings } = await loadGltfFile('model.glb', glb({ ...json, images: [{ uri: '../shared/wood.png' }] }, bin));
+    expect(warnings).toContain("../shared/wood.png is not read (it leads out of the model's folder; a model may name only files in its own folder and below): textures that use it are replaced by neutral ones");
+    expect(scene.instances).toHaveLength(1);
+  });
+
+  it("offers `lantern view` only the files it may name", () => {
+    const json = { asset: { version: '2.0' }, buffers: [{ uri: 'a.bin', byteLength: 1 }, { uri: '../b.bin', byteLength: 1 }, { uri: 'data:,x', byteLength: 1 }], images: [{ uri: 'tex/./c%20d.png' }, { uri: 'file:///etc/hostname' }, { uri: '/etc/hostname' }] };
+    expect(GLTF_FORMAT.siblings!({ name: 'm.gltf', bytes: new TextEncoder().encode(JSON.stringify(json)) })).toEqual(['a.bin', 'tex/c d.png']);
   });
 });

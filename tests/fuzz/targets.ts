@@ -15,6 +15,11 @@ import { NO_SIBLINGS, type FileSet, type NamedBytes, type SceneFormat } from '..
 import { formatOfSet } from '../../src/loaders/registry.ts';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
+import { countBombGltf, externalBufferGltf, glbOf, pngStreamBomb, progressiveJpeg, sharedImageGlb, zeroScaleGltf } from './crafted.ts';
+import { DEFAULT_LIMITS } from '../../src/budgets.ts';
+import { cameraBasis } from '../../src/gpu/view.ts';
+import { cameraAt, frameTime, parseCameraPath } from '../../src/scene/camera-path.ts';
+import type { Camera } from '../../src/scene/types.ts';
 import { concat, interesting, mutateBytes, mutateLines, putInt, Rng } from './mutate.ts';
 
 export interface FuzzTarget {
@@ -279,28 +284,14 @@ function mutateJson(rng: Rng, value: unknown, depth = 0): unknown {
   return rng.pick([0, null, 'x', {}]);
 }
 
-export function glb(json: unknown, bin: Uint8Array): Uint8Array {
-  const text = new TextEncoder().encode(JSON.stringify(json));
-  const jsonChunk = new Uint8Array((text.length + 3) & ~3).fill(0x20);
-  jsonChunk.set(text);
-  const out = new Uint8Array(12 + 8 + jsonChunk.length + 8 + bin.length);
-  const view = new DataView(out.buffer);
-  view.setUint32(0, 0x46546c67, true);
-  view.setUint32(4, 2, true);
-  view.setUint32(8, out.length, true);
-  view.setUint32(12, jsonChunk.length, true);
-  view.setUint32(16, 0x4e4f534a, true);
-  out.set(jsonChunk, 20);
-  view.setUint32(20 + jsonChunk.length, bin.length, true);
-  view.setUint32(24 + jsonChunk.length, 0x004e4942, true);
-  out.set(bin, 28 + jsonChunk.length);
-  return out;
-}
+/** A GLB of a JSON chunk and a binary chunk (crafted.ts builds it). */
+export const glb = glbOf;
 
 function generateGltf(rng: Rng): NamedBytes {
-  const { json, bin } = gltfSeed(rng);
+  const seed = gltfSeed(rng);
+  const { json, bin } = rng.chance(0.4) ? mutateGltfStructure(rng, seed) : seed;
   let j: unknown = json;
-  for (let r = 1 + rng.int(3); r > 0; r--) j = mutateJson(rng, j);
+  for (let r = rng.int(3); r > 0; r--) j = mutateJson(rng, j);
   let b = rng.chance(0.3) ? mutateBytes(rng, bin) : bin;
   if (rng.chance(0.3)) {
     // .gltf text with the buffer as a data: URI.
@@ -317,6 +308,149 @@ function generateGltf(rng: Rng): NamedBytes {
   if (rng.chance(0.1)) out = out.slice(0, rng.int(out.length));
   return { name: 'fuzz.glb', bytes: out };
 }
+
+/** Counts just past the default limits, and far past them (glTF-Transform once allocated them all). */
+const HUGE_COUNTS = [DEFAULT_LIMITS.vertices + 1, DEFAULT_LIMITS.instances + 1, 1.5e8, 1e9, 2 ** 31 - 1, 2 ** 32, 2 ** 53];
+/** URIs a model may not name (loaders/sibling-uri.ts), in the spellings that reach other files. */
+const ESCAPING_URIS = ['../../../../../../etc/hostname', '/etc/hostname', 'file:///etc/hostname', 'http://127.0.0.1:1/x.bin', 'https://example.com/x.png', '%2e%2e/%2e%2e/etc/hostname', '..\\..\\etc\\hostname', 'C:\\Windows\\win.ini', '//server/share/x.bin', 'textures/../../x.bin', ''];
+
+/** Images that cost more to decode than their bytes suggest, built once: a 2048² PNG of zeros (17 KB), a 30,000-scan progressive JPEG, a PNG whose stream inflates past its size. */
+let costlyImages: Uint8Array[] | undefined;
+const COSTLY_IMAGES = () => (costlyImages ??= [encodePng(2048, 2048, new Uint8Array(2048 * 2048 * 4)), progressiveJpeg(1024, 1024, 30_000), pngStreamBomb(16, 64 * 2 ** 20)]);
+
+/**
+ * Mutations that know glTF's structure: an accessor's count (or its sparse count, or
+ * EXT_mesh_gpu_instancing's rows) past the limits, with or without its buffer view; a node scaled to
+ * zero or past the float range carrying a camera, a light or the mesh; the image swapped for a costly
+ * one, shared by up to a thousand images; a buffer or image URI out of the model's folder.
+ */
+export function mutateGltfStructure(rng: Rng, seed: { json: Record<string, unknown>; bin: Uint8Array }): { json: Record<string, unknown>; bin: Uint8Array } {
+  const json = structuredClone(seed.json) as Record<string, any>;
+  let bin = seed.bin;
+  const accessors = json.accessors as Array<Record<string, unknown>>;
+  switch (rng.int(6)) {
+    case 0: { // a count past the limits; without a buffer view glTF-Transform zero-fills it
+      const a = rng.pick(accessors);
+      a.count = rng.pick(HUGE_COUNTS);
+      if (rng.chance(0.6)) delete a.bufferView;
+      break;
+    }
+    case 1: { // a sparse block: count huge, or past its accessor's
+      const a = rng.pick(accessors);
+      a.sparse = { count: rng.pick([...HUGE_COUNTS, (a.count as number) + 1, 0, 1]), indices: { bufferView: 2, componentType: 5123 }, values: { bufferView: 0 } };
+      if (rng.chance(0.5)) delete a.bufferView;
+      break;
+    }
+    case 2: { // EXT_mesh_gpu_instancing rows
+      json.extensionsUsed = ['EXT_mesh_gpu_instancing'];
+      accessors.push({ componentType: 5126, count: rng.pick([...HUGE_COUNTS, 4, 1000]), type: 'VEC3' });
+      json.nodes[0].extensions = { EXT_mesh_gpu_instancing: { attributes: { [rng.pick(['TRANSLATION', 'SCALE'])]: accessors.length - 1 } } };
+      break;
+    }
+    case 3: { // a degenerate node (zero scale, or 1e308 twice over: infinite) with a camera, a light or the mesh
+      const scale = rng.pick([[0, 0, 0], [1, 0, 1], [1e308, 1e308, 1e308]]);
+      const what = rng.pick(['camera', 'spot', 'directional', 'point', 'mesh']);
+      const node: Record<string, unknown> = { scale };
+      if (what === 'camera') {
+        json.cameras = [{ type: rng.pick(['perspective', 'orthographic']), perspective: { yfov: rng.pick([0.8, 0, 1e308]), znear: 0.1 }, orthographic: { xmag: 1, ymag: rng.pick([1, 1e308]), znear: 0, zfar: 1 } }];
+        node.camera = 0;
+      } else if (what === 'mesh') node.mesh = 0;
+      else {
+        json.extensionsUsed = ['KHR_lights_punctual'];
+        json.extensions = { KHR_lights_punctual: { lights: [{ type: what, intensity: 1, ...(what === 'spot' ? { spot: {} } : {}) }] } };
+        node.extensions = { KHR_lights_punctual: { light: 0 } };
+      }
+      // Nested under a second 1e308 scale, the product is infinite.
+      json.nodes.push(rng.chance(0.5) ? node : { scale: [1e308, 1e308, 1e308], children: [json.nodes.length + 1] }, node);
+      json.scenes[0].nodes.push(json.nodes.length - 2);
+      break;
+    }
+    case 4: { // a costly image, shared by many images (each its own texture, material and primitive)
+      const image = rng.pick(COSTLY_IMAGES());
+      const at = (bin.length + 3) & ~3;
+      bin = concat(bin, new Uint8Array(at - bin.length), image);
+      json.bufferViews.push({ buffer: 0, byteOffset: at, byteLength: image.length });
+      json.buffers[0].byteLength = bin.length;
+      const n = rng.pick([1, 2, 100, 1000]);
+      json.images = Array.from({ length: n }, () => ({ bufferView: json.bufferViews.length - 1, mimeType: 'image/png' }));
+      json.textures = json.images.map((_: unknown, i: number) => ({ source: i }));
+      json.materials = json.images.map((_: unknown, i: number) => ({ pbrMetallicRoughness: { baseColorTexture: { index: i } } }));
+      json.meshes[0].primitives = json.images.map((_: unknown, i: number) => ({ ...json.meshes[0].primitives[0], material: i }));
+      break;
+    }
+    default: { // a URI out of the model's folder, for the buffer or the image
+      const uri = rng.pick(ESCAPING_URIS);
+      if (rng.chance(0.5)) json.images = [{ uri }];
+      else {
+        json.buffers.push({ byteLength: 36, uri });
+        json.bufferViews[0].buffer = 1;
+      }
+    }
+  }
+  return { json, bin };
+}
+
+// ---- camera paths (`render --path`) ----
+
+/** A camera path of a few keyframes, its times, positions or fields of view sometimes pushed to the edges (±1e308, past ±1e6 s, out of order). */
+function generatePath(rng: Rng): NamedBytes {
+  let t = rng.pick([0, -5, 1e5]);
+  const keyframes: Array<Record<string, unknown>> = Array.from({ length: 1 + rng.int(4) }, (_, i) => ({
+    time: (t += 0.5 + rng.int(3)),
+    position: [i, 1, 5],
+    target: [0, 0, 0],
+    ...(rng.chance(0.3) ? { fov: 30 + rng.int(60) } : {}),
+  }));
+  const edge = () => rng.pick([1e308, -1e308, 1e6, 1e6 + 1, -1e6, 5e-324, 1e7, 1e7 + 1, 0, null, 'x']);
+  for (let r = 1 + rng.int(2); r > 0; r--) {
+    const k = rng.pick(keyframes);
+    switch (rng.int(5)) {
+      case 0: k.time = edge(); break;
+      case 1: k.position = [edge(), 0, 5]; break;
+      case 2: k.target = k.position; break;
+      case 3: k.fov = edge(); break;
+      default: keyframes.reverse();
+    }
+  }
+  let text = JSON.stringify({ keyframes });
+  if (rng.chance(0.1)) text = mutateLines(rng, text.replaceAll('},', '},\n'));
+  return { name: 'path.json', bytes: new TextEncoder().encode(text) };
+}
+
+/** What `render --path` does with the file before and while it renders: parse and check it, and set up every frame's camera (30 frames, the default). */
+async function pathPath(files: NamedBytes[]): Promise<void> {
+  let json: unknown;
+  try {
+    json = JSON.parse(new TextDecoder().decode(files[0]!.bytes));
+  } catch (e) {
+    throw new LanternError(`path.json is not valid JSON: ${(e as Error).message}`);
+  }
+  const path = parseCameraPath(json, 'path.json');
+  const base: Camera = { position: [0, 0, 5], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 40 };
+  for (let f = 0; f < 30; f++) {
+    const camera = cameraAt(path, frameTime(path, f, 30), base);
+    const basis = cameraBasis(camera, 16 / 9);
+    if (![...basis.position, ...basis.forward, ...basis.right, ...basis.up].every(Number.isFinite)) throw new Error(`frame ${f}: the camera is not finite`);
+  }
+}
+
+/** The inputs of issue 27 §6 that once ran for minutes, took gigabytes or ended in an internal error, built on demand. */
+const CRAFTED_GLTF: Array<[string, () => NamedBytes]> = [
+  ['1.5e8 vertices without a buffer view.gltf', () => ({ name: 'positions.gltf', bytes: countBombGltf('positions', 1.5e8) })],
+  ['5e7 vertices without a buffer view.gltf', () => ({ name: 'positions.gltf', bytes: countBombGltf('positions', 5e7) })],
+  ['1e9 indices without a buffer view.gltf', () => ({ name: 'indices.gltf', bytes: countBombGltf('indices', 1e9) })],
+  ['sparse count 1e9.gltf', () => ({ name: 'sparse.gltf', bytes: countBombGltf('sparse', 1e9) })],
+  ['1e9 interleaved vertices over 36 bytes.gltf', () => ({ name: 'interleaved.gltf', bytes: countBombGltf('interleaved', 1e9) })],
+  ['1e7 instances.gltf', () => ({ name: 'instances.gltf', bytes: countBombGltf('instances', 1e7) })],
+  ['100 images sharing one 5792² PNG.glb', () => ({ name: 'shared.glb', bytes: sharedImageGlb(100, encodePng(5792, 5792, new Uint8Array(5792 * 5792 * 4))) })],
+  ['a 4096² progressive JPEG of 30,000 scans.glb', () => ({ name: 'scans.glb', bytes: sharedImageGlb(1, progressiveJpeg(4096, 4096, 30_000)) })],
+  ['a 16² PNG whose stream inflates to 512 MB.glb', () => ({ name: 'png-bomb.glb', bytes: sharedImageGlb(1, pngStreamBomb(16, 512 * 2 ** 20)) })],
+  ['a camera on a zero-scaled node.gltf', () => ({ name: 'camera.gltf', bytes: zeroScaleGltf('camera') })],
+  ['a spot light on a zero-scaled node.gltf', () => ({ name: 'spot.gltf', bytes: zeroScaleGltf('spot') })],
+  ['a point light on a zero-scaled node.gltf', () => ({ name: 'point.gltf', bytes: zeroScaleGltf('point') })],
+  ['a buffer at ../../../../../../etc/hostname.gltf', () => ({ name: 'escape.gltf', bytes: externalBufferGltf('../../../../../../etc/hostname') })],
+  ['a buffer at file:///etc/hostname.gltf', () => ({ name: 'file-uri.gltf', bytes: externalBufferGltf('file:///etc/hostname') })],
+];
 
 // ---- EXR ----
 
@@ -557,6 +691,8 @@ export const TARGETS: readonly FuzzTarget[] = [
   mutated('png', 'PNG, IHDR and IDAT mutations', (rng) => [{ name: 'fuzz.png', bytes: mutatePng(rng, pngSeed(rng)) }], async (files) => void decodePng(files[0]!.bytes, files[0]!.name)),
   mutated('wolf3d', 'Wolfenstein 3D, MAPHEAD/GAMEMAPS/VSWAP mutations', (rng) => generateWolf(rng)),
   mutated('molecule', 'Molecule files (MDL molfile V2000/V3000, SDF), line mutations', (rng) => [generateMolecule(rng)]),
+  { id: 'gltf-crafted', label: 'glTF, crafted counts, shared and costly images, degenerate nodes, escaping URIs (issue 27)', count: CRAFTED_GLTF.length, input: (_rng, i) => [CRAFTED_GLTF[i % CRAFTED_GLTF.length]![1]()], run: infoPath },
+  mutated('camera-path', 'Camera paths (render --path): times, positions and fields of view at the edges', (rng) => [generatePath(rng)], pathPath),
 ];
 
 /**

@@ -11,9 +11,11 @@ import { Logger, WebIO, type Document } from '@gltf-transform/core';
 import { ALL_EXTENSIONS, KHRDracoMeshCompression } from '@gltf-transform/extensions';
 import { MeshoptDecoder } from 'meshoptimizer/decoder';
 import { LanternError } from '../../errors.ts';
+import { siblingPath } from '../sibling-uri.ts';
 import { decodeDataUri } from './data-uri.ts';
 import { dracoDecoder } from './draco.ts';
 import { byteSizes, GLB_MAGIC, glbChunks, isGlb, type ReadRange } from './glb.ts';
+import { checkGltfCounts } from './preflight.ts';
 import type { Warnings } from './warnings.ts';
 
 /** Loose view of the raw glTF JSON: only what is read before glTF-Transform takes over. */
@@ -51,6 +53,7 @@ export async function readGltfSource(
 ): Promise<GltfSource> {
   const { json, bin } = splitContainer(main);
   checkRequiredExtensions(main.name, json);
+  checkGltfCounts(main.name, json);
 
   // Every external file is asked for at once: a resolver in a browser may answer over messages.
   const buffers = json.buffers ?? [];
@@ -163,7 +166,7 @@ export function sniffGltf(head: Uint8Array): boolean {
   return /"asset"\s*:/.test(new TextDecoder().decode(head));
 }
 
-/** The relative URIs (decoded) of the files a glTF refers to: external buffers and images. */
+/** The files a glTF refers to (external buffers and images), as paths relative to its folder. */
 export function gltfSiblings(main: { name: string; bytes: Uint8Array }): string[] {
   let json: GltfJson;
   try {
@@ -172,7 +175,8 @@ export function gltfSiblings(main: { name: string; bytes: Uint8Array }): string[
     return [];
   }
   const uris = [...(json.buffers ?? []), ...(json.images ?? [])].map((r) => r.uri).filter((u): u is string => typeof u === 'string' && !u.startsWith('data:'));
-  return [...new Set(uris.map((u) => { try { return decodeURIComponent(u); } catch { return u; } }))];
+  // Only what the model may name (sibling-uri.ts): the loader refuses the rest with a warning.
+  return [...new Set(uris.flatMap((u) => { const sibling = siblingPath(u); return sibling.ok ? [sibling.path] : []; }))];
 }
 
 function splitContainer(main: { name: string; bytes: Uint8Array }): { json: GltfJson; bin?: Uint8Array } {

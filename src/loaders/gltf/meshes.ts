@@ -62,14 +62,14 @@ async function convertPrimitive(prim: Primitive, meshName: string, ctx: MeshCont
   }
   const vertexCount = position.getCount();
   const order = prim.getIndices();
-  const raw = order ? Uint32Array.from(order.getArray() ?? []) : Uint32Array.from({ length: vertexCount }, (_, i) => i);
+  const raw = order ? new Uint32Array(order.getArray() ?? []) : sequence(vertexCount);
   const indices = triangulate(raw, mode);
   if (indices.length === 0) return undefined;
-  for (const i of indices) {
-    if (i >= vertexCount) {
-      ctx.warnings.add(`mesh '${meshName}' has indices past its ${vertexCount} vertices; the primitive is left out`);
-      return undefined;
-    }
+  let largest = 0;
+  for (let k = 0; k < indices.length; k++) largest = Math.max(largest, indices[k]!);
+  if (largest >= vertexCount) {
+    ctx.warnings.add(`mesh '${meshName}' has indices past its ${vertexCount} vertices; the primitive is left out`);
+    return undefined;
   }
 
   const material = prim.getMaterial();
@@ -116,10 +116,16 @@ async function convertPrimitive(prim: Primitive, meshName: string, ctx: MeshCont
 
 /** Triangle list from TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN, without index-degenerate triangles. */
 export function triangulate(order: Uint32Array, mode: number): Uint32Array {
-  const out: number[] = [];
+  // At most one triangle per three corners (a list) or per corner after the first two (strip, fan).
+  const out = new Uint32Array(mode === MODE.TRIANGLES ? order.length - (order.length % 3) : Math.max(0, order.length - 2) * 3);
+  let n = 0;
   const push = (a: number, b: number, c: number) => {
     // Strips use repeated indices to restart; such triangles have no area and no front.
-    if (a !== b && b !== c && a !== c) out.push(a, b, c);
+    if (a !== b && b !== c && a !== c) {
+      out[n++] = a;
+      out[n++] = b;
+      out[n++] = c;
+    }
   };
   if (mode === MODE.TRIANGLES) {
     for (let i = 0; i + 2 < order.length; i += 3) push(order[i]!, order[i + 1]!, order[i + 2]!);
@@ -134,11 +140,22 @@ export function triangulate(order: Uint32Array, mode: number): Uint32Array {
     // Fan: (i+1, i+2, 0).
     for (let i = 0; i + 2 < order.length; i++) push(order[i + 1]!, order[i + 2]!, order[0]!);
   }
-  return Uint32Array.from(out);
+  return n === out.length ? out : out.slice(0, n);
+}
+
+/** 0, 1, …, n − 1: the order of a primitive without indices. */
+function sequence(n: number): Uint32Array {
+  const out = new Uint32Array(n);
+  for (let i = 0; i < n; i++) out[i] = i;
+  return out;
 }
 
 function readFloats(accessor: Accessor, size: number): Float32Array {
   const count = accessor.getCount();
+  // Plain floats of the right width (the common case) are copied whole; quantized or normalized
+  // integers (KHR_mesh_quantization) and other widths go element by element through glTF-Transform.
+  const array = accessor.getArray();
+  if (array instanceof Float32Array && accessor.getElementSize() === size && array.length === count * size) return array.slice();
   const out = new Float32Array(count * size);
   const element = new Array<number>(accessor.getElementSize()).fill(0);
   for (let i = 0; i < count; i++) {
@@ -192,6 +209,11 @@ function flatShaded(part: Part): Part {
 function concatenate(name: string, input: Part[]): Mesh {
   const anyNormals = input.some((p) => p.normals);
   const parts = anyNormals ? input.map((p) => (p.normals ? p : flatShaded(p))) : input;
+  // One part is the mesh as it is (a copy would double a large mesh's memory for a moment).
+  if (parts.length === 1) {
+    const { materialId, positions, indices, normals, uvs, uvs1, tangents } = parts[0]!;
+    return { name, positions, indices, materialIds: new Uint32Array(indices.length / 3).fill(materialId), ...(normals ? { normals } : {}), ...(uvs ? { uvs } : {}), ...(uvs1 ? { uvs1 } : {}), ...(tangents ? { tangents } : {}) };
+  }
   const vertexCount = parts.reduce((n, p) => n + p.positions.length / 3, 0);
   const indexCount = parts.reduce((n, p) => n + p.indices.length, 0);
   const positions = new Float32Array(vertexCount * 3);

@@ -16,6 +16,7 @@ import { fromTrs, multiply, transformPoint, type Mat4 } from '../../math/mat4.ts
 import { withDefaultLight } from '../../scene/default-light.ts';
 import { frameBounds } from '../../scene/framing.ts';
 import type { Camera, Instance, Material, Mesh, PunctualLight, Scene } from '../../scene/types.ts';
+import { SIBLING_RULE } from '../sibling-uri.ts';
 import { convertCamera } from './cameras.ts';
 import type { GltfSource } from './document.ts';
 import { convertLight } from './lights.ts';
@@ -73,20 +74,27 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
       const slot = meshSlot.get(m);
       const nodeName = node.getName();
       const gpuInstances = node.getExtension<InstancedMesh>('EXT_mesh_gpu_instancing');
+      // A placement past the float range (scales of 1e308 multiplied) has no place to be drawn.
+      const outOfRange = () => warnings.add(`node ${index}'s transform is past the float range: the mesh it places is left out there`);
       if (slot !== undefined && gpuInstances) {
         // EXT_mesh_gpu_instancing: one placement per TRS row, each applied before the node's own
         // transform. Ids continue after the node indices, in file order, so they too are stable.
         for (const local of instanceTransforms(gpuInstances)) {
-          instances.push({ id: nodes.length + extraIds++, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject: multiply(worldFromObject, local) });
+          const placed = multiply(worldFromObject, local);
+          const id = nodes.length + extraIds++;
+          if (placed.every(Number.isFinite)) instances.push({ id, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject: placed });
+          else outOfRange();
         }
       } else if (slot !== undefined) {
-        instances.push({ id: index, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject });
+        if (worldFromObject.every(Number.isFinite)) instances.push({ id: index, ...(nodeName ? { name: nodeName } : {}), mesh: slot, worldFromObject });
+        else outOfRange();
       }
     }
     const cam = node.getCamera();
     if (cam && !camera) camera = convertCamera(cam, worldFromObject, warnings);
     const light = node.getExtension<Light>('KHR_lights_punctual');
-    if (light) lights.push(convertLight(light, worldFromObject, `light ${lights.length}`));
+    const placedLight = light ? convertLight(light, worldFromObject, `light ${lights.length}`, warnings) : undefined;
+    if (placedLight) lights.push(placedLight);
     return worldFromObject;
   };
   // Depth first in file order with an explicit stack: recursion as deep as the node hierarchy
@@ -109,6 +117,10 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
 
   if (instances.length === 0) {
     const missing = [...new Set(source.missingData.flat().filter((u) => u !== undefined))];
+    const refused = missing.filter((u) => warnings.refusal(u) !== undefined);
+    if (refused.length > 0) {
+      throw new LanternError(`${name}: nothing to show, the geometry is in ${refused.join(', ')}, which Lantern does not read (${warnings.refusal(refused[0]!)})`, `${SIBLING_RULE}: put the file in the model's folder and name it by a relative path`);
+    }
     if (missing.length > 0) {
       throw new LanternError(`${name}: nothing to show, the geometry is in ${missing.join(', ')}, which is missing`, `put ${missing.join(', ')} next to ${name}`);
     }
@@ -133,18 +145,16 @@ export async function assembleScene(name: string, source: GltfSource, warnings: 
   });
 }
 
-/** The per-instance transforms of EXT_mesh_gpu_instancing (absent attributes: identity parts). */
-function instanceTransforms(batch: InstancedMesh): Mat4[] {
+/** The per-instance transforms of EXT_mesh_gpu_instancing (absent attributes: identity parts), one at a time: a million rows are a million matrices. */
+function* instanceTransforms(batch: InstancedMesh): Generator<Mat4> {
   const t = batch.getAttribute('TRANSLATION'), r = batch.getAttribute('ROTATION'), s = batch.getAttribute('SCALE');
   const count = t?.getCount() ?? r?.getCount() ?? s?.getCount() ?? 0;
-  const out: Mat4[] = [];
   for (let i = 0; i < count; i++) {
     const tr = t ? (t.getElement(i, [0, 0, 0]) as [number, number, number]) : ([0, 0, 0] as const);
     const q = r ? (r.getElement(i, [0, 0, 0, 1]) as [number, number, number, number]) : ([0, 0, 0, 1] as const);
     const sc = s ? (s.getElement(i, [1, 1, 1]) as [number, number, number]) : ([1, 1, 1] as const);
-    out.push(fromTrs(tr, q, sc));
+    yield fromTrs(tr, q, sc);
   }
-  return out;
 }
 
 /** The world-space box of all instances: each mesh's object box, its eight corners transformed. */
