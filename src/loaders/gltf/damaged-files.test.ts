@@ -155,6 +155,9 @@ describe('a damaged glTF file', () => {
     expect(await loadError(gltf(json), { [uri]: bin.subarray(0, bin.length - 64) }, 'model.gltf')).toMatch(`model.gltf: buffer 0 ('${uri}') has ${has}, the model declares ${declared}`);
     const views = structuredClone(json.bufferViews) as { byteLength: number }[];
     views[0]!.byteLength += 8;
-    expect(await loadError(gltf({ ...json, bufferViews: views }), { [uri]: bin }, 'model.gltf')).toMatch(/^model\.gltf is damaged: bufferView 0 ends at [\d,]+ bytes into buffer 0, which holds [\d,]+ bytes/);
+    expect(await loadError(gltf({ ...json, bufferViews: views }), { [uri]: bin }, 'model.gltf')).toMatch(/^model\.gltf: buffer view 0 \(0 \+ [\d,]+ bytes\) does not fit in buffer 0 \([\d,]+ bytes\)/);
+    // A buffer must say how long it is (glTF requires byteLength): the views are held to it.
+    const undeclared = (json.buffers as object[]).map((b) => ({ ...b, byteLength: undefined }));
+    expect(await loadError(gltf({ ...json, buffers: undeclared, bufferViews: views }), { [uri]: bin }, 'model.gltf')).toMatch(/^model\.gltf: buffer 0 declares no byteLength\./);
   });
 });

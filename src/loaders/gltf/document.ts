@@ -66,8 +66,6 @@ export async function readGltfSource(
   const resources: Record<string, Uint8Array> = {};
   // Resources are keyed "__lantern…": glTF-Transform treats "__"-prefixed URIs as internal names.
   const missingBuffers = new Map<number, string>();
-  // The bytes each buffer holds here (none for a meshopt fallback), for the views' bounds below.
-  const bufferLengths: (number | undefined)[] = [];
   buffers.forEach((def, i) => {
     if (def.uri === undefined) {
       // EXT_meshopt_compression's fallback buffer holds no bytes; the decoder fills its views.
@@ -75,7 +73,6 @@ export async function readGltfSource(
       if (i !== 0 || !bin) throw new LanternError(`${main.name}: buffer ${i} has no uri and there is no GLB binary chunk`, 'the file is damaged; re-export it');
       checkBinChunk(main.name, json, bin.length);
       resources[GLB_BUFFER] = bin;
-      bufferLengths[i] = bin.length;
       return;
     }
     const key = `__lantern_buffer_${i}`;
@@ -89,10 +86,8 @@ export async function readGltfSource(
     // glTF-Transform cannot parse around a missing buffer: a zero-filled stand-in takes its place,
     // and the primitives that read it are dropped (missingData below).
     resources[key] = bytes ?? new Uint8Array(def.byteLength ?? 0);
-    bufferLengths[i] = resources[key].length;
     def.uri = key;
   });
-  checkBufferViews(main.name, json, bufferLengths);
 
   const imageNames: string[] = [];
   const imageMissing: boolean[] = [];
@@ -207,21 +202,6 @@ function checkBinChunk(name: string, json: GltfJson, binLength: number | undefin
   if (binLength === undefined || !first || first.uri !== undefined || first.byteLength === undefined || binLength >= first.byteLength) return;
   const [has, declared] = byteSizes(binLength, first.byteLength);
   throw new LanternError(`${name} is truncated: its BIN chunk holds ${has}, its buffer 0 declares ${declared}`, 'Re-export the model, or get the file again');
-}
-
-/**
- * Every buffer view must lie inside its buffer's bytes (`lengths[i]` for buffer i, undefined for one
- * that holds none: a meshopt fallback); past the end, glTF-Transform fails with "Invalid typed array
- * length".
- */
-function checkBufferViews(name: string, json: GltfJson, lengths: readonly (number | undefined)[]): void {
-  (json.bufferViews ?? []).forEach((v, i) => {
-    const has = v.buffer === undefined ? undefined : lengths[v.buffer];
-    const end = (v.byteOffset ?? 0) + (v.byteLength ?? 0);
-    if (has === undefined || end <= has) return;
-    const [needs, holds] = byteSizes(end, has);
-    throw new LanternError(`${name} is damaged: bufferView ${i} ends at ${needs} into buffer ${v.buffer}, which holds ${holds}`, 'Re-export the model, or get the file again');
-  });
 }
 
 /** The glTF JSON of a .gltf file or of a GLB's JSON chunk (`what`), or a LanternError saying why not. */

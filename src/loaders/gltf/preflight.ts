@@ -43,7 +43,7 @@ export function checkGltfCounts(name: string, json: unknown): void {
 
   for (let b = 0; b < buffers.length; b++) {
     const length = obj(buffers[b])?.byteLength;
-    if (!isCount(length) || length > MAX_BUFFER_BYTES) throw damaged(`buffer ${b} declares ${show(length)} bytes`);
+    if (!isCount(length) || length > MAX_BUFFER_BYTES) throw damaged(length === undefined ? `buffer ${b} declares no byteLength` : `buffer ${b} declares ${show(length)} bytes`);
   }
 
   // Each view once: inside its buffer; a meshopt view is decoded to count × byteStride new bytes.
