@@ -37,6 +37,8 @@ export interface Limits {
   readonly sectorWork: number;
   /** Warnings of one kind printed per load; the rest are counted in one closing line. */
   readonly warningsPerKind: number;
+  /** Atoms and bonds of one molecule file (all its SD records together), each; charged from the counts lines. */
+  readonly moleculeRecords: number;
 }
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
@@ -50,6 +52,7 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   imagePixels: 1 << 25, // 8192×4096
   sectorWork: 1 << 22, // 4.2 million: 64 times what any sector of Freedoom's 68 maps needs
   warningsPerKind: 20,
+  moleculeRecords: 1 << 19, // 524,288: at the limit, a ball-and-stick load takes 0.9 GB (docs/hardening.md)
 });
 
 export type LimitName = keyof Limits;

@@ -21,6 +21,10 @@ import { glb, gltfSeed, mutateWad } from './targets.ts';
 import { Rng } from './mutate.ts';
 import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
+import { continuedLineMolfile, hubMolfile, v3000Molfile } from './crafted.ts';
+import { parseSdf } from '../../src/loaders/molecule/sdf.ts';
+import { moleculeMesh } from '../../src/loaders/molecule/to-scene.ts';
+import type { Molecule } from '../../src/loaders/molecule/molfile.ts';
 
 const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad')]);
 
@@ -248,5 +252,68 @@ describe('the fuzzer itself', () => {
       const rng = new Rng(seed);
       expect(mutateWad(rng, empty)).toBeInstanceOf(Uint8Array);
     }
+  });
+});
+
+describe('issue 27: molecules that were quadratic or unbounded', () => {
+  const bytes = (text: string) => new TextEncoder().encode(text);
+
+  it('reads an atom line continued over 200,000 lines (each continuation re-joined the whole line: 32 s at 100,000)', () => {
+    const [m] = parseSdf(bytes(continuedLineMolfile(200_000)), 'continued.mol');
+    expect(m!.atoms.map((a) => [a.element.symbol, ...a.position])).toEqual([['C', 0, 0, 0], ['O', 1.2, 0, 0]]);
+    expect(m!.bonds).toEqual([{ a: 0, b: 1, type: 2 }]);
+  });
+
+  it('draws 20,000 double bonds on one atom, each beside its axis (each bond looked at every other: 77 s)', () => {
+    for (const collinear of [false, true]) {
+      const [m] = parseSdf(bytes(hubMolfile(20_000, 2, collinear)), 'hub.mol');
+      const { mesh } = moleculeMesh(m!);
+      const e = mesh.capsules!.endpoints;
+      expect(mesh.capsules!.radii).toHaveLength(40_000);
+      // Capsule 2k is bond k's first line: its start sits DOUBLE_OFFSET (0.13 Å) off the carbon at the origin.
+      for (const k of [0, 9_999, 19_999]) expect(Math.hypot(e[12 * k]!, e[12 * k + 1]!, e[12 * k + 2]!)).toBeCloseTo(0.13, 5);
+    }
+  });
+
+  it('looks at a bounded number of neighbours per bond: the work of a hub atom grows linearly with its bonds', () => {
+    // Reads of molecule.bonds[i], counted through a proxy: the old side direction filtered every bond
+    // for each bond (4 million reads for 2,000 bonds).
+    const reads = (n: number) => {
+      const [m] = parseSdf(bytes(hubMolfile(n, 2, true)), 'hub.mol');
+      let count = 0;
+      const bonds = new Proxy(m!.bonds as Molecule['bonds'][number][], {
+        get(target, key, receiver) {
+          if (typeof key === 'string' && /^\d+$/.test(key)) count++;
+          return Reflect.get(target, key, receiver);
+        },
+      });
+      moleculeMesh({ ...m!, bonds });
+      return count;
+    };
+    const [small, large] = [reads(200), reads(2000)];
+    expect(large).toBeLessThan(12 * small);
+    expect(large).toBeLessThan(100 * 2000);
+  });
+
+  it('refuses V3000 COUNTS over the moleculeRecords limit from the COUNTS line, before the blocks are read', () => {
+    // The atom block after it is broken: a refusal naming COUNTS's line proves nothing past it was read.
+    const text = v3000Molfile(['1 C x 0 0 0'], [], '1000000000000000 0');
+    const refusal = expectRefusal(() => parseSdf(bytes(text), 'counts.mol'), 'moleculeRecords');
+    expect(refusal.userMessage).toMatch(/^counts\.mol: atoms \(with line 6\): 1,000,000,000,000,000 is over the limit moleculeRecords=/);
+    expectRefusal(() => parseSdf(bytes(v3000Molfile(['1 C 0 0 0 0'], [], '1 9999999')), 'bonds.mol'), 'moleculeRecords');
+    // An atom block longer than its COUNTS is refused at the first atom too many, not at its end.
+    expectLanternError(() => parseSdf(bytes(v3000Molfile(['1 C 0 0 0 0', '2 C 1 0 0 0', '3 x'], [], '1 0')), 'more.mol'), /^more\.mol line 9: the atom block has more atoms than the 1 COUNTS says/);
+  });
+
+  it('charges the atoms of all records of an SD file to one budget', () => {
+    const record = v3000Molfile(['1 C 0 0 0 0', '2 O 1.2 0 0 0'], ['1 2 1 2']);
+    const sdf = `${record}$$$$\n${record}$$$$\n${record}$$$$\n`;
+    expect(withLimits({ moleculeRecords: 6 }, () => parseSdf(bytes(sdf), 'three.sdf'))).toHaveLength(3);
+    expectRefusal(() => withLimits({ moleculeRecords: 5 }, () => parseSdf(bytes(sdf), 'three.sdf')), 'moleculeRecords');
+  });
+
+  it('refuses a line over a megabyte in one line (a file without line breaks was gathered whole)', () => {
+    const text = `x\n\n\n${'1'.repeat(3 << 20)}`;
+    expectLanternError(() => parseSdf(bytes(text), 'flat.mol'), /^flat\.mol line 4: a line longer than 1,048,576 characters/);
   });
 });

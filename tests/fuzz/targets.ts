@@ -15,6 +15,7 @@ import { NO_SIBLINGS, type FileSet, type NamedBytes, type SceneFormat } from '..
 import { formatOfSet } from '../../src/loaders/registry.ts';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
+import { hubMolfile } from './crafted.ts';
 import { concat, interesting, mutateBytes, mutateLines, putInt, Rng } from './mutate.ts';
 
 export interface FuzzTarget {
@@ -504,7 +505,30 @@ M  V30 END CTAB
 M  END
 `;
 
+/**
+ * The sizes issue 27 found unbounded: a V30 line continued over many lines, many bonds on one atom
+ * (on a helix or on one line), V3000 COUNTS far past any limit.
+ */
+function bigMolecule(rng: Rng): string {
+  switch (rng.int(3)) {
+    case 0: {
+      const lines = V3000.split('\n');
+      const i = lines.findIndex((l) => l.startsWith('M  V30 ') && /\d/.test(l)) + rng.int(6);
+      const pieces = Array.from({ length: rng.pick([1, 100, 10_000, 100_000]) }, (_, k) => `M  V30 X=${k} -`);
+      if (lines[i]?.startsWith('M  V30 ')) lines.splice(i, 1, `${lines[i]} -`, ...pieces, 'M  V30 Y=1');
+      return lines.join('\n');
+    }
+    case 1:
+      return hubMolfile(rng.pick([3, 100, 5000, 20_000]), rng.pick([1, 2, 3, 4]), rng.chance(0.5));
+    default: {
+      const huge = rng.pick([2 ** 19 + 1, 2 ** 31, 2 ** 53, 1e15, 1e300]);
+      return V3000.replace('COUNTS 3 2', rng.chance(0.5) ? `COUNTS ${huge} 2` : `COUNTS 3 ${huge}`);
+    }
+  }
+}
+
 function generateMolecule(rng: Rng): NamedBytes {
+  if (rng.chance(0.05)) return { name: 'big.mol', bytes: new TextEncoder().encode(bigMolecule(rng)) };
   const records = Array.from({ length: 1 + rng.int(3) }, () => (rng.chance(0.7) ? MOLFILE : V3000));
   const sdf = rng.chance(0.5);
   let text = sdf ? records.map((r) => `${r}> <NAME>\nx\n\n$$$$\n`).join('') : records[0]!;
