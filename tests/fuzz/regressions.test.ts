@@ -256,17 +256,15 @@ describe('the fuzzer itself', () => {
 });
 
 describe('issue 27: molecules that were quadratic or unbounded', () => {
-  const bytes = (text: string) => new TextEncoder().encode(text);
-
   it('reads an atom line continued over 200,000 lines (each continuation re-joined the whole line: 32 s at 100,000)', () => {
-    const [m] = parseSdf(bytes(continuedLineMolfile(200_000)), 'continued.mol');
+    const [m] = parseSdf(continuedLineMolfile(200_000), 'continued.mol');
     expect(m!.atoms.map((a) => [a.element.symbol, ...a.position])).toEqual([['C', 0, 0, 0], ['O', 1.2, 0, 0]]);
     expect(m!.bonds).toEqual([{ a: 0, b: 1, type: 2 }]);
   });
 
   it('draws 20,000 double bonds on one atom, each beside its axis (each bond looked at every other: 77 s)', () => {
     for (const collinear of [false, true]) {
-      const [m] = parseSdf(bytes(hubMolfile(20_000, 2, collinear)), 'hub.mol');
+      const [m] = parseSdf(hubMolfile(20_000, 2, collinear), 'hub.mol');
       const { mesh } = moleculeMesh(m!);
       const e = mesh.capsules!.endpoints;
       expect(mesh.capsules!.radii).toHaveLength(40_000);
@@ -279,7 +277,7 @@ describe('issue 27: molecules that were quadratic or unbounded', () => {
     // Reads of molecule.bonds[i], counted through a proxy: the old side direction filtered every bond
     // for each bond (4 million reads for 2,000 bonds).
     const reads = (n: number) => {
-      const [m] = parseSdf(bytes(hubMolfile(n, 2, true)), 'hub.mol');
+      const [m] = parseSdf(hubMolfile(n, 2, true), 'hub.mol');
       let count = 0;
       const bonds = new Proxy(m!.bonds as Molecule['bonds'][number][], {
         get(target, key, receiver) {
@@ -298,22 +296,22 @@ describe('issue 27: molecules that were quadratic or unbounded', () => {
   it('refuses V3000 COUNTS over the moleculeRecords limit from the COUNTS line, before the blocks are read', () => {
     // The atom block after it is broken: a refusal naming COUNTS's line proves nothing past it was read.
     const text = v3000Molfile(['1 C x 0 0 0'], [], '1000000000000000 0');
-    const refusal = expectRefusal(() => parseSdf(bytes(text), 'counts.mol'), 'moleculeRecords');
+    const refusal = expectRefusal(() => parseSdf(text, 'counts.mol'), 'moleculeRecords');
     expect(refusal.userMessage).toMatch(/^counts\.mol: atoms \(with line 6\): 1,000,000,000,000,000 is over the limit moleculeRecords=/);
-    expectRefusal(() => parseSdf(bytes(v3000Molfile(['1 C 0 0 0 0'], [], '1 9999999')), 'bonds.mol'), 'moleculeRecords');
+    expectRefusal(() => parseSdf(v3000Molfile(['1 C 0 0 0 0'], [], '1 9999999'), 'bonds.mol'), 'moleculeRecords');
     // An atom block longer than its COUNTS is refused at the first atom too many, not at its end.
-    expectLanternError(() => parseSdf(bytes(v3000Molfile(['1 C 0 0 0 0', '2 C 1 0 0 0', '3 x'], [], '1 0')), 'more.mol'), /^more\.mol line 9: the atom block has more atoms than the 1 COUNTS says/);
+    expectLanternError(() => parseSdf(v3000Molfile(['1 C 0 0 0 0', '2 C 1 0 0 0', '3 x'], [], '1 0'), 'more.mol'), /^more\.mol line 9: the atom block has more atoms than the 1 COUNTS says/);
   });
 
   it('charges the atoms of all records of an SD file to one budget', () => {
     const record = v3000Molfile(['1 C 0 0 0 0', '2 O 1.2 0 0 0'], ['1 2 1 2']);
     const sdf = `${record}$$$$\n${record}$$$$\n${record}$$$$\n`;
-    expect(withLimits({ moleculeRecords: 6 }, () => parseSdf(bytes(sdf), 'three.sdf'))).toHaveLength(3);
-    expectRefusal(() => withLimits({ moleculeRecords: 5 }, () => parseSdf(bytes(sdf), 'three.sdf')), 'moleculeRecords');
+    expect(withLimits({ moleculeRecords: 6 }, () => parseSdf(sdf, 'three.sdf'))).toHaveLength(3);
+    expectRefusal(() => withLimits({ moleculeRecords: 5 }, () => parseSdf(sdf, 'three.sdf')), 'moleculeRecords');
   });
 
   it('refuses a line over a megabyte in one line (a file without line breaks was gathered whole)', () => {
     const text = `x\n\n\n${'1'.repeat(3 << 20)}`;
-    expectLanternError(() => parseSdf(bytes(text), 'flat.mol'), /^flat\.mol line 4: a line longer than 1,048,576 characters/);
+    expectLanternError(() => parseSdf(text, 'flat.mol'), /^flat\.mol line 4: a line longer than 1,048,576 characters/);
   });
 });
