@@ -7,6 +7,9 @@ import { encodeExr } from '../../src/image/exr.ts';
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from '../../src/loaders/doom/map-types.ts';
 import { NO_SIDEDEF } from '../../src/loaders/doom/map-types.ts';
 import { encodeFlat, encodeMap, encodePalette, encodePatch, encodePnames, encodeTextureLump, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
+import type { NamedBytes } from '../../src/loaders/format.ts';
+import { PUSHABLETILE } from '../../src/loaders/wolf3d/map-codes.ts';
+import { TEST_CODES, testGameFiles, writeMapFiles } from '../../src/loaders/wolf3d/test-files.ts';
 
 const room = (floorFlat = 'FLOOR'): Sector => ({ floorHeight: 0, ceilingHeight: 128, floorFlat, ceilingFlat: 'FLOOR', lightLevel: 160, special: 0, tag: 0 });
 const side = (sector: number, middle = '-'): Sidedef => ({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle, sector });
@@ -208,4 +211,27 @@ export function hubMolfile(bonds: number, type = 2, collinear = false): string {
   const atoms = ['1 C 0 0 0 0'];
   for (let i = 0; i < bonds; i++) atoms.push(collinear ? `${i + 2} O ${i + 1} 0 0 0` : `${i + 2} O ${Math.cos(i).toFixed(4)} ${Math.sin(i).toFixed(4)} ${(i * 1e-3).toFixed(4)} 0`);
   return v3000Molfile(atoms, Array.from({ length: bonds }, (_, i) => `${i + 1} ${type} 1 ${i + 2}`));
+}
+
+// ---- Wolfenstein 3D (issue 27) ----
+
+/**
+ * A game of one `side` × `side` map (181: the largest a plane holds is 32,767 tiles) of open floor
+ * inside a wall, every tile of its object plane a warning: player starts on even rows (all but the
+ * first a "second player start"), push-wall marks off any wall on odd rows; or, given `codes`, tile
+ * i holds codes[i % codes.length]. One such map printed 32,040 warning lines.
+ */
+export function wolfWarningFloodFiles(side = 181, codes?: readonly number[]): NamedBytes[] {
+  const walls = new Uint16Array(side * side).fill(TEST_CODES.walls[0]);
+  const objects = new Uint16Array(side * side);
+  for (let y = 1; y < side - 1; y++) {
+    for (let x = 1; x < side - 1; x++) {
+      const i = y * side + x;
+      walls[i] = TEST_CODES.floor;
+      objects[i] = codes ? codes[i % codes.length]! : y % 2 === 0 ? TEST_CODES.playerStart.north + (x % 4) : PUSHABLETILE;
+    }
+  }
+  const { maphead, gamemaps } = writeMapFiles([{ title: 'Flood', width: side, height: side, planes: [walls, objects, new Uint16Array(side * side)] }]);
+  const game = testGameFiles({ maps: 1 });
+  return [{ name: 'MAPHEAD.WL1', bytes: maphead }, { name: 'GAMEMAPS.WL1', bytes: gamemaps }, game.vswap];
 }

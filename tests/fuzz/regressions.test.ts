@@ -21,7 +21,8 @@ import { glb, gltfSeed, mutateWad } from './targets.ts';
 import { Rng } from './mutate.ts';
 import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
-import { continuedLineMolfile, hubMolfile, v3000Molfile } from './crafted.ts';
+import { continuedLineMolfile, hubMolfile, v3000Molfile, wolfWarningFloodFiles } from './crafted.ts';
+import { formatOfSet } from '../../src/loaders/registry.ts';
 import { parseSdf } from '../../src/loaders/molecule/sdf.ts';
 import { moleculeMesh } from '../../src/loaders/molecule/to-scene.ts';
 import type { Molecule } from '../../src/loaders/molecule/molfile.ts';
@@ -313,5 +314,22 @@ describe('issue 27: molecules that were quadratic or unbounded', () => {
   it('refuses a line over a megabyte in one line (a file without line breaks was gathered whole)', () => {
     const text = `x\n\n\n${'1'.repeat(3 << 20)}`;
     expectLanternError(() => parseSdf(text, 'flat.mol'), /^flat\.mol line 4: a line longer than 1,048,576 characters/);
+  });
+});
+
+describe('issue 27: Wolfenstein 3D warnings', () => {
+  it('caps a map whose every tile warns at warningsPerKind a kind, with one closing line each (it printed 32,040 lines)', async () => {
+    const { format, files } = formatOfSet(wolfWarningFloodFiles().map((f) => ({ ...f, head: f.bytes.subarray(0, 1024) })));
+    const opened = await format.open({ files, resolve: NO_SIBLINGS });
+    const warnings: string[] = [];
+    await opened.scene('E1L1', { onWarning: (w) => warnings.push(w) });
+    const perKind = limits().warningsPerKind;
+    const shown = warnings.filter((w) => !w.startsWith('… and '));
+    expect(shown.filter((w) => w.includes('a second player start'))).toHaveLength(perKind);
+    expect(shown.filter((w) => w.includes('is not on a wall'))).toHaveLength(perKind);
+    // 179 rows of 179 tiles: 89 rows of player starts (all but one a second start), 90 of push-wall marks.
+    const closing = warnings.filter((w) => w.startsWith('… and '));
+    expect(closing.map((w) => /^… and ([\d,]+) more/.exec(w)![1]).sort()).toEqual([(90 * 179 - perKind).toLocaleString('en-US'), (89 * 179 - 1 - perKind).toLocaleString('en-US')].sort());
+    expect(warnings.length).toBeLessThan(2 * perKind + 10);
   });
 });

@@ -15,7 +15,7 @@ import { NO_SIBLINGS, type FileSet, type NamedBytes, type SceneFormat } from '..
 import { formatOfSet } from '../../src/loaders/registry.ts';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
-import { hubMolfile } from './crafted.ts';
+import { hubMolfile, wolfWarningFloodFiles } from './crafted.ts';
 import { concat, interesting, mutateBytes, mutateLines, putInt, Rng } from './mutate.ts';
 
 export interface FuzzTarget {
@@ -54,9 +54,18 @@ async function infoPath(files: NamedBytes[]): Promise<void> {
   const parts = opened.parts.filter((p) => p.loadable).slice(0, 3);
   const warnings: string[] = [];
   const onWarning = (w: string) => void warnings.push(w);
-  if (parts.length === 0) await opened.scene(undefined, { onWarning });
-  for (const p of parts) await opened.scene(p.name, { onWarning });
+  // Warnings are capped per kind (budgets.ts WarningCap); thousands of lines from one scene are a flood.
+  const scene = async (part: string | undefined) => {
+    warnings.length = 0;
+    await opened.scene(part, { onWarning });
+    if (warnings.length > WARNING_FLOOD) throw new Error(`warning flood: ${warnings.length} lines, the first "${warnings[0]}"`);
+  };
+  if (parts.length === 0) await scene(undefined);
+  for (const p of parts) await scene(p.name);
 }
+
+/** Lines of warnings one scene may print before the fuzzer calls it a flood (a cap per kind keeps real loads far below). */
+const WARNING_FLOOD = 1000;
 
 /** `lantern diff`: both images decoded and compared (here: converted to RGB, as diff does). */
 async function exrPath(files: NamedBytes[]): Promise<void> {
@@ -449,6 +458,12 @@ function mutatePng(rng: Rng, seed: Uint8Array): Uint8Array {
 let wolfSeed: NamedBytes[] | undefined;
 
 function generateWolf(rng: Rng): NamedBytes[] {
+  // A map whose objects warn by the thousand (issue 27): player starts, push-wall marks, codes no
+  // object has, officers and mutants, repeated over the map.
+  if (rng.chance(0.05)) {
+    const codes = Array.from({ length: 1 + rng.int(6) }, () => rng.pick([19, 20, 21, 22, 98, 0, 23, 75, 89, 108, 126, 160, 216, 224, rng.int(0x10000)]));
+    return wolfWarningFloodFiles(rng.pick([8, 64, 128, 181]), codes);
+  }
   if (!wolfSeed) {
     const game = testGameFiles({ maps: 1 });
     wolfSeed = [game.maphead, game.gamemaps, game.vswap];
