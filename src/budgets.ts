@@ -39,6 +39,8 @@ export interface Limits {
   readonly warningsPerKind: number;
   /** Atoms and bonds of one molecule file (all its SD records together), each; charged from the counts lines. */
   readonly moleculeRecords: number;
+  /** Bytes of one file the CLI reads (a scene file, a file beside it, an image), checked before it is read. */
+  readonly fileBytes: number;
 }
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
@@ -52,7 +54,8 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   imagePixels: 1 << 25, // 8192×4096
   sectorWork: 1 << 22, // 4.2 million: 64 times what any sector of Freedoom's 68 maps needs
   warningsPerKind: 20,
-  moleculeRecords: 1 << 19, // 524,288: at the limit, a ball-and-stick load takes 0.9 GB (docs/hardening.md)
+  moleculeRecords: 1 << 19, // 524,288: at the limit, a ball-and-stick load takes 1.0 GB (docs/hardening.md)
+  fileBytes: 1 << 29, // 512 MiB: an 8192×4096 float RGB EXR stored uncompressed is 403 MB
 });
 
 export type LimitName = keyof Limits;

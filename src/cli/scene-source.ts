@@ -4,7 +4,7 @@
  * registry (`mesh.ply.gz`, `iwad.wad+pwad.wad#MAP01`). Reading files is the CLI's job; loaders only
  * ever see bytes and a resolver for the files beside the main one.
  */
-import { existsSync, readdirSync, statSync } from 'node:fs';
+import { readdirSync, statSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { basename, dirname, isAbsolute, join } from 'node:path';
 import { LanternError } from '../errors.ts';
@@ -13,7 +13,7 @@ import { parseLightTable, type LightTable } from '../loaders/doom/light-table.ts
 import { describeSceneArguments, formatByName, formatOfFolder, formatOfSet, parseSceneReference, type LoadOptions, type NamedBytes, type OpenedScene, type ResolveSibling, type SceneFormat } from '../loaders/registry.ts';
 import type { Scene } from '../scene/types.ts';
 import { iwadForMap, isBareMapName } from './iwads.ts';
-import { readFileOrExplain, readJsonFile } from './read-files.ts';
+import { isMissing, readJsonFile, readUserFile } from './user-files.ts';
 import type { Timeline } from './timeline.ts';
 
 export const DRAGON_ALIAS = 'dragon';
@@ -105,11 +105,20 @@ function folderArgument(arg: string): SceneArgument | undefined {
   return { kind: 'files', paths: found.names.map((name) => join(path, name)), ...(part ? { part: normalize(part) } : {}) };
 }
 
-/** Files beside the main one, by a path relative to it; absent files are the loader's business. */
+/**
+ * Files beside the main one, by a path relative to it; absent files are the loader's business (a
+ * glTF's missing texture is a warning), anything else that is not a regular file of a size the
+ * limits allow is an error (user-files.ts).
+ */
 function siblingsOf(mainPath: string): ResolveSibling {
   return (relativePath) => {
     const path = isAbsolute(relativePath) ? relativePath : join(dirname(mainPath), relativePath);
-    return Promise.resolve(existsSync(path) && isFile(path) ? readFileOrExplain(path) : undefined);
+    try {
+      return Promise.resolve(readUserFile(path));
+    } catch (e) {
+      if (isMissing(e)) return Promise.resolve(undefined);
+      return Promise.reject(e);
+    }
   };
 }
 
@@ -125,7 +134,7 @@ export interface OpenedFiles {
 export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'files' }>, timeline?: Timeline): Promise<OpenedFiles> {
   const t0 = performance.now();
   const files = argument.paths.map((path) => {
-    const bytes = readFileOrExplain(path);
+    const bytes = readUserFile(path);
     // The file's own name, so that messages about its contents say which file.
     return { path, name: argument.displayName ?? basename(path), bytes, head: bytes };
   });
@@ -180,5 +189,5 @@ export function loadOptions(options: SceneLoadOptions): LoadOptions {
 
 /** A --light-table file, read and checked (render reads it before the GPU starts, so a mistake shows at once). */
 export function readLightTable(path: string): Partial<LightTable> {
-  return parseLightTable(readJsonFile(path), path);
+  return parseLightTable(readJsonFile(path, '--light-table'), path);
 }
