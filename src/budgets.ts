@@ -45,8 +45,11 @@ export interface Limits {
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   decompressedBytes: 1 << 29, // 512 MiB
-  vertices: 1 << 25, // 33.5 million
-  faces: 1 << 25,
+  // 3.1 million each: a PLY at both limits (with normals) loads at 1.5 GB, about 280 bytes a triangle
+  // and 130 a vertex with the BVH (docs/hardening.md has the figures); 1 << 25 let a 392 KB .ply.gz
+  // of 10.3 million triangles load at 2.9 GB.
+  vertices: 3 << 20,
+  faces: 3 << 20,
   polygonVertices: 1 << 16,
   mapRecords: 1 << 20, // 1,048,576
   lumps: 1 << 20,

@@ -17,7 +17,7 @@ import { NO_SIBLINGS } from '../../src/loaders/format.ts';
 import { MOLECULE_FORMAT } from '../../src/loaders/molecule/format.ts';
 import { GLTF_FORMAT } from '../../src/loaders/gltf/format.ts';
 import { parsePly } from '../../src/loaders/ply/ply.ts';
-import { glb, gltfSeed, mutateWad } from './targets.ts';
+import { glb, gltfSeed, mutateWad, plyBomb } from './targets.ts';
 import { Rng } from './mutate.ts';
 import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
@@ -331,5 +331,25 @@ describe('issue 27: Wolfenstein 3D warnings', () => {
     const closing = warnings.filter((w) => w.startsWith('… and '));
     expect(closing.map((w) => /^… and ([\d,]+) more/.exec(w)![1]).sort()).toEqual([(90 * 179 - perKind).toLocaleString('en-US'), (89 * 179 - 1 - perKind).toLocaleString('en-US')].sort());
     expect(warnings.length).toBeLessThan(2 * perKind + 10);
+  });
+});
+
+describe('issue 27: PLY limits that kept no promise', () => {
+  it('refuses a .ply.gz declaring 10.3 million faces from its header, before the body is inflated', () => {
+    // The body is a bomb past decompressedBytes: a refusal of the faces (not of the bytes) shows the
+    // header was read first. Before, all 134 MB inflated and the load took 2.7 GB.
+    const bomb = plyBomb({ bytes: 16 * 2 ** 20, vertices: 3, faces: 10_300_000 });
+    const refusal = withLimits({ decompressedBytes: 8 * 2 ** 20 }, () => expectRefusal(() => parsePly(bomb, 'bomb.ply.gz'), 'faces'));
+    expect(refusal.userMessage).toMatch(/^bomb\.ply\.gz: faces: 10,300,000 is over the limit faces=/);
+    // Within the counts, the same body is still stopped at decompressedBytes.
+    const inLimits = plyBomb({ bytes: 16 * 2 ** 20, vertices: 1000, faces: 1 });
+    withLimits({ decompressedBytes: 8 * 2 ** 20 }, () => expectRefusal(() => parsePly(inLimits, 'bomb.ply.gz'), 'decompressedBytes'));
+  });
+
+  it('the default face and vertex limits are below what fits in 2 GB at the measured cost of a load', () => {
+    // docs/hardening.md: a load costs about 280 bytes a triangle and 130 a vertex (with its normal)
+    // plus 200 MB; 10.3 million triangles once passed the default and loaded at 2.9 GB.
+    expect(200e6 + 280 * DEFAULT_LIMITS.faces + 130 * DEFAULT_LIMITS.vertices).toBeLessThan(1.6e9);
+    expect(DEFAULT_LIMITS.faces).toBeLessThan(10_300_000);
   });
 });

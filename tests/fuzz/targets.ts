@@ -574,7 +574,16 @@ const CRAFTED_WADS: Array<[string, () => Uint8Array]> = [
   ['65k-vertex sector, no player start', () => wadOf([{ ...bigSectorMap(65_000), things: [] }])],
 ];
 
-const BOMBS = [64, 256, 1024, 2560, 6144].map((mb) => mb * 2 ** 20);
+/**
+ * Gzip bombs: inflated size and the counts their header declares. 100 million vertices is over the
+ * limit (refused from the header, before the body is inflated); 1,000 vertices and one face is not,
+ * so those bodies run into decompressedBytes; 10.3 million faces is issue 27's 392 KB .ply.gz.
+ */
+const BOMBS: ReadonlyArray<{ bytes: number; vertices: number; faces: number }> = [
+  ...[64, 256, 1024, 2560, 6144].map((mb) => ({ bytes: mb * 2 ** 20, vertices: 100_000_000, faces: 1 })),
+  ...[256, 1024, 6144].map((mb) => ({ bytes: mb * 2 ** 20, vertices: 1000, faces: 1 })),
+  { bytes: 134 * 2 ** 20, vertices: 3, faces: 10_300_000 },
+];
 
 export const TARGETS: readonly FuzzTarget[] = [
   mutated('wad', 'WAD, structure-aware mutations (directory, map records, textures, patches)', (rng) => {
@@ -599,11 +608,12 @@ export const TARGETS: readonly FuzzTarget[] = [
 ];
 
 /**
- * A PLY whose gzip stream inflates to about `bytes`: a valid header, then members of 64 MiB of zeros
- * concatenated (gzip allows several members; each compresses to ~64 KB), so big bombs cost little to build.
+ * A PLY whose gzip stream inflates to about `bytes`: a valid header declaring the counts, then
+ * members of 64 MiB of zeros concatenated (gzip allows several members; each compresses to ~64 KB),
+ * so big bombs cost little to build.
  */
-function plyBomb(bytes: number): Uint8Array {
-  const header = gzipSync(new TextEncoder().encode('ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n'));
+export function plyBomb({ bytes, vertices, faces }: { bytes: number; vertices: number; faces: number }): Uint8Array {
+  const header = gzipSync(new TextEncoder().encode(`ply\nformat binary_little_endian 1.0\nelement vertex ${vertices}\nproperty float x\nproperty float y\nproperty float z\nelement face ${faces}\nproperty list uchar int vertex_indices\nend_header\n`));
   const member = gzipBomb(Math.min(bytes, 64 * 2 ** 20));
   const parts: Uint8Array[] = [new Uint8Array(header)];
   for (let n = 0; n < bytes; n += 64 * 2 ** 20) parts.push(member);
