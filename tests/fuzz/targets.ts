@@ -6,7 +6,7 @@
  */
 import { gzipSync } from 'node:zlib';
 import { LanternError } from '../../src/errors.ts';
-import { decodeExr, encodeExr, exrToRgb } from '../../src/image/exr.ts';
+import { decodeExr, decodeExrRgb, encodeExr, exrToRgb } from '../../src/image/exr.ts';
 import { decodeHdr } from '../../src/image/hdr.ts';
 import { decodePng, encodePng } from '../../src/image/png.ts';
 import { animatedRoomWad, encodeMap, encodePalette, squareRoomWad, twoRooms, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
@@ -67,9 +67,12 @@ async function infoPath(files: NamedBytes[]): Promise<void> {
 /** Lines of warnings one scene may print before the fuzzer calls it a flood (a cap per kind keeps real loads far below). */
 const WARNING_FLOOD = 1000;
 
-/** `lantern diff`: both images decoded and compared (here: converted to RGB, as diff does). */
+/** `lantern diff`: both images decoded to RGB as diff does, and as planes converted to RGB. */
 async function exrPath(files: NamedBytes[]): Promise<void> {
-  for (const f of files) exrToRgb(decodeExr(f.bytes, f.name));
+  for (const f of files) {
+    decodeExrRgb(f.bytes, f.name);
+    exrToRgb(decodeExr(f.bytes, f.name));
+  }
 }
 
 // ---- WAD ----

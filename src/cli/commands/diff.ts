@@ -2,7 +2,7 @@
 import type { Command } from 'commander';
 import { LanternError } from '../../errors.ts';
 import { compareImages, errorHeatmap, type LinearRgbImage } from '../../image/compare.ts';
-import { decodeExr, exrToRgb } from '../../image/exr.ts';
+import { decodeExrRgb } from '../../image/exr.ts';
 import { encodePng } from '../../image/png.ts';
 import type { CliContext } from '../context.ts';
 import { numberOption, pathOption } from '../options.ts';
@@ -35,9 +35,7 @@ export function registerDiff(program: Command, context: CliContext): void {
 }
 
 function readExr(path: string): LinearRgbImage {
-  const bytes = readUserFile(path);
-  const image = decodeExr(bytes, path);
-  return { width: image.width, height: image.height, rgb: exrToRgb(image, path) };
+  return decodeExrRgb(readUserFile(path), path);
 }
 
 function diff(imagePath: string, referencePath: string, o: DiffOptions, context: CliContext): void {

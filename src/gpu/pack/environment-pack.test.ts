@@ -4,7 +4,7 @@ import { expectLanternError } from '../../expect-lantern-error.ts';
 import { decodeHdr } from '../../image/hdr.ts';
 import type { Environment } from '../../scene/environment.ts';
 import { SUN_ANGULAR_RADIUS_DEG } from '../../scene/sky.ts';
-import { ENVIRONMENT_HAS_MAP, ENVIRONMENT_HAS_SUN, ENVIRONMENT_KINDS, environmentLayouts, GRADIENT_ROWS, packEnvironment, SKY_HEIGHT, SKY_WIDTH } from './environment-pack.ts';
+import { cdfEntry, ENVIRONMENT_HAS_MAP, ENVIRONMENT_HAS_SUN, ENVIRONMENT_KINDS, environmentLayouts, GRADIENT_ROWS, packEnvironment, SKY_HEIGHT, SKY_WIDTH, type CdfTexture } from './environment-pack.ts';
 
 function info(bytes: ArrayBuffer) {
   const l = environmentLayouts().info;
@@ -21,10 +21,11 @@ function info(bytes: ArrayBuffer) {
   };
 }
 
-function expectCdf(cdf: Float32Array, start: number, n: number): void {
-  expect(cdf[start]).toBe(0);
-  expect(cdf[start + n]).toBe(1);
-  for (let i = 0; i < n; i++) expect(cdf[start + i + 1]!).toBeGreaterThanOrEqual(cdf[start + i]!);
+/** CDF `row` of the texture (the marginal at row = map height) has n + 1 entries from 0 to 1, non-decreasing. */
+function expectCdf(cdf: CdfTexture, row: number, n: number): void {
+  expect(cdfEntry(cdf, row, 0)).toBe(0);
+  expect(cdfEntry(cdf, row, n)).toBe(1);
+  for (let i = 0; i < n; i++) expect(cdfEntry(cdf, row, i + 1)).toBeGreaterThanOrEqual(cdfEntry(cdf, row, i));
 }
 
 describe('packEnvironment', () => {
@@ -82,9 +83,42 @@ describe('packEnvironment', () => {
     expect(i.rotation[0]).toBeCloseTo(0, 6);
     expect(i.rotation[1]).toBeCloseTo(1, 6);
     expect(i.intensity).toBe(3);
-    const marginal = new Float32Array(p.environment_marginal_cdf), conditional = new Float32Array(p.environment_conditional_cdf);
-    expectCdf(marginal, 0, 4);
-    for (let j = 0; j < 4; j++) expectCdf(conditional, j * 9, 8);
+    expect([p.environment_cdf.width, p.environment_cdf.height]).toEqual([8, 5]);
+    expectCdf(p.environment_cdf, 4, 4);
+    for (let j = 0; j < 4; j++) expectCdf(p.environment_cdf, j, 8);
+  });
+
+  it('stores the CDFs without their first zeros in max(width, height) texels a row, equal to the full tables', () => {
+    // The full tables as the sampling density defines them (file header): 3×3 maximum of the
+    // luminance (rows wrapping, columns clamped), each row's CDF, and the rows' by solid angle.
+    const reference = (w: number, h: number, rgba: Float32Array) => {
+      const lum = (i: number, j: number) => { const p = 4 * (j * w + ((i + w) % w)); return 0.2126 * rgba[p]! + 0.7152 * rgba[p + 1]! + 0.0722 * rgba[p + 2]!; };
+      const weight = (i: number, j: number) => Math.max(...[-1, 0, 1].flatMap((dj) => [-1, 0, 1].map((di) => Math.fround(lum(i + di, Math.min(h - 1, Math.max(0, j + dj)))))));
+      const conditional: number[][] = [], rows: number[] = [];
+      for (let j = 0; j < h; j++) {
+        const sums = [0];
+        for (let i = 0; i < w; i++) sums.push(Math.fround(sums[i]! + weight(i, j)));
+        const total = sums[w]!;
+        conditional.push(sums.map((v, i) => (i === w ? 1 : total > 0 ? Math.fround(v * (1 / total)) : Math.fround(i / w))));
+        const dtheta = Math.PI / h;
+        rows.push(total * ((2 * Math.PI) / w) * 2 * Math.sin((j + 0.5) * dtheta) * Math.sin(0.5 * dtheta));
+      }
+      const all = rows.reduce((a, b) => a + b, 0);
+      const marginal = [0];
+      for (let j = 0, acc = 0; j < h; j++) marginal.push(j + 1 === h ? 1 : Math.fround((acc += rows[j]!) / all));
+      return { conditional, marginal };
+    };
+    let seed = 5;
+    const random = () => ((seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) / 2 ** 32);
+    for (const [w, h] of [[1, 1], [8, 4], [3, 17], [16, 5], [2, 9]] as const) {
+      const rgb = Float32Array.from({ length: w * h * 3 }, () => (random() < 0.2 ? 0 : 10 * random() ** 4));
+      const p = packEnvironment({ kind: 'map', image: { name: 'r', width: w, height: h, rgb }, rotationDeg: 0, intensity: 1 });
+      const cdf = p.environment_cdf;
+      expect([cdf.width, cdf.height]).toEqual([Math.max(w, h), h + 1]);
+      const { conditional, marginal } = reference(w, h, p.environment_map.rgba);
+      for (let j = 0; j < h; j++) for (let i = 0; i <= w; i++) expect(cdfEntry(cdf, j, i)).toBeCloseTo(conditional[j]![i]!, 6);
+      for (let j = 0; j <= h; j++) expect(cdfEntry(cdf, h, j)).toBeCloseTo(marginal[j]!, 6);
+    }
   });
 
   it('refuses parameters outside their ranges with a LanternError', () => {
