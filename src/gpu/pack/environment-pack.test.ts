@@ -32,13 +32,13 @@ describe('packEnvironment', () => {
   it('none: no map, no sun, still bindable (1×1 texture, tables of one texel)', () => {
     const p = packEnvironment({ kind: 'none' });
     expect(info(p.environment_info)).toMatchObject({ kind: ENVIRONMENT_KINDS.indexOf('none'), flags: 0, size: [1, 1] });
-    expect(p.environment_map.rgba.length).toBe(4);
+    expect(p.environment_map.rgb.length).toBe(3);
     expect(p.counts).toEqual({ marginal: 2, conditional: 2 });
   });
 
   it('constant: one texel; Σ w Ω = luminance × 4π, so the density is 1/4π', () => {
     const p = packEnvironment({ kind: 'constant', radiance: [0.5, 1, 2] });
-    expect(Array.from(p.environment_map.rgba)).toEqual([0.5, 1, 2, 1]);
+    expect(Array.from(p.environment_map.rgb)).toEqual([0.5, 1, 2]);
     expect(info(p.environment_info)).toMatchObject({ kind: 1, flags: ENVIRONMENT_HAS_MAP, size: [1, 1], intensity: 1 });
     const lum = 0.2126 * 0.5 + 0.7152 + 0.0722 * 2;
     expect(lum / p.samplingTotal).toBeCloseTo(1 / (4 * Math.PI), 9);
@@ -46,14 +46,14 @@ describe('packEnvironment', () => {
 
   it('gradient: zenith at the top row, ground at the bottom, horizon in between', () => {
     const p = packEnvironment({ kind: 'gradient', zenith: [0, 0, 1], horizon: [1, 1, 1], ground: [0.2, 0.1, 0] });
-    const rgba = p.environment_map.rgba;
+    const rgb = p.environment_map.rgb;
     expect(p.environment_map.height).toBe(GRADIENT_ROWS);
-    expect(rgba[2]!).toBeGreaterThan(0.99); // top: blue
-    expect(rgba[0]!).toBeLessThan(0.01);
-    const mid = (GRADIENT_ROWS / 2) * 4;
-    expect(rgba[mid]!).toBeGreaterThan(0.99); // just below the horizon: white
-    const last = (GRADIENT_ROWS - 1) * 4;
-    expect(rgba[last]!).toBeCloseTo(0.2, 2);
+    expect(rgb[2]!).toBeGreaterThan(0.99); // top: blue
+    expect(rgb[0]!).toBeLessThan(0.01);
+    const mid = (GRADIENT_ROWS / 2) * 3;
+    expect(rgb[mid]!).toBeGreaterThan(0.99); // just below the horizon: white
+    const last = (GRADIENT_ROWS - 1) * 3;
+    expect(rgb[last]!).toBeCloseTo(0.2, 2);
   });
 
   it('sky: a 512×256 map with its sun as a separate cone light', () => {
@@ -76,9 +76,12 @@ describe('packEnvironment', () => {
     rgb[4] = -3;
     rgb[5] = Infinity;
     const p = packEnvironment({ kind: 'map', image: { name: 't', width: 8, height: 4, rgb }, rotationDeg: 90, intensity: 3 });
-    expect(p.environment_map.rgba[0]).toBe(0);
-    expect(p.environment_map.rgba[4 + 1]).toBe(0);
-    expect(p.environment_map.rgba[4 + 2]).toBe(0);
+    expect(Array.from(p.environment_map.rgb.subarray(0, 6))).toEqual([0, 1, 1, 1, 0, 0]);
+    // The image given is not changed; a clean one is used as it is.
+    expect(rgb[4]).toBe(-3);
+    const clean = new Float32Array(8 * 4 * 3).fill(2);
+    expect(packEnvironment({ kind: 'map', image: { name: 'c', width: 8, height: 4, rgb: clean }, rotationDeg: 0, intensity: 1 }).environment_map.rgb).toBe(clean);
+    expect(Object.is(packEnvironment({ kind: 'map', image: { name: 'z', width: 1, height: 1, rgb: new Float32Array([-0, 1, 1]) }, rotationDeg: 0, intensity: 1 }).environment_map.rgb[0], 0)).toBe(true);
     const i = info(p.environment_info);
     expect(i.rotation[0]).toBeCloseTo(0, 6);
     expect(i.rotation[1]).toBeCloseTo(1, 6);
@@ -91,8 +94,8 @@ describe('packEnvironment', () => {
   it('stores the CDFs without their first zeros in max(width, height) texels a row, equal to the full tables', () => {
     // The full tables as the sampling density defines them (file header): 3×3 maximum of the
     // luminance (rows wrapping, columns clamped), each row's CDF, and the rows' by solid angle.
-    const reference = (w: number, h: number, rgba: Float32Array) => {
-      const lum = (i: number, j: number) => { const p = 4 * (j * w + ((i + w) % w)); return 0.2126 * rgba[p]! + 0.7152 * rgba[p + 1]! + 0.0722 * rgba[p + 2]!; };
+    const reference = (w: number, h: number, rgb: Float32Array) => {
+      const lum = (i: number, j: number) => { const p = 3 * (j * w + ((i + w) % w)); return 0.2126 * rgb[p]! + 0.7152 * rgb[p + 1]! + 0.0722 * rgb[p + 2]!; };
       const weight = (i: number, j: number) => Math.max(...[-1, 0, 1].flatMap((dj) => [-1, 0, 1].map((di) => Math.fround(lum(i + di, Math.min(h - 1, Math.max(0, j + dj)))))));
       const conditional: number[][] = [], rows: number[] = [];
       for (let j = 0; j < h; j++) {
@@ -115,7 +118,7 @@ describe('packEnvironment', () => {
       const p = packEnvironment({ kind: 'map', image: { name: 'r', width: w, height: h, rgb }, rotationDeg: 0, intensity: 1 });
       const cdf = p.environment_cdf;
       expect([cdf.width, cdf.height]).toEqual([Math.max(w, h), h + 1]);
-      const { conditional, marginal } = reference(w, h, p.environment_map.rgba);
+      const { conditional, marginal } = reference(w, h, p.environment_map.rgb);
       for (let j = 0; j < h; j++) for (let i = 0; i <= w; i++) expect(cdfEntry(cdf, j, i)).toBeCloseTo(conditional[j]![i]!, 6);
       for (let j = 0; j <= h; j++) expect(cdfEntry(cdf, h, j)).toBeCloseTo(marginal[j]!, 6);
     }

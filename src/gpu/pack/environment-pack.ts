@@ -1,8 +1,9 @@
 /**
  * Environment → the resources of group 0, bindings 8–11 (shaders/scene/bindings.wgsl), pure CPU.
  *
- * Every kind but 'none' becomes a lat-long radiance image (environment_map, top row = +y; f32 RGBA
- * uploaded bit for bit into an rgba32uint texture, ENVIRONMENT_MAP_FORMAT, see bindings.wgsl):
+ * Every kind but 'none' becomes a lat-long radiance image (environment_map, top row = +y; f32 RGB
+ * here, expanded to RGBA as it is uploaded bit for bit into an rgba32uint texture,
+ * ENVIRONMENT_MAP_FORMAT, see bindings.wgsl):
  * constant → 1×1, gradient → 1×GRADIENT_ROWS, sky → SKY_WIDTH×SKY_HEIGHT (the sun's disk left out:
  * it is a light of its own), map → the image itself (rotation and intensity are applied at lookup).
  *
@@ -38,15 +39,19 @@ export const SKY_HEIGHT = 256;
  * cannot express.
  */
 export const ENVIRONMENT_MAP_FORMAT: GPUTextureFormat = 'rgba32uint';
-/** Floats per texel of environment_map. */
-const RGBA = 4;
+/** Floats per texel of the baked image. */
+const RGB = 3;
 
-/** The lat-long image to upload as environment_map. */
+/**
+ * The lat-long image to upload as environment_map. RGB, not the texture's RGBA: an 8K map's image
+ * is then its decoded pixels themselves (384 MB) rather than a copy with alpha (512 MB more); the
+ * upload adds the alpha a band at a time (gpu/scene-resources.ts).
+ */
 export interface EnvironmentTexture {
   readonly width: number;
   readonly height: number;
-  /** width × height × 4 floats (alpha 1), top row first; upload the bytes to an ENVIRONMENT_MAP_FORMAT texture. */
-  readonly rgba: Float32Array;
+  /** width × height × 3 floats, top row first, every one finite and ≥ 0. */
+  readonly rgb: Float32Array;
 }
 
 /**
@@ -97,29 +102,31 @@ function checkRange(what: string, v: number, lo: number, hi: number): void {
   if (!(v >= lo && v <= hi)) throw new LanternError(`environment: ${what} ${v} is outside [${lo}, ${hi}]`);
 }
 
-/** Texels of every kind but 'none', as rgba with negative and non-finite values replaced by 0. */
+/**
+ * Texels of every kind but 'none', with negative and non-finite values replaced by 0. A map with
+ * none of those is used as it is, not copied.
+ */
 export function bakeEnvironment(env: Exclude<Environment, { kind: 'none' }>): EnvironmentTexture {
   switch (env.kind) {
     case 'constant': {
       checkFinite('constant radiance', env.radiance);
-      return { width: 1, height: 1, rgba: new Float32Array([...env.radiance.map(clean), 1]) };
+      return { width: 1, height: 1, rgb: new Float32Array(env.radiance.map(clean)) };
     }
     case 'gradient': {
       checkFinite('gradient colours', [...env.zenith, ...env.horizon, ...env.ground]);
-      const rgba = new Float32Array(GRADIENT_ROWS * RGBA);
+      const rgb = new Float32Array(GRADIENT_ROWS * RGB);
       for (let j = 0; j < GRADIENT_ROWS; j++) {
         // y = cos θ at the row's centre; linear from the horizon toward the zenith or the ground.
         const y = Math.cos(((j + 0.5) / GRADIENT_ROWS) * Math.PI);
         const far = y >= 0 ? env.zenith : env.ground;
         const t = Math.abs(y);
-        for (let c = 0; c < 3; c++) rgba[j * RGBA + c] = clean(env.horizon[c]! + t * (far[c]! - env.horizon[c]!));
-        rgba[j * RGBA + 3] = 1;
+        for (let c = 0; c < 3; c++) rgb[j * RGB + c] = clean(env.horizon[c]! + t * (far[c]! - env.horizon[c]!));
       }
-      return { width: 1, height: GRADIENT_ROWS, rgba };
+      return { width: 1, height: GRADIENT_ROWS, rgb };
     }
     case 'sky': {
       const sky = new SkyModel(env);
-      const rgba = new Float32Array(SKY_WIDTH * SKY_HEIGHT * RGBA);
+      const rgb = new Float32Array(SKY_WIDTH * SKY_HEIGHT * RGB);
       const [sx, sy, sz] = sky.sunDirection;
       const sinPhi = new Float64Array(SKY_WIDTH), cosPhi = new Float64Array(SKY_WIDTH);
       for (let i = 0; i < SKY_WIDTH; i++) {
@@ -132,36 +139,37 @@ export function bakeEnvironment(env: Exclude<Environment, { kind: 'none' }>): En
         const theta = ((j + 0.5) / SKY_HEIGHT) * Math.PI;
         const y = Math.cos(theta), r = Math.sin(theta);
         for (let i = 0; i < SKY_WIDTH; i++) {
-          const o = (j * SKY_WIDTH + i) * RGBA;
+          const o = (j * SKY_WIDTH + i) * RGB;
           if (y < 0) {
             const ground = sky.radiance([0, y, 0]);
-            rgba[o] = ground[0];
-            rgba[o + 1] = ground[1];
-            rgba[o + 2] = ground[2];
+            rgb[o] = ground[0];
+            rgb[o + 1] = ground[1];
+            rgb[o + 2] = ground[2];
           } else {
             const x = r * sinPhi[i]!, z = -r * cosPhi[i]!;
-            sky.skyRadianceInto(y, x * sx + y * sy + z * sz, rgba, o);
+            sky.skyRadianceInto(y, x * sx + y * sy + z * sz, rgb, o);
           }
-          rgba[o + 3] = 1;
         }
       }
-      return { width: SKY_WIDTH, height: SKY_HEIGHT, rgba };
+      return { width: SKY_WIDTH, height: SKY_HEIGHT, rgb };
     }
     case 'map': {
       const { width, height, rgb, name } = env.image;
       if (!(Number.isInteger(width) && Number.isInteger(height) && width > 0 && height > 0) || rgb.length !== width * height * 3) {
         throw new LanternError(`environment map ${name}: ${rgb.length} floats for ${width}×${height} RGB pixels`);
       }
-      const rgba = new Float32Array(width * height * RGBA);
-      for (let p = 0, q = 0; p < width * height * 3; p += 3, q += 4) {
-        // clean(), inlined: NaN fails every comparison and becomes 0.
-        const r = rgb[p]!, g = rgb[p + 1]!, b = rgb[p + 2]!;
-        rgba[q] = r > 0 && r < Infinity ? r : 0;
-        rgba[q + 1] = g > 0 && g < Infinity ? g : 0;
-        rgba[q + 2] = b > 0 && b < Infinity ? b : 0;
-        rgba[q + 3] = 1;
+      // clean(), inlined: NaN fails every comparison and becomes 0 (and -0 becomes 0: the texels go
+      // to the GPU bit for bit).
+      const isClean = (v: number) => (v > 0 && v < Infinity) || (v === 0 && 1 / v > 0);
+      let n = 0;
+      while (n < rgb.length && isClean(rgb[n]!)) n++;
+      if (n === rgb.length) return { width, height, rgb };
+      const cleaned = rgb.slice();
+      for (let p = n; p < cleaned.length; p++) {
+        const v = cleaned[p]!;
+        cleaned[p] = v > 0 && v < Infinity ? v : 0;
       }
-      return { width, height, rgba };
+      return { width, height, rgb: cleaned };
     }
   }
 }
@@ -175,14 +183,14 @@ function clean(v: number): number {
  * The sampling CDFs of a baked texture (see the file header), written straight into their texture
  * (CdfTexture). Besides the texture, one float a texel is held while they are built (the luminance,
  * then in place its maximum along the row): an 8192 × 4096 map takes 256 MB here, where the
- * luminance, its row maximum, the tables and the texture holding them again took 512 MB.
+ * luminance, its row maximum, the tables and the texture holding them again took 640 MB.
  */
 export function buildSamplingTables(texture: EnvironmentTexture): { cdf: CdfTexture; total: number } {
-  const { width: w, height: h, rgba } = texture;
+  const { width: w, height: h, rgb } = texture;
   // Luminance, then its 3×3 maximum, separably: along rows (wrapping), then along columns (clamped).
   const rowMax = new Float32Array(w * h);
   // Rec. 709 luminance, as math/vec3.ts luminance(), inlined: this loop runs over every texel.
-  for (let p = 0; p < w * h; p++) rowMax[p] = 0.2126 * rgba[p * 4]! + 0.7152 * rgba[p * 4 + 1]! + 0.0722 * rgba[p * 4 + 2]!;
+  for (let p = 0; p < w * h; p++) rowMax[p] = 0.2126 * rgb[p * 3]! + 0.7152 * rgb[p * 3 + 1]! + 0.0722 * rgb[p * 3 + 2]!;
   for (let j = 0; j < h; j++) {
     const o = j * w;
     // In place: the luminance of the texel before, and of the first (for the last, wrapping), kept aside.
@@ -243,7 +251,7 @@ export function packEnvironment(env: Environment): PackedEnvironment {
   const kind = ENVIRONMENT_KINDS.indexOf(env.kind);
   info.u32Field('kind')(0, kind);
 
-  let texture: EnvironmentTexture = { width: 1, height: 1, rgba: new Float32Array(RGBA) };
+  let texture: EnvironmentTexture = { width: 1, height: 1, rgb: new Float32Array(RGB) };
   let intensity = 1;
   let rotationDeg = 0;
   let sun: { direction: Vec3; radiance: Vec3; oneMinusCosMax: number } | undefined;
