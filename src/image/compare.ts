@@ -56,7 +56,8 @@ function displayLuminanceRow({ width, rgb }: LinearRgbImage, y: number, out: Flo
     // luminance() of math/vec3.ts, inlined: this runs over every pixel of both images.
     const l = Math.max(0.2126 * rgb[p]! + 0.7152 * rgb[p + 1]! + 0.0722 * rgb[p + 2]!, 0);
     const m = l / (1 + l);
-    out[x] = m <= 0.0031308 ? 12.92 * m : 1.055 * m ** (1 / 2.4) - 0.055;
+    // m^(1/2.4) as exp(log(m) / 2.4): within an ulp of **, and a third of its time over 67 million pixels.
+    out[x] = m <= 0.0031308 ? 12.92 * m : 1.055 * Math.exp(Math.log(m) / 2.4) - 0.055;
   }
 }
 
@@ -87,14 +88,14 @@ function ssimOfRows(width: number, height: number, rowX: (y: number, out: Float3
     return w;
   };
   const rowWeight = Float64Array.from({ length: width }, (_, x) => weight(x, width));
-  // The row-blurred x, y, x², y², xy of the last `taps` rows; row r at ring slot r % taps.
-  const ring = Array.from({ length: 5 }, () => new Float64Array(taps * width));
-  const [rx, ry, rxx, ryy, rxy] = ring as [Float64Array, Float64Array, Float64Array, Float64Array, Float64Array];
+  // The row-blurred x, y, x², y², xy of the last `taps` rows, five floats a pixel side by side (the
+  // column pass then reads one stream a row, not five); row r at ring slot r % taps.
+  const ring = new Float64Array(taps * width * 5);
   const xs = new Float32Array(width), ys = new Float32Array(width);
   const blurRow = (row: number) => {
     rowX(row, xs);
     rowY(row, ys);
-    const base = (row % taps) * width;
+    const base = (row % taps) * width * 5;
     for (let x = 0; x < width; x++) {
       let sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
       for (let k = Math.max(-SSIM_RADIUS, -x); k <= Math.min(SSIM_RADIUS, width - 1 - x); k++) {
@@ -105,36 +106,39 @@ function ssimOfRows(width: number, height: number, rowX: (y: number, out: Float3
         syy += w * (b * b);
         sxy += w * (a * b);
       }
-      const w = rowWeight[x]!;
-      rx[base + x] = sx / w;
-      ry[base + x] = sy / w;
-      rxx[base + x] = sxx / w;
-      ryy[base + x] = syy / w;
-      rxy[base + x] = sxy / w;
+      const w = rowWeight[x]!, at = base + 5 * x;
+      ring[at] = sx / w;
+      ring[at + 1] = sy / w;
+      ring[at + 2] = sxx / w;
+      ring[at + 3] = syy / w;
+      ring[at + 4] = sxy / w;
     }
   };
-  const sums = Array.from({ length: 5 }, () => new Float64Array(width));
-  const [mx, my, mxx, myy, mxy] = sums as [Float64Array, Float64Array, Float64Array, Float64Array, Float64Array];
+  // The column pass for one output row: the ring slots and kernel taps of its window.
+  const slots = new Int32Array(taps), weights = new Float64Array(taps);
   let total = 0;
   let blurred = 0;
   for (let row = 0; row < height; row++) {
     const last = Math.min(height - 1, row + SSIM_RADIUS);
     while (blurred <= last) blurRow(blurred++);
-    for (const s of sums) s.fill(0);
-    for (let k = Math.max(-SSIM_RADIUS, -row); k <= last - row; k++) {
-      const w = kernel[k + SSIM_RADIUS]!, base = ((row + k) % taps) * width;
-      for (let x = 0; x < width; x++) {
-        mx[x] = mx[x]! + w * rx[base + x]!;
-        my[x] = my[x]! + w * ry[base + x]!;
-        mxx[x] = mxx[x]! + w * rxx[base + x]!;
-        myy[x] = myy[x]! + w * ryy[base + x]!;
-        mxy[x] = mxy[x]! + w * rxy[base + x]!;
-      }
+    let n = 0;
+    for (let k = Math.max(-SSIM_RADIUS, -row); k <= last - row; k++, n++) {
+      slots[n] = ((row + k) % taps) * width * 5;
+      weights[n] = kernel[k + SSIM_RADIUS]!;
     }
     const w = weight(row, height);
     for (let x = 0; x < width; x++) {
-      const ux = mx[x]! / w, uy = my[x]! / w;
-      const vx = mxx[x]! / w - ux ** 2, vy = myy[x]! / w - uy ** 2, cxy = mxy[x]! / w - ux * uy;
+      let sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+      for (let t = 0; t < n; t++) {
+        const at = slots[t]! + 5 * x, kw = weights[t]!;
+        sx += kw * ring[at]!;
+        sy += kw * ring[at + 1]!;
+        sxx += kw * ring[at + 2]!;
+        syy += kw * ring[at + 3]!;
+        sxy += kw * ring[at + 4]!;
+      }
+      const ux = sx / w, uy = sy / w;
+      const vx = sxx / w - ux ** 2, vy = syy / w - uy ** 2, cxy = sxy / w - ux * uy;
       total += ((2 * ux * uy + C1) * (2 * cxy + C2)) / ((ux ** 2 + uy ** 2 + C1) * (vx + vy + C2));
     }
   }

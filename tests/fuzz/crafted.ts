@@ -235,3 +235,29 @@ export function wolfWarningFloodFiles(side = 181, codes?: readonly number[]): Na
   const game = testGameFiles({ maps: 1 });
   return [{ name: 'MAPHEAD.WL1', bytes: maphead }, { name: 'GAMEMAPS.WL1', bytes: gamemaps }, game.vswap];
 }
+
+// ---- images at the pixel limit (issue 27) ----
+
+/**
+ * An EXR of exactly `width` × `height` half RGB pixels of one value: legal and cheap to build at any
+ * size (a constant compresses to almost nothing), so `lantern diff` can be run at the imagePixels
+ * limit, where it once took over 60 s and 2 GB.
+ */
+export function constantExr(width: number, height: number, value: number): Uint8Array {
+  return encodeExr(width, height, new Float32Array(width * height * 3).fill(value), { compression: 'zip', pixelType: 'half' });
+}
+
+/**
+ * A run-length Radiance file of `width` × `height` pixels of one colour (each scanline four runs per
+ * 127 pixels), or with `truncated` its header and first scanline only: a limit-sized lat-long map
+ * in a few MB.
+ */
+export function constantHdr(width: number, height: number, truncated = false): Uint8Array {
+  const head = new TextEncoder().encode(`#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y ${height} +X ${width}\n`);
+  const line: number[] = [2, 2, width >> 8, width & 255];
+  for (const byte of [128, 64, 32, 129]) for (let x = 0; x < width; x += 127) line.push(128 + Math.min(127, width - x), byte);
+  const out = new Uint8Array(head.length + line.length * (truncated ? 1 : height));
+  out.set(head);
+  for (let y = 0; y < (truncated ? 1 : height); y++) out.set(line, head.length + y * line.length);
+  return out;
+}

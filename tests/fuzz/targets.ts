@@ -15,7 +15,11 @@ import { NO_SIBLINGS, type FileSet, type NamedBytes, type SceneFormat } from '..
 import { formatOfSet } from '../../src/loaders/registry.ts';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
-import { hubMolfile, wolfWarningFloodFiles } from './crafted.ts';
+import { constantExr, constantHdr, hubMolfile, wolfWarningFloodFiles } from './crafted.ts';
+import { compareImages, errorHeatmap } from '../../src/image/compare.ts';
+import { loadEnvironmentImage } from '../../src/loaders/environment-image.ts';
+import { packEnvironment } from '../../src/gpu/pack/environment-pack.ts';
+import { DEFAULT_LIMITS } from '../../src/budgets.ts';
 import { concat, interesting, mutateBytes, mutateLines, putInt, Rng } from './mutate.ts';
 
 export interface FuzzTarget {
@@ -74,6 +78,22 @@ async function exrPath(files: NamedBytes[]): Promise<void> {
     exrToRgb(decodeExr(f.bytes, f.name));
   }
 }
+
+/** All of `lantern diff --heatmap`: both images decoded to RGB, compared, the heat map encoded. */
+async function diffPath(files: NamedBytes[]): Promise<void> {
+  const [a, b] = files.map((f) => decodeExrRgb(f.bytes, f.name)) as [ReturnType<typeof decodeExrRgb>, ReturnType<typeof decodeExrRgb>];
+  compareImages(a, b);
+  encodePng(a.width, a.height, errorHeatmap(a, b));
+}
+
+/** `--env`: the map decoded and packed (its sampling tables built), as the scene thread does. */
+async function environmentPath(files: NamedBytes[]): Promise<void> {
+  const image = loadEnvironmentImage(files[0]!.bytes, files[0]!.name);
+  packEnvironment({ kind: 'map', image, rotationDeg: 0, intensity: 1 });
+}
+
+/** The imagePixels limit's own shape, 8192×4096 (an 8K lat-long map). */
+const LIMIT_SIDES = [8192, DEFAULT_LIMITS.imagePixels / 8192] as const;
 
 // ---- WAD ----
 
@@ -603,7 +623,9 @@ export const TARGETS: readonly FuzzTarget[] = [
     for (let r = 1 + rng.int(2); r > 0; r--) bytes = mutateExr(rng, bytes);
     return [{ name: 'fuzz.exr', bytes }];
   }, exrPath),
-  { id: 'exr-huge', label: 'EXR, crafted huge dimensions (lantern diff)', count: 2, input: (_rng, i) => [{ name: 'huge.exr', bytes: i % 2 === 0 ? hugeExr(100_000, 100_000, 410_000) : hugeExr(8000, 8000, 410_000) }, { name: 'small.exr', bytes: exrSeed(new Rng(1)) }], run: exrPath },
+  { id: 'exr-huge', label: 'EXR, crafted huge dimensions (lantern diff)', count: 3, input: (_rng, i) => [{ name: 'huge.exr', bytes: [hugeExr(100_000, 100_000, 410_000), hugeExr(8000, 8000, 410_000), hugeExr(...LIMIT_SIDES, 410_000)][i % 3]! }, { name: 'small.exr', bytes: exrSeed(new Rng(1)) }], run: exrPath },
+  { id: 'exr-limit', label: 'EXR pair at the imagePixels limit (lantern diff --heatmap)', count: 1, input: () => [{ name: 'a.exr', bytes: constantExr(...LIMIT_SIDES, 1) }, { name: 'b.exr', bytes: constantExr(...LIMIT_SIDES, 1.5) }], run: diffPath },
+  { id: 'hdr-limit', label: 'HDR lat-long maps at the imagePixels limit, whole and truncated (--env)', count: 2, input: (_rng, i) => [{ name: 'sky.hdr', bytes: constantHdr(...LIMIT_SIDES, i % 2 === 1) }], run: environmentPath },
   mutated('hdr', 'HDR, header and RLE mutations', (rng) => [{ name: 'fuzz.hdr', bytes: mutateHdr(rng, hdrSeed(rng)) }], async (files) => void decodeHdr(files[0]!.bytes, files[0]!.name)),
   mutated('png', 'PNG, IHDR and IDAT mutations', (rng) => [{ name: 'fuzz.png', bytes: mutatePng(rng, pngSeed(rng)) }], async (files) => void decodePng(files[0]!.bytes, files[0]!.name)),
   mutated('wolf3d', 'Wolfenstein 3D, MAPHEAD/GAMEMAPS/VSWAP mutations', (rng) => generateWolf(rng)),
