@@ -23,6 +23,9 @@ import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
 import { continuedLineMolfile, hubMolfile, v3000Molfile, wolfWarningFloodFiles } from './crafted.ts';
 import { formatOfSet } from '../../src/loaders/registry.ts';
+import { packEnvironment } from '../../src/gpu/pack/environment-pack.ts';
+import { loadEnvironmentImage } from '../../src/loaders/environment-image.ts';
+import { constantHdr } from './crafted.ts';
 import { parseSdf } from '../../src/loaders/molecule/sdf.ts';
 import { moleculeMesh } from '../../src/loaders/molecule/to-scene.ts';
 import type { Molecule } from '../../src/loaders/molecule/molfile.ts';
@@ -351,5 +354,19 @@ describe('issue 27: PLY limits that kept no promise', () => {
     // plus 200 MB; 10.3 million triangles once passed the default and loaded at 2.9 GB.
     expect(200e6 + 280 * DEFAULT_LIMITS.faces + 130 * DEFAULT_LIMITS.vertices).toBeLessThan(1.6e9);
     expect(DEFAULT_LIMITS.faces).toBeLessThan(10_300_000);
+  });
+});
+
+describe('issue 27: 8K lat-long maps', () => {
+  it('an 8192-wide map\'s sampling table is 8192 texels wide, what devices allow (it needed 8,193: the documented 8K limit was refused)', () => {
+    // A map of the limit's width, 2 rows high: the table's width is the map's, not one more.
+    const image = loadEnvironmentImage(constantHdr(8192, 2), 'wide.hdr');
+    const packed = packEnvironment({ kind: 'map', image, rotationDeg: 0, intensity: 1 });
+    expect([packed.environment_cdf.width, packed.environment_cdf.height]).toEqual([8192, 3]);
+    expect(Math.max(packed.environment_map.width, packed.environment_map.height)).toBe(8192);
+  });
+
+  it('refuses an 8192×4096 map whose file is only its header before allocating its pixels', () => {
+    expectLanternError(() => loadEnvironmentImage(constantHdr(8192, 4096, true), 'cut.hdr'), /^cut\.hdr: truncated: 4096 scanlines need at least/);
   });
 });
