@@ -3,11 +3,11 @@
  * one line naming the problem. The same inputs are tested at the loaders in tests/fuzz/regressions.
  */
 import { execFileSync, spawnSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
-import { wolfWarningFloodFiles } from '../fuzz/crafted.ts';
+import { constantExr, wolfWarningFloodFiles } from '../fuzz/crafted.ts';
 
 let dir: string;
 let cli: string;
@@ -68,5 +68,22 @@ describe('warning floods', () => {
     expect(r.code, r.rawStderr.slice(0, 2000)).toBe(0);
     expect(r.lines.length).toBeLessThan(60);
     expect(r.lines.filter((l) => l.startsWith('lantern: … and '))).toHaveLength(2);
+  });
+});
+
+describe('images at the imagePixels limit', () => {
+  const time = '/usr/bin/time';
+  it.skipIf(!existsSync(time))('lantern diff compares two 8192×4096 EXRs, the limit, in well under 2 GB (it passed 2 GB and 60 s)', () => {
+    const a = join(dir, 'limit-a.exr'), b = join(dir, 'limit-b.exr');
+    writeFileSync(a, constantExr(8192, 4096, 1));
+    writeFileSync(b, constantExr(8192, 4096, 1.5));
+    // GNU time's %M: the command's peak resident memory in KB, on the last line of stderr.
+    const r = spawnSync(time, ['-f', '%M', process.execPath, cli, 'diff', a, b, '--json'], { encoding: 'utf8', timeout: 300_000 });
+    expect(r.status, r.stderr).toBe(0);
+    const report = JSON.parse(r.stdout);
+    expect([report.width, report.height]).toEqual([8192, 4096]);
+    expect(report.rmse).toBeCloseTo(0.5, 6);
+    const peakKb = Number(r.stderr.trim().split('\n').at(-1));
+    expect(peakKb * 1024).toBeLessThan(1.5 * 2 ** 30);
   });
 });
