@@ -352,6 +352,25 @@ describe('the line reader', () => {
       expect(all(bytes(text))).toEqual(expected);
     }
   });
+  it('skips blank lines as next() would read them, counting them, across slices and line endings', () => {
+    const slice = 1 << 22;
+    for (const text of [' \t\r\n\n  \r\rcontent\nmore', `${'\n'.repeat(slice - 1)}\r\n  \nx`, `${'\n'.repeat(slice - 3)}        \nx y\n`, '\n\n\n', '\u00a0\nx']) {
+      for (const input of [text, bytes(text)]) {
+        const reader = new LineReader(input, 'x');
+        const skipped = reader.skipBlankLines();
+        const rest = all(input).slice(skipped);
+        expect(all(input).slice(0, skipped).every((l) => l.trim() === '')).toBe(true);
+        expect(reader.index).toBe(skipped - 1);
+        const after: string[] = [];
+        for (let l = reader.next(); l !== undefined; l = reader.next()) after.push(l);
+        expect(after).toEqual(rest);
+      }
+    }
+  });
+  it('names the right line after a run of blank lines (the record starts after the $$$$ of line 1001: its counts line is 1005)', () => {
+    expectLanternError(() => parseSdf(bytes(`${'\n'.repeat(1000)}$$$$\n\n\n\n\n  x`), 'b.sdf'), /^b\.sdf line 1005: bad counts line/);
+    expectLanternError(() => parseSdf(bytes(`\n\n${' '.repeat(3 << 20)}\nx`), 'w.sdf'), /^w\.sdf line 3: a line longer than 1,048,576 characters/);
+  });
   it('reads bytes in slices: a \\r\\n split between two slices is one line ending, a character split between them is one character', () => {
     // The slices are 4 MiB: put '\r' at the last byte of the first and '\n' at the first of the next,
     // and a two-byte 'é' astride the second boundary.

@@ -75,6 +75,7 @@ export class RecordLines {
   /** Skips leading blank lines: false when the record holds nothing else (blank space between or after records). */
   hasContent(): boolean {
     for (;;) {
+      if (!this.ended) this.blanks += this.lines.skipBlankLines();
       const line = this.physical();
       if (line === undefined) return false;
       if (line.trim() !== '') {
@@ -267,9 +268,12 @@ class V30Lines {
       }
       if (!line.startsWith('M  V30 ')) continue; // other property lines carry nothing we draw
       const at = this.record.index;
+      const first = line.slice(7).trimEnd();
+      // Most lines are not continued: no pieces to gather.
+      if (!first.endsWith('-')) return { text: first.slice(0, MAX_V30_CHARACTERS).trim(), at };
       const parts: string[] = [];
       let kept = 0;
-      for (let piece = line.slice(7).trimEnd(); ; ) {
+      for (let piece = first; ; ) {
         const continued = piece.endsWith('-');
         const content = continued ? piece.slice(0, -1) : piece;
         if (kept < MAX_V30_CHARACTERS) {
@@ -359,10 +363,11 @@ function readV3000(record: RecordLines, source: string, budget: MoleculeBudget, 
     }
     if (upper.startsWith('BEGIN ')) {
       // SGROUP, COLLECTION, OBJ3D, ...: nothing to draw; skip to the matching END.
-      const block = upper.slice(6);
+      const end = `END ${upper.slice(6)}`;
       v30.take();
-      while (v30.peek() && v30.peek()!.text.toUpperCase() !== `END ${block}`) v30.take();
-      expect(`END ${block}`);
+      // Lengths first: the block may run to millions of lines, and most are not its end.
+      for (let line = v30.peek(); line && !(line.text.length === end.length && line.text.toUpperCase() === end); line = v30.peek()) v30.take();
+      expect(end);
       continue;
     }
     v30.take(); // a line outside any block (LINKNODE, ...): nothing to draw
