@@ -41,7 +41,7 @@ export function checkUserFile(path: string, options: UserFileOptions = {}): void
   closeSync(openUserFile(path, options).fd);
 }
 
-/** Whether `path` exists at all (a link to nothing does not): a missing sibling is the loader's business, a device is not. */
+/** Whether a readUserFile error says there is no such file (a link to nothing included): a missing sibling is the loader's business, a device is not. */
 export function isMissing(e: unknown): boolean {
   return e instanceof LanternError && (e.cause as NodeJS.ErrnoException | undefined)?.code === 'ENOENT';
 }

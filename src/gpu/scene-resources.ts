@@ -224,7 +224,7 @@ export async function uploadEnvironment(device: GPUDevice, packed: PackedEnviron
     };
   });
   // RGB to the texture's RGBA (alpha 1), a band at a time.
-  await writeTextureInBands(device, uploaded.mapTexture, 4, (y, rows, band) => {
+  await writeTextureInBands(device, uploaded.mapTexture, 4, (y, _rows, band) => {
     for (let p = y * map.width * 3, q = 0; q < band.length; p += 3, q += 4) {
       band[q] = map.rgb[p]!;
       band[q + 1] = map.rgb[p + 1]!;
