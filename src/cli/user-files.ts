@@ -72,7 +72,9 @@ function openUserFile(path: string, options: UserFileOptions): { fd: number; siz
     real = realpathSync(path);
     stats = statSync(real);
   } catch (e) {
-    throw explain(path, e, options.what);
+    // stat's word on the path as given where it has one: realpath walks the path a part at a time
+    // and calls one too long "no such file".
+    throw explain(path, statError(path) ?? e, options.what);
   }
   const link = real === path ? '' : ` (${real})`;
   if (!stats.isFile()) throw new LanternError(`${prefix}cannot read '${path}'${link}: ${kindOf(stats)}, not a regular file`);
@@ -92,6 +94,15 @@ function openUserFile(path: string, options: UserFileOptions): { fd: number; siz
   } catch (e) {
     closeSync(fd);
     throw e;
+  }
+}
+
+function statError(path: string): unknown {
+  try {
+    statSync(path);
+    return undefined;
+  } catch (e) {
+    return e;
   }
 }
 
