@@ -41,12 +41,19 @@ export interface Limits {
   readonly sectorWork: number;
   /** Warnings of one kind printed per load; the rest are counted in one closing line. */
   readonly warningsPerKind: number;
+  /** Atoms and bonds of one molecule file (all its SD records together), each; charged from the counts lines. */
+  readonly moleculeRecords: number;
+  /** Bytes of one file the CLI reads (a scene file, a file beside it, an image), checked before it is read. */
+  readonly fileBytes: number;
 }
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   decompressedBytes: 1 << 29, // 512 MiB
-  vertices: 1 << 25, // 33.5 million
-  faces: 1 << 25,
+  // 3.1 million each: a PLY at both limits (with normals) loads at 1.5 GB, about 280 bytes a triangle
+  // and 130 a vertex with the BVH (docs/hardening.md has the figures); 1 << 25 let a 392 KB .ply.gz
+  // of 10.3 million triangles load at 2.9 GB.
+  vertices: 3 << 20,
+  faces: 3 << 20,
   polygonVertices: 1 << 16,
   instances: 1 << 19, // 524,288
   gltfBytes: 1 << 29, // 512 MiB
@@ -56,6 +63,8 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   imagePixels: 1 << 25, // 8192×4096
   sectorWork: 1 << 22, // 4.2 million: 64 times what any sector of Freedoom's 68 maps needs
   warningsPerKind: 20,
+  moleculeRecords: 1 << 19, // 524,288: at the limit, a ball-and-stick load takes 1.0 GB (docs/hardening.md)
+  fileBytes: 1 << 29, // 512 MiB: an 8192×4096 float RGB EXR stored uncompressed is 403 MB
 });
 
 export type LimitName = keyof Limits;

@@ -4,7 +4,6 @@
  * `--env none` (no environment at all, also none of the default sky a model may get): what lights
  * the scene instead of its own environment. Read here because reading the map is file access.
  */
-import { readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import type { Command } from 'commander';
 import { LanternError } from '../errors.ts';
@@ -12,6 +11,7 @@ import { loadEnvironmentImage } from '../loaders/environment-image.ts';
 import { skyEnvironment } from '../scene/environment-override.ts';
 import type { Environment } from '../scene/environment.ts';
 import { numberListOption, numberOption, pathOption } from './options.ts';
+import { readUserFile } from './user-files.ts';
 
 /** The --env value that asks for no environment (a file of that name is `./none`). */
 const NO_ENVIRONMENT = 'none';
@@ -46,12 +46,7 @@ export function environmentFromOptions(o: EnvironmentOptions): Environment | und
     return skyEnvironment(elevation, azimuth, turbidity, intensity);
   }
   if (o.env) {
-    let bytes: Uint8Array;
-    try {
-      bytes = readFileSync(o.env);
-    } catch (e) {
-      throw new LanternError(`--env: cannot read '${o.env}': ${(e as NodeJS.ErrnoException).code ?? (e as Error).message}`);
-    }
+    const bytes = readUserFile(o.env, { what: '--env' });
     return { kind: 'map', image: loadEnvironmentImage(bytes, basename(o.env)), rotationDeg: o.envRotation ?? 0, intensity };
   }
   if (o.envIntensity !== undefined || o.envRotation !== undefined) throw new LanternError('--env-intensity and --env-rotation go with --sky or --env');

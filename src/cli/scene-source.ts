@@ -4,7 +4,7 @@
  * registry (`mesh.ply.gz`, `iwad.wad+pwad.wad#MAP01`). Reading files is the CLI's job; loaders only
  * ever see bytes and a resolver for the files beside the main one.
  */
-import { existsSync, readdirSync, statSync } from 'node:fs';
+import { readdirSync, statSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { basename, dirname, join } from 'node:path';
 import { LanternError } from '../errors.ts';
@@ -14,7 +14,7 @@ import { describeSceneArguments, formatByName, formatOfFolder, formatOfSet, pars
 import { siblingPath } from '../loaders/sibling-uri.ts';
 import type { Scene } from '../scene/types.ts';
 import { iwadForMap, isBareMapName } from './iwads.ts';
-import { readFileOrExplain, readJsonFile } from './read-files.ts';
+import { isMissing, readJsonFile, readUserFile } from './user-files.ts';
 import type { Timeline } from './timeline.ts';
 
 export const DRAGON_ALIAS = 'dragon';
@@ -108,15 +108,22 @@ function folderArgument(arg: string): SceneArgument | undefined {
 }
 
 /**
- * Files beside the main one, by a URI relative to it; absent files are the loader's business, and
- * so are URIs the model may not name (sibling-uri.ts), which read as absent here too.
+ * Files beside the main one, by a URI relative to it; absent files are the loader's business (a
+ * glTF's missing texture is a warning), and so are URIs the model may not name (sibling-uri.ts),
+ * which read as absent here too; anything else that is not a regular file of a size the limits
+ * allow is an error (user-files.ts).
  */
 function siblingsOf(mainPath: string): ResolveSibling {
   return (relativePath) => {
     const sibling = siblingPath(relativePath);
     if (!sibling.ok) return Promise.resolve(undefined);
     const path = join(dirname(mainPath), ...sibling.path.split('/'));
-    return Promise.resolve(existsSync(path) && isFile(path) ? readFileOrExplain(path) : undefined);
+    try {
+      return Promise.resolve(readUserFile(path));
+    } catch (e) {
+      if (isMissing(e)) return Promise.resolve(undefined);
+      return Promise.reject(e);
+    }
   };
 }
 
@@ -132,7 +139,7 @@ export interface OpenedFiles {
 export async function openSceneFiles(argument: Extract<SceneArgument, { kind: 'files' }>, timeline?: Timeline): Promise<OpenedFiles> {
   const t0 = performance.now();
   const files = argument.paths.map((path) => {
-    const bytes = readFileOrExplain(path);
+    const bytes = readUserFile(path);
     // The file's own name, so that messages about its contents say which file.
     return { path, name: argument.displayName ?? basename(path), bytes, head: bytes };
   });
@@ -187,5 +194,5 @@ export function loadOptions(options: SceneLoadOptions): LoadOptions {
 
 /** A --light-table file, read and checked (render reads it before the GPU starts, so a mistake shows at once). */
 export function readLightTable(path: string): Partial<LightTable> {
-  return parseLightTable(readJsonFile(path), path);
+  return parseLightTable(readJsonFile(path, '--light-table'), path);
 }

@@ -95,12 +95,15 @@ function bundlePath(): string | undefined {
 
 /**
  * loadPrepared on a worker thread of this bundle, or in-thread where there is no bundle to start
- * (run from sources) or the scene needs a function (`adjust`, which cannot cross threads).
+ * (run from sources) or the scene needs a function (`adjust`, which cannot cross threads). An
+ * environment map's pixels are transferred to the thread: `environment` is not usable after the call.
  */
 export function loadPreparedInThread(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<LoadedPrepared> {
   const bundle = bundlePath();
   if (!bundle || adjust) return loadPrepared(sceneArg, note, sceneOptions, environment, adjust, timeline);
-  return runInThread<LoadedPrepared>(bundle, { task: 'scene', sceneArg, sceneOptions, ...(environment ? { environment } : {}) }, 'scene thread', note, timeline);
+  // The environment map's pixels move to the thread rather than being copied (an 8K map is 384 MB):
+  // the caller hands the environment over and does not use it again.
+  return runInThread<LoadedPrepared>(bundle, { task: 'scene', sceneArg, sceneOptions, ...(environment ? { environment } : {}) }, 'scene thread', note, timeline, environment ? [...buffersOf(environment)] : []);
 }
 
 /**
@@ -122,10 +125,10 @@ export async function reflectBindingsInThread(module: string, entryPoints: reado
 
 type TaskRequest = ThreadRequest extends infer R ? (R extends ThreadRequest ? Omit<R, 'role' | 'mainTimeOrigin'> : never) : never;
 
-function runInThread<T>(bundle: string, task: TaskRequest, name: string, note: (message: string) => void, timeline?: Timeline): Promise<T> {
+function runInThread<T>(bundle: string, task: TaskRequest, name: string, note: (message: string) => void, timeline?: Timeline, transferList: ArrayBuffer[] = []): Promise<T> {
   const request = { ...task, role: 'lantern-scene-thread', mainTimeOrigin: performance.timeOrigin } as ThreadRequest;
   const spawned = performance.now();
-  const worker = new Worker(bundle, { workerData: request });
+  const worker = new Worker(bundle, { workerData: request, transferList });
   return new Promise<T>((resolve, reject) => {
     let settled = false;
     const settle = (f: () => void) => {

@@ -1,4 +1,5 @@
-import { mkdirSync, mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readdirSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
 import { request, type IncomingMessage } from 'node:http';
 import { connect, createServer as createTcpServer, type AddressInfo } from 'node:net';
 import { tmpdir } from 'node:os';
@@ -33,6 +34,55 @@ describe('the view server', () => {
       expect(await get(new URL('textures/base%20color.png', new URL('files/0/helmet.gltf', server.url)).href)).toBe('200 png');
       expect(await get('files/0/secret.txt')).toBe('404');
       expect(await get('files/0/../0/secret.txt')).toBe('404');
+    } finally {
+      await server.close();
+    }
+  });
+
+  it('follows links before it serves a sibling: a file or a folder linked from outside is refused, a link that stays inside is served', async () => {
+    const app = join(dir, 'app-links');
+    const scene = join(dir, 'linked');
+    const outside = join(dir, 'outside');
+    mkdirSync(app);
+    mkdirSync(join(scene, 'inner'), { recursive: true });
+    mkdirSync(join(outside, 'etc'), { recursive: true });
+    writeFileSync(join(app, 'index.html'), '<!doctype html>');
+    writeFileSync(join(scene, 'model.gltf'), '{}');
+    writeFileSync(join(scene, 'inner', 'real.bin'), 'inside');
+    writeFileSync(join(outside, 'secret.bin'), 'secret');
+    writeFileSync(join(outside, 'etc', 'hostname'), 'host');
+    symlinkSync(join(outside, 'secret.bin'), join(scene, 'file-out.bin'));
+    symlinkSync(join(outside, 'etc'), join(scene, 'folder-out'));
+    symlinkSync(join('inner', 'real.bin'), join(scene, 'file-in.bin'));
+    symlinkSync(join(scene, 'inner'), join(scene, 'folder-in'));
+    // A link to the folder above, reached through a sibling's path.
+    symlinkSync('..', join(scene, 'up'));
+    const siblings = ['file-out.bin', 'folder-out/hostname', 'file-in.bin', 'folder-in/real.bin', 'up/outside/secret.bin'];
+    const server = await startViewServer({ appDir: app, files: [{ path: join(scene, 'model.gltf'), siblings }] });
+    try {
+      const get = async (path: string) => {
+        const r = await fetch(new URL(`files/0/${path}`, server.url));
+        return `${r.status} ${r.ok ? await r.text() : ''}`.trim();
+      };
+      expect(await get('file-out.bin')).toBe('404');
+      expect(await get('folder-out/hostname')).toBe('404');
+      expect(await get('up/outside/secret.bin')).toBe('404');
+      expect(await get('file-in.bin')).toBe('200 inside');
+      expect(await get('folder-in/real.bin')).toBe('200 inside');
+    } finally {
+      await server.close();
+    }
+  });
+
+  it('serves regular files only: a FIFO or a device named as a scene file is not served (nor does it hold the request)', async () => {
+    const app = join(dir, 'app-special');
+    mkdirSync(app);
+    writeFileSync(join(app, 'index.html'), '<!doctype html>');
+    const fifo = join(dir, 'pipe.ply');
+    execFileSync('mkfifo', [fifo]);
+    const server = await startViewServer({ appDir: app, files: [fifo, '/dev/zero'] });
+    try {
+      for (const url of server.fileUrls) expect((await fetch(new URL(url, server.url))).status).toBe(404);
     } finally {
       await server.close();
     }

@@ -2,7 +2,9 @@
  * The small local web server behind `lantern view`: the built page (dist/app) and the scene files
  * named on the command line, each at `files/<n>/<name>`, with the siblings its format says it
  * refers to (a glTF's buffers and textures) at `files/<n>/<relative path>`, nothing else. It binds
- * to 127.0.0.1 by default and never serves a path it was not given (no directory listing, no `..`).
+ * to 127.0.0.1 by default and never serves a path it was not given (no directory listing, no `..`),
+ * nor a sibling whose real path (links followed, at each request) leaves the scene file's folder:
+ * `textures/` may be a link to /etc, and the name alone does not say so. It serves regular files only.
  *
  * What else it refuses (the README's Security section says the same to users): a request whose
  * `Host` is not a name of this machine (a web page on another site whose name was re-pointed at
@@ -12,7 +14,7 @@
  * nothing from elsewhere. A file is streamed with stream.pipeline, which closes the file when the
  * client goes away mid-download.
  */
-import { createReadStream, existsSync, statSync } from 'node:fs';
+import { closeSync, constants, createReadStream, existsSync, fstatSync, openSync, realpathSync } from 'node:fs';
 import { createServer, type IncomingMessage, type ServerResponse } from 'node:http';
 import { isIP, type AddressInfo } from 'node:net';
 import { hostname, networkInterfaces } from 'node:os';
@@ -128,7 +130,7 @@ export async function startViewServer(options: ViewServerOptions): Promise<ViewS
       if (relative.startsWith('/') || parts.some((p) => p === '..' || p === '' || p.includes('\\'))) {
         throw new LanternError(`${basename(path)} refers to '${relative}', outside its folder`, 'lantern view serves only files in or below the scene file\'s folder');
       }
-      return { path: join(dirname(path), ...parts), url: `files/${i}/${parts.map(encodeURIComponent).join('/')}`, sibling: true };
+      return { path: join(dirname(path), ...parts), url: `files/${i}/${parts.map(encodeURIComponent).join('/')}`, within: dirname(path), sibling: true };
     });
     return [main, ...beside];
   });
@@ -216,7 +218,14 @@ export function hostAllowed(header: string | undefined, names: ReadonlySet<strin
   return names.has(plain) || plain.endsWith('.localhost') || (isIP(plain) === 4 && plain.startsWith('127.'));
 }
 
-function serve(request: IncomingMessage, response: ServerResponse, appDir: string, files: readonly { path: string; url: string }[]): void {
+/** A file offered, and for a sibling the folder its real path must stay in. */
+interface Offered {
+  readonly path: string;
+  readonly url: string;
+  readonly within?: string;
+}
+
+function serve(request: IncomingMessage, response: ServerResponse, appDir: string, files: readonly Offered[]): void {
   if (request.method !== 'GET' && request.method !== 'HEAD') return reply(response, 405, 'only GET and HEAD');
   let path: string;
   try {
@@ -225,30 +234,59 @@ function serve(request: IncomingMessage, response: ServerResponse, appDir: strin
     return reply(response, 400, 'bad path');
   }
   const offered = files.find((f) => `/${decodeURIComponent(f.url)}` === path);
-  if (offered) return sendFile(request, response, offered.path, 'application/octet-stream');
+  if (offered) return sendFile(request, response, offered.path, offered.within, 'application/octet-stream');
   const relative = path === '/' ? 'index.html' : path.slice(1);
   const full = normalize(join(appDir, relative));
   if (!full.startsWith(appDir + sep) || relative.split('/').includes('..')) return reply(response, 404, 'not found');
-  sendFile(request, response, full, CONTENT_TYPES[extname(full)] ?? 'application/octet-stream');
+  sendFile(request, response, full, appDir, CONTENT_TYPES[extname(full)] ?? 'application/octet-stream');
 }
 
-function sendFile(request: IncomingMessage, response: ServerResponse, path: string, type: string): void {
+/**
+ * The real path of `path` when it is inside the real path of `folder` (or anywhere, with no folder),
+ * else undefined. Both are resolved now, links and all: a check on the name alone let a link beside
+ * the scene (a file, or a folder on the sibling's way) serve what it pointed at.
+ */
+export function realPathInside(path: string, folder: string | undefined): string | undefined {
+  try {
+    const real = realpathSync(path);
+    if (folder === undefined) return real;
+    const root = realpathSync(folder);
+    return real.startsWith(root.endsWith(sep) ? root : root + sep) ? real : undefined;
+  } catch {
+    return undefined;
+  }
+}
+
+function sendFile(request: IncomingMessage, response: ServerResponse, path: string, within: string | undefined, type: string): void {
+  const real = realPathInside(path, within);
+  if (real === undefined) return reply(response, 404, 'not found');
+  // Opened, then checked through the descriptor that is streamed: a regular file, not a device or a
+  // pipe (opened without blocking, so a pipe cannot hold the request), of the size sent.
+  let fd: number;
   let size: number;
   try {
-    const stat = statSync(path);
-    if (!stat.isFile()) return reply(response, 404, 'not found');
-    size = stat.size;
+    fd = openSync(real, constants.O_RDONLY | (constants.O_NONBLOCK ?? 0));
   } catch {
     return reply(response, 404, 'not found');
   }
+  try {
+    const stat = fstatSync(fd);
+    if (!stat.isFile()) throw new Error('not a regular file');
+    size = stat.size;
+  } catch {
+    closeSync(fd);
+    return reply(response, 404, 'not found');
+  }
   response.writeHead(200, { ...SECURITY_HEADERS, 'content-type': type, 'content-length': size, 'cache-control': 'no-cache' });
-  if (request.method === 'HEAD') {
+  if (request.method === 'HEAD' || size === 0) {
+    closeSync(fd);
     response.end();
     return;
   }
   // pipeline, not pipe: a client that goes away mid-download destroys the file stream too (pipe
-  // left it open, one descriptor per aborted download). A read error ends the response early.
-  pipeline(createReadStream(path), response, () => undefined);
+  // left it open, one descriptor per aborted download). A read error ends the response early. The
+  // stream stops at the size sent, should the file grow meanwhile.
+  pipeline(createReadStream('', { fd, start: 0, end: size - 1 }), response, () => undefined);
 }
 
 function reply(response: ServerResponse, status: number, text: string): void {

@@ -169,16 +169,48 @@ export interface UploadedEnvironment {
   destroy(): void;
 }
 
+/**
+ * Bytes one writeTexture of a large texture stages at a time: the queue copies what it is given
+ * into memory of its own until the GPU has taken it, so an 8K environment map (512 MB) written at
+ * once was held once more, besides the RGBA copy it was written from.
+ */
+const UPLOAD_BAND_BYTES = 8 << 20;
+
+/**
+ * The usage of a texture written in bands. RENDER_ATTACHMENT lets Dawn zero a texture that no single
+ * write covers (it does before the first band lands) with a render pass; without it, Dawn copied a
+ * zero-filled buffer of the texture's whole size (512 MB more at once for an 8K map, measured on
+ * SwiftShader: the upload peaked at 1.93 GB, and at 1.64 GB with it).
+ */
+const bandedTextureUsage = (): GPUTextureUsageFlags => GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST | GPUTextureUsage.RENDER_ATTACHMENT;
+
+/**
+ * Writes a 2D texture of `floatsPerTexel` f32 per texel a band of rows at a time, each taken by the
+ * GPU before the next is staged; `fill(y, rows, band)` writes rows y.. into `band` (reused: the
+ * queue copies it at once).
+ */
+async function writeTextureInBands(device: GPUDevice, texture: GPUTexture, floatsPerTexel: number, fill: (y: number, rows: number, band: Float32Array) => void, what: string): Promise<void> {
+  const { width, height } = texture;
+  const bytesPerRow = width * floatsPerTexel * 4;
+  const rows = Math.max(1, Math.min(height, Math.floor(UPLOAD_BAND_BYTES / bytesPerRow)));
+  const band = new Float32Array(rows * width * floatsPerTexel);
+  for (let y = 0; y < height; y += rows) {
+    const n = Math.min(rows, height - y);
+    const data = band.subarray(0, n * width * floatsPerTexel);
+    fill(y, n, data);
+    await withErrorScope(device, what, () => device.queue.writeTexture({ texture, origin: [0, y] }, data, { bytesPerRow, rowsPerImage: n }, [width, n]));
+    if (y + n < height) await device.queue.onSubmittedWorkDone();
+  }
+}
+
 /** The environment's resources of group 0 (bindings 8–10, see shaders/scene/bindings.wgsl). */
 export async function uploadEnvironment(device: GPUDevice, packed: PackedEnvironment, label: string): Promise<UploadedEnvironment> {
-  return withErrorScope(device, `the environment of scene '${label}'`, () => {
+  const map = packed.environment_map;
+  const cdf = packed.environment_cdf;
+  const uploaded = await withErrorScope(device, `the environment of scene '${label}'`, () => {
     const info = createBufferWithData(device, `${label} environment_info`, packed.environment_info, GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST);
-    const map = packed.environment_map;
-    const mapTexture = device.createTexture({ label: `${label} environment map`, size: [map.width, map.height], format: ENVIRONMENT_MAP_FORMAT, usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
-    device.queue.writeTexture({ texture: mapTexture }, map.rgba, { bytesPerRow: map.width * 16, rowsPerImage: map.height }, [map.width, map.height]);
-    const cdf = packed.environment_cdf;
-    const cdfTexture = device.createTexture({ label: `${label} environment CDFs`, size: [cdf.width, cdf.height], format: ENVIRONMENT_CDF_FORMAT, usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
-    device.queue.writeTexture({ texture: cdfTexture }, cdf.data, { bytesPerRow: cdf.width * 4, rowsPerImage: cdf.height }, [cdf.width, cdf.height]);
+    const mapTexture = device.createTexture({ label: `${label} environment map`, size: [map.width, map.height], format: ENVIRONMENT_MAP_FORMAT, usage: bandedTextureUsage() });
+    const cdfTexture = device.createTexture({ label: `${label} environment CDFs`, size: [cdf.width, cdf.height], format: ENVIRONMENT_CDF_FORMAT, usage: bandedTextureUsage() });
     return {
       bindings: { environment_info: info, environment_map: mapTexture.createView(), environment_cdf: cdfTexture.createView() },
       byteSize: info.size + map.width * map.height * 16 + cdf.width * cdf.height * 4,
@@ -187,8 +219,21 @@ export async function uploadEnvironment(device: GPUDevice, packed: PackedEnviron
         mapTexture.destroy();
         cdfTexture.destroy();
       },
+      mapTexture,
+      cdfTexture,
     };
   });
+  // RGB to the texture's RGBA (alpha 1), a band at a time.
+  await writeTextureInBands(device, uploaded.mapTexture, 4, (y, _rows, band) => {
+    for (let p = y * map.width * 3, q = 0; q < band.length; p += 3, q += 4) {
+      band[q] = map.rgb[p]!;
+      band[q + 1] = map.rgb[p + 1]!;
+      band[q + 2] = map.rgb[p + 2]!;
+      band[q + 3] = 1;
+    }
+  }, `the environment map of scene '${label}' (${map.width}×${map.height})`);
+  await writeTextureInBands(device, uploaded.cdfTexture, 1, (y, rows, band) => band.set(cdf.data.subarray(y * cdf.width, (y + rows) * cdf.width)), `the environment's sampling table of scene '${label}'`);
+  return uploaded;
 }
 
 function uploadAtlas(device: GPUDevice, atlas: PackedScene['atlas'], format: GPUTextureFormat, label: string): Promise<GPUTexture> {

@@ -36,6 +36,40 @@ describe('image comparison', () => {
     expect([...heat.slice(8, 12)]).toEqual([255, 255, 255, 255]); // 200 %: white
   });
 
+  it('SSIM a few rows at a time equals the whole-image blur, bit for bit, at any size', () => {
+    // The whole-image form it replaced: five blurred images, rows then columns, clipped windows.
+    const reference = (x: Float32Array, y: Float32Array, width: number, height: number) => {
+      const kernel = Array.from({ length: 11 }, (_, i) => Math.exp(-((i - 5) ** 2) / (2 * 1.5 ** 2)));
+      const pass = (src: (i: number) => number, along: 'row' | 'column') => {
+        const out = new Float64Array(width * height);
+        const [n, stride] = along === 'row' ? [width, 1] : [height, width];
+        for (let i = 0; i < width * height; i++) {
+          const at = along === 'row' ? i % width : Math.floor(i / width);
+          let s = 0, w = 0;
+          for (let k = Math.max(-5, -at); k <= Math.min(5, n - 1 - at); k++) (s += kernel[k + 5]! * src(i + k * stride)), (w += kernel[k + 5]!);
+          out[i] = s / w;
+        }
+        return out;
+      };
+      const blur = (f: (i: number) => number) => { const rows = pass(f, 'row'); return pass((i) => rows[i]!, 'column'); };
+      const mx = blur((i) => x[i]!), my = blur((i) => y[i]!), xx = blur((i) => x[i]! * x[i]!), yy = blur((i) => y[i]! * y[i]!), xy = blur((i) => x[i]! * y[i]!);
+      let sum = 0;
+      for (let i = 0; i < width * height; i++) {
+        const vx = xx[i]! - mx[i]! ** 2, vy = yy[i]! - my[i]! ** 2, cxy = xy[i]! - mx[i]! * my[i]!;
+        sum += ((2 * mx[i]! * my[i]! + 1e-4) * (2 * cxy + 9e-4)) / ((mx[i]! ** 2 + my[i]! ** 2 + 1e-4) * (vx + vy + 9e-4));
+      }
+      return sum / (width * height);
+    };
+    let seed = 3;
+    const random = () => ((seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) / 2 ** 32);
+    for (const [w, h] of [[1, 1], [3, 2], [11, 11], [12, 30], [40, 7], [64, 64]] as const) {
+      const x = Float32Array.from({ length: w * h }, random), y = Float32Array.from(x, (v) => v * (0.8 + 0.4 * random()));
+      expect(ssim(x, y, w, h)).toBe(reference(x, y, w, h));
+      const a = image(w, h, () => 4 * random()), b = image(w, h, () => 4 * random());
+      expect(compareImages(a, b).ssim).toBe(reference(displayLuminance(a), displayLuminance(b), w, h));
+    }
+  });
+
   it('refuses images of different sizes', () => {
     expect(() => compareImages(image(2, 1, () => 0), image(1, 2, () => 0))).toThrow(/differ in size/);
   });

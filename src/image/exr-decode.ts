@@ -45,7 +45,53 @@ function maxExpansion(compression: number): number {
   return 1100;
 }
 
+/** Every channel as a plane of its own. */
 export function decodeExr(bytes: Uint8Array, name = 'image.exr'): ExrImage {
+  const out: Record<string, Float32Array> = {};
+  const { width, height } = decodeInto(bytes, name, (header) =>
+    header.channels.map((c) => {
+      const plane = new Float32Array(header.width * header.height);
+      out[c.name] = plane;
+      return { target: plane, offset: 0, stride: 1 };
+    }),
+  );
+  return { width, height, channels: out };
+}
+
+/**
+ * Interleaved RGB (3 floats per pixel) from the R, G, B channels (or a grey Y repeated), decoded
+ * straight into place; other channels (A, Z, ...) are skipped. What `lantern diff` and environment
+ * maps need, in a third of the memory of the planes and their interleaved copy at once (an
+ * 8192×4096 RGBA image: 384 MB rather than 896 MB).
+ */
+export function decodeExrRgb(bytes: Uint8Array, name = 'image.exr'): { width: number; height: number; rgb: Float32Array } {
+  let rgb = new Float32Array(0);
+  let grey = false;
+  const { width, height } = decodeInto(bytes, name, (header) => {
+    const names = header.channels.map((c) => c.name);
+    const has = (n: string) => names.includes(n);
+    grey = !(has('R') && has('G') && has('B'));
+    if (grey && !has('Y')) throw noRgb(name, names);
+    rgb = new Float32Array(header.width * header.height * 3);
+    const offset: Record<string, number> = grey ? { Y: 0 } : { R: 0, G: 1, B: 2 };
+    return names.map((n) => (offset[n] === undefined ? undefined : { target: rgb, offset: offset[n], stride: 3 }));
+  });
+  if (grey) for (let i = 0; i < rgb.length; i += 3) rgb[i + 1] = rgb[i + 2] = rgb[i]!;
+  return { width, height, rgb };
+}
+
+/** Where one channel's samples go: pixel p's to target[offset + p · stride]; undefined: skipped. */
+interface ChannelSink {
+  readonly target: Float32Array;
+  readonly offset: number;
+  readonly stride: number;
+}
+
+/**
+ * Reads the header, checks it against the file and the limits, asks `place` where each channel goes
+ * (once nothing is left to refuse from the header alone), then decodes every chunk into place.
+ */
+function decodeInto(bytes: Uint8Array, name: string, place: (header: Header) => readonly (ChannelSink | undefined)[]): { width: number; height: number } {
   const r = new Reader(bytes, name);
   if (bytes.length < 8 || r.int32() !== EXR_MAGIC) {
     throw new LanternError(`${name}: not an OpenEXR file (bad magic number)`);
@@ -73,8 +119,7 @@ export function decodeExr(bytes: Uint8Array, name = 'image.exr'): ExrImage {
   const offsets: number[] = [];
   for (let i = 0; i < chunkCount; i++) offsets.push(r.uint64(`line offset ${i}`));
 
-  const out: Record<string, Float32Array> = {};
-  for (const c of channels) out[c.name] = new Float32Array(width * height);
+  const sinks = place(header);
   const seen = new Uint8Array(chunkCount);
   offsets.forEach((offset, i) => {
     r.seek(offset, `chunk ${i}`);
@@ -87,18 +132,16 @@ export function decodeExr(bytes: Uint8Array, name = 'image.exr'): ExrImage {
     seen[chunk] = 1;
     const lines = Math.min(linesPerChunk, height - y);
     const raw = decompress(r.bytes(size, `chunk ${i}`), lines * width * pixelBytes, header.compression, `${name}: chunk ${i} (scanline ${y + header.yMin})`);
-    unpack(raw, out, channels, width, y, lines);
+    unpack(raw, sinks, channels, width, y, lines);
   });
-  return { width, height, channels: out };
+  return { width, height };
 }
 
 /** Interleaved RGB (3 floats per pixel) from R, G, B channels, or a grey Y channel repeated. */
 export function exrToRgb(image: ExrImage, name = 'image.exr'): Float32Array {
   const { R, G, B, Y } = image.channels;
   const [r, g, b] = R && G && B ? [R, G, B] : Y ? [Y, Y, Y] : [];
-  if (!r || !g || !b) {
-    throw new LanternError(`${name}: no R, G, B (or Y) channels; it has ${Object.keys(image.channels).join(', ') || 'none'}`);
-  }
+  if (!r || !g || !b) throw noRgb(name, Object.keys(image.channels));
   const rgb = new Float32Array(image.width * image.height * 3);
   for (let i = 0; i < r.length; i++) {
     rgb[3 * i] = r[i]!;
@@ -107,6 +150,8 @@ export function exrToRgb(image: ExrImage, name = 'image.exr'): Float32Array {
   }
   return rgb;
 }
+
+const noRgb = (name: string, channels: readonly string[]): LanternError => new LanternError(`${name}: no R, G, B (or Y) channels; it has ${channels.join(', ') || 'none'}`);
 
 const unsupported = (name: string, what: string): LanternError =>
   new LanternError(`${name}: OpenEXR ${what} are not supported`, 'Lantern reads single-part scanline files');
@@ -174,23 +219,29 @@ function decompress(data: Uint8Array, expected: number, compression: number, whe
   return raw;
 }
 
-/** Scatters a chunk's scanlines (each: every channel's samples in turn) into the channel planes. */
-function unpack(raw: Uint8Array, out: Record<string, Float32Array>, channels: Channel[], width: number, y0: number, lines: number): void {
+/** Scatters a chunk's scanlines (each: every channel's samples in turn) to the channels' sinks. */
+function unpack(raw: Uint8Array, sinks: readonly (ChannelSink | undefined)[], channels: Channel[], width: number, y0: number, lines: number): void {
   const view = new DataView(raw.buffer, raw.byteOffset, raw.byteLength);
   const half = halfTable();
   let o = 0;
   for (let line = 0; line < lines; line++) {
-    const row = (y0 + line) * width;
-    for (const c of channels) {
-      const plane = out[c.name]!;
-      if (c.type === PIXEL_FLOAT) {
-        for (let x = 0; x < width; x++, o += 4) plane[row + x] = view.getFloat32(o, true);
-      } else if (c.type === PIXEL_HALF) {
-        for (let x = 0; x < width; x++, o += 2) plane[row + x] = half[view.getUint16(o, true)]!;
-      } else {
-        for (let x = 0; x < width; x++, o += 4) plane[row + x] = view.getUint32(o, true);
+    channels.forEach((c, k) => {
+      const sink = sinks[k];
+      const size = PIXEL_SIZE[c.type]!;
+      if (!sink) {
+        o += size * width;
+        return;
       }
-    }
+      const { target, stride } = sink;
+      let at = (y0 + line) * width * stride + sink.offset;
+      if (c.type === PIXEL_FLOAT) {
+        for (let x = 0; x < width; x++, o += 4, at += stride) target[at] = view.getFloat32(o, true);
+      } else if (c.type === PIXEL_HALF) {
+        for (let x = 0; x < width; x++, o += 2, at += stride) target[at] = half[view.getUint16(o, true)]!;
+      } else {
+        for (let x = 0; x < width; x++, o += 4, at += stride) target[at] = view.getUint32(o, true);
+      }
+    });
   }
 }
 

@@ -2,7 +2,7 @@ import { zlibSync } from 'fflate';
 import { describe, expect, it } from 'vitest';
 import { LanternError } from '../errors.ts';
 import { filterForCompression } from './exr-compression.ts';
-import { decodeExr, encodeExr, exrToRgb } from './exr.ts';
+import { decodeExr, decodeExrRgb, encodeExr, exrToRgb } from './exr.ts';
 import { floatToHalf, halfToFloat } from './half.ts';
 import { expectLanternError } from '../expect-lantern-error.ts';
 
@@ -326,5 +326,16 @@ describe('EXR errors', () => {
   it('explains missing channels when converting to RGB', () => {
     const file = handMadeExr({ channels: [{ name: 'Z', type: 2 }], compression: 0, window: [0, 0, 0, 0], chunks: [{ y: 0, data: f32(1) }] });
     expectLanternError(() => exrToRgb(decodeExr(file), 'z.exr'), /z\.exr: no R, G, B \(or Y\) channels; it has Z/);
+  });
+
+  it('decodes straight to interleaved RGB as the planes and their conversion do, skipping other channels, Y repeated', () => {
+    for (const file of [encodeExr(37, 5, gradient(37, 5), { pixelType: 'half' }), encodeExr(5, 3, awkwardFloats(45, 1), { compression: 'none' }), encodeExr(9, 40, gradient(9, 40), { compression: 'zips' })]) {
+      const direct = decodeExrRgb(file, 'd.exr');
+      expect(Array.from(direct.rgb)).toEqual(Array.from(exrToRgb(decodeExr(file))));
+    }
+    // OpenEXR's own file: G, R and U; no B, so no RGB.
+    expectLanternError(() => decodeExrRgb(new Uint8Array(Buffer.from(OPENEXR_FILES.zip, 'base64')), 'gru.exr'), /gru\.exr: no R, G, B \(or Y\) channels; it has G, R, U/);
+    const grey = handMadeExr({ channels: [{ name: 'A', type: 2 }, { name: 'Y', type: 2 }], compression: 0, window: [0, 0, 1, 0], chunks: [{ y: 0, data: [0.5, 0.25, 3, 4].flatMap(f32) }] });
+    expect(Array.from(decodeExrRgb(grey).rgb)).toEqual([3, 3, 3, 4, 4, 4]);
   });
 });

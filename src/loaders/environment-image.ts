@@ -3,7 +3,7 @@
  * → an EnvironmentImage: linear RGB, lat-long, top row first (scene/environment.ts).
  */
 import { LanternError } from '../errors.ts';
-import { decodeExr, exrToRgb } from '../image/exr.ts';
+import { decodeExrRgb } from '../image/exr.ts';
 import { EXR_MAGIC } from '../image/exr-format.ts';
 import { decodeHdr, isHdr } from '../image/hdr.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
@@ -19,8 +19,8 @@ export function loadEnvironmentImage(bytes: Uint8Array, name: string): Environme
     return { name, width, height, rgb };
   }
   if (isExr(bytes)) {
-    const exr = decodeExr(bytes, name);
-    return { name, width: exr.width, height: exr.height, rgb: exrToRgb(exr, name) };
+    const { width, height, rgb } = decodeExrRgb(bytes, name);
+    return { name, width, height, rgb };
   }
   throw new LanternError(`${name}: not a Radiance .hdr or OpenEXR image`, 'use an equirectangular .hdr or .exr panorama');
 }

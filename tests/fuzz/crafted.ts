@@ -8,6 +8,9 @@ import { encodePng } from '../../src/image/png.ts';
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from '../../src/loaders/doom/map-types.ts';
 import { NO_SIDEDEF } from '../../src/loaders/doom/map-types.ts';
 import { encodeFlat, encodeMap, encodePalette, encodePatch, encodePnames, encodeTextureLump, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
+import type { NamedBytes } from '../../src/loaders/format.ts';
+import { PUSHABLETILE } from '../../src/loaders/wolf3d/map-codes.ts';
+import { TEST_CODES, testGameFiles, writeMapFiles } from '../../src/loaders/wolf3d/test-files.ts';
 
 const room = (floorFlat = 'FLOOR'): Sector => ({ floorHeight: 0, ceilingHeight: 128, floorFlat, ceilingFlat: 'FLOOR', lightLevel: 160, special: 0, tag: 0 });
 const side = (sector: number, middle = '-'): Sidedef => ({ xOffset: 0, yOffset: 0, upper: '-', lower: '-', middle, sector });
@@ -350,4 +353,87 @@ export function pngStreamBomb(side: number, bytes: number): Uint8Array {
   // Adler-32 of n zeros: A stays 1, B grows by 1 a byte.
   new DataView(stream.buffer).setUint32(stream.length - 4, (((total % 65521) << 16) | 1) >>> 0);
   return encodePng(side, side, new Uint8Array(side * side * 4), () => stream);
+}
+
+// ---- molecules (issue 27) ----
+
+/** A V3000 molfile of the given atom lines ("index symbol x y z") and bond lines ("index type a b"); COUNTS as given or as the blocks hold. */
+export function v3000Molfile(atoms: readonly string[], bonds: readonly string[], counts = `${atoms.length} ${bonds.length}`): string {
+  return [
+    'crafted', '  Lantern           3D', '', '  0  0  0     0  0  0  0  0  0999 V3000',
+    'M  V30 BEGIN CTAB', `M  V30 COUNTS ${counts} 0 0 0`,
+    'M  V30 BEGIN ATOM', ...atoms.map((a) => `M  V30 ${a}`), 'M  V30 END ATOM',
+    ...(bonds.length > 0 ? ['M  V30 BEGIN BOND', ...bonds.map((b) => `M  V30 ${b}`), 'M  V30 END BOND'] : []),
+    'M  V30 END CTAB', 'M  END', '',
+  ].join('\n');
+}
+
+/**
+ * Two bonded atoms, the first atom's line continued over `lines` more lines of properties: joining
+ * the pieces one at a time re-read the whole line at each (over 60 s at 100,000).
+ */
+export function continuedLineMolfile(lines: number): string {
+  const text = v3000Molfile(['1 C 0 0 0 0', '2 O 1.2 0 0 0'], ['1 2 1 2']);
+  const continued = ['M  V30 1 C 0 0 0 0 -', ...Array.from({ length: lines }, (_, i) => `M  V30 CHG=${i % 3} -`), 'M  V30 MASS=12'].join('\n');
+  return text.replace('M  V30 1 C 0 0 0 0', continued);
+}
+
+/**
+ * One carbon with `bonds` bonds of `type` to as many oxygens, on a helix round it (or, `collinear`,
+ * all on one line, so that no neighbour gives a bond its side): each bond's side direction once
+ * looked at every other bond (over 60 s at 20,000).
+ */
+export function hubMolfile(bonds: number, type = 2, collinear = false): string {
+  const atoms = ['1 C 0 0 0 0'];
+  for (let i = 0; i < bonds; i++) atoms.push(collinear ? `${i + 2} O ${i + 1} 0 0 0` : `${i + 2} O ${Math.cos(i).toFixed(4)} ${Math.sin(i).toFixed(4)} ${(i * 1e-3).toFixed(4)} 0`);
+  return v3000Molfile(atoms, Array.from({ length: bonds }, (_, i) => `${i + 1} ${type} 1 ${i + 2}`));
+}
+
+// ---- Wolfenstein 3D (issue 27) ----
+
+/**
+ * A game of one `side` × `side` map (181: the largest a plane holds is 32,767 tiles) of open floor
+ * inside a wall, every tile of its object plane a warning: player starts on even rows (all but the
+ * first a "second player start"), push-wall marks off any wall on odd rows; or, given `codes`, tile
+ * i holds codes[i % codes.length]. One such map printed 32,040 warning lines.
+ */
+export function wolfWarningFloodFiles(side = 181, codes?: readonly number[]): NamedBytes[] {
+  const walls = new Uint16Array(side * side).fill(TEST_CODES.walls[0]);
+  const objects = new Uint16Array(side * side);
+  for (let y = 1; y < side - 1; y++) {
+    for (let x = 1; x < side - 1; x++) {
+      const i = y * side + x;
+      walls[i] = TEST_CODES.floor;
+      objects[i] = codes ? codes[i % codes.length]! : y % 2 === 0 ? TEST_CODES.playerStart.north + (x % 4) : PUSHABLETILE;
+    }
+  }
+  const { maphead, gamemaps } = writeMapFiles([{ title: 'Flood', width: side, height: side, planes: [walls, objects, new Uint16Array(side * side)] }]);
+  const game = testGameFiles({ maps: 1 });
+  return [{ name: 'MAPHEAD.WL1', bytes: maphead }, { name: 'GAMEMAPS.WL1', bytes: gamemaps }, game.vswap];
+}
+
+// ---- images at the pixel limit (issue 27) ----
+
+/**
+ * An EXR of exactly `width` × `height` half RGB pixels of one value: legal and cheap to build at any
+ * size (a constant compresses to almost nothing), so `lantern diff` can be run at the imagePixels
+ * limit, where it once took over 60 s and 2 GB.
+ */
+export function constantExr(width: number, height: number, value: number): Uint8Array {
+  return encodeExr(width, height, new Float32Array(width * height * 3).fill(value), { compression: 'zip', pixelType: 'half' });
+}
+
+/**
+ * A run-length Radiance file of `width` × `height` pixels of one colour (each scanline four runs per
+ * 127 pixels), or with `truncated` its header and first scanline only: a limit-sized lat-long map
+ * in a few MB.
+ */
+export function constantHdr(width: number, height: number, truncated = false): Uint8Array {
+  const head = new TextEncoder().encode(`#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y ${height} +X ${width}\n`);
+  const line: number[] = [2, 2, width >> 8, width & 255];
+  for (const byte of [128, 64, 32, 129]) for (let x = 0; x < width; x += 127) line.push(128 + Math.min(127, width - x), byte);
+  const out = new Uint8Array(head.length + line.length * (truncated ? 1 : height));
+  out.set(head);
+  for (let y = 0; y < (truncated ? 1 : height); y++) out.set(line, head.length + y * line.length);
+  return out;
 }

@@ -17,7 +17,7 @@ import { NO_SIBLINGS } from '../../src/loaders/format.ts';
 import { MOLECULE_FORMAT } from '../../src/loaders/molecule/format.ts';
 import { GLTF_FORMAT } from '../../src/loaders/gltf/format.ts';
 import { parsePly } from '../../src/loaders/ply/ply.ts';
-import { glb, gltfSeed, mutateWad } from './targets.ts';
+import { glb, gltfSeed, mutateWad, plyBomb } from './targets.ts';
 import { Rng } from './mutate.ts';
 import { WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { bigSectorMap, bigTexturesWad, danglingSegmentsMap, gridMap, gzipBomb, hugeExr, manyLumpsWad, missingPatchesWad, noPlayerStartMap, randomLinesMap, wadOf } from './crafted.ts';
@@ -26,6 +26,14 @@ import { decodePng, encodePng } from '../../src/image/png.ts';
 import type { ResolveSibling } from '../../src/loaders/format.ts';
 import { frameTime, parseCameraPath } from '../../src/scene/camera-path.ts';
 import type { Scene } from '../../src/scene/types.ts';
+import { continuedLineMolfile, hubMolfile, v3000Molfile, wolfWarningFloodFiles } from './crafted.ts';
+import { formatOfSet } from '../../src/loaders/registry.ts';
+import { packEnvironment } from '../../src/gpu/pack/environment-pack.ts';
+import { loadEnvironmentImage } from '../../src/loaders/environment-image.ts';
+import { constantHdr } from './crafted.ts';
+import { parseSdf } from '../../src/loaders/molecule/sdf.ts';
+import { moleculeMesh } from '../../src/loaders/molecule/to-scene.ts';
+import type { Molecule } from '../../src/loaders/molecule/molfile.ts';
 
 const stackOf = (bytes: Uint8Array) => new WadStack([readWad(bytes, 'crafted.wad')]);
 
@@ -146,9 +154,11 @@ describe('sizes asked for by headers', () => {
   });
 
   it('refuses a gzip bomb while inflating, at the decompressed-bytes limit', () => {
-    // 32 MiB of zeros in 32 KB; refused at a limit of 4 MiB as the default refuses gigabytes.
-    const bomb = gzipBomb(32 * 2 ** 20);
+    // 32 MiB of zeros in 32 KB behind a PLY header within the counts; refused at a limit of 4 MiB as
+    // the default refuses gigabytes. (Zeros alone are refused as no PLY once the header's MiB is in.)
+    const bomb = plyBomb({ bytes: 32 * 2 ** 20, vertices: 1000, faces: 1 });
     expect(bomb.length).toBeLessThan(50_000);
+    expectLanternError(() => parsePly(gzipBomb(32 * 2 ** 20), 'zeros.ply.gz'), /zeros\.ply\.gz: not a PLY file/);
     const refusal = withLimits({ decompressedBytes: 4 * 2 ** 20 }, () => expectRefusal(() => parsePly(bomb, 'bomb.ply.gz'), 'decompressedBytes'));
     // Inflating stopped soon after the limit, not at the end of the stream.
     const inflated = Number(/at least\): ([\d,]+)/.exec(refusal.message)![1]!.replaceAll(',', ''));
@@ -461,5 +471,117 @@ describe('what a glTF may name (issue 27)', () => {
   it("offers `lantern view` only the files it may name", () => {
     const json = { asset: { version: '2.0' }, buffers: [{ uri: 'a.bin', byteLength: 1 }, { uri: '../b.bin', byteLength: 1 }, { uri: 'data:,x', byteLength: 1 }], images: [{ uri: 'tex/./c%20d.png' }, { uri: 'file:///etc/hostname' }, { uri: '/etc/hostname' }] };
     expect(GLTF_FORMAT.siblings!({ name: 'm.gltf', bytes: new TextEncoder().encode(JSON.stringify(json)) })).toEqual(['a.bin', 'tex/c d.png']);
+  });
+});
+
+describe('issue 27: molecules that were quadratic or unbounded', () => {
+  it('reads an atom line continued over 200,000 lines (each continuation re-joined the whole line: 32 s at 100,000)', () => {
+    const [m] = parseSdf(continuedLineMolfile(200_000), 'continued.mol');
+    expect(m!.atoms.map((a) => [a.element.symbol, ...a.position])).toEqual([['C', 0, 0, 0], ['O', 1.2, 0, 0]]);
+    expect(m!.bonds).toEqual([{ a: 0, b: 1, type: 2 }]);
+  });
+
+  it('draws 20,000 double bonds on one atom, each beside its axis (each bond looked at every other: 77 s)', () => {
+    for (const collinear of [false, true]) {
+      const [m] = parseSdf(hubMolfile(20_000, 2, collinear), 'hub.mol');
+      const { mesh } = moleculeMesh(m!);
+      const e = mesh.capsules!.endpoints;
+      expect(mesh.capsules!.radii).toHaveLength(40_000);
+      // Capsule 2k is bond k's first line: its start sits DOUBLE_OFFSET (0.13 Å) off the carbon at the origin.
+      for (const k of [0, 9_999, 19_999]) expect(Math.hypot(e[12 * k]!, e[12 * k + 1]!, e[12 * k + 2]!)).toBeCloseTo(0.13, 5);
+    }
+  });
+
+  it('looks at a bounded number of neighbours per bond: the work of a hub atom grows linearly with its bonds', () => {
+    // Reads of molecule.bonds[i], counted through a proxy: the old side direction filtered every bond
+    // for each bond (4 million reads for 2,000 bonds).
+    const reads = (n: number) => {
+      const [m] = parseSdf(hubMolfile(n, 2, true), 'hub.mol');
+      let count = 0;
+      const bonds = new Proxy(m!.bonds as Molecule['bonds'][number][], {
+        get(target, key, receiver) {
+          if (typeof key === 'string' && /^\d+$/.test(key)) count++;
+          return Reflect.get(target, key, receiver);
+        },
+      });
+      moleculeMesh({ ...m!, bonds });
+      return count;
+    };
+    const [small, large] = [reads(200), reads(2000)];
+    expect(large).toBeLessThan(12 * small);
+    expect(large).toBeLessThan(100 * 2000);
+  });
+
+  it('refuses V3000 COUNTS over the moleculeRecords limit from the COUNTS line, before the blocks are read', () => {
+    // The atom block after it is broken: a refusal naming COUNTS's line proves nothing past it was read.
+    const text = v3000Molfile(['1 C x 0 0 0'], [], '1000000000000000 0');
+    const refusal = expectRefusal(() => parseSdf(text, 'counts.mol'), 'moleculeRecords');
+    expect(refusal.userMessage).toMatch(/^counts\.mol: atoms \(with line 6\): 1,000,000,000,000,000 is over the limit moleculeRecords=/);
+    expectRefusal(() => parseSdf(v3000Molfile(['1 C 0 0 0 0'], [], '1 9999999'), 'bonds.mol'), 'moleculeRecords');
+    // An atom block longer than its COUNTS is refused at the first atom too many, not at its end.
+    expectLanternError(() => parseSdf(v3000Molfile(['1 C 0 0 0 0', '2 C 1 0 0 0', '3 x'], [], '1 0'), 'more.mol'), /^more\.mol line 9: the atom block has more atoms than the 1 COUNTS says/);
+  });
+
+  it('charges the atoms of all records of an SD file to one budget', () => {
+    const record = v3000Molfile(['1 C 0 0 0 0', '2 O 1.2 0 0 0'], ['1 2 1 2']);
+    const sdf = `${record}$$$$\n${record}$$$$\n${record}$$$$\n`;
+    expect(withLimits({ moleculeRecords: 6 }, () => parseSdf(sdf, 'three.sdf'))).toHaveLength(3);
+    expectRefusal(() => withLimits({ moleculeRecords: 5 }, () => parseSdf(sdf, 'three.sdf')), 'moleculeRecords');
+  });
+
+  it('refuses a line over a megabyte in one line (a file without line breaks was gathered whole)', () => {
+    const text = `x\n\n\n${'1'.repeat(3 << 20)}`;
+    expectLanternError(() => parseSdf(text, 'flat.mol'), /^flat\.mol line 4: a line longer than 1,048,576 characters/);
+  });
+});
+
+describe('issue 27: Wolfenstein 3D warnings', () => {
+  it('caps a map whose every tile warns at warningsPerKind a kind, with one closing line each (it printed 32,040 lines)', async () => {
+    const { format, files } = formatOfSet(wolfWarningFloodFiles().map((f) => ({ ...f, head: f.bytes.subarray(0, 1024) })));
+    const opened = await format.open({ files, resolve: NO_SIBLINGS });
+    const warnings: string[] = [];
+    await opened.scene('E1L1', { onWarning: (w) => warnings.push(w) });
+    const perKind = limits().warningsPerKind;
+    const shown = warnings.filter((w) => !w.startsWith('… and '));
+    expect(shown.filter((w) => w.includes('a second player start'))).toHaveLength(perKind);
+    expect(shown.filter((w) => w.includes('is not on a wall'))).toHaveLength(perKind);
+    // 179 rows of 179 tiles: 89 rows of player starts (all but one a second start), 90 of push-wall marks.
+    const closing = warnings.filter((w) => w.startsWith('… and '));
+    expect(closing.map((w) => /^… and ([\d,]+) more/.exec(w)![1]).sort()).toEqual([(90 * 179 - perKind).toLocaleString('en-US'), (89 * 179 - 1 - perKind).toLocaleString('en-US')].sort());
+    expect(warnings.length).toBeLessThan(2 * perKind + 10);
+  });
+});
+
+describe('issue 27: PLY limits that kept no promise', () => {
+  it('refuses a .ply.gz declaring 10.3 million faces from its header, before the body is inflated', () => {
+    // The body is a bomb past decompressedBytes: a refusal of the faces (not of the bytes) shows the
+    // header was read first. Before, all 134 MB inflated and the load took 2.7 GB.
+    const bomb = plyBomb({ bytes: 16 * 2 ** 20, vertices: 3, faces: 10_300_000 });
+    const refusal = withLimits({ decompressedBytes: 8 * 2 ** 20 }, () => expectRefusal(() => parsePly(bomb, 'bomb.ply.gz'), 'faces'));
+    expect(refusal.userMessage).toMatch(/^bomb\.ply\.gz: faces: 10,300,000 is over the limit faces=/);
+    // Within the counts, the same body is still stopped at decompressedBytes.
+    const inLimits = plyBomb({ bytes: 16 * 2 ** 20, vertices: 1000, faces: 1 });
+    withLimits({ decompressedBytes: 8 * 2 ** 20 }, () => expectRefusal(() => parsePly(inLimits, 'bomb.ply.gz'), 'decompressedBytes'));
+  });
+
+  it('the default face and vertex limits are below what fits in 2 GB at the measured cost of a load', () => {
+    // docs/hardening.md: a load costs about 280 bytes a triangle and 130 a vertex (with its normal)
+    // plus 200 MB; 10.3 million triangles once passed the default and loaded at 2.9 GB.
+    expect(200e6 + 280 * DEFAULT_LIMITS.faces + 130 * DEFAULT_LIMITS.vertices).toBeLessThan(1.6e9);
+    expect(DEFAULT_LIMITS.faces).toBeLessThan(10_300_000);
+  });
+});
+
+describe('issue 27: 8K lat-long maps', () => {
+  it('an 8192-wide map\'s sampling table is 8192 texels wide, what devices allow (it needed 8,193: the documented 8K limit was refused)', () => {
+    // A map of the limit's width, 2 rows high: the table's width is the map's, not one more.
+    const image = loadEnvironmentImage(constantHdr(8192, 2), 'wide.hdr');
+    const packed = packEnvironment({ kind: 'map', image, rotationDeg: 0, intensity: 1 });
+    expect([packed.environment_cdf.width, packed.environment_cdf.height]).toEqual([8192, 3]);
+    expect(Math.max(packed.environment_map.width, packed.environment_map.height)).toBe(8192);
+  });
+
+  it('refuses an 8192×4096 map whose file is only its header before allocating its pixels', () => {
+    expectLanternError(() => loadEnvironmentImage(constantHdr(8192, 4096, true), 'cut.hdr'), /^cut\.hdr: truncated: 4096 scanlines need at least/);
   });
 });

@@ -6,7 +6,7 @@
  */
 import { gzipSync } from 'node:zlib';
 import { LanternError } from '../../src/errors.ts';
-import { decodeExr, encodeExr, exrToRgb } from '../../src/image/exr.ts';
+import { decodeExr, decodeExrRgb, encodeExr, exrToRgb } from '../../src/image/exr.ts';
 import { decodeHdr } from '../../src/image/hdr.ts';
 import { decodePng, encodePng } from '../../src/image/png.ts';
 import { animatedRoomWad, encodeMap, encodePalette, squareRoomWad, twoRooms, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
@@ -20,6 +20,10 @@ import { DEFAULT_LIMITS } from '../../src/budgets.ts';
 import { cameraBasis } from '../../src/gpu/view.ts';
 import { cameraAt, frameTime, parseCameraPath } from '../../src/scene/camera-path.ts';
 import type { Camera } from '../../src/scene/types.ts';
+import { constantExr, constantHdr, hubMolfile, wolfWarningFloodFiles } from './crafted.ts';
+import { compareImages, errorHeatmap } from '../../src/image/compare.ts';
+import { loadEnvironmentImage } from '../../src/loaders/environment-image.ts';
+import { packEnvironment } from '../../src/gpu/pack/environment-pack.ts';
 import { concat, interesting, mutateBytes, mutateLines, putInt, Rng } from './mutate.ts';
 
 export interface FuzzTarget {
@@ -58,14 +62,42 @@ async function infoPath(files: NamedBytes[]): Promise<void> {
   const parts = opened.parts.filter((p) => p.loadable).slice(0, 3);
   const warnings: string[] = [];
   const onWarning = (w: string) => void warnings.push(w);
-  if (parts.length === 0) await opened.scene(undefined, { onWarning });
-  for (const p of parts) await opened.scene(p.name, { onWarning });
+  // Warnings are capped per kind (budgets.ts WarningCap); thousands of lines from one scene are a flood.
+  const scene = async (part: string | undefined) => {
+    warnings.length = 0;
+    await opened.scene(part, { onWarning });
+    if (warnings.length > WARNING_FLOOD) throw new Error(`warning flood: ${warnings.length} lines, the first "${warnings[0]}"`);
+  };
+  if (parts.length === 0) await scene(undefined);
+  for (const p of parts) await scene(p.name);
 }
 
-/** `lantern diff`: both images decoded and compared (here: converted to RGB, as diff does). */
+/** Lines of warnings one scene may print before the fuzzer calls it a flood (a cap per kind keeps real loads far below). */
+const WARNING_FLOOD = 1000;
+
+/** `lantern diff`: both images decoded to RGB as diff does, and as planes converted to RGB. */
 async function exrPath(files: NamedBytes[]): Promise<void> {
-  for (const f of files) exrToRgb(decodeExr(f.bytes, f.name));
+  for (const f of files) {
+    decodeExrRgb(f.bytes, f.name);
+    exrToRgb(decodeExr(f.bytes, f.name));
+  }
 }
+
+/** All of `lantern diff --heatmap`: both images decoded to RGB, compared, the heat map encoded. */
+async function diffPath(files: NamedBytes[]): Promise<void> {
+  const [a, b] = files.map((f) => decodeExrRgb(f.bytes, f.name)) as [ReturnType<typeof decodeExrRgb>, ReturnType<typeof decodeExrRgb>];
+  compareImages(a, b);
+  encodePng(a.width, a.height, errorHeatmap(a, b));
+}
+
+/** `--env`: the map decoded and packed (its sampling tables built), as the scene thread does. */
+async function environmentPath(files: NamedBytes[]): Promise<void> {
+  const image = loadEnvironmentImage(files[0]!.bytes, files[0]!.name);
+  packEnvironment({ kind: 'map', image, rotationDeg: 0, intensity: 1 });
+}
+
+/** The imagePixels limit's own shape, 8192×4096 (an 8K lat-long map). */
+const LIMIT_SIDES = [8192, DEFAULT_LIMITS.imagePixels / 8192] as const;
 
 // ---- WAD ----
 
@@ -582,6 +614,12 @@ function mutatePng(rng: Rng, seed: Uint8Array): Uint8Array {
 let wolfSeed: NamedBytes[] | undefined;
 
 function generateWolf(rng: Rng): NamedBytes[] {
+  // A map whose objects warn by the thousand (issue 27): player starts, push-wall marks, codes no
+  // object has, officers and mutants, repeated over the map.
+  if (rng.chance(0.05)) {
+    const codes = Array.from({ length: 1 + rng.int(6) }, () => rng.pick([19, 20, 21, 22, 98, 0, 23, 75, 89, 108, 126, 160, 216, 224, rng.int(0x10000)]));
+    return wolfWarningFloodFiles(rng.pick([8, 64, 128, 181]), codes);
+  }
   if (!wolfSeed) {
     const game = testGameFiles({ maps: 1 });
     wolfSeed = [game.maphead, game.gamemaps, game.vswap];
@@ -638,7 +676,30 @@ M  V30 END CTAB
 M  END
 `;
 
+/**
+ * The sizes issue 27 found unbounded: a V30 line continued over many lines, many bonds on one atom
+ * (on a helix or on one line), V3000 COUNTS far past any limit.
+ */
+function bigMolecule(rng: Rng): string {
+  switch (rng.int(3)) {
+    case 0: {
+      const lines = V3000.split('\n');
+      const i = lines.findIndex((l) => l.startsWith('M  V30 ') && /\d/.test(l)) + rng.int(6);
+      const pieces = Array.from({ length: rng.pick([1, 100, 10_000, 100_000]) }, (_, k) => `M  V30 X=${k} -`);
+      if (lines[i]?.startsWith('M  V30 ')) lines.splice(i, 1, `${lines[i]} -`, ...pieces, 'M  V30 Y=1');
+      return lines.join('\n');
+    }
+    case 1:
+      return hubMolfile(rng.pick([3, 100, 5000, 20_000]), rng.pick([1, 2, 3, 4]), rng.chance(0.5));
+    default: {
+      const huge = rng.pick([2 ** 19 + 1, 2 ** 31, 2 ** 53, 1e15, 1e300]);
+      return V3000.replace('COUNTS 3 2', rng.chance(0.5) ? `COUNTS ${huge} 2` : `COUNTS 3 ${huge}`);
+    }
+  }
+}
+
 function generateMolecule(rng: Rng): NamedBytes {
+  if (rng.chance(0.05)) return { name: 'big.mol', bytes: new TextEncoder().encode(bigMolecule(rng)) };
   const records = Array.from({ length: 1 + rng.int(3) }, () => (rng.chance(0.7) ? MOLFILE : V3000));
   const sdf = rng.chance(0.5);
   let text = sdf ? records.map((r) => `${r}> <NAME>\nx\n\n$$$$\n`).join('') : records[0]!;
@@ -669,7 +730,16 @@ const CRAFTED_WADS: Array<[string, () => Uint8Array]> = [
   ['65k-vertex sector, no player start', () => wadOf([{ ...bigSectorMap(65_000), things: [] }])],
 ];
 
-const BOMBS = [64, 256, 1024, 2560, 6144].map((mb) => mb * 2 ** 20);
+/**
+ * Gzip bombs: inflated size and the counts their header declares. 100 million vertices is over the
+ * limit (refused from the header, before the body is inflated); 1,000 vertices and one face is not,
+ * so those bodies run into decompressedBytes; 10.3 million faces is issue 27's 392 KB .ply.gz.
+ */
+const BOMBS: ReadonlyArray<{ bytes: number; vertices: number; faces: number }> = [
+  ...[64, 256, 1024, 2560, 6144].map((mb) => ({ bytes: mb * 2 ** 20, vertices: 100_000_000, faces: 1 })),
+  ...[256, 1024, 6144].map((mb) => ({ bytes: mb * 2 ** 20, vertices: 1000, faces: 1 })),
+  { bytes: 134 * 2 ** 20, vertices: 3, faces: 10_300_000 },
+];
 
 export const TARGETS: readonly FuzzTarget[] = [
   mutated('wad', 'WAD, structure-aware mutations (directory, map records, textures, patches)', (rng) => {
@@ -686,7 +756,9 @@ export const TARGETS: readonly FuzzTarget[] = [
     for (let r = 1 + rng.int(2); r > 0; r--) bytes = mutateExr(rng, bytes);
     return [{ name: 'fuzz.exr', bytes }];
   }, exrPath),
-  { id: 'exr-huge', label: 'EXR, crafted huge dimensions (lantern diff)', count: 2, input: (_rng, i) => [{ name: 'huge.exr', bytes: i % 2 === 0 ? hugeExr(100_000, 100_000, 410_000) : hugeExr(8000, 8000, 410_000) }, { name: 'small.exr', bytes: exrSeed(new Rng(1)) }], run: exrPath },
+  { id: 'exr-huge', label: 'EXR, crafted huge dimensions (lantern diff)', count: 3, input: (_rng, i) => [{ name: 'huge.exr', bytes: [hugeExr(100_000, 100_000, 410_000), hugeExr(8000, 8000, 410_000), hugeExr(...LIMIT_SIDES, 410_000)][i % 3]! }, { name: 'small.exr', bytes: exrSeed(new Rng(1)) }], run: exrPath },
+  { id: 'exr-limit', label: 'EXR pair at the imagePixels limit (lantern diff --heatmap)', count: 1, input: () => [{ name: 'a.exr', bytes: constantExr(...LIMIT_SIDES, 1) }, { name: 'b.exr', bytes: constantExr(...LIMIT_SIDES, 1.5) }], run: diffPath },
+  { id: 'hdr-limit', label: 'HDR lat-long maps at the imagePixels limit, whole and truncated (--env)', count: 2, input: (_rng, i) => [{ name: 'sky.hdr', bytes: constantHdr(...LIMIT_SIDES, i % 2 === 1) }], run: environmentPath },
   mutated('hdr', 'HDR, header and RLE mutations', (rng) => [{ name: 'fuzz.hdr', bytes: mutateHdr(rng, hdrSeed(rng)) }], async (files) => void decodeHdr(files[0]!.bytes, files[0]!.name)),
   mutated('png', 'PNG, IHDR and IDAT mutations', (rng) => [{ name: 'fuzz.png', bytes: mutatePng(rng, pngSeed(rng)) }], async (files) => void decodePng(files[0]!.bytes, files[0]!.name)),
   mutated('wolf3d', 'Wolfenstein 3D, MAPHEAD/GAMEMAPS/VSWAP mutations', (rng) => generateWolf(rng)),
@@ -696,11 +768,12 @@ export const TARGETS: readonly FuzzTarget[] = [
 ];
 
 /**
- * A PLY whose gzip stream inflates to about `bytes`: a valid header, then members of 64 MiB of zeros
- * concatenated (gzip allows several members; each compresses to ~64 KB), so big bombs cost little to build.
+ * A PLY whose gzip stream inflates to about `bytes`: a valid header declaring the counts, then
+ * members of 64 MiB of zeros concatenated (gzip allows several members; each compresses to ~64 KB),
+ * so big bombs cost little to build.
  */
-function plyBomb(bytes: number): Uint8Array {
-  const header = gzipSync(new TextEncoder().encode('ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n'));
+export function plyBomb({ bytes, vertices, faces }: { bytes: number; vertices: number; faces: number }): Uint8Array {
+  const header = gzipSync(new TextEncoder().encode(`ply\nformat binary_little_endian 1.0\nelement vertex ${vertices}\nproperty float x\nproperty float y\nproperty float z\nelement face ${faces}\nproperty list uchar int vertex_indices\nend_header\n`));
   const member = gzipBomb(Math.min(bytes, 64 * 2 ** 20));
   const parts: Uint8Array[] = [new Uint8Array(header)];
   for (let n = 0; n < bytes; n += 64 * 2 ** 20) parts.push(member);

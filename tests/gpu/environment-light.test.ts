@@ -139,7 +139,7 @@ describe('the sun and sky light a diffuse floor', () => {
       if (ct1 < 0) break;
       const cosTheta = (ct0 + ct1) / 2;
       const texelOmega = (2 * Math.PI / tex.width) * (ct0 - ct1);
-      for (let i = 0; i < tex.width; i++) for (let c = 0; c < 3; c++) eSky[c]! += tex.rgba[(j * tex.width + i) * 4 + c]! * env.intensity * cosTheta * texelOmega;
+      for (let i = 0; i < tex.width; i++) for (let c = 0; c < 3; c++) eSky[c]! += tex.rgb[(j * tex.width + i) * 3 + c]! * env.intensity * cosTheta * texelOmega;
     }
     const expected = [0, 1, 2].map((c) => (rho / Math.PI) * (eSun[c]! + eSky[c]!));
     console.log(`E_sun ${eSun.map((v) => v.toFixed(3))}, E_sky ${eSky.map((v) => v.toFixed(3))}, expected floor radiance ${expected.map((v) => v.toFixed(4))}`);

@@ -1,13 +1,13 @@
 /** `lantern diff a.exr b.exr`: RMSE, relative MSE and SSIM of an image against a reference, and a heat map. */
-import { readFileSync } from 'node:fs';
 import type { Command } from 'commander';
 import { LanternError } from '../../errors.ts';
 import { compareImages, errorHeatmap, type LinearRgbImage } from '../../image/compare.ts';
-import { decodeExr, exrToRgb } from '../../image/exr.ts';
+import { decodeExrRgb } from '../../image/exr.ts';
 import { encodePng } from '../../image/png.ts';
 import type { CliContext } from '../context.ts';
 import { numberOption, pathOption } from '../options.ts';
 import { checkOutputPath, writeFile } from '../output-files.ts';
+import { readUserFile } from '../user-files.ts';
 
 interface DiffOptions {
   heatmap?: string;
@@ -35,14 +35,7 @@ export function registerDiff(program: Command, context: CliContext): void {
 }
 
 function readExr(path: string): LinearRgbImage {
-  let bytes: Uint8Array;
-  try {
-    bytes = readFileSync(path);
-  } catch (e) {
-    throw new LanternError(`cannot read '${path}': ${(e as NodeJS.ErrnoException).code ?? (e as Error).message}`);
-  }
-  const image = decodeExr(bytes, path);
-  return { width: image.width, height: image.height, rgb: exrToRgb(image, path) };
+  return decodeExrRgb(readUserFile(path), path);
 }
 
 function diff(imagePath: string, referencePath: string, o: DiffOptions, context: CliContext): void {

@@ -14,7 +14,7 @@ import type { Camera } from '../../scene/types.ts';
 import { isEmptyUpdate } from '../../scene/dynamics.ts';
 import type { World } from '../../scene/world.ts';
 import { writeFile } from '../output-files.ts';
-import { readJsonFile } from '../read-files.ts';
+import { readJsonFile } from '../user-files.ts';
 import { median } from '../../math/median.ts';
 
 export interface FrameModeOptions {
@@ -65,7 +65,7 @@ export interface FrameWorld {
 }
 
 export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }, moving?: FrameWorld): Promise<FrameModeResult> {
-  const path = o.cameraPath ?? (o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined);
+  const path = o.cameraPath ?? (o.path !== undefined ? parseCameraPath(readJsonFile(o.path, '--path'), o.path) : undefined);
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
   // The denoiser's settings (--temporal, --denoise, --history-cap, ...) and the hybrid recipe's are the caller's, applied with the others.

@@ -3,7 +3,7 @@ import { SingleBar } from 'cli-progress';
 import type { Command } from 'commander';
 import { LanternError } from '../../errors.ts';
 import { parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
-import { checkReadableFile, readJsonFile } from '../read-files.ts';
+import { checkUserFile, readJsonFile } from '../user-files.ts';
 import { checkOutputPath } from '../output-files.ts';
 import { checkSceneOptionsApply, parseSceneArgument, readLightTable, sceneLoadOptions } from '../scene-source.ts';
 import { CLI_SETTINGS, settingMode, settingOption } from '../setting-options.ts';
@@ -88,9 +88,9 @@ export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (o
   const argument = parseSceneArgument(sceneArg);
   // A file's format is known once its bytes are read (on the scene thread, which checks again).
   if (argument.kind === 'builtin') checkSceneOptionsApply(sceneLoadOptions(o), undefined);
-  else for (const file of argument.paths) checkReadableFile(file);
+  else for (const file of argument.paths) checkUserFile(file);
   if (o.lightTable !== undefined) readLightTable(o.lightTable);
-  const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path), o.path) : undefined;
+  const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path, '--path'), o.path) : undefined;
   const sequence = frameMode && ((o.frames ?? 1) > 1 || o.path !== undefined);
   if (png !== undefined) checkOutputPath('--out', png, sequence ? 'folder' : 'file');
   if (o.exr !== undefined) checkOutputPath('--exr', o.exr, sequence ? 'folder' : 'file');

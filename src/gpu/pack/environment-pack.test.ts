@@ -4,7 +4,7 @@ import { expectLanternError } from '../../expect-lantern-error.ts';
 import { decodeHdr } from '../../image/hdr.ts';
 import type { Environment } from '../../scene/environment.ts';
 import { SUN_ANGULAR_RADIUS_DEG } from '../../scene/sky.ts';
-import { ENVIRONMENT_HAS_MAP, ENVIRONMENT_HAS_SUN, ENVIRONMENT_KINDS, environmentLayouts, GRADIENT_ROWS, packEnvironment, SKY_HEIGHT, SKY_WIDTH } from './environment-pack.ts';
+import { cdfEntry, ENVIRONMENT_HAS_MAP, ENVIRONMENT_HAS_SUN, ENVIRONMENT_KINDS, environmentLayouts, GRADIENT_ROWS, packEnvironment, SKY_HEIGHT, SKY_WIDTH, type CdfTexture } from './environment-pack.ts';
 
 function info(bytes: ArrayBuffer) {
   const l = environmentLayouts().info;
@@ -21,23 +21,24 @@ function info(bytes: ArrayBuffer) {
   };
 }
 
-function expectCdf(cdf: Float32Array, start: number, n: number): void {
-  expect(cdf[start]).toBe(0);
-  expect(cdf[start + n]).toBe(1);
-  for (let i = 0; i < n; i++) expect(cdf[start + i + 1]!).toBeGreaterThanOrEqual(cdf[start + i]!);
+/** CDF `row` of the texture (the marginal at row = map height) has n + 1 entries from 0 to 1, non-decreasing. */
+function expectCdf(cdf: CdfTexture, row: number, n: number): void {
+  expect(cdfEntry(cdf, row, 0)).toBe(0);
+  expect(cdfEntry(cdf, row, n)).toBe(1);
+  for (let i = 0; i < n; i++) expect(cdfEntry(cdf, row, i + 1)).toBeGreaterThanOrEqual(cdfEntry(cdf, row, i));
 }
 
 describe('packEnvironment', () => {
   it('none: no map, no sun, still bindable (1×1 texture, tables of one texel)', () => {
     const p = packEnvironment({ kind: 'none' });
     expect(info(p.environment_info)).toMatchObject({ kind: ENVIRONMENT_KINDS.indexOf('none'), flags: 0, size: [1, 1] });
-    expect(p.environment_map.rgba.length).toBe(4);
+    expect(p.environment_map.rgb.length).toBe(3);
     expect(p.counts).toEqual({ marginal: 2, conditional: 2 });
   });
 
   it('constant: one texel; Σ w Ω = luminance × 4π, so the density is 1/4π', () => {
     const p = packEnvironment({ kind: 'constant', radiance: [0.5, 1, 2] });
-    expect(Array.from(p.environment_map.rgba)).toEqual([0.5, 1, 2, 1]);
+    expect(Array.from(p.environment_map.rgb)).toEqual([0.5, 1, 2]);
     expect(info(p.environment_info)).toMatchObject({ kind: 1, flags: ENVIRONMENT_HAS_MAP, size: [1, 1], intensity: 1 });
     const lum = 0.2126 * 0.5 + 0.7152 + 0.0722 * 2;
     expect(lum / p.samplingTotal).toBeCloseTo(1 / (4 * Math.PI), 9);
@@ -45,14 +46,14 @@ describe('packEnvironment', () => {
 
   it('gradient: zenith at the top row, ground at the bottom, horizon in between', () => {
     const p = packEnvironment({ kind: 'gradient', zenith: [0, 0, 1], horizon: [1, 1, 1], ground: [0.2, 0.1, 0] });
-    const rgba = p.environment_map.rgba;
+    const rgb = p.environment_map.rgb;
     expect(p.environment_map.height).toBe(GRADIENT_ROWS);
-    expect(rgba[2]!).toBeGreaterThan(0.99); // top: blue
-    expect(rgba[0]!).toBeLessThan(0.01);
-    const mid = (GRADIENT_ROWS / 2) * 4;
-    expect(rgba[mid]!).toBeGreaterThan(0.99); // just below the horizon: white
-    const last = (GRADIENT_ROWS - 1) * 4;
-    expect(rgba[last]!).toBeCloseTo(0.2, 2);
+    expect(rgb[2]!).toBeGreaterThan(0.99); // top: blue
+    expect(rgb[0]!).toBeLessThan(0.01);
+    const mid = (GRADIENT_ROWS / 2) * 3;
+    expect(rgb[mid]!).toBeGreaterThan(0.99); // just below the horizon: white
+    const last = (GRADIENT_ROWS - 1) * 3;
+    expect(rgb[last]!).toBeCloseTo(0.2, 2);
   });
 
   it('sky: a 512×256 map with its sun as a separate cone light', () => {
@@ -75,16 +76,52 @@ describe('packEnvironment', () => {
     rgb[4] = -3;
     rgb[5] = Infinity;
     const p = packEnvironment({ kind: 'map', image: { name: 't', width: 8, height: 4, rgb }, rotationDeg: 90, intensity: 3 });
-    expect(p.environment_map.rgba[0]).toBe(0);
-    expect(p.environment_map.rgba[4 + 1]).toBe(0);
-    expect(p.environment_map.rgba[4 + 2]).toBe(0);
+    expect(Array.from(p.environment_map.rgb.subarray(0, 6))).toEqual([0, 1, 1, 1, 0, 0]);
+    // The image given is not changed; a clean one is used as it is.
+    expect(rgb[4]).toBe(-3);
+    const clean = new Float32Array(8 * 4 * 3).fill(2);
+    expect(packEnvironment({ kind: 'map', image: { name: 'c', width: 8, height: 4, rgb: clean }, rotationDeg: 0, intensity: 1 }).environment_map.rgb).toBe(clean);
+    expect(Object.is(packEnvironment({ kind: 'map', image: { name: 'z', width: 1, height: 1, rgb: new Float32Array([-0, 1, 1]) }, rotationDeg: 0, intensity: 1 }).environment_map.rgb[0], 0)).toBe(true);
     const i = info(p.environment_info);
     expect(i.rotation[0]).toBeCloseTo(0, 6);
     expect(i.rotation[1]).toBeCloseTo(1, 6);
     expect(i.intensity).toBe(3);
-    const marginal = new Float32Array(p.environment_marginal_cdf), conditional = new Float32Array(p.environment_conditional_cdf);
-    expectCdf(marginal, 0, 4);
-    for (let j = 0; j < 4; j++) expectCdf(conditional, j * 9, 8);
+    expect([p.environment_cdf.width, p.environment_cdf.height]).toEqual([8, 5]);
+    expectCdf(p.environment_cdf, 4, 4);
+    for (let j = 0; j < 4; j++) expectCdf(p.environment_cdf, j, 8);
+  });
+
+  it('stores the CDFs without their first zeros in max(width, height) texels a row, equal to the full tables', () => {
+    // The full tables as the sampling density defines them (file header): 3×3 maximum of the
+    // luminance (rows wrapping, columns clamped), each row's CDF, and the rows' by solid angle.
+    const reference = (w: number, h: number, rgb: Float32Array) => {
+      const lum = (i: number, j: number) => { const p = 3 * (j * w + ((i + w) % w)); return 0.2126 * rgb[p]! + 0.7152 * rgb[p + 1]! + 0.0722 * rgb[p + 2]!; };
+      const weight = (i: number, j: number) => Math.max(...[-1, 0, 1].flatMap((dj) => [-1, 0, 1].map((di) => Math.fround(lum(i + di, Math.min(h - 1, Math.max(0, j + dj)))))));
+      const conditional: number[][] = [], rows: number[] = [];
+      for (let j = 0; j < h; j++) {
+        const sums = [0];
+        for (let i = 0; i < w; i++) sums.push(Math.fround(sums[i]! + weight(i, j)));
+        const total = sums[w]!;
+        conditional.push(sums.map((v, i) => (i === w ? 1 : total > 0 ? Math.fround(v * (1 / total)) : Math.fround(i / w))));
+        const dtheta = Math.PI / h;
+        rows.push(total * ((2 * Math.PI) / w) * 2 * Math.sin((j + 0.5) * dtheta) * Math.sin(0.5 * dtheta));
+      }
+      const all = rows.reduce((a, b) => a + b, 0);
+      const marginal = [0];
+      for (let j = 0, acc = 0; j < h; j++) marginal.push(j + 1 === h ? 1 : Math.fround((acc += rows[j]!) / all));
+      return { conditional, marginal };
+    };
+    let seed = 5;
+    const random = () => ((seed = (Math.imul(seed, 1103515245) + 12345) >>> 0) / 2 ** 32);
+    for (const [w, h] of [[1, 1], [8, 4], [3, 17], [16, 5], [2, 9]] as const) {
+      const rgb = Float32Array.from({ length: w * h * 3 }, () => (random() < 0.2 ? 0 : 10 * random() ** 4));
+      const p = packEnvironment({ kind: 'map', image: { name: 'r', width: w, height: h, rgb }, rotationDeg: 0, intensity: 1 });
+      const cdf = p.environment_cdf;
+      expect([cdf.width, cdf.height]).toEqual([Math.max(w, h), h + 1]);
+      const { conditional, marginal } = reference(w, h, p.environment_map.rgb);
+      for (let j = 0; j < h; j++) for (let i = 0; i <= w; i++) expect(cdfEntry(cdf, j, i)).toBeCloseTo(conditional[j]![i]!, 6);
+      for (let j = 0; j <= h; j++) expect(cdfEntry(cdf, h, j)).toBeCloseTo(marginal[j]!, 6);
+    }
   });
 
   it('refuses parameters outside their ranges with a LanternError', () => {

@@ -205,7 +205,11 @@ function checkBinChunk(name: string, json: GltfJson, binLength: number | undefin
 }
 
 /** The glTF JSON of a .gltf file or of a GLB's JSON chunk (`what`), or a LanternError saying why not. */
+/** V8's longest string (2^29 − 24 UTF-16 units): glTF JSON longer than that in bytes may not decode to one. */
+const MAX_JSON_BYTES = 2 ** 29 - 24;
+
 function parseJson(name: string, bytes: Uint8Array, what?: string): GltfJson {
+  if (bytes.length > MAX_JSON_BYTES) throw new LanternError(`${name}: ${what ?? 'its JSON'} is ${bytes.length.toLocaleString('en-US')} bytes, more than JavaScript can hold as one string (${MAX_JSON_BYTES.toLocaleString('en-US')})`, 'Store the geometry in a .bin or a .glb binary chunk');
   let json: unknown;
   let why = '';
   try {

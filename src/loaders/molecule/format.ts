@@ -51,7 +51,7 @@ export const MOLECULE_FORMAT: SceneFormat = {
   async open(set) {
     // One file by construction (stacks: false).
     const file = set.files[0]!;
-    const molecules = parseSdf(new TextDecoder().decode(file.bytes), file.name);
+    const molecules = parseSdf(file.bytes, file.name);
     return openMolecules(file.name, molecules);
   },
 };

@@ -8,6 +8,7 @@ import { ELEMENTS, findElement, linearColor } from './elements.ts';
 import { isMoleculeHead, MOLECULE_FORMAT } from './format.ts';
 import { parseMolfile, type Molecule } from './molfile.ts';
 import { parseSdf } from './sdf.ts';
+import { LineReader } from './lines.ts';
 import { atomRadius, BOND_RADIUS, bondCapsules, hillFormula, moleculeMesh, moleculeScene } from './to-scene.ts';
 
 const fixture = (name: string) => new URL(`../../../tests/fixtures/${name}`, import.meta.url);
@@ -301,7 +302,11 @@ describe('bad files: one line naming the line', () => {
     expectLanternError(parse3(v3with(bondLine, 'M  V30 1 2 1 99')), new RegExp(`^bad3\\.mol line ${bondLine}: bond to atom 99, which the atom block does not have`));
     expectLanternError(parse3(v3with(10, 'M  V30 3 N -0.9686 abc 0.0000 0')), /^bad3\.mol line 10: the y coordinate 'abc' is not a number/);
     expectLanternError(parse3(v3with(10, 'M  V30 3 Xx -0.9686 -1.3125 0.0000 0')), /^bad3\.mol line 10: unknown element 'Xx'/);
-    expectLanternError(parse3(v3with(6, 'M  V30 COUNTS 23 25 0 0 0')), /the atom block has 24 atoms but COUNTS says 23/);
+    // Refused at the first atom past the count (the block is not read to its end first).
+    // The 24th atom's line: after BEGIN ATOM (line 7), 24 atoms of which the first is continued.
+    const atom24 = 7 + 24 + 1;
+    expectLanternError(parse3(v3with(6, 'M  V30 COUNTS 23 25 0 0 0')), new RegExp(`^bad3\\.mol line ${atom24}: the atom block has more atoms than the 23 COUNTS says`));
+    expectLanternError(parse3(v3with(6, 'M  V30 COUNTS 25 25 0 0 0')), /the atom block has 24 atoms but COUNTS says 25/);
     expectLanternError(parse3(v3.filter((l) => l !== 'M  END').join('\n')), /^bad3\.mol line \d+: missing 'M {2}END'/);
   });
   it('an SD record names its line in the whole file', () => {
@@ -329,5 +334,57 @@ describe('element table', () => {
   });
   it('the caffeine fixture is present where the CLI tests expect it', () => {
     expect(existsSync(fixture('caffeine.mol'))).toBe(true);
+  });
+});
+
+describe('the line reader', () => {
+  const all = (input: string | Uint8Array) => {
+    const reader = new LineReader(input, 'x');
+    const out: string[] = [];
+    for (let l = reader.next(); l !== undefined; l = reader.next()) out.push(l);
+    return out;
+  };
+  it('splits as split(/\\r\\n|\\r|\\n/) does, a final line ending starting no line', () => {
+    for (const text of ['a\r\nb\rc\nd', 'a\n\n', '\r\r\n\n', '', 'x']) {
+      const expected = text.split(/\r\n|\r|\n/);
+      if (expected.at(-1) === '') expected.pop();
+      expect(all(text)).toEqual(expected);
+      expect(all(bytes(text))).toEqual(expected);
+    }
+  });
+  it('skips blank lines as next() would read them, counting them, across slices and line endings', () => {
+    const slice = 1 << 22;
+    for (const text of [' \t\r\n\n  \r\rcontent\nmore', `${'\n'.repeat(slice - 1)}\r\n  \nx`, `${'\n'.repeat(slice - 3)}        \nx y\n`, '\n\n\n', '\u00a0\nx']) {
+      for (const input of [text, bytes(text)]) {
+        const reader = new LineReader(input, 'x');
+        const skipped = reader.skipBlankLines();
+        const rest = all(input).slice(skipped);
+        expect(all(input).slice(0, skipped).every((l) => l.trim() === '')).toBe(true);
+        expect(reader.index).toBe(skipped - 1);
+        const after: string[] = [];
+        for (let l = reader.next(); l !== undefined; l = reader.next()) after.push(l);
+        expect(after).toEqual(rest);
+      }
+    }
+  });
+  it('names the right line after a run of blank lines (the record starts after the $$$$ of line 1001: its counts line is 1005)', () => {
+    expectLanternError(() => parseSdf(bytes(`${'\n'.repeat(1000)}$$$$\n\n\n\n\n  x`), 'b.sdf'), /^b\.sdf line 1005: bad counts line/);
+    expectLanternError(() => parseSdf(bytes(`\n\n${' '.repeat(3 << 20)}\nx`), 'w.sdf'), /^w\.sdf line 3: a line longer than 1,048,576 characters/);
+  });
+  it('reads bytes in slices: a \\r\\n split between two slices is one line ending, a character split between them is one character', () => {
+    // The slices are 4 MiB: put '\r' at the last byte of the first and '\n' at the first of the next,
+    // and a two-byte 'é' astride the second boundary.
+    const slice = 1 << 22;
+    const row = `${'a'.repeat(99)}\n`;
+    const rows = (n: number) => row.repeat(Math.floor(n / 100));
+    const first = rows(slice - 1000);
+    const pad = 'p'.repeat(slice - 1 - first.length);
+    // '\r' is byte slice − 1, '\n' byte slice; 'é' (2 bytes) starts at byte 2 slice − 1.
+    const second = rows(slice - 1000);
+    const text = `${first}${pad}\r\n${second}${'q'.repeat(2 * slice - 1 - (slice + 1 + second.length))}é\nlast`;
+    expect(new TextEncoder().encode(text.slice(0, text.indexOf('é'))).length).toBe(2 * slice - 1);
+    const lines = all(bytes(text));
+    expect(lines).toEqual(text.split(/\r\n|\r|\n/));
+    expect(lines.filter((l) => l.startsWith('p') || l.startsWith('q') || l === 'last').map((l) => l.length)).toEqual([pad.length, 2 * slice - 1 - (slice + 1 + second.length) + 1, 4]);
   });
 });

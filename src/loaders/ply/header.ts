@@ -56,7 +56,7 @@ export const isIntegerType = (t: PlyScalarType): boolean => t !== 'float32' && t
  * A real header is a few hundred bytes; long comment blocks exist, but a header over this size means we
  * are reading something that is not a PLY file and should stop looking for `end_header`.
  */
-const MAX_HEADER_BYTES = 1 << 20;
+export const MAX_HEADER_BYTES = 1 << 20;
 
 export function parsePlyHeader(bytes: Uint8Array, name: string): PlyHeader {
   const lines = splitHeaderLines(bytes, name);

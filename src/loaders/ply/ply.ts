@@ -8,7 +8,7 @@ import { checkLimit } from '../../budgets.ts';
 import { gunzipCapped, isGzip } from '../gzip.ts';
 import { studioScene } from '../../scene/studio.ts';
 import { diffuse, type Material, type Mesh, type Scene } from '../../scene/types.ts';
-import { parsePlyHeader, SCALAR_SIZE, type PlyElement, type PlyHeader, type PlyProperty } from './header.ts';
+import { MAX_HEADER_BYTES, parsePlyHeader, SCALAR_SIZE, type PlyElement, type PlyHeader, type PlyProperty } from './header.ts';
 import { AsciiReader, BinaryReader, PlyBadValue, PlyEndOfData, readListCount, type ValueReader } from './readers.ts';
 import { readFaces, readVertices, type FaceData, type VertexData } from './elements.ts';
 
@@ -33,17 +33,12 @@ export function loadPly(bytes: Uint8Array, name: string, options: LoadPlyOptions
 
 /** The mesh alone, with material id 0 on every triangle. */
 export function parsePly(input: Uint8Array, name: string): ParsedPly {
-  const bytes = maybeGunzip(input, name);
+  // A gzipped file's header is read (and its counts checked) before the rest is inflated.
+  const bytes = isGzip(input) ? gunzipCapped(input, name, { bytes: MAX_HEADER_BYTES, check: (head) => void meshElements(parsePlyHeader(head, name), name, true) }) : input;
   const header = parsePlyHeader(bytes, name);
-  const vertexElement = header.elements.find((e) => e.name === 'vertex');
-  if (!vertexElement) throw new LanternError(`${name}: the PLY file has no 'vertex' element`);
-  const faceElement = header.elements.find((e) => e.name === 'face');
-  if (!faceElement) {
-    throw new LanternError(`${name}: the PLY file has no faces (no 'face' element)`, 'Lantern renders triangle meshes, not point clouds');
-  }
+  const { vertexElement, faceElement } = meshElements(header, name, false);
   checkMinimumSize(bytes.length - header.bodyOffset, header, name);
-  checkLimit('vertices', vertexElement.count, `${name}: vertices`);
-  checkLimit('faces', faceElement.count, `${name}: faces`);
+  checkCounts(vertexElement, faceElement, name);
 
   const reader: ValueReader =
     header.format === 'ascii'
@@ -83,8 +78,21 @@ export function parsePly(input: Uint8Array, name: string): ParsedPly {
   return { mesh, header, warnings };
 }
 
-function maybeGunzip(bytes: Uint8Array, name: string): Uint8Array {
-  return isGzip(bytes) ? gunzipCapped(bytes, name) : bytes;
+/** The vertex and face elements, which a mesh must have; `counts`: their counts checked against the limits too. */
+function meshElements(header: PlyHeader, name: string, counts: boolean): { vertexElement: PlyElement; faceElement: PlyElement } {
+  const vertexElement = header.elements.find((e) => e.name === 'vertex');
+  if (!vertexElement) throw new LanternError(`${name}: the PLY file has no 'vertex' element`);
+  const faceElement = header.elements.find((e) => e.name === 'face');
+  if (!faceElement) {
+    throw new LanternError(`${name}: the PLY file has no faces (no 'face' element)`, 'Lantern renders triangle meshes, not point clouds');
+  }
+  if (counts) checkCounts(vertexElement, faceElement, name);
+  return { vertexElement, faceElement };
+}
+
+function checkCounts(vertexElement: PlyElement, faceElement: PlyElement, name: string): void {
+  checkLimit('vertices', vertexElement.count, `${name}: vertices`);
+  checkLimit('faces', faceElement.count, `${name}: faces`);
 }
 
 /**

@@ -5,6 +5,7 @@
  * the same folder with the same extension (names matched without regard to case). A folder holding
  * them is a set too (filesInFolder). Other files of the game (AUDIOT, VGAGRAPH, …) are ignored.
  */
+import { WarningCap } from '../../budgets.ts';
 import { LanternError } from '../../errors.ts';
 import type { FileHead, NamedBytes, OpenedScene, SceneFormat, SceneReference } from '../format.ts';
 import { extensionOf, readWolfGame } from './game.ts';
@@ -153,7 +154,14 @@ function openGame(game: WolfGame, description: string): OpenedScene {
     },
     async scene(part, options = {}) {
       const map = game.map(part ?? game.maps[0]!.id);
-      return wolfMapToScene(game, map, options);
+      if (!options.onWarning) return wolfMapToScene(game, map, options);
+      // Capped per kind, as Doom's and glTF's: a map whose every tile is a second player start printed 32,040 lines.
+      const cap = new WarningCap(options.onWarning);
+      try {
+        return wolfMapToScene(game, map, { ...options, onWarning: cap.warn });
+      } finally {
+        cap.finish();
+      }
     },
     inventory() {
       const rows = game.maps.map((info) => {

@@ -30,9 +30,10 @@
 // bits of an rgba32uint texture: rgba32float textures are unfilterable, which a layout reflected from
 // texture_2d<f32> cannot say, and filtering is manual anyway (textureLoad + bitcast, full f32 range).
 // environment_cdf holds the CDFs of its piecewise-constant sampling density as f32 bits (r32uint):
-// row j < height the conditional CDF over the columns of row j (width + 1 values), row height the
-// marginal CDF over rows (height + 1 values). A texture, not a storage buffer: storage buffers are
-// kept within WebGPU's per-stage limit.
+// row j < height the conditional CDF over the columns of row j, row height the marginal CDF over
+// rows, each without its first entry (always 0), so max(width, height) texels a row: an 8192-wide
+// map fits a device's maxTextureDimension2D of 8192. A texture, not a storage buffer: storage
+// buffers are kept within WebGPU's per-stage limit.
 #import scene/environment-types
 
 @group(0) @binding(8) var<uniform> environment_info: EnvironmentInfo;

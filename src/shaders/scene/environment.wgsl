@@ -74,14 +74,21 @@ fn environment_texel_solid_angle(j: u32) -> f32 {
   return (TWO_PI_ENV / f32(size.x)) * 2.0 * sin(theta_mid) * sin(0.5 * dtheta);
 }
 
-// The sampling CDFs, from environment_cdf (see scene/bindings.wgsl): row j < height holds the
-// conditional CDF of row j (width + 1 values), row height the marginal CDF (height + 1 values).
+// The sampling CDFs, from environment_cdf (see scene/bindings.wgsl): row j < height holds entries
+// 1..width of row j's conditional CDF, row height entries 1..height of the marginal CDF; entry 0 of
+// each is 0 and not stored.
 fn environment_marginal(j: u32) -> f32 {
-  return bitcast<f32>(textureLoad(environment_cdf, vec2u(j, environment_info.map_size.y), 0).r);
+  if (j == 0u) {
+    return 0.0;
+  }
+  return bitcast<f32>(textureLoad(environment_cdf, vec2u(j - 1u, environment_info.map_size.y), 0).r);
 }
 
 fn environment_conditional(row: u32, i: u32) -> f32 {
-  return bitcast<f32>(textureLoad(environment_cdf, vec2u(i, row), 0).r);
+  if (i == 0u) {
+    return 0.0;
+  }
+  return bitcast<f32>(textureLoad(environment_cdf, vec2u(i - 1u, row), 0).r);
 }
 
 // Largest row j in [0, height) with marginal_cdf[j] ≤ u (binary search; cdf[0] = 0, cdf[height] = 1).
