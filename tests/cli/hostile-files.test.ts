@@ -67,7 +67,7 @@ describe('warning floods', () => {
     const r = lantern(['info', `${game}#E1L1`]);
     expect(r.code, r.rawStderr.slice(0, 2000)).toBe(0);
     expect(r.lines.length).toBeLessThan(60);
-    expect(r.lines.filter((l) => l.startsWith('lantern: … and '))).toHaveLength(2);
+    expect(r.lines.filter((l) => l.startsWith('lantern: warning: … and '))).toHaveLength(2);
   });
 });
 
