@@ -217,6 +217,8 @@ export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
 export class SceneKernels {
   private readonly ready = new Map<string, ComputeKernel>();
   private readonly pending = new Map<string, Promise<ComputeKernel>>();
+  /** The features each variant was asked for, by key (preparedFeatures). */
+  private readonly asked = new Map<string, SceneFeatures>();
 
   constructor(
     private readonly device: GPUDevice,
@@ -246,6 +248,7 @@ export class SceneKernels {
   async prepare(f: SceneFeatures): Promise<void> {
     const key = this.key(f);
     if (this.ready.has(key)) return;
+    this.asked.set(key, f);
     let pending = this.pending.get(key);
     if (!pending) {
       const constants: Record<string, number> = { ...this.extraConstants };
@@ -254,6 +257,16 @@ export class SceneKernels {
       this.pending.set(key, pending);
     }
     this.ready.set(key, await pending);
+  }
+
+  /** Whether the variant `f` needs is compiled. */
+  has(f: SceneFeatures): boolean {
+    return this.ready.has(this.key(f));
+  }
+
+  /** The features of every variant asked for so far (compiled or compiling). */
+  preparedFeatures(): SceneFeatures[] {
+    return [...this.asked.values()];
   }
 
   get(f: SceneFeatures): ComputeKernel {
