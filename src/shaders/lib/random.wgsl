@@ -38,16 +38,16 @@
 
 const SAMPLER_RANDOM: u32 = 0u;
 const SAMPLER_SOBOL: u32 = 1u;
-// SAMPLER: not a sampler, the default of the constant below: each stream says at run time which it is.
-const SAMPLER_PER_STREAM: u32 = 2u;
+// Not a sampler but the default of SAMPLER below: each stream says at run time which it is.
+const PER_STREAM_SAMPLER: u32 = 2u;
 
 // The sampler compiled into a kernel, a pipeline constant (SAMPLER_*): the path tracers' kernels are
 // compiled for the sampler their chain uses (passes/path-trace-pass.ts TracingKernels), so that a PCG
 // kernel carries none of the Sobol code. With both in the kernel and the choice made per stream at run
 // time, PCG paths ran 2–16 % slower on an H200 (Cornell, rtiow, E1M1; docs/perf.md, 2026-12-01) for
-// the registers the Sobol draws hold. SAMPLER_PER_STREAM (the default) keeps that run-time choice:
-// tests and kernels that draw PCG streams only.
-override SAMPLER: u32 = SAMPLER_PER_STREAM;
+// the Sobol code they carried (registers, most likely: nothing else differs). PER_STREAM_SAMPLER (the
+// default) keeps that run-time choice: tests and kernels that draw PCG streams only.
+override SAMPLER: u32 = PER_STREAM_SAMPLER;
 
 // Rng.dimension of a PCG stream (a Sobol stream counts its pairs there).
 const RNG_WHITE: u32 = 0xffffffffu;
@@ -85,7 +85,7 @@ fn sampler_seed(sampler: u32, pixel: vec2u, image_size: vec2u, sample_index: u32
 // What every sample of a pixel shares, worked out once for a loop over its samples (the Sobol
 // sampler's pixel rank walks the screen's quadtree): give it to sampler_next_sample for each sample.
 fn sampler_pixel(sampler: u32, pixel: vec2u, image_size: vec2u, seed: u32) -> Rng {
-  let chosen = select(sampler, SAMPLER, SAMPLER != SAMPLER_PER_STREAM);
+  let chosen = select(sampler, SAMPLER, SAMPLER != PER_STREAM_SAMPLER);
   if (chosen != SAMPLER_SOBOL) {
     return Rng(0u, RNG_WHITE, 0u, 0u);
   }
