@@ -119,7 +119,7 @@ export class TracingKernels {
   /**
    * Compiles the variants ready so far for `sampler` and traces with them from now on; until they
    * are ready, dispatches run the previous sampler's (an unbiased estimate too, but not the one
-   * asked for: the renderer restarts the estimate when this resolves).
+   * asked for: await this before rendering for that sampler's alone).
    */
   async useSampler(sampler: Sampler): Promise<void> {
     if (this.samplerValue === undefined) throw new Error(`${this.base.entryPoint}: created without a sampler, it cannot switch samplers`);

@@ -520,8 +520,9 @@ export class Renderer {
 
   /**
    * Compiles the path tracers for the samplers the settings resolve to, where they are compiled for
-   * others (a PCG kernel holds no Sobol code: lib/random.wgsl SAMPLER); they trace with the old ones
-   * meanwhile, and the estimate restarts once the new ones are ready.
+   * others (a PCG kernel holds no Sobol code: lib/random.wgsl SAMPLER). Until they are ready, samples
+   * and frames are traced with the old ones (unbiased, but the old sampler's): renders that want the
+   * new sampler's estimate alone await accelSettled() first, as renderProgressive and the CLI do.
    */
   private useSamplers(): void {
     const s = this.settingsValue;
@@ -529,7 +530,7 @@ export class Renderer {
     if (this.denoiser) wanted.push([this.denoiser.frameKernels, resolveSampler(s.sampler, 'real-time')]);
     const switching = wanted.filter(([k, sampler]) => k.sampler !== sampler);
     if (switching.length === 0) return;
-    const done = Promise.all(switching.map(([k, sampler]) => k.useSampler(sampler))).then(() => this.resetAccumulation());
+    const done = Promise.all(switching.map(([k, sampler]) => k.useSampler(sampler))).then(() => undefined);
     this.samplerPending = this.samplerPending.catch(() => undefined).then(() => done);
     this.samplerPending.catch(() => undefined); // the error is accelSettled()'s to report
   }
