@@ -7,6 +7,7 @@ import { bundleEvaluated } from './process-clock.ts';
 import { Command } from 'commander';
 import { applyLimitsOption, LIMIT_NAMES, LIMITS_ENV, LIMITS_OPTION } from '../budgets.ts';
 import { registerBench } from './commands/bench.ts';
+import { registerBenchMatrix } from './commands/bench-matrix.ts';
 import { registerBvhStats } from './commands/bvh-stats.ts';
 import { registerConvert } from './commands/convert.ts';
 import { registerDiff } from './commands/diff.ts';
@@ -44,6 +45,7 @@ async function runCommand(): Promise<void> {
 
   registerRender(program, context);
   registerBench(program, context);
+  registerBenchMatrix(program, context);
   registerInfo(program, context);
   registerBvhStats(program, context);
   registerConvert(program, context);

@@ -211,6 +211,8 @@ export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
 export class SceneKernels {
   private readonly ready = new Map<string, ComputeKernel>();
   private readonly pending = new Map<string, Promise<ComputeKernel>>();
+  /** The features each variant was asked for, by key (preparedFeatures). */
+  private readonly asked = new Map<string, SceneFeatures>();
 
   constructor(
     private readonly device: GPUDevice,
@@ -240,6 +242,7 @@ export class SceneKernels {
   async prepare(f: SceneFeatures): Promise<void> {
     const key = this.key(f);
     if (this.ready.has(key)) return;
+    this.asked.set(key, f);
     let pending = this.pending.get(key);
     if (!pending) {
       const constants: Record<string, number> = { ...this.extraConstants };
@@ -250,6 +253,16 @@ export class SceneKernels {
     this.ready.set(key, await pending);
   }
 
+  /** Whether the variant `f` needs is compiled. */
+  has(f: SceneFeatures): boolean {
+    return this.ready.has(this.key(f));
+  }
+
+  /** The features of every variant asked for so far (compiled or compiling). */
+  preparedFeatures(): SceneFeatures[] {
+    return [...this.asked.values()];
+  }
+
   get(f: SceneFeatures): ComputeKernel {
     const kernel = this.ready.get(this.key(f));
     if (!kernel) throw new Error(`${this.base.entryPoint}: no pipeline compiled for scene features ${JSON.stringify(f)} (prepare() first)`);
@@ -258,7 +271,11 @@ export class SceneKernels {
 }
 
 export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticGrid: false, staticBvh4: false, staticCwbvh: false, shallowStack: false });
-/** The features every path-tracing entry point compiles by. */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];
+/**
+ * The features every path-tracing entry point compiles by. Not the shallow stack: the traversal
+ * kernels gain from it, the path tracers lost 3–7 % with it on an H200 (docs/perf.md, 2026-12-01), so
+ * they keep BVH_SHALLOW_STACK's default (off).
+ */
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh'];
 /** The features of passes that only trace (debug views, ray buffers). */
 export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];

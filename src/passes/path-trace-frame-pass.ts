@@ -13,6 +13,7 @@ import type { Camera } from '../scene/types.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
+import { resolveSampler } from './variants.ts';
 
 const MODULE = 'passes/path-trace-frame';
 
@@ -53,7 +54,7 @@ export class PathTraceFramePass {
   /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
   static async create(device: GPUDevice, first?: SceneFeatures): Promise<PathTraceFramePass> {
     const [kernels, gbufferKernels] = await Promise.all([
-      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }, first),
+      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }, first, resolveSampler('auto', 'real-time')),
       TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }, first),
     ]);
     const params = () => new UniformParams(device, PATH_TRACE_MODULE);

@@ -5,7 +5,7 @@ import type { SceneResources } from '../gpu/scene-resources.ts';
 import { compileSpecialised, type SceneSpecialisation, type SpecialisedKernel } from '../gpu/specialisation.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
-import { LIGHT_SAMPLING, SAMPLERS, type LightSampling, type Sampler } from './variants.ts';
+import { LIGHT_SAMPLING, resolveSampler, SAMPLERS, type LightSampling, type Sampler } from './variants.ts';
 import type { Torch } from '../scene/types.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
@@ -75,32 +75,64 @@ export interface PathTraceTarget {
  * layouts. Group 0 is the scene, 1 the view, 2 the pass's own, keyed by one of its buffers.
  * Spectral mode is a second set of the same variants compiled with SPECTRAL (lib/spectrum.wgsl),
  * made only once something prepares it, so RGB rendering neither compiles nor runs any of it.
+ * An entry point created with a sampler is compiled for it (lib/random.wgsl SAMPLER): its kernels
+ * hold that sampler's code alone; useSampler compiles another's.
  */
 export class TracingKernels {
-  private spectralKernels?: SceneKernels;
+  /** The variant sets by mode (RGB or spectral) and sampler. */
+  private readonly sets = new Map<string, SceneKernels>();
   private readonly sceneGroups = new WeakMap<ComputeKernel, WeakMap<SceneResources, GPUBindGroup>>();
   private readonly viewGroups = new WeakMap<ComputeKernel, WeakMap<ViewUniform, GPUBindGroup>>();
   private readonly targetGroups = new WeakMap<ComputeKernel, WeakMap<object, GPUBindGroup>>();
 
   /** The kernel specialised to one uploaded scene, used instead of the generic variants while set. */
   private active?: { readonly scene: SceneResources; readonly kernel: ComputeKernel };
+  /** The sampler before the last useSampler: its kernels trace until the new ones are compiled. */
+  private previousSampler?: Sampler;
 
   private constructor(
     private readonly device: GPUDevice,
-    private readonly kernels: SceneKernels,
+    kernels: SceneKernels,
     private readonly base: { readonly module: string; readonly entryPoint: string },
     private readonly extraConstants: Record<string, number>,
-  ) {}
+    private samplerValue: Sampler | undefined,
+  ) {
+    this.sets.set(setKey(false, samplerValue), kernels);
+  }
 
-  /** `first`: the features of the scene to compile for at once (SceneKernels.create; default a plain scene's). */
-  static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}, first?: SceneFeatures): Promise<TracingKernels> {
+  /**
+   * `first`: the features of the scene to compile for at once (SceneKernels.create; default a plain
+   * scene's). `sampler`: compile for that sampler (the entry point draws its streams by sampler_seed);
+   * without it, each stream chooses at run time.
+   */
+  static async create(device: GPUDevice, module: string, entryPoint: string, extraConstants: Record<string, number> = {}, first?: SceneFeatures, sampler?: Sampler): Promise<TracingKernels> {
     const base = { module, entryPoint };
-    return new TracingKernels(device, await SceneKernels.create(device, base, TRACING_FEATURES, extraConstants, first), base, extraConstants);
+    const kernels = await SceneKernels.create(device, base, TRACING_FEATURES, withSampler(extraConstants, sampler), first);
+    return new TracingKernels(device, kernels, base, extraConstants, sampler);
+  }
+
+  /** The sampler these kernels are compiled for (undefined: chosen per stream). */
+  get sampler(): Sampler | undefined {
+    return this.samplerValue;
+  }
+
+  /**
+   * Compiles the variants ready so far for `sampler` and traces with them from now on; until they
+   * are ready, dispatches run the previous sampler's (an unbiased estimate too, but not the one
+   * asked for: await this before rendering for that sampler's alone).
+   */
+  async useSampler(sampler: Sampler): Promise<void> {
+    if (this.samplerValue === undefined) throw new Error(`${this.base.entryPoint}: created without a sampler, it cannot switch samplers`);
+    if (sampler === this.samplerValue) return;
+    const ready = [false, true].flatMap((spectral) => (this.sets.get(setKey(spectral, this.samplerValue))?.preparedFeatures() ?? []).map((f) => ({ f, spectral })));
+    this.previousSampler = this.samplerValue;
+    this.samplerValue = sampler;
+    await Promise.all(ready.map(({ f, spectral }) => this.variants(spectral).prepare(f)));
   }
 
   /** Compiles this entry point specialised to a frozen scene (gpu/specialisation.ts), asynchronously; it is not used until useSpecialised. */
   compileSpecialised(s: SceneSpecialisation): Promise<SpecialisedKernel> {
-    return compileSpecialised(this.device, this.base, s, this.extraConstants);
+    return compileSpecialised(this.device, this.base, s, withSampler(this.extraConstants, this.samplerValue));
   }
 
   /** Dispatches over `scene` use `kernel` from now on; undefined goes back to the generic variants. */
@@ -118,16 +150,24 @@ export class TracingKernels {
     return this.variants(spectral).prepare(features);
   }
 
-  private variants(spectral: boolean): SceneKernels {
-    if (!spectral) return this.kernels;
-    this.spectralKernels ??= new SceneKernels(this.device, this.base, TRACING_FEATURES, { ...this.extraConstants, SPECTRAL: 1 });
-    return this.spectralKernels;
+  private variants(spectral: boolean, sampler = this.samplerValue): SceneKernels {
+    const key = setKey(spectral, sampler);
+    let set = this.sets.get(key);
+    if (!set) this.sets.set(key, (set = new SceneKernels(this.device, this.base, TRACING_FEATURES, withSampler({ ...this.extraConstants, ...(spectral ? { SPECTRAL: 1 } : {}) }, sampler))));
+    return set;
+  }
+
+  /** The generic kernel for these features: the current sampler's, or while it compiles the previous one's. */
+  private generic(features: SceneFeatures, spectral: boolean): ComputeKernel {
+    const fallback = this.previousSampler !== undefined ? this.sets.get(setKey(spectral, this.previousSampler)) : undefined;
+    const current = this.variants(spectral);
+    return !current.has(features) && fallback?.has(features) ? fallback.get(features) : current.get(features);
   }
 
   /** Records one dispatch over `tile` as a compute pass named `label`; group 2 is made once per `targetKey` from `targets`. */
   dispatch(encoder: GPUCommandEncoder, label: string, scene: SceneResources, view: ViewUniform, targetKey: object, targets: () => Record<string, NamedResource>, tile: Tile, spectral: boolean, timer?: GpuTimer): void {
     // Specialised kernels are compiled in RGB: spectral dispatches use the generic spectral variants.
-    const kernel = !spectral && this.active?.scene === scene ? this.active.kernel : this.variants(spectral).get(scene.features);
+    const kernel = !spectral && this.active?.scene === scene ? this.active.kernel : this.generic(scene.features, spectral);
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     kernel.dispatch(
       pass,
@@ -141,6 +181,13 @@ export class TracingKernels {
     );
     pass.end();
   }
+}
+
+const setKey = (spectral: boolean, sampler: Sampler | undefined) => `${spectral ? 'spectral' : 'rgb'}/${sampler ?? 'per-stream'}`;
+
+/** The constants with lib/random.wgsl's SAMPLER set for `sampler` (none without one). */
+function withSampler(constants: Record<string, number>, sampler: Sampler | undefined): Record<string, number> {
+  return sampler === undefined ? constants : { ...constants, SAMPLER: SAMPLERS.indexOf(sampler) };
 }
 
 export class PathTracePass {
@@ -158,7 +205,8 @@ export class PathTracePass {
     reflectKernel(device, MODULE);
     const params = new UniformParams(device, MODULE);
     try {
-      return new PathTracePass(await TracingKernels.create(device, MODULE, PATH_TRACE_ENTRY, {}, await first), params);
+      // Compiled for the sampler progressive renders use by default; the renderer switches it if the settings ask for another.
+      return new PathTracePass(await TracingKernels.create(device, MODULE, PATH_TRACE_ENTRY, {}, await first, resolveSampler('auto', 'progressive')), params);
     } catch (e) {
       params.destroy();
       throw e;

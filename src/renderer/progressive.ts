@@ -13,6 +13,8 @@ export interface ProgressiveOptions {
 }
 
 export async function renderProgressive(renderer: Renderer, options: ProgressiveOptions): Promise<{ seconds: number }> {
+  // The kernels the settings ask for (another sampler compiles after a change): every sample theirs.
+  await renderer.accelSettled();
   const planner = new DispatchPlanner(renderer.width, renderer.height, options.planner ?? DEFAULT_PLANNER_OPTIONS);
   const start = performance.now();
   let done = 0;

@@ -25,7 +25,7 @@ import { createBufferWithData, readBuffer, readTexture4x8 } from '../gpu/readbac
 import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
 import { packInstances } from '../gpu/pack/scene-pack.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { PathTracePass, type Tile } from '../passes/path-trace-pass.ts';
+import { PathTracePass, type Tile, type TracingKernels } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
 import { SelectionOutlinePass, type SelectedRange } from '../passes/selection-outline-pass.ts';
 import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes/trace-rays-pass.ts';
@@ -49,7 +49,7 @@ import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
 import { primaryRay, ViewUniform } from '../gpu/view.ts';
 import { describeSpecialisation, specialiseScene, type SpecialiseOptions } from '../gpu/specialisation.ts';
-import { LIGHT_SAMPLING, resolveSampler } from '../passes/variants.ts';
+import { LIGHT_SAMPLING, resolveSampler, type Sampler } from '../passes/variants.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
@@ -518,19 +518,43 @@ export class Renderer {
   }
 
   private accelPending: Promise<void> = Promise.resolve();
+  /** The path tracers' kernels for the sampler setting, compiling after a change (useSamplers). */
+  private samplerPending: Promise<void> = Promise.resolve();
 
-  /** Resolves once the scene is traced through the structure the `accel` setting names (rejects if building it failed). */
+  /**
+   * Resolves once the scene is traced as the settings say: through the structure the `accel` setting
+   * names, by kernels compiled for the `sampler` setting (rejects if building or compiling failed).
+   */
   accelSettled(): Promise<void> {
-    return this.accelPending;
+    return Promise.all([this.accelPending, this.samplerPending]).then(() => undefined);
+  }
+
+  /**
+   * Compiles the path tracers for the samplers the settings resolve to, where they are compiled for
+   * others (a PCG kernel holds no Sobol code: lib/random.wgsl SAMPLER). Until they are ready, samples
+   * and frames are traced with the old ones (unbiased, but the old sampler's): renders that want the
+   * new sampler's estimate alone await accelSettled() first, as renderProgressive and the CLI do.
+   */
+  private useSamplers(): void {
+    const s = this.settingsValue;
+    const wanted: [TracingKernels, Sampler][] = [[this.pathTrace.kernels, resolveSampler(s.sampler, 'progressive')]];
+    if (this.denoiser) wanted.push([this.denoiser.frameKernels, resolveSampler(s.sampler, 'real-time')]);
+    const switching = wanted.filter(([k, sampler]) => k.sampler !== sampler);
+    if (switching.length === 0) return;
+    const done = Promise.all(switching.map(([k, sampler]) => k.useSampler(sampler))).then(() => undefined);
+    this.samplerPending = this.samplerPending.catch(() => undefined).then(() => done);
+    this.samplerPending.catch(() => undefined); // the error is accelSettled()'s to report
   }
 
   /** Applies changed settings; those that change the estimate restart accumulation. */
   updateSettings(changes: Partial<RenderSettings>): void {
+    const before = this.settingsValue;
     const next = validateSettings({ ...this.settingsValue, ...changes });
     const restart = ESTIMATE_SETTINGS.some((k) => next[k] !== this.settingsValue[k]);
     const culling = next.tileCulling !== this.settingsValue.tileCulling;
     const accel = next.accel !== this.settingsValue.accel;
     this.settingsValue = next;
+    if (next.sampler !== before.sampler) this.useSamplers();
     if (culling) this.configureTileCulling();
     // The wavefront frame path tracer is compiled in the background; frames use the megakernel until it is ready.
     if (next.integrator === 'wavefront' && this.denoiser) this.enableWavefront().catch((e: unknown) => (this.wavefrontError = e));
@@ -768,8 +792,10 @@ export class Renderer {
     const created = !this.denoiser;
     this.denoiser ??= await Denoiser.create(this.device, this.sceneFeatures);
     if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
+    if (created) this.useSamplers();
     if (this.settingsValue.integrator === 'wavefront') await this.enableWavefront();
     if (this.settingsValue.restir) await this.enableRestir();
+    await this.samplerPending;
     // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
     // frame kernel): specialise again with it.
     if (created) this.invalidateSpecialisation();

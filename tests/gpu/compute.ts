@@ -6,10 +6,10 @@ import { reflectLinked } from '../../src/gpu/wgsl/reflect.ts';
 import { SHADER_MODULES } from '../../src/shaders/index.ts';
 
 /** A test kernel: `code` may `#import` any module of src/shaders. */
-export async function testKernel(device: GPUDevice, name: string, code: string, entryPoint: string): Promise<ComputeKernel> {
+export async function testKernel(device: GPUDevice, name: string, code: string, entryPoint: string, constants?: Record<string, number>): Promise<ComputeKernel> {
   const sources = new Map(SHADER_MODULES);
   sources.set(name, code);
-  return ComputeKernel.create(device, { module: reflectLinked(linkWgsl(name, sources)), entryPoint });
+  return ComputeKernel.create(device, { module: reflectLinked(linkWgsl(name, sources)), entryPoint, ...(constants ? { constants } : {}) });
 }
 
 export function storageBuffer(device: GPUDevice, label: string, data: ArrayBuffer | ArrayBufferView): GPUBuffer {

@@ -365,6 +365,7 @@ describe('demodulation at a silhouette', () => {
     // Sobol: a pixel's samples over the 16 frames are stratified, so they cover the pixel evenly (white
     // noise would leave the coverage's own sampling error, ±0.1 here).
     renderer.updateSettings({ maxBounces: 1, temporal: true, denoise: false, clampK: 0, historyCap: 32, denoiseView: 'output', sampler: 'sobol' });
+    await renderer.accelSettled(); // the Sobol frame kernels compile
     renderer.setCamera(camera(0));
     renderer.resetHistory();
     let img: LinearImage | undefined;

@@ -61,6 +61,7 @@ const sumOf = (img: LinearImage) => img.radiance.reduce((a, b) => a + b, 0);
 describe('ReSTIR DI on 40 lights', () => {
   it('lowers the raw 1-spp error by a clear factor, and its frames average to the reference', async () => {
     renderer.updateSettings({ maxBounces: 1, seed: 3, sampler: 'sobol' });
+    await renderer.accelSettled(); // the Sobol frame kernels compile
     const ref = await reference(camera(4), 1024);
     const still = Array.from({ length: 16 }, () => camera(4));
     const off = await frames(false, still);
@@ -86,6 +87,7 @@ describe('ReSTIR DI on 40 lights', () => {
 
   it('keeps the error down and the energy right with a moving camera', async () => {
     renderer.updateSettings({ maxBounces: 1, seed: 4, sampler: 'sobol' });
+    await renderer.accelSettled(); // the Sobol frame kernels compile
     // Sliding sideways 4 cm a frame: pillars uncover what they hid. Frames 8 and 11 are measured.
     const path = Array.from({ length: 12 }, (_, i) => camera(3.6 + 0.04 * i));
     const measured = [8, 11];

@@ -23,7 +23,8 @@ function draw(sampler: number, first: number, seed: number, size = { width: W, h
   return points;
 }
 
-async function drawPoints(sampler: number, first: number, seed: number, size = { width: W, height: H, samples: SAMPLES }): Promise<Float32Array> {
+/** `compiled`: lib/random.wgsl's SAMPLER constant for the kernel (default: chosen per stream, by `sampler`). */
+async function drawPoints(sampler: number, first: number, seed: number, size = { width: W, height: H, samples: SAMPLES }, compiled?: number): Promise<Float32Array> {
   const { width, height, samples } = size;
   const { device } = await testGpu();
   const code = `
@@ -44,7 +45,7 @@ fn draw(@builtin(global_invocation_id) id: vec3u) {
     }
   }
 }`;
-  const kernel = await testKernel(device, `test/sampler-${sampler}-${first}-${seed}-${width}x${height}x${samples}`, code, 'draw');
+  const kernel = await testKernel(device, `test/sampler-${sampler}-${first}-${seed}-${width}x${height}x${samples}`, code, 'draw', compiled === undefined ? undefined : { SAMPLER: compiled });
   const n = width * height * samples;
   const out = outputBuffer(device, 'points', n * PAIRS * 8);
   const data = new Float32Array(await runOnce(device, kernel, { 3: kernel.bindGroup(3, { points: out }) }, [n / 64], out));
@@ -83,6 +84,18 @@ function chiSquare(counts: ArrayLike<number>, total: number): number {
 
 const SOBOL = 1, RANDOM = 0;
 
+/** permute4's Fisher–Yates shuffle of (0 1 2 3) with p's factorial-base digits as the choices: entry `digit` of permutation p. */
+function shuffled(p: number, digit: number): number {
+  const items = [0, 1, 2, 3];
+  let r = p;
+  for (let i = 3; i > 0; i--) {
+    const j = r % (i + 1);
+    r = Math.floor(r / (i + 1));
+    [items[i], items[j]] = [items[j]!, items[i]!];
+  }
+  return items[digit]!;
+}
+
 describe('the Sobol sampler (lib/random.wgsl)', () => {
   it('computes the second Sobol dimension as the direction-number loop does, for every index tried', async () => {
     const { device } = await testGpu();
@@ -114,6 +127,36 @@ fn sobol(@builtin(global_invocation_id) id: vec3u) {
       for (; bits !== 0; bits >>>= 1, v = (v ^ (v >>> 1)) >>> 0) if (bits & 1) y = (y ^ v) >>> 0;
       expect([out[2 * k], out[2 * k + 1]]).toEqual([reverse(indices[k]!), y]);
     }
+  });
+
+  it('tabulates the 24 permutations of the quadtree children as the Fisher–Yates shuffle makes them, all distinct', async () => {
+    const { device } = await testGpu();
+    const code = `
+#import lib/random
+@group(3) @binding(0) var<storage, read_write> values: array<u32>;
+@compute @workgroup_size(96)
+fn permutations(@builtin(local_invocation_index) i: u32) {
+  values[i] = permute4(i % 4u, i / 4u);
+}`;
+    const kernel = await testKernel(device, 'test/permute4', code, 'permutations');
+    const out = outputBuffer(device, 'values', 96 * 4);
+    const values = new Uint32Array(await runOnce(device, kernel, { 3: kernel.bindGroup(3, { values: out }) }, [1], out));
+    out.destroy();
+    const expected = Array.from({ length: 96 }, (_, i) => shuffled(Math.floor(i / 4), i % 4));
+    expect(Array.from(values)).toEqual(expected);
+    expect(new Set(Array.from({ length: 24 }, (_, p) => Array.from(values.subarray(4 * p, 4 * p + 4)).join())).size).toBe(24);
+  });
+
+  it('draws what the stream asks for where a kernel chooses per stream, and the compiled-in sampler where it is compiled for one', async () => {
+    const size = { width: 8, height: 8, samples: 64 };
+    const [perStreamSobol, perStreamRandom, compiledSobol, compiledRandom] = await Promise.all([
+      drawPoints(SOBOL, 64, 5, size), drawPoints(RANDOM, 64, 5, size),
+      // The stream asks for the other sampler: the kernel's own wins.
+      drawPoints(RANDOM, 64, 5, size, SOBOL), drawPoints(SOBOL, 64, 5, size, RANDOM),
+    ]);
+    expect(Array.from(compiledSobol)).toEqual(Array.from(perStreamSobol));
+    expect(Array.from(compiledRandom)).toEqual(Array.from(perStreamRandom));
+    expect(Array.from(perStreamSobol)).not.toEqual(Array.from(perStreamRandom));
   });
 
   it("stratifies each pixel's samples: aligned blocks of 2^k are (0,k,2)-nets in every pair, across frames' indices too", async () => {

@@ -5,7 +5,7 @@
  * The stage log (gpu/stage-log.ts) says what was compiled.
  */
 import { afterEach, describe, expect, it } from 'vitest';
-import { FEATURE_CONSTANTS } from '../../src/gpu/kernel.ts';
+import { FEATURE_CONSTANTS, TRACING_FEATURES } from '../../src/gpu/kernel.ts';
 import type { SceneFeatures } from '../../src/gpu/pack/scene-pack.ts';
 import { observeStages, type StageSpan } from '../../src/gpu/stage-log.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
@@ -27,7 +27,8 @@ afterEach(async () => observeStages((await testGpu()).device, undefined));
 const pipelines = (spans: readonly StageSpan[]) => spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort();
 
 /** The override constants a scene with these features compiles with, as the stage's detail lists them. */
-const constantsOf = (f: SceneFeatures) => Object.entries(FEATURE_CONSTANTS).map(([k, name]) => `${name}=${f[k as keyof SceneFeatures] ? 1 : 0}`);
+/** The path tracer's pipeline constants for a scene: its tracing features, and the sampler progressive renders use (Sobol, SAMPLER=1). */
+const constantsOf = (f: SceneFeatures) => [...TRACING_FEATURES.map((k) => `${FEATURE_CONSTANTS[k]}=${f[k] ? 1 : 0}`), 'SAMPLER=1'];
 
 describe('start-up compiles', () => {
   it('compile the path tracer for the given scene alone, and the tone mapper; nothing else', async () => {

@@ -175,6 +175,7 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
     ...(culling ? { tileCulling: culling } : {}),
     kernel: { kind: o.kernel, ...(specialisation ? { compileMs: specialisation.compileMs, specialisation: specialisation.description, unrolled: specialisation.unrolled } : {}) },
     ...result,
+    adapterInfo: adapterInfo(renderer),
   };
   renderer.destroy();
   if (o.json) {
@@ -201,6 +202,12 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
       ...(p ? [`  path tracing    ${report.spectral ? '(spectral) ' : ''}${f(p.samplesPerSecond / 1e6, 2)} M samples/s (${f(p.msPerSample, 3)} ms per spp), ${f(p.mraysPerSecond)} Mrays/s at ${p.maxBounces} bounces (${f(p.raysPerPath, 2)} rays per path)`] : []),
     ].join('\n'),
   );
+}
+
+/** The adapter's own words (vendor, architecture, device, driver description), for records such as bench-matrix's. */
+function adapterInfo(renderer: Renderer): { vendor: string; architecture: string; device: string; description: string } {
+  const { vendor, architecture, device, description } = renderer.gpu.adapter.info;
+  return { vendor, architecture, device, description };
 }
 
 /** Frame-mode settings apply to --real-time only, as --spp does; --protocol times rays alone. */
@@ -233,6 +240,7 @@ async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs
     lights: prepared.packed.counts.lights,
     loadMs,
     adapter: renderer.gpu.adapterName,
+    adapterInfo: adapterInfo(renderer),
     timing,
     width: o.width,
     height: o.height,

@@ -38,6 +38,16 @@
 
 const SAMPLER_RANDOM: u32 = 0u;
 const SAMPLER_SOBOL: u32 = 1u;
+// Not a sampler but the default of SAMPLER below: each stream says at run time which it is.
+const PER_STREAM_SAMPLER: u32 = 2u;
+
+// The sampler compiled into a kernel, a pipeline constant (SAMPLER_*): the path tracers' kernels are
+// compiled for the sampler their chain uses (passes/path-trace-pass.ts TracingKernels), so that a PCG
+// kernel carries none of the Sobol code. With both in the kernel and the choice made per stream at run
+// time, PCG paths ran 2–16 % slower on an H200 (Cornell, rtiow, E1M1; docs/perf.md, 2026-12-01) for
+// the Sobol code they carried (registers, most likely: nothing else differs). PER_STREAM_SAMPLER (the
+// default) keeps that run-time choice: tests and kernels that draw PCG streams only.
+override SAMPLER: u32 = PER_STREAM_SAMPLER;
 
 // Rng.dimension of a PCG stream (a Sobol stream counts its pairs there).
 const RNG_WHITE: u32 = 0xffffffffu;
@@ -47,10 +57,10 @@ struct Rng {
   state: u32,
   // Sobol: the next dimension pair to draw. RNG_WHITE: a PCG stream.
   dimension: u32,
-  // Sobol: the sample's index in its pixel's sequence.
-  sample_index: u32,
-  // Sobol: the pixel's place in the screen's scrambled Morton order.
-  pixel_rank: u32,
+  // Sobol: the sample's index in its pixel's sequence, its bits reversed (see sobol_next_2d_bits).
+  sample_bits: u32,
+  // Sobol: the pixel's place in the screen's scrambled Morton order, its bits reversed.
+  rank_bits: u32,
 }
 
 fn pcg_hash(v: u32) -> u32 {
@@ -67,23 +77,46 @@ fn rng_seed(pixel_index: u32, sample_index: u32, seed: u32) -> Rng {
 
 // The stream of one sample of one pixel of an image of image_size pixels from the chosen sampler
 // (SAMPLER_*): the PCG stream of rng_seed, or the Sobol sampler's sample `sample_index` of the pixel.
+// A kernel compiled for one sampler (SAMPLER) uses it whatever `sampler` says.
 fn sampler_seed(sampler: u32, pixel: vec2u, image_size: vec2u, sample_index: u32, seed: u32) -> Rng {
-  if (sampler != SAMPLER_SOBOL) {
-    return rng_seed(pixel.y * image_size.x + pixel.x, sample_index, seed);
+  return sampler_next_sample(sampler_pixel(sampler, pixel, image_size, seed), pixel, image_size, sample_index, seed);
+}
+
+// What every sample of a pixel shares, worked out once for a loop over its samples (the Sobol
+// sampler's pixel rank walks the screen's quadtree): give it to sampler_next_sample for each sample.
+fn sampler_pixel(sampler: u32, pixel: vec2u, image_size: vec2u, seed: u32) -> Rng {
+  let chosen = select(sampler, SAMPLER, SAMPLER != PER_STREAM_SAMPLER);
+  if (chosen != SAMPLER_SOBOL) {
+    return Rng(0u, RNG_WHITE, 0u, 0u);
   }
   let key = pcg_hash(seed ^ 0x2545f491u);
-  return Rng(key, 0u, sample_index, morton_rank(pixel, image_size, pcg_hash(key)));
+  return Rng(key, 0u, 0u, reverseBits(morton_rank(pixel, image_size, pcg_hash(key))));
+}
+
+// The stream of sample `sample_index` of the pixel `pixel_stream` (sampler_pixel) was made for.
+fn sampler_next_sample(pixel_stream: Rng, pixel: vec2u, image_size: vec2u, sample_index: u32, seed: u32) -> Rng {
+  if (rng_is_white(pixel_stream)) {
+    return rng_seed(pixel.y * image_size.x + pixel.x, sample_index, seed);
+  }
+  var rng = pixel_stream;
+  rng.sample_bits = reverseBits(sample_index);
+  return rng;
+}
+
+// Whether a stream is PCG's: known when the kernel is compiled for PCG, else the stream says.
+fn rng_is_white(rng: Rng) -> bool {
+  return SAMPLER == SAMPLER_RANDOM || rng.dimension == RNG_WHITE;
 }
 
 // What a stream must keep to go on later (the wavefront's path state keeps one word): the PCG state,
 // or the Sobol stream's next pair; rng_resume(the same sampler_seed, word) goes on from there.
 fn rng_word(rng: Rng) -> u32 {
-  return select(rng.dimension, rng.state, rng.dimension == RNG_WHITE);
+  return select(rng.dimension, rng.state, rng_is_white(rng));
 }
 
 fn rng_resume(seeded: Rng, word: u32) -> Rng {
   var rng = seeded;
-  if (rng.dimension == RNG_WHITE) {
+  if (rng_is_white(rng)) {
     rng.state = word;
   } else {
     rng.dimension = word;
@@ -100,7 +133,7 @@ fn pcg_next_u32(rng: ptr<function, Rng>) -> u32 {
 
 // 32 random bits (white noise): a PCG stream's next word, or a Sobol stream's next pair hashed.
 fn rng_next_u32(rng: ptr<function, Rng>) -> u32 {
-  if ((*rng).dimension == RNG_WHITE) {
+  if (rng_is_white(*rng)) {
     return pcg_next_u32(rng);
   }
   let p = sobol_next_2d_bits(rng);
@@ -109,14 +142,14 @@ fn rng_next_u32(rng: ptr<function, Rng>) -> u32 {
 
 // Uniform in [0, 1): the top 24 bits, so every value is exactly representable and 1.0 never occurs.
 fn rng_next_f32(rng: ptr<function, Rng>) -> f32 {
-  if ((*rng).dimension == RNG_WHITE) {
+  if (rng_is_white(*rng)) {
     return f32(pcg_next_u32(rng) >> 8u) * (1.0 / 16777216.0);
   }
   return unit_f32(sobol_next_2d_bits(rng).x);
 }
 
 fn rng_next_2d(rng: ptr<function, Rng>) -> vec2f {
-  if ((*rng).dimension == RNG_WHITE) {
+  if (rng_is_white(*rng)) {
     let x = f32(pcg_next_u32(rng) >> 8u) * (1.0 / 16777216.0);
     return vec2f(x, f32(pcg_next_u32(rng) >> 8u) * (1.0 / 16777216.0));
   }
@@ -128,14 +161,20 @@ fn unit_f32(bits: u32) -> f32 {
   return f32(bits >> 8u) * (1.0 / 16777216.0);
 }
 
-// The Sobol stream's next dimension pair as 32-bit fixed-point fractions.
+// The Sobol stream's next dimension pair as 32-bit fixed-point fractions:
+//     index = owen(sample_index, key) ^ owen(pixel_rank, key')
+//     point = (owen(sobol_x(index), key_x), owen(sobol_y(index), key_y))
+// with owen(x, k) = reverseBits(lk(reverseBits(x), k)) and sobol_x(i) = reverseBits(i), written so that
+// the reversals cancel: the stream keeps its sample index and rank reversed, one reversal makes the
+// index, and each coordinate needs one (three a pair instead of ten; the same points bit for bit).
 fn sobol_next_2d_bits(rng: ptr<function, Rng>) -> vec2u {
   let d = (*rng).dimension;
   (*rng).dimension = d + 1u;
   let key = pcg_hash((*rng).state ^ pcg_hash(d));
-  let index = owen_scramble((*rng).sample_index, key) ^ owen_scramble((*rng).pixel_rank, pcg_hash(key ^ 0x68e31da4u));
-  let p = sobol_2d(index);
-  return vec2u(owen_scramble(p.x, pcg_hash(key ^ 0xb5297a4du)), owen_scramble(p.y, pcg_hash(key ^ 0x1b56c4e9u)));
+  let index = reverseBits(laine_karras_permutation((*rng).sample_bits, key) ^ laine_karras_permutation((*rng).rank_bits, pcg_hash(key ^ 0x68e31da4u)));
+  let x = reverseBits(laine_karras_permutation(index, pcg_hash(key ^ 0xb5297a4du)));
+  let y = reverseBits(laine_karras_permutation(sobol_2d_y_reversed(index), pcg_hash(key ^ 0x1b56c4e9u)));
+  return vec2u(x, y);
 }
 
 // Point i of the first two Sobol dimensions as 32-bit fractions: the van der Corput sequence (the
@@ -146,13 +185,19 @@ fn sobol_next_2d_bits(rng: ptr<function, Rng>) -> vec2u {
 // shift-mask-XOR steps (one per position bit) instead of a loop over the index's 32 bits (equal for
 // every index: tests/gpu/sampler.test.ts compares it with the loop).
 fn sobol_2d(i: u32) -> vec2u {
+  return vec2u(reverseBits(i), reverseBits(sobol_2d_y_reversed(i)));
+}
+
+// The second coordinate of sobol_2d(i) with its bits reversed (bit k of the result is bit 31 − k of
+// the point): the superset transform itself.
+fn sobol_2d_y_reversed(i: u32) -> u32 {
   var z = i;
   z ^= (z >> 1u) & 0x55555555u;
   z ^= (z >> 2u) & 0x33333333u;
   z ^= (z >> 4u) & 0x0f0f0f0fu;
   z ^= (z >> 8u) & 0x00ff00ffu;
   z ^= (z >> 16u) & 0x0000ffffu;
-  return vec2u(reverseBits(i), reverseBits(z));
+  return z;
 }
 
 // A permutation of 32-bit words in which each bit depends only on itself and the bits below it
@@ -175,18 +220,16 @@ fn owen_scramble(x: u32, seed: u32) -> u32 {
 }
 
 // Permutation p (0 ≤ p < 24) of the four quadtree children, applied to child `digit`: Fisher–Yates on
-// (0 1 2 3), packed two bits an entry, with p's factorial-base digits as the choices.
+// (0 1 2 3) with p's factorial-base digits as the choices, tabulated (PERMUTATIONS_4: each
+// permutation's four entries two bits each, four permutations a word; tests/gpu/sampler.test.ts holds
+// the table to the shuffle), since every pixel walks a dozen levels for every sample.
+const PERMUTATIONS_4_LOW = vec3u(0xc98d4b39u, 0xd293721eu, 0xe1b1632du);
+const PERMUTATIONS_4_HIGH = vec3u(0xc6874e36u, 0xd89c781bu, 0xe4b46c27u);
+
 fn permute4(digit: u32, p: u32) -> u32 {
-  var items = 0xe4u;
-  var r = p;
-  for (var i = 3u; i > 0u; i--) {
-    let j = r % (i + 1u);
-    r /= i + 1u;
-    let a = (items >> (2u * i)) & 3u;
-    let b = (items >> (2u * j)) & 3u;
-    items = (items & ~((3u << (2u * i)) | (3u << (2u * j)))) | (a << (2u * j)) | (b << (2u * i));
-  }
-  return (items >> (2u * digit)) & 3u;
+  let w = p >> 2u;
+  let word = select(PERMUTATIONS_4_HIGH[w - 3u], PERMUTATIONS_4_LOW[w], w < 3u);
+  return (word >> ((p & 3u) * 8u + 2u * digit)) & 3u;
 }
 
 // The pixel's place in a scrambled Morton (Z) order of the screen (Ahmed & Wonka 2020): two bits per

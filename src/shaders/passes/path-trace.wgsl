@@ -21,7 +21,8 @@ struct PathTraceParams {
   max_bounces: u32,
   seed: u32,
   light_sampling: u32,
-  // The random numbers' sampler: SAMPLER_* of lib/random.
+  // The random numbers' sampler: SAMPLER_* of lib/random (a kernel compiled for one, lib/random's
+  // SAMPLER, uses that one).
   sampler: u32,
   // The torch at the camera position (radiance zero: off).
   torch: TorchLight,
@@ -95,10 +96,11 @@ fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocatio
     var sum = vec4f(0.0);
     var extension_rays = 0u;
     var shadow_rays = 0u;
+    let pixel_stream = sampler_pixel(params.sampler, pixel, view.image_size, params.seed);
     for (var s = 0u; s < params.samples; s++) {
       // One stream per sample (not per dispatch), so that an image depends on the seed alone and not on
       // how the dispatch planner batched its samples into submits.
-      var rng = sampler_seed(params.sampler, pixel, view.image_size, params.sample_index + s, params.seed);
+      var rng = sampler_next_sample(pixel_stream, pixel, view.image_size, params.sample_index + s, params.seed);
       let jitter = rng_next_2d(&rng);
       let path = trace_path(camera_sample_ray(vec2f(pixel) + jitter, &rng), &rng, path_settings());
       // A non-finite sample (a numerical accident) is dropped rather than poisoning the pixel forever.
