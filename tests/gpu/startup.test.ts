@@ -12,6 +12,7 @@ import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
 import { testGpu } from './gpu-context.ts';
+import { resolveSampler, SAMPLERS } from '../../src/passes/variants.ts';
 
 const PATH_TRACE_PIPELINE = 'pipeline passes/path-trace:path_trace';
 
@@ -26,9 +27,12 @@ afterEach(async () => observeStages((await testGpu()).device, undefined));
 
 const pipelines = (spans: readonly StageSpan[]) => spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort();
 
-/** The override constants a scene with these features compiles with, as the stage's detail lists them. */
-/** The path tracer's pipeline constants for a scene: its tracing features, and the sampler progressive renders use (Sobol, SAMPLER=1). */
-const constantsOf = (f: SceneFeatures) => [...TRACING_FEATURES.map((k) => `${FEATURE_CONSTANTS[k]}=${f[k] ? 1 : 0}`), 'SAMPLER=1'];
+/**
+ * The override constants a scene with these features compiles with, as the stage's detail lists them,
+ * and the sampler a kernel is compiled for where it has one (progressive: Sobol, SAMPLER=1; the real-time
+ * path kernel: PCG, SAMPLER=0; the G-buffer pass draws no random numbers: none).
+ */
+const constantsOf = (f: SceneFeatures, sampler: number | null = 1) => [...TRACING_FEATURES.map((k) => `${FEATURE_CONSTANTS[k]}=${f[k] ? 1 : 0}`), ...(sampler === null ? [] : [`SAMPLER=${sampler}`])];
 
 describe('start-up compiles', () => {
   it('compile the path tracer for the given scene alone, and the tone mapper; nothing else', async () => {
@@ -97,7 +101,11 @@ describe('start-up compiles', () => {
         expect((await renderer.readFrame()).radiance.some((v) => v > 0)).toBe(true);
         const compiled = frameKernels(spans);
         expect(compiled.map((s) => s.stage).sort(), order).toEqual(['pipeline passes/path-trace-frame:frame_gbuffer', 'pipeline passes/path-trace-frame:path_trace_frame']);
-        for (const s of compiled) expect(s.detail!.split(' '), `${order}: ${s.stage}`).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features)));
+        for (const s of compiled) {
+          const sampler = s.stage.endsWith(':path_trace_frame') ? SAMPLERS.indexOf(resolveSampler('auto', 'real-time')) : null;
+          expect(s.detail!.split(' '), `${order}: ${s.stage}`).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features, sampler)));
+          if (sampler === null) expect(s.detail, s.stage).not.toMatch(/SAMPLER=/);
+        }
       } finally {
         renderer.destroy();
         observeStages(gpu.device, undefined);
