@@ -271,11 +271,7 @@ export class SceneKernels {
 }
 
 export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticGrid: false, staticBvh4: false, staticCwbvh: false, shallowStack: false });
-/**
- * The features every path-tracing entry point compiles by. Not the shallow stack: the traversal
- * kernels gain from it, the path tracers lost 3–7 % with it on an H200 (docs/perf.md, 2026-12-01), so
- * they keep BVH_SHALLOW_STACK's default (off).
- */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh'];
+/** The features every path-tracing entry point compiles by. */
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];
 /** The features of passes that only trace (debug views, ray buffers). */
 export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];

@@ -25,8 +25,7 @@ describe('SceneSpecialisation', () => {
       STATIC_ACCEL_GRID: 0,
       STATIC_ACCEL_BVH4: 0,
       STATIC_ACCEL_CWBVH: 0,
-      // Cornell could take the shallow stack, but specialised kernels are path tracers, which trace faster without it.
-      BVH_SHALLOW_STACK: 0,
+      BVH_SHALLOW_STACK: 1,
       SCENE_HAS_METALLIC_ROUGHNESS: 0,
       SCENE_HAS_DIELECTRIC: 0,
       INLINED_MAX_BOUNCES: 5,

@@ -113,8 +113,6 @@ export function specialiseScene(packed: PackedScene, sceneName: string, settings
   const parts = new Set(options.parts ?? DEFAULT_SPECIALISATION_PARTS);
   const constants: Record<string, number> = {};
   for (const [name, constant] of Object.entries(FEATURE_CONSTANTS) as [keyof SceneFeatures, string][]) constants[constant] = packed.features[name] ? 1 : 0;
-  // Specialised kernels are path tracers, which trace faster with the full stack (gpu/kernel.ts TRACING_FEATURES).
-  constants[FEATURE_CONSTANTS.shallowStack] = 0;
   if (parts.has('kinds')) {
     constants.SCENE_HAS_METALLIC_ROUGHNESS = materialKinds.metallicRoughness ? 1 : 0;
     constants.SCENE_HAS_DIELECTRIC = materialKinds.dielectric ? 1 : 0;

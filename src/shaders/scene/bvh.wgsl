@@ -44,9 +44,8 @@ const BVH_STACK_SIZE: u32 = 64u;
 
 // A scene whose stack never holds more than BVH_SHALLOW_STACK_SIZE entries (no moving instances, a
 // static tree at most that deep: scene-pack features.shallowStack) traces with a stack of that size
-// instead: less per-thread memory. On the H200 it made the Dragon's rays 2–9 % faster in the
-// traversal kernels (docs/perf.md, issue #14); the path tracers do not set it (gpu/kernel.ts
-// TRACING_FEATURES). The unused array is folded away with the constant.
+// instead: less per-thread memory. On the H200 it made the Dragon's rays 2–9 % faster (docs/perf.md).
+// The unused array is folded away with the constant.
 override BVH_SHALLOW_STACK: bool = false;
 const BVH_SHALLOW_STACK_SIZE: u32 = 32u;
 
