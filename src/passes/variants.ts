@@ -24,9 +24,9 @@ export type Sampler = (typeof SAMPLERS)[number];
 /**
  * The sampler setting: one of SAMPLERS, or 'auto', which picks per chain (resolveSampler): Sobol for
  * progressive renders, where it gives less error in the same GPU time in every scene class measured
- * (docs/perf.md, "The sampler at equal time": at 64 spp a Cornell-like closed room 1.55–1.58× as
- * efficient, rtiow 1.11–1.19×, Doom's E1M1 1.14–1.32×, the materials scene under the sun 1.07–1.14×;
- * only at 4 spp does PCG win, on E1M1), and PCG for the real-time chain, whose frames are 1 spp and
+ * (docs/perf.md, "The sampler at equal time": at 64 spp a Cornell-like closed room 1.58× as
+ * efficient, rtiow 1.10×, Doom's E1M1 1.11×, the materials scene under the sun 1.07× with the costs
+ * measured after issue #27's fixes; at 16 spp PCG wins on E1M1 and materials), and PCG for the real-time chain, whose frames are 1 spp and
  * where the Sobol points' structure shared by neighbouring pixels within a frame (the blue noise) moves
  * the 3×3 box that clamps the temporal history, frame by frame: measured on the H200 (Cornell box
  * 960×540, 4 spp, still) relMSE 0.00044 with Sobol against 0.00022 with PCG (docs/denoise.md, "The sampler").
