@@ -4,6 +4,7 @@
  */
 import { constants, deflateRawSync, gzipSync } from 'node:zlib';
 import { encodeExr } from '../../src/image/exr.ts';
+import { glbOf } from '../../src/loaders/gltf/test-glb.ts';
 import { encodePng } from '../../src/image/png.ts';
 import type { DoomMap, Linedef, MapVertex, Sector, Sidedef, Thing } from '../../src/loaders/doom/map-types.ts';
 import { NO_SIDEDEF } from '../../src/loaders/doom/map-types.ts';
@@ -261,24 +262,6 @@ export function sharedImageGlb(images: number, image: Uint8Array): Uint8Array {
   return glbOf(json, bin);
 }
 
-/** A GLB container of a JSON chunk and a binary chunk. */
-export function glbOf(json: unknown, bin: Uint8Array): Uint8Array {
-  const text = new TextEncoder().encode(JSON.stringify(json));
-  const jsonLength = (text.length + 3) & ~3;
-  const out = new Uint8Array(12 + 8 + jsonLength + 8 + bin.length);
-  const view = new DataView(out.buffer);
-  view.setUint32(0, 0x46546c67, true);
-  view.setUint32(4, 2, true);
-  view.setUint32(8, out.length, true);
-  view.setUint32(12, jsonLength, true);
-  view.setUint32(16, 0x4e4f534a, true);
-  out.fill(0x20, 20, 20 + jsonLength);
-  out.set(text, 20);
-  view.setUint32(20 + jsonLength, bin.length, true);
-  view.setUint32(24 + jsonLength, 0x004e4942, true);
-  out.set(bin, 28 + jsonLength);
-  return out;
-}
 
 /**
  * A progressive greyscale JPEG of width × height with `scans` AC scans, each coded as end-of-band
@@ -437,3 +420,5 @@ export function constantHdr(width: number, height: number, truncated = false): U
   for (let y = 0; y < (truncated ? 1 : height); y++) out.set(line, head.length + y * line.length);
   return out;
 }
+
+export { glbOf };

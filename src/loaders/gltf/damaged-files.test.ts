@@ -7,6 +7,7 @@ import { Document, WebIO } from '@gltf-transform/core';
 import { EXTMeshoptCompression } from '@gltf-transform/extensions';
 import { MeshoptEncoder } from 'meshoptimizer/encoder';
 import { describe, expect, it } from 'vitest';
+import { glbOf } from './test-glb.ts';
 import { LanternError } from '../../errors.ts';
 import { checkGltfFile } from './document.ts';
 import { byteSizes } from './glb.ts';
@@ -25,26 +26,10 @@ async function sound(): Promise<{ glb: Uint8Array; json: Record<string, unknown>
   return { glb, json: json as unknown as Record<string, unknown>, bin: Object.values(resources)[0]! };
 }
 
-/** A GLB assembled by hand: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros). */
+/** A GLB assembled by hand (test-glb.ts): its buffer is the BIN chunk, so no uri. */
 function assemble(json: Record<string, unknown>, bin: Uint8Array): Uint8Array {
-  // The GLB's buffer is its BIN chunk: no uri.
   const buffers = (json.buffers as { uri?: string }[]).map(({ uri: _, ...rest }) => rest);
-  const text = new TextEncoder().encode(JSON.stringify({ ...json, buffers }));
-  const jsonLength = Math.ceil(text.length / 4) * 4;
-  const binLength = Math.ceil(bin.length / 4) * 4;
-  const out = new Uint8Array(12 + 8 + jsonLength + 8 + binLength);
-  const view = new DataView(out.buffer);
-  view.setUint32(0, 0x46546c67, true);
-  view.setUint32(4, 2, true);
-  view.setUint32(8, out.length, true);
-  view.setUint32(12, jsonLength, true);
-  view.setUint32(16, 0x4e4f534a, true);
-  out.fill(0x20, 20, 20 + jsonLength);
-  out.set(text, 20);
-  view.setUint32(20 + jsonLength, binLength, true);
-  view.setUint32(24 + jsonLength, 0x004e4942, true);
-  out.set(bin, 28 + jsonLength);
-  return out;
+  return glbOf({ ...json, buffers }, bin);
 }
 
 async function loadError(bytes: Uint8Array, resources: Record<string, Uint8Array> = {}, name = 'model.glb'): Promise<string> {
