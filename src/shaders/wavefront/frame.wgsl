@@ -203,7 +203,7 @@ fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   let radiance = select(vec3f(0.0), path_radiance, is_finite_vec3(path_radiance));
   let emitted = select(vec3f(0.0), emission_u.xyz, is_finite_vec3(emission_u.xyz));
   let p = PrimaryHit(albedo_id.xyz, emitted, bitcast<u32>(albedo_id.w));
-  let grid = unpack_rgb9e5(frame_records[slot].emission);
+  let grid = unpack_grid_emission(frame_records[slot].emission);
   let demodulate = pixel_demodulation(slot);
   let split = split_sample(p, radiance, emitted, surface_records[slot].id, grid, pixel_still(slot), sample_factor(demodulate, p));
   var illumination = split.illumination;
