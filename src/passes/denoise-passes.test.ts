@@ -35,7 +35,7 @@ describe('the à-trous schedule of the real-time chain', () => {
 
 describe('isDenoiseChainPass', () => {
   it("names the real-time chain's passes and not the hybrid recipe's GI filter", () => {
-    for (const label of ['temporal', 'a-trous 1', 'a-trous 5', 'denoise output']) expect(isDenoiseChainPass(label)).toBe(true);
+    for (const label of ['temporal', 'a-trous slopes', 'a-trous 1 weights', 'a-trous 1', 'a-trous 5 weights', 'a-trous 5', 'denoise output']) expect(isDenoiseChainPass(label)).toBe(true);
     for (const label of ['a-trous GI 1', 'a-trous', 'path trace (frame)', 'frame G-buffer', 'taa']) expect(isDenoiseChainPass(label)).toBe(false);
   });
 });

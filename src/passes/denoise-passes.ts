@@ -3,7 +3,8 @@
  * (shaders/passes/temporal.wgsl), the à-trous iterations over packed records
  * (shaders/passes/denoise-atrous.wgsl; `atrousParams` also serves the hybrid recipe's vec4f twin,
  * shaders/passes/atrous.wgsl) and the output (shaders/passes/denoise-output.wgsl). Each is an
- * ImagePass; what differs is its parameters.
+ * ImagePass; what differs is its parameters. The à-trous entry point runs 11 times a frame: once for
+ * the depth slopes, then per iteration once for the weight sums and once to filter.
  */
 import { DENOISE_VIEWS, type DenoiseView } from './variants.ts';
 import { ImagePass } from './image-pass.ts';
@@ -33,14 +34,24 @@ const TEMPORAL_LABEL = 'temporal';
 const OUTPUT_LABEL = 'denoise output';
 /** Iteration i's label (0-based): 'a-trous 1' … 'a-trous 5'. */
 export const atrousLabel = (iteration: number): string => `a-trous ${iteration + 1}`;
+/** The dispatch before iteration i that writes each pixel's weight sum: 'a-trous 1 weights' … */
+export const atrousWeightsLabel = (iteration: number): string => `${atrousLabel(iteration)} weights`;
+/** The dispatch before the iterations that writes each pixel's depth slopes. */
+export const ATROUS_SLOPES_LABEL = 'a-trous slopes';
 
-/** Whether a timed pass (its GpuTimer label) belongs to the real-time denoising chain: the temporal pass, an à-trous iteration or the debug views' output. */
-export const isDenoiseChainPass = (label: string): boolean => label === TEMPORAL_LABEL || label === OUTPUT_LABEL || ATROUS_STEPS.some((_, i) => atrousLabel(i) === label);
+/** The à-trous pass's parameter slots: the iterations', then the slopes', then each iteration's weights'. */
+export const ATROUS_SLOPES_SLOT = ATROUS_STEPS.length;
+export const atrousWeightsSlot = (iteration: number): number => ATROUS_STEPS.length + 1 + iteration;
+const ATROUS_SLOTS = 2 * ATROUS_STEPS.length + 1;
+
+/** Whether a timed pass (its GpuTimer label) belongs to the real-time denoising chain: the temporal pass, an à-trous dispatch or the debug views' output. */
+export const isDenoiseChainPass = (label: string): boolean =>
+  label === TEMPORAL_LABEL || label === OUTPUT_LABEL || label === ATROUS_SLOPES_LABEL || ATROUS_STEPS.some((_, i) => atrousLabel(i) === label || atrousWeightsLabel(i) === label);
 
 export async function createDenoisePasses(device: GPUDevice): Promise<DenoisePasses> {
   const [temporal, atrous, output] = await Promise.all([
     ImagePass.create(device, 'passes/temporal', 'temporal_accumulate', TEMPORAL_LABEL),
-    ImagePass.create(device, 'passes/denoise-atrous', 'denoise_atrous_step', 'a-trous', ATROUS_STEPS.length),
+    ImagePass.create(device, 'passes/denoise-atrous', 'denoise_atrous_step', 'a-trous', ATROUS_SLOTS),
     ImagePass.create(device, 'passes/denoise-output', 'denoise_output', OUTPUT_LABEL),
   ]);
   return { temporal, atrous, output };
@@ -130,6 +141,12 @@ export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): Uni
     mode: it.result === 'output' ? 2 : it.copyHistory ? 1 : 0,
   };
 };
+
+/** The dispatch before iteration i (its step, its source) that writes the weight sums: ATROUS_WEIGHTS. */
+export const denoiseWeightsParams = (iteration: number, it: AtrousIteration): UniformValues => ({ ...denoiseAtrousParams(iteration, it), mode: 4 });
+
+/** The dispatch before the iterations that writes the depth slopes (ATROUS_SLOPES); it reads no pairs. */
+export const denoiseSlopesParams = (): UniformValues => ({ ...denoiseAtrousParams(0, atrousSchedule(false)[0]!), mode: 3 });
 
 export const denoiseOutputParams = (view: DenoiseView, fullHistory: number, depthScale: number): UniformValues => ({
   view_mode: DENOISE_VIEWS.indexOf(view),

@@ -19,7 +19,10 @@ import { LanternError } from '../errors.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
-import { atrousLabel, atrousSchedule, createDenoisePasses, denoiseAtrousParams, denoiseOutputParams, temporalParams, type DenoisePasses } from '../passes/denoise-passes.ts';
+import {
+  ATROUS_SLOPES_LABEL, ATROUS_SLOPES_SLOT, atrousLabel, atrousSchedule, atrousWeightsLabel, atrousWeightsSlot, createDenoisePasses, denoiseAtrousParams,
+  denoiseOutputParams, denoiseSlopesParams, denoiseWeightsParams, temporalParams, type DenoisePasses,
+} from '../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PathTraceFramePass, type FrameTarget } from '../passes/path-trace-frame-pass.ts';
 import { WavefrontFramePass } from '../passes/wavefront-frame-pass.ts';
@@ -94,8 +97,10 @@ interface TraceOptions {
 
 interface ParityGroups {
   readonly temporal: Record<number, GPUBindGroup>;
-  /** Each schedule's iterations (atrousSchedule: index 0 without feedback, 1 with). */
-  readonly atrous: readonly (readonly Record<number, GPUBindGroup>[])[];
+  /** Each schedule's iterations (atrousSchedule: index 0 without feedback, 1 with): the weight sums' dispatch and the filter's. */
+  readonly atrous: readonly (readonly { readonly weights: Record<number, GPUBindGroup>; readonly filter: Record<number, GPUBindGroup> }[])[];
+  /** The depth slopes' dispatch, before the iterations. */
+  readonly slopes: Record<number, GPUBindGroup>;
   readonly output: Record<number, GPUBindGroup>;
 }
 
@@ -330,9 +335,15 @@ export class Denoiser {
     this.passes.temporal.encode(encoder, groups.temporal, b.width, b.height, r.timer);
     // Debug views show the unfiltered records: the filter is skipped for them.
     if (s.denoise && s.denoiseView === 'output') {
+      const atrous = this.passes.atrous;
+      atrous.write(denoiseSlopesParams(), ATROUS_SLOPES_SLOT);
+      atrous.encode(encoder, groups.slopes, b.width, b.height, r.timer, ATROUS_SLOPES_LABEL);
       atrousSchedule(feedback).forEach((it, i) => {
-        this.passes.atrous.write(denoiseAtrousParams(i, it), i);
-        this.passes.atrous.encode(encoder, groups.atrous[feedback ? 1 : 0]![i]!, b.width, b.height, r.timer, atrousLabel(i));
+        const iteration = groups.atrous[feedback ? 1 : 0]![i]!;
+        atrous.write(denoiseWeightsParams(i, it), atrousWeightsSlot(i));
+        atrous.encode(encoder, iteration.weights, b.width, b.height, r.timer, atrousWeightsLabel(i));
+        atrous.write(denoiseAtrousParams(i, it), i);
+        atrous.encode(encoder, iteration.filter, b.width, b.height, r.timer, atrousLabel(i));
       });
     } else {
       const fullHistory = unlimited ? 256 : (s.historyCap as number);
@@ -452,6 +463,8 @@ export class Denoiser {
     }
     const make = (label: string, size: number) => this.device.createBuffer({ label, size: pixels * size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
     const surfaceBytes = structSize('SurfaceTexel'), momentBytes = structSize('MomentsTexel');
+    // The à-trous dispatches lend two words a pixel of the previous surface records (passes/denoise-atrous).
+    if (surfaceBytes < 8) throw new Error(`a surface record (${surfaceBytes} B) cannot lend the à-trous filter its 8 bytes`);
     const scratch = make('frame scratch and output', SCRATCH_BYTES);
     const surfaces = [make('surface records 0', surfaceBytes), make('surface records 1', surfaceBytes)] as const;
     const frameRecords = make('frame records', structSize('FrameTexel'));
@@ -464,15 +477,20 @@ export class Denoiser {
     const { temporal, atrous, output } = this.passes;
     const groups = [0, 1].map((p): ParityGroups => {
       const surface = surfaces[p]!, previousMoments = moments[1 - p]!;
+      // The à-trous dispatches keep their depth slopes and weight sums in the previous surface
+      // records: the temporal pass has read them, and the next frame's G-buffer overwrites them.
+      const previousSurface = surfaces[1 - p]!;
       return {
-        temporal: temporal.bindGroups(view, { frame_scratch: scratch, surface_records: surface, previous_surface_records: surfaces[1 - p]!, history, previous_moments: previousMoments, moments: moments[p]! }),
+        temporal: temporal.bindGroups(view, { frame_scratch: scratch, surface_records: surface, previous_surface_records: previousSurface, history, previous_moments: previousMoments, moments: moments[p]! }),
         atrous: [false, true].map((feedback) =>
           atrousSchedule(feedback).map((it, i) => {
             const inScratch = it.source.array === 'a';
             const other = it.b === 'history' ? history : previousMoments;
-            return atrous.bindGroups(view, { surface_records: surface, frame_records: frameRecords, source_words: inScratch ? scratch : other, other_words: inScratch ? other : scratch }, i);
+            const resources = { surface_records: surface, frame_records: frameRecords, source_words: inScratch ? scratch : other, other_words: inScratch ? other : scratch, filter_scratch: previousSurface };
+            return { weights: atrous.bindGroups(view, resources, atrousWeightsSlot(i)), filter: atrous.bindGroups(view, resources, i) };
           }),
         ),
+        slopes: atrous.bindGroups(view, { surface_records: surface, frame_records: frameRecords, source_words: scratch, other_words: history, filter_scratch: previousSurface }, ATROUS_SLOPES_SLOT),
         output: output.bindGroups(view, { surface_records: surface, frame_records: frameRecords, moments: moments[p]!, frame_scratch: scratch, history }),
       };
     });

@@ -1,8 +1,26 @@
 // One iteration of the real-time denoiser's edge-avoiding à-trous wavelet filter (Dammertz et al.
 // 2010) as SVGF uses it (Schied et al. 2017, §4.3): a 5×5 B3-spline kernel with holes of `step`
-// pixels, weighted by edge-stopping functions of normal, depth (relative to the local depth gradient)
-// and luminance (relative to the standard deviation of the 3×3-blurred variance). Filters the
-// demodulated illumination and carries its variance through with squared weights.
+// pixels, weighted by edge-stopping functions of normal, depth (relative to the local depth slope)
+// and luminance (relative to the noise), filtering the demodulated illumination and carrying its
+// variance through with squared weights; applied as a flow of light between pairs of pixels, so that
+// the filter keeps the image's energy (docs/denoise.md, "Energy").
+//
+// SVGF normalises each pixel's weights by their sum, out_p = Σ_q w_pq·c_q / W_p with W_p = Σ_q w_pq:
+// every pixel is a weighted mean of its taps, but nothing makes a pixel give away what its neighbours
+// take from it. A bright pixel (a sample that found the light) that its dark neighbours refuse
+// (luminance edge-stopping) has a small W_p, so it divides itself into them, and the light it loses
+// goes nowhere: the Cornell box at 4 spp held 0.963 of its energy away from the light (issue #27).
+// Here instead
+//
+//   out_p = c_p + Σ_q k_pq·(c_q − c_p),   k_pq = w_pq / max(W_p, W_q),
+//
+// with every edge-stopping factor of w symmetric in p and q (the luminance difference against both
+// pixels' noise, the depth difference against both pixels' slopes, the distance between the normals):
+// k_pq = k_qp, so what p takes from q, q gives to p, and Σ_p out_p = Σ_p c_p exactly. As W_p ≥ w_pp +
+// Σ_q w_pq, Σ_q k_pq < 1: each out_p is a convex combination of its taps. Where the weights around p
+// and q agree (W_p = W_q) this is SVGF's normalised mean itself; a pixel whose taps refuse it keeps its
+// light instead of being averaged away. W needs the taps' own sums: a first dispatch of each iteration
+// (ATROUS_WEIGHTS) writes every pixel's W, the second filters.
 //
 // The packed twin of passes/atrous (which the hybrid recipe keeps for its vec4f buffers): the guide is
 // the pixel-centre surface record, and source and result are illumination pairs (two words: f16 rgb,
@@ -10,7 +28,9 @@
 // chooses per iteration. So the iterations ping-pong inside the frame scratch (words 0–1 and 2–3 of
 // each pixel), the colour history and the moments the temporal pass has finished with (renderer/
 // denoiser.ts has the schedule), and the last iteration remodulates and writes the frame's linear
-// output (vec4f) over the frame scratch. Expects the view (group 1) and denoise/gbuffer.
+// output (vec4f) over the frame scratch. The depth slopes (ATROUS_SLOPES, once before the iterations)
+// and the weight sums live in the previous frame's surface records, which the temporal pass has
+// finished with and the next frame's G-buffer overwrites. Expects the view (group 1) and denoise/gbuffer.
 
 #import lib/color
 #import view/bindings
@@ -24,6 +44,10 @@ const ATROUS_COPY_HISTORY: u32 = 1u;
 // Instead of a pair: remodulates (albedo) and adds the emission, writing the output vec4f into the
 // result array (the frame scratch), 16 bytes a pixel.
 const ATROUS_OUTPUT: u32 = 2u;
+// No filtering: writes the pixel's depth slopes (the frame's, once before the iterations).
+const ATROUS_SLOPES: u32 = 3u;
+// No filtering: writes the sum W of the pixel's weights at this iteration's step (before its filter).
+const ATROUS_WEIGHTS: u32 = 4u;
 
 struct DenoiseAtrousParams {
   // Distance between taps in pixels: 1, 2, 4, 8, 16 over the five iterations.
@@ -53,15 +77,14 @@ struct DenoiseAtrousParams {
 // word pairs (every stride and offset is even), so that a tap's pair is one 8-byte load.
 @group(2) @binding(3) var<storage, read_write> source_words: array<vec2u>;
 @group(2) @binding(4) var<storage, read_write> other_words: array<vec2u>;
+// The previous frame's surface records (12 bytes a pixel), free once the temporal pass has read them:
+// word i holds pixel i's depth slopes along x and y (f16 pair), word n + i its weight sum W (f32),
+// n the number of pixels.
+@group(2) @binding(5) var<storage, read_write> filter_scratch: array<u32>;
 
 const LOG2_E: f32 = 1.4426950408889634;
 // 1/(2·ln 2): pow(cos θ, σ) ≈ exp(−σ·θ²/2) = exp2(−σ·θ²/(2·ln 2)).
 const NORMAL_EXPONENT: f32 = 0.7213475204444817;
-
-// The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
-fn b3(d: i32) -> f32 {
-  return select(select(0.0625, 0.25, d == 1), 0.375, d == 0);
-}
 
 fn texel_index(q: vec2i) -> u32 {
   return u32(q.y) * view.image_size.x + u32(q.x);
@@ -89,36 +112,92 @@ fn source_depth(q: vec2i) -> f32 {
   return surface_records[texel_index(q)].linear_depth;
 }
 
-// The variance at p blurred by a 3×3 Gaussian: a steadier guide than one pixel's estimate.
-fn blurred_variance(p: vec2i) -> f32 {
-  var sum = 0.0;
-  var weights = 0.0;
-  for (var dy = -1; dy <= 1; dy++) {
-    for (var dx = -1; dx <= 1; dx++) {
-      let q = p + vec2i(dx, dy);
-      if (inside(q)) {
-        let w = select(0.5, 1.0, dx == 0) * select(0.5, 1.0, dy == 0);
-        sum += w * source(texel_index(q)).a;
-        weights += w;
-      }
-    }
-  }
-  return sum / weights;
+// The depth of pixel q if it is inside the image, else MISS_DEPTH.
+fn depth_or_miss(q: vec2i) -> f32 {
+  return select(MISS_DEPTH, source_depth(q), inside(q));
 }
 
-// The smaller one-sided difference of linear depth along one axis (the smaller side does not cross an edge).
-fn depth_slope(p: vec2i, axis: vec2i, z: f32) -> f32 {
-  var slope = 1e30;
-  for (var s = -1; s <= 1; s += 2) {
-    let q = p + s * axis;
-    if (inside(q)) {
-      let depth = source_depth(q);
-      if (depth >= 0.0) {
-        slope = min(slope, abs(depth - z));
-      }
-    }
-  }
+// The depth slopes of pixel p (at depth z) along x and y: axis_slope of its neighbours.
+fn pixel_depth_slopes(p: vec2i, z: f32) -> vec2f {
+  return vec2f(
+    axis_slope(z, depth_or_miss(p - vec2i(1, 0)), depth_or_miss(p + vec2i(1, 0))),
+    axis_slope(z, depth_or_miss(p - vec2i(0, 1)), depth_or_miss(p + vec2i(0, 1))),
+  );
+}
+
+fn stored_depth_slopes(i: u32) -> vec2f {
+  return unpack2x16float(filter_scratch[i]);
+}
+
+fn weight_sum_index(i: u32) -> u32 {
+  return view.image_size.x * view.image_size.y + i;
+}
+
+// The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
+fn b3(d: i32) -> f32 {
+  return select(select(0.0625, 0.25, d == 1), 0.375, d == 0);
+}
+
+// The smaller one-sided difference of linear depth at z along one axis, from the depths of the two
+// neighbours on it (negative: none there, or a miss); the smaller side does not cross an edge.
+fn axis_slope(z: f32, before: f32, after: f32) -> f32 {
+  let a = select(1e30, abs(before - z), before >= 0.0);
+  let b = select(1e30, abs(after - z), after >= 0.0);
+  let slope = min(a, b);
   return select(slope, 0.0, slope == 1e30);
+}
+
+// The pixel p the filter is at: its pair, surface and depth slopes.
+struct FilterCentre {
+  colour: vec4f,
+  luminance: f32,
+  surface: SurfaceTexel,
+  normal_code: vec2f,
+  miss: bool,
+  slope: vec2f,
+}
+
+// The weight w_pq of tap q, (dx, dy) kernel taps from p: the B3 kernel times exp2 of the edge-stopping
+// exponents, each symmetric in p and q, so that w_pq = w_qp. 0: the tap is outside or across the sky's
+// edge. The exponents are folded into one exp2 per tap (they add):
+// - luminance: the difference against σ_l times the standard deviation of a difference of two such
+//   pixels, from both variances (σ_l·√((v_p + v_q)/2); SVGF's σ_l·√v_p where the two agree);
+// - depth: the difference against σ_z times the larger of the two pixels' slopes along the offset,
+//   plus a thousandth of the nearer depth;
+// - normal: dot(n, n_q)^σ_n ≈ exp(−σ_n·θ²/2) for the angle θ between the normals, taken in the
+//   octahedral map the normals are stored in (denoise/gbuffer), where a small angle θ is a distance of
+//   θ to √2·θ: w_n = exp2(−σ_n/(2·ln 2)·|e − e_q|²). No normal is decoded, and a tap needs one
+//   transcendental call instead of four (decode's normalise, pow's log2 and exp2). Across the map's
+//   seam (normals near −z) the distance is large and the weight 0: the filter stops there as at an
+//   edge (docs/denoise.md, "GPU time").
+struct Tap {
+  index: u32,
+  colour: vec4f,
+  weight: f32,
+}
+
+fn tap(c: FilterCentre, p: vec2i, dx: i32, dy: i32) -> Tap {
+  let q = p + params.step * vec2i(dx, dy);
+  if (!inside(q)) {
+    return Tap(0u, vec4f(0.0), 0.0);
+  }
+  let qi = texel_index(q);
+  // The loads are issued before the test, so that their latencies overlap.
+  let gq = surface_records[qi];
+  let s = source(qi);
+  let slope_q = stored_depth_slopes(qi);
+  if (c.miss != is_miss_depth(gq.linear_depth)) {
+    return Tap(qi, s, 0.0);
+  }
+  var exponent = -LOG2_E / params.sigma_luminance * abs(c.luminance - luminance(s.rgb)) * inverseSqrt(max(0.5 * (c.colour.a + s.a), 1e-30));
+  if (!c.miss) {
+    let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
+    let depth_scale = params.sigma_depth * dot(max(c.slope, slope_q), offset) + 1e-3 * min(c.surface.linear_depth, gq.linear_depth);
+    exponent -= LOG2_E * abs(c.surface.linear_depth - gq.linear_depth) / depth_scale;
+    let d = c.normal_code - unpack2x16snorm(gq.normal);
+    exponent -= params.sigma_normal * NORMAL_EXPONENT * dot(d, d);
+  }
+  return Tap(qi, s, b3(abs(dx)) * b3(abs(dy)) * exp2(exponent));
 }
 
 @compute @workgroup_size(8, 8)
@@ -128,56 +207,48 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   }
   let p = vec2i(id.xy);
   let i = texel_index(p);
-  let centre = source(i);
+  if (params.mode == ATROUS_SLOPES) {
+    let z = source_depth(p);
+    let slope = select(pixel_depth_slopes(p, z), vec2f(0.0), is_miss_depth(z));
+    filter_scratch[i] = pack_f16_pair(slope.x, slope.y);
+    return;
+  }
   let g = surface_records[i];
-  let g_normal = unpack2x16snorm(g.normal);
-  let miss = is_miss_depth(g.linear_depth);
-  let l_p = luminance(centre.rgb);
-  // The edge-stopping weights are folded into one exp2 per tap (their exponents add): exp(−Δz/s_z) ·
-  // w_n · exp(−Δl/s_l). The normal term, dot(n, n_q)^σ_n ≈ exp(−σ_n·θ²/2) for the angle θ between
-  // the normals, is taken in the octahedral map the normals are stored in (denoise/gbuffer), where a
-  // small angle θ is a distance of θ to √2·θ: w_n = exp2(−σ_n/(2·ln 2)·|e − e_q|²). No normal is
-  // decoded, and a tap needs one transcendental call instead of four (decode's normalise, pow's log2
-  // and exp2). Across the map's seam (normals near −z) the distance is large and the weight 0: the
-  // filter stops there as at an edge (docs/denoise.md, "GPU time").
-  let inv_luminance_scale = 1.0 / (params.sigma_luminance * sqrt(max(blurred_variance(p), 0.0)) + 1e-10);
-  let slope = vec2f(depth_slope(p, vec2i(1, 0), g.linear_depth), depth_slope(p, vec2i(0, 1), g.linear_depth));
-
-  var colour = vec3f(0.0);
+  let centre = source(i);
+  let c = FilterCentre(centre, luminance(centre.rgb), g, unpack2x16snorm(g.normal), is_miss_depth(g.linear_depth), stored_depth_slopes(i));
+  if (params.mode == ATROUS_WEIGHTS) {
+    var sum = b3(0) * b3(0);
+    for (var dy = -2; dy <= 2; dy++) {
+      for (var dx = -2; dx <= 2; dx++) {
+        if (dx != 0 || dy != 0) {
+          sum += tap(c, p, dx, dy).weight;
+        }
+      }
+    }
+    filter_scratch[weight_sum_index(i)] = bitcast<u32>(sum);
+    return;
+  }
+  // Light moves between pairs: the pixel keeps what its taps do not take.
+  let w_p = bitcast<f32>(filter_scratch[weight_sum_index(i)]);
+  var flow = vec3f(0.0);
+  var kept = 1.0;
   var variance = 0.0;
-  var weights = 0.0;
   for (var dy = -2; dy <= 2; dy++) {
     for (var dx = -2; dx <= 2; dx++) {
-      let q = p + params.step * vec2i(dx, dy);
-      if (!inside(q)) {
+      if (dx == 0 && dy == 0) {
         continue;
       }
-      let qi = texel_index(q);
-      var s = centre;
-      var w = b3(abs(dx)) * b3(abs(dy));
-      if (dx != 0 || dy != 0) {
-        // Both loads are issued before the test, so that their latencies overlap.
-        let gq = surface_records[qi];
-        s = source(qi);
-        if (miss != is_miss_depth(gq.linear_depth)) {
-          continue;
-        }
-        var exponent = -abs(l_p - luminance(s.rgb)) * inv_luminance_scale * LOG2_E;
-        if (!miss) {
-          let offset = vec2f(f32(params.step * abs(dx)), f32(params.step * abs(dy)));
-          let depth_scale = params.sigma_depth * dot(slope, offset) + 1e-3 * g.linear_depth;
-          exponent -= abs(g.linear_depth - gq.linear_depth) / depth_scale * LOG2_E;
-          let d = g_normal - unpack2x16snorm(gq.normal);
-          exponent -= params.sigma_normal * NORMAL_EXPONENT * dot(d, d);
-        }
-        w *= exp2(exponent);
+      let t = tap(c, p, dx, dy);
+      if (t.weight == 0.0) {
+        continue;
       }
-      colour += w * s.rgb;
-      variance += w * w * s.a;
-      weights += w;
+      let k = t.weight / max(w_p, bitcast<f32>(filter_scratch[weight_sum_index(t.index)]));
+      flow += k * (t.colour.rgb - centre.rgb);
+      kept -= k;
+      variance += k * k * t.colour.a;
     }
   }
-  let filtered = vec4f(colour / weights, variance / (weights * weights));
+  let filtered = vec4f(centre.rgb + flow, kept * kept * centre.a + variance);
   if (params.mode == ATROUS_OUTPUT) {
     let f = frame_records[i];
     let c = frame_emission(f) + filtered.rgb * demodulation(frame_albedo(f));
