@@ -3,8 +3,9 @@
  * (shaders/passes/temporal.wgsl), the à-trous iterations over packed records
  * (shaders/passes/denoise-atrous.wgsl; `atrousParams` also serves the hybrid recipe's vec4f twin,
  * shaders/passes/atrous.wgsl) and the output (shaders/passes/denoise-output.wgsl). Each is an
- * ImagePass; what differs is its parameters. The à-trous entry point runs 11 times a frame: once for
- * the depth slopes, then per iteration once for the weight sums and once to filter.
+ * ImagePass; what differs is its parameters. The à-trous entry point runs 8 times a frame: once for
+ * the depth slopes, then per iteration once to filter, the first two iterations after a dispatch
+ * that writes their weight sums.
  */
 import { DENOISE_VIEWS, type DenoiseView } from './variants.ts';
 import { ImagePass } from './image-pass.ts';
@@ -39,7 +40,7 @@ export const atrousWeightsLabel = (iteration: number): string => `${atrousLabel(
 /** The dispatch before the iterations that writes each pixel's depth slopes. */
 export const ATROUS_SLOPES_LABEL = 'a-trous slopes';
 
-/** The à-trous pass's parameter slots: the iterations', then the slopes', then each iteration's weights'. */
+/** The à-trous pass's parameter slots: the iterations', then the slopes', then the weights dispatches'. */
 export const ATROUS_SLOPES_SLOT = ATROUS_STEPS.length;
 export const atrousWeightsSlot = (iteration: number): number => ATROUS_STEPS.length + 1 + iteration;
 const ATROUS_SLOTS = 2 * ATROUS_STEPS.length + 1;
@@ -139,14 +140,23 @@ export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): Uni
     result_offset: result.offset,
     // ATROUS_PLAIN, ATROUS_COPY_HISTORY, ATROUS_OUTPUT.
     mode: it.result === 'output' ? 2 : it.copyHistory ? 1 : 0,
+    // Iteration i reads the weight sums in region 1 + i % 2: its weights dispatch's (the first
+    // EXACT_WEIGHT_ITERATIONS), else those its predecessor wrote there, capping its coefficients.
+    weights_read: weightsRegion(iteration),
+    weights_write: iteration + 1 >= EXACT_WEIGHT_ITERATIONS && iteration + 1 < ATROUS_STEPS.length ? weightsRegion(iteration + 1) : 0,
+    capped: iteration >= EXACT_WEIGHT_ITERATIONS ? 1 : 0,
   };
 };
 
+/** The iterations whose weight sums a dispatch of their own computes (passes/denoise-atrous ATROUS_WEIGHTS). */
+export const EXACT_WEIGHT_ITERATIONS = 2;
+const weightsRegion = (iteration: number): number => 1 + (iteration % 2);
+
 /** The dispatch before iteration i (its step, its source) that writes the weight sums: ATROUS_WEIGHTS. */
-export const denoiseWeightsParams = (iteration: number, it: AtrousIteration): UniformValues => ({ ...denoiseAtrousParams(iteration, it), mode: 4 });
+export const denoiseWeightsParams = (iteration: number, it: AtrousIteration): UniformValues => ({ ...denoiseAtrousParams(iteration, it), mode: 4, weights_read: 0, weights_write: weightsRegion(iteration) });
 
 /** The dispatch before the iterations that writes the depth slopes (ATROUS_SLOPES); it reads no pairs. */
-export const denoiseSlopesParams = (): UniformValues => ({ ...denoiseAtrousParams(0, atrousSchedule(false)[0]!), mode: 3 });
+export const denoiseSlopesParams = (): UniformValues => ({ ...denoiseAtrousParams(0, atrousSchedule(false)[0]!), mode: 3, weights_read: 0, weights_write: 0, capped: 0 });
 
 export const denoiseOutputParams = (view: DenoiseView, fullHistory: number, depthScale: number): UniformValues => ({
   view_mode: DENOISE_VIEWS.indexOf(view),

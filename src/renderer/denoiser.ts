@@ -20,7 +20,7 @@ import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
 import {
-  ATROUS_SLOPES_LABEL, ATROUS_SLOPES_SLOT, atrousLabel, atrousSchedule, atrousWeightsLabel, atrousWeightsSlot, createDenoisePasses, denoiseAtrousParams,
+  ATROUS_SLOPES_LABEL, ATROUS_SLOPES_SLOT, EXACT_WEIGHT_ITERATIONS, atrousLabel, atrousSchedule, atrousWeightsLabel, atrousWeightsSlot, createDenoisePasses, denoiseAtrousParams,
   denoiseOutputParams, denoiseSlopesParams, denoiseWeightsParams, temporalParams, type DenoisePasses,
 } from '../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
@@ -97,7 +97,7 @@ interface TraceOptions {
 
 interface ParityGroups {
   readonly temporal: Record<number, GPUBindGroup>;
-  /** Each schedule's iterations (atrousSchedule: index 0 without feedback, 1 with): the weight sums' dispatch and the filter's. */
+  /** Each schedule's iterations (atrousSchedule: index 0 without feedback, 1 with): the weight sums' dispatch (the first EXACT_WEIGHT_ITERATIONS) and the filter's. */
   readonly atrous: readonly (readonly { readonly weights: Record<number, GPUBindGroup>; readonly filter: Record<number, GPUBindGroup> }[])[];
   /** The depth slopes' dispatch, before the iterations. */
   readonly slopes: Record<number, GPUBindGroup>;
@@ -340,8 +340,10 @@ export class Denoiser {
       atrous.encode(encoder, groups.slopes, b.width, b.height, r.timer, ATROUS_SLOPES_LABEL);
       atrousSchedule(feedback).forEach((it, i) => {
         const iteration = groups.atrous[feedback ? 1 : 0]![i]!;
-        atrous.write(denoiseWeightsParams(i, it), atrousWeightsSlot(i));
-        atrous.encode(encoder, iteration.weights, b.width, b.height, r.timer, atrousWeightsLabel(i));
+        if (i < EXACT_WEIGHT_ITERATIONS) {
+          atrous.write(denoiseWeightsParams(i, it), atrousWeightsSlot(i));
+          atrous.encode(encoder, iteration.weights, b.width, b.height, r.timer, atrousWeightsLabel(i));
+        }
         atrous.write(denoiseAtrousParams(i, it), i);
         atrous.encode(encoder, iteration.filter, b.width, b.height, r.timer, atrousLabel(i));
       });
@@ -463,8 +465,8 @@ export class Denoiser {
     }
     const make = (label: string, size: number) => this.device.createBuffer({ label, size: pixels * size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
     const surfaceBytes = structSize('SurfaceTexel'), momentBytes = structSize('MomentsTexel');
-    // The à-trous dispatches lend two words a pixel of the previous surface records (passes/denoise-atrous).
-    if (surfaceBytes < 8) throw new Error(`a surface record (${surfaceBytes} B) cannot lend the à-trous filter its 8 bytes`);
+    // The à-trous dispatches borrow three words a pixel of the previous surface records (passes/denoise-atrous).
+    if (surfaceBytes < 12) throw new Error(`a surface record (${surfaceBytes} B) cannot lend the à-trous filter its 12 bytes`);
     const scratch = make('frame scratch and output', SCRATCH_BYTES);
     const surfaces = [make('surface records 0', surfaceBytes), make('surface records 1', surfaceBytes)] as const;
     const frameRecords = make('frame records', structSize('FrameTexel'));

@@ -19,8 +19,13 @@
 // k_pq = k_qp, so what p takes from q, q gives to p, and Σ_p out_p = Σ_p c_p exactly. As W_p ≥ w_pp +
 // Σ_q w_pq, Σ_q k_pq < 1: each out_p is a convex combination of its taps. Where the weights around p
 // and q agree (W_p = W_q) this is SVGF's normalised mean itself; a pixel whose taps refuse it keeps its
-// light instead of being averaged away. W needs the taps' own sums: a first dispatch of each iteration
-// (ATROUS_WEIGHTS) writes every pixel's W, the second filters.
+// light instead of being averaged away. W needs the taps' own sums: in the first two iterations a
+// dispatch before the filter (ATROUS_WEIGHTS) writes every pixel's W; the later ones take the sums
+// the previous iteration's filter found at its own step (W of another step is still one number per
+// pixel, so k stays symmetric), and cap each k_pq at h_pq / (1 − h_pp), so that Σ_q k_pq ≤ 1 whatever
+// the sums. Measured (docs/denoise.md, "Energy"): the same error as exact sums in all five
+// iterations, for two weights dispatches instead of five; exact sums in the first iteration only, or
+// the cap with exact sums, raised it 7–10 %.
 //
 // The packed twin of passes/atrous (which the hybrid recipe keeps for its vec4f buffers): the guide is
 // the pixel-centre surface record, and source and result are illumination pairs (two words: f16 rgb,
@@ -65,6 +70,12 @@ struct DenoiseAtrousParams {
   result_offset: u32,
   // ATROUS_*.
   mode: u32,
+  // The weight sums' regions of filter_scratch (1 or 2) this dispatch reads and writes (0: none).
+  weights_read: u32,
+  weights_write: u32,
+  // 1: the sums read are the previous iteration's (another step), so each pair's coefficient is capped
+  // to keep the pixel a convex combination.
+  capped: u32,
 }
 
 @group(2) @binding(0) var<uniform> params: DenoiseAtrousParams;
@@ -78,11 +89,14 @@ struct DenoiseAtrousParams {
 @group(2) @binding(3) var<storage, read_write> source_words: array<vec2u>;
 @group(2) @binding(4) var<storage, read_write> other_words: array<vec2u>;
 // The previous frame's surface records (12 bytes a pixel), free once the temporal pass has read them:
-// word i holds pixel i's depth slopes along x and y (f16 pair), word n + i its weight sum W (f32),
-// n the number of pixels.
+// word i holds pixel i's depth slopes along x and y (f16 pair), words n + i and 2n + i its weight
+// sums (f32) in two regions that the iterations alternate between (read one, write the other), n the
+// number of pixels.
 @group(2) @binding(5) var<storage, read_write> filter_scratch: array<u32>;
 
 const LOG2_E: f32 = 1.4426950408889634;
+// 1 / (1 − (6/16)²): the B3 kernel's taps off the centre, scaled to sum to 1.
+const OFF_CENTRE_SHARE: f32 = 1.1636363636363636;
 // 1/(2·ln 2): pow(cos θ, σ) ≈ exp(−σ·θ²/2) = exp2(−σ·θ²/(2·ln 2)).
 const NORMAL_EXPONENT: f32 = 0.7213475204444817;
 
@@ -125,12 +139,14 @@ fn pixel_depth_slopes(p: vec2i, z: f32) -> vec2f {
   );
 }
 
-fn stored_depth_slopes(i: u32) -> vec2f {
-  return unpack2x16float(filter_scratch[i]);
+fn weights_index(region: u32, i: u32) -> u32 {
+  return region * view.image_size.x * view.image_size.y + i;
 }
 
-fn weight_sum_index(i: u32) -> u32 {
-  return view.image_size.x * view.image_size.y + i;
+// Pixel i's depth slopes (x, y) and the weight sum this dispatch reads (z; 1 where it reads none).
+fn filter_record(i: u32) -> vec3f {
+  let w = select(bitcast<f32>(filter_scratch[weights_index(params.weights_read, i)]), 1.0, params.weights_read == 0u);
+  return vec3f(unpack2x16float(filter_scratch[i]), w);
 }
 
 // The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
@@ -171,23 +187,25 @@ struct FilterCentre {
 //   seam (normals near −z) the distance is large and the weight 0: the filter stops there as at an
 //   edge (docs/denoise.md, "GPU time").
 struct Tap {
-  index: u32,
   colour: vec4f,
   weight: f32,
+  // The tap's weight sum W_q (the filter dispatch's; stale in the weights dispatch, which writes it).
+  weight_sum: f32,
 }
 
 fn tap(c: FilterCentre, p: vec2i, dx: i32, dy: i32) -> Tap {
   let q = p + params.step * vec2i(dx, dy);
   if (!inside(q)) {
-    return Tap(0u, vec4f(0.0), 0.0);
+    return Tap(vec4f(0.0), 0.0, 1.0);
   }
   let qi = texel_index(q);
   // The loads are issued before the test, so that their latencies overlap.
   let gq = surface_records[qi];
   let s = source(qi);
-  let slope_q = stored_depth_slopes(qi);
+  let record_q = filter_record(qi);
+  let slope_q = record_q.xy;
   if (c.miss != is_miss_depth(gq.linear_depth)) {
-    return Tap(qi, s, 0.0);
+    return Tap(s, 0.0, record_q.z);
   }
   var exponent = -LOG2_E / params.sigma_luminance * abs(c.luminance - luminance(s.rgb)) * inverseSqrt(max(0.5 * (c.colour.a + s.a), 1e-30));
   if (!c.miss) {
@@ -197,7 +215,7 @@ fn tap(c: FilterCentre, p: vec2i, dx: i32, dy: i32) -> Tap {
     let d = c.normal_code - unpack2x16snorm(gq.normal);
     exponent -= params.sigma_normal * NORMAL_EXPONENT * dot(d, d);
   }
-  return Tap(qi, s, b3(abs(dx)) * b3(abs(dy)) * exp2(exponent));
+  return Tap(s, b3(abs(dx)) * b3(abs(dy)) * exp2(exponent), record_q.z);
 }
 
 @compute @workgroup_size(8, 8)
@@ -215,7 +233,8 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   }
   let g = surface_records[i];
   let centre = source(i);
-  let c = FilterCentre(centre, luminance(centre.rgb), g, unpack2x16snorm(g.normal), is_miss_depth(g.linear_depth), stored_depth_slopes(i));
+  let record = filter_record(i);
+  let c = FilterCentre(centre, luminance(centre.rgb), g, unpack2x16snorm(g.normal), is_miss_depth(g.linear_depth), record.xy);
   if (params.mode == ATROUS_WEIGHTS) {
     var sum = b3(0) * b3(0);
     for (var dy = -2; dy <= 2; dy++) {
@@ -225,14 +244,15 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
         }
       }
     }
-    filter_scratch[weight_sum_index(i)] = bitcast<u32>(sum);
+    filter_scratch[weights_index(params.weights_write, i)] = bitcast<u32>(sum);
     return;
   }
   // Light moves between pairs: the pixel keeps what its taps do not take.
-  let w_p = bitcast<f32>(filter_scratch[weight_sum_index(i)]);
+  let w_p = record.z;
   var flow = vec3f(0.0);
   var kept = 1.0;
   var variance = 0.0;
+  var sum = b3(0) * b3(0);
   for (var dy = -2; dy <= 2; dy++) {
     for (var dx = -2; dx <= 2; dx++) {
       if (dx == 0 && dy == 0) {
@@ -242,11 +262,20 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
       if (t.weight == 0.0) {
         continue;
       }
-      let k = t.weight / max(w_p, bitcast<f32>(filter_scratch[weight_sum_index(t.index)]));
+      sum += t.weight;
+      let h = b3(abs(dx)) * b3(abs(dy));
+      // Capped at h / (1 − h_centre), the taps' coefficients sum to at most 1.
+      let normalised = t.weight / max(w_p, t.weight_sum);
+      let k = select(normalised, min(normalised, h * OFF_CENTRE_SHARE), params.capped != 0u);
       flow += k * (t.colour.rgb - centre.rgb);
       kept -= k;
       variance += k * k * t.colour.a;
     }
+  }
+  // This iteration's own sums normalise the next one where no weights dispatch runs (their steps
+  // differ, so the next iteration caps its coefficients).
+  if (params.weights_write != 0u) {
+    filter_scratch[weights_index(params.weights_write, i)] = bitcast<u32>(sum);
   }
   let filtered = vec4f(centre.rgb + flow, kept * kept * centre.a + variance);
   if (params.mode == ATROUS_OUTPUT) {
