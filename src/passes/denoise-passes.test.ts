@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { atrousSchedule, denoiseAtrousParams, isDenoiseChainPass, type PairRegion } from './denoise-passes.ts';
+import { atrousSchedule, denoiseAtrousParams, denoiseSlopesParams, denoiseWeightsParams, EXACT_WEIGHT_ITERATIONS, isDenoiseChainPass, type PairRegion } from './denoise-passes.ts';
 
 /** The words a region's pairs occupy for the first pixels. */
 const words = (r: PairRegion, pixels = 8) => new Set(Array.from({ length: pixels }, (_, i) => [r.stride * i + r.offset, r.stride * i + r.offset + 1]).flat().map((w) => `${r.array}${w}`));
@@ -31,6 +31,36 @@ describe('the à-trous schedule of the real-time chain', () => {
       expect(schedule[0]!.copyHistory).toBe(!feedback);
     });
   }
+});
+
+describe('the weight sums of the à-trous iterations', () => {
+  it('are read where a dispatch just wrote them, never where the same dispatch writes, and capped where they are an earlier step\'s', () => {
+    for (const feedback of [false, true]) {
+      const schedule = atrousSchedule(feedback);
+      // Which region holds sums, and whether they are the reading iteration's own step.
+      const held = new Map<number, { iteration: number; exact: boolean }>();
+      expect(denoiseSlopesParams()).toMatchObject({ mode: 3, weights_read: 0, weights_write: 0 });
+      schedule.forEach((it, i) => {
+        if (i < EXACT_WEIGHT_ITERATIONS) {
+          const w = denoiseWeightsParams(i, it);
+          expect(w).toMatchObject({ mode: 4, weights_read: 0, step: denoiseAtrousParams(i, it).step });
+          held.set(w.weights_write as number, { iteration: i, exact: true });
+        } else {
+          expect(() => denoiseWeightsParams(i, it)).toThrow();
+        }
+        const p = denoiseAtrousParams(i, it);
+        const sums = held.get(p.weights_read as number);
+        expect(sums).toBeDefined();
+        // Exact sums are this iteration's own; otherwise the previous iteration's filter wrote them, and the coefficients are capped.
+        expect(sums!.iteration).toBe(sums!.exact ? i : i - 1);
+        expect(p.capped).toBe(sums!.exact ? 0 : 1);
+        expect(p.weights_write).not.toBe(p.weights_read);
+        if (p.weights_write !== 0) held.set(p.weights_write as number, { iteration: i, exact: false });
+        // An iteration that reads an earlier step's sums needs its predecessor to have written them.
+        if (i + 1 < schedule.length && i + 1 >= EXACT_WEIGHT_ITERATIONS) expect(p.weights_write).not.toBe(0);
+      });
+    }
+  });
 });
 
 describe('isDenoiseChainPass', () => {

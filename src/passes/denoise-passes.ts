@@ -40,10 +40,13 @@ export const atrousWeightsLabel = (iteration: number): string => `${atrousLabel(
 /** The dispatch before the iterations that writes each pixel's depth slopes. */
 export const ATROUS_SLOPES_LABEL = 'a-trous slopes';
 
+/** The iterations whose weight sums a dispatch of their own computes (passes/denoise-atrous ATROUS_WEIGHTS). */
+export const EXACT_WEIGHT_ITERATIONS = 2;
+
 /** The à-trous pass's parameter slots: the iterations', then the slopes', then the weights dispatches'. */
 export const ATROUS_SLOPES_SLOT = ATROUS_STEPS.length;
 export const atrousWeightsSlot = (iteration: number): number => ATROUS_STEPS.length + 1 + iteration;
-const ATROUS_SLOTS = 2 * ATROUS_STEPS.length + 1;
+const ATROUS_SLOTS = ATROUS_STEPS.length + 1 + EXACT_WEIGHT_ITERATIONS;
 
 /** Whether a timed pass (its GpuTimer label) belongs to the real-time denoising chain: the temporal pass, an à-trous dispatch or the debug views' output. */
 export const isDenoiseChainPass = (label: string): boolean =>
@@ -148,12 +151,13 @@ export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): Uni
   };
 };
 
-/** The iterations whose weight sums a dispatch of their own computes (passes/denoise-atrous ATROUS_WEIGHTS). */
-export const EXACT_WEIGHT_ITERATIONS = 2;
 const weightsRegion = (iteration: number): number => 1 + (iteration % 2);
 
 /** The dispatch before iteration i (its step, its source) that writes the weight sums: ATROUS_WEIGHTS. */
-export const denoiseWeightsParams = (iteration: number, it: AtrousIteration): UniformValues => ({ ...denoiseAtrousParams(iteration, it), mode: 4, weights_read: 0, weights_write: weightsRegion(iteration) });
+export const denoiseWeightsParams = (iteration: number, it: AtrousIteration): UniformValues => {
+  if (iteration >= EXACT_WEIGHT_ITERATIONS) throw new Error(`atrous: iteration ${iteration + 1} has no weights dispatch`);
+  return { ...denoiseAtrousParams(iteration, it), mode: 4, weights_read: 0, weights_write: weightsRegion(iteration) };
+};
 
 /** The dispatch before the iterations that writes the depth slopes (ATROUS_SLOPES); it reads no pairs. */
 export const denoiseSlopesParams = (): UniformValues => ({ ...denoiseAtrousParams(0, atrousSchedule(false)[0]!), mode: 3, weights_read: 0, weights_write: 0, capped: 0 });

@@ -98,7 +98,7 @@ interface TraceOptions {
 interface ParityGroups {
   readonly temporal: Record<number, GPUBindGroup>;
   /** Each schedule's iterations (atrousSchedule: index 0 without feedback, 1 with): the weight sums' dispatch (the first EXACT_WEIGHT_ITERATIONS) and the filter's. */
-  readonly atrous: readonly (readonly { readonly weights: Record<number, GPUBindGroup>; readonly filter: Record<number, GPUBindGroup> }[])[];
+  readonly atrous: readonly (readonly { readonly weights?: Record<number, GPUBindGroup>; readonly filter: Record<number, GPUBindGroup> }[])[];
   /** The depth slopes' dispatch, before the iterations. */
   readonly slopes: Record<number, GPUBindGroup>;
   readonly output: Record<number, GPUBindGroup>;
@@ -340,7 +340,7 @@ export class Denoiser {
       atrous.encode(encoder, groups.slopes, b.width, b.height, r.timer, ATROUS_SLOPES_LABEL);
       atrousSchedule(feedback).forEach((it, i) => {
         const iteration = groups.atrous[feedback ? 1 : 0]![i]!;
-        if (i < EXACT_WEIGHT_ITERATIONS) {
+        if (iteration.weights) {
           atrous.write(denoiseWeightsParams(i, it), atrousWeightsSlot(i));
           atrous.encode(encoder, iteration.weights, b.width, b.height, r.timer, atrousWeightsLabel(i));
         }
@@ -489,7 +489,8 @@ export class Denoiser {
             const inScratch = it.source.array === 'a';
             const other = it.b === 'history' ? history : previousMoments;
             const resources = { surface_records: surface, frame_records: frameRecords, source_words: inScratch ? scratch : other, other_words: inScratch ? other : scratch, filter_scratch: previousSurface };
-            return { weights: atrous.bindGroups(view, resources, atrousWeightsSlot(i)), filter: atrous.bindGroups(view, resources, i) };
+            const filter = atrous.bindGroups(view, resources, i);
+            return i < EXACT_WEIGHT_ITERATIONS ? { weights: atrous.bindGroups(view, resources, atrousWeightsSlot(i)), filter } : { filter };
           }),
         ),
         slopes: atrous.bindGroups(view, { surface_records: surface, frame_records: frameRecords, source_words: scratch, other_words: history, filter_scratch: previousSurface }, ATROUS_SLOPES_SLOT),
