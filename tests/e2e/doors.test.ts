@@ -47,7 +47,8 @@ describe.skipIf(!present)('Doom doors in the page', () => {
     await page.goto(`${served.url}?wad=${served.fileUrls[0]}&map=E1M1&mode=walk&cam=832,-87,-420,0,0&scale=0.05&debug=normals&layout=replace`);
     await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene === 'E1M1', undefined, 120_000, 'the map');
     await page.click('#play');
-    await waitForPage(page, () => window.lantern.state === 'playing', undefined, 60_000, 'Play');
+    // Play waits for the pipelines: on a software adapter under a loaded machine, over a minute.
+    await waitForPage(page, () => window.lantern.state === 'playing', undefined, 180_000, 'Play');
 
     // Walk north into the closed door until the walker stops: one radius short of its face.
     await page.keyboard.down('KeyW');
