@@ -126,17 +126,19 @@ fn source_depth(q: vec2i) -> f32 {
   return surface_records[texel_index(q)].linear_depth;
 }
 
-// The depth of pixel q if it is inside the image, else MISS_DEPTH.
-fn depth_or_miss(q: vec2i) -> f32 {
-  return select(MISS_DEPTH, source_depth(q), inside(q));
-}
-
-// The depth slopes of pixel p (at depth z) along x and y: axis_slope of its neighbours.
-fn pixel_depth_slopes(p: vec2i, z: f32) -> vec2f {
-  return vec2f(
-    axis_slope(z, depth_or_miss(p - vec2i(1, 0)), depth_or_miss(p + vec2i(1, 0))),
-    axis_slope(z, depth_or_miss(p - vec2i(0, 1)), depth_or_miss(p + vec2i(0, 1))),
-  );
+// The smaller one-sided difference of linear depth along one axis (the smaller side does not cross an edge).
+fn depth_slope(p: vec2i, axis: vec2i, z: f32) -> f32 {
+  var slope = 1e30;
+  for (var s = -1; s <= 1; s += 2) {
+    let q = p + s * axis;
+    if (inside(q)) {
+      let depth = source_depth(q);
+      if (depth >= 0.0) {
+        slope = min(slope, abs(depth - z));
+      }
+    }
+  }
+  return select(slope, 0.0, slope == 1e30);
 }
 
 fn weights_index(region: u32, i: u32) -> u32 {
@@ -152,15 +154,6 @@ fn filter_record(i: u32) -> vec3f {
 // The B3 spline (1, 4, 6, 4, 1) / 16 by distance from the centre (0, 1 or 2 taps).
 fn b3(d: i32) -> f32 {
   return select(select(0.0625, 0.25, d == 1), 0.375, d == 0);
-}
-
-// The smaller one-sided difference of linear depth at z along one axis, from the depths of the two
-// neighbours on it (negative: none there, or a miss); the smaller side does not cross an edge.
-fn axis_slope(z: f32, before: f32, after: f32) -> f32 {
-  let a = select(1e30, abs(before - z), before >= 0.0);
-  let b = select(1e30, abs(after - z), after >= 0.0);
-  let slope = min(a, b);
-  return select(slope, 0.0, slope == 1e30);
 }
 
 // The pixel p the filter is at: its pair, surface and depth slopes.
@@ -227,7 +220,7 @@ fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   let i = texel_index(p);
   if (params.mode == ATROUS_SLOPES) {
     let z = source_depth(p);
-    let slope = select(pixel_depth_slopes(p, z), vec2f(0.0), is_miss_depth(z));
+    let slope = select(vec2f(depth_slope(p, vec2i(1, 0), z), depth_slope(p, vec2i(0, 1), z)), vec2f(0.0), is_miss_depth(z));
     filter_scratch[i] = pack_f16_pair(slope.x, slope.y);
     return;
   }
