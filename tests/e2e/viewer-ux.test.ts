@@ -197,8 +197,9 @@ describe('the page for a new user', () => {
       const { whole } = await status();
       return / a frame\)/.test(whole) && /budget: /.test(whole);
     };
-    // Full resolution on a software adapter: a frame of the real-time chain takes tens of seconds.
-    await expect.poll(long, { timeout: 180_000 }).toBe(true);
+    // A frame of the real-time chain at the budget's floor, then 1.5 s more: on a loaded CI machine
+    // the first of them has taken minutes (the status is in the report if it never comes).
+    await withPageReport(page, 'the long status line', () => expect.poll(long, { timeout: 300_000 }).toBe(true));
     for (const width of [420, 640, 1280]) {
       await page.setViewportSize({ width, height: 800 });
       // The line is fitted again as its box resizes, and at every frame.
@@ -218,7 +219,7 @@ describe('the page for a new user', () => {
     expect(await help.isHidden()).toBe(true);
     expect(errors).toEqual([]);
     await page.close();
-  });
+  }, 600_000); // its waits for slow frames add up past the project's 300 s on a loaded machine
 
   it('keeps the image the width of a 420-pixel screen, the settings in a drawer; at 1280 × 800 the numbers and output are in view', async () => {
     const { page, errors } = await open('scene=cornell', { width: 420, height: 800 });

@@ -49,7 +49,8 @@ describe.skipIf(!SHAREWARE)('Wolfenstein 3D doors in the page', () => {
     // The start: the cell's middle, west of the door.
     expect(await x(page)).toBeCloseTo(29.5 * TILE, 0);
     await page.click('#play');
-    await waitForPage(page, () => window.lantern.state === 'playing', undefined, 60_000, 'Play');
+    // Play waits for the first frame's pipelines: 180 s, as every first frame's wait (a loaded CI machine took more than 60).
+    await waitForPage(page, () => window.lantern.state === 'playing', undefined, 180_000, 'Play');
 
     // East until the closed door stops the walker: it may not enter the door's tile.
     await page.keyboard.down('KeyW');
