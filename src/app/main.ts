@@ -776,6 +776,8 @@ declare global {
       delayFrames(ms: number): void;
       /** Seconds the scene's world (doors, lifts, the phantom) has played. */
       readonly worldSeconds: number;
+      /** Every pipeline the page's device was asked to compile (label and override constants), in request order. */
+      readonly pipelines: readonly string[];
     };
   }
 }
@@ -838,5 +840,8 @@ window.lantern = {
   },
   get worldSeconds() {
     return viewer.worldSeconds;
+  },
+  get pipelines() {
+    return [...viewer.pipelines];
   },
 };

@@ -91,19 +91,34 @@ export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise' | 'rec
  */
 const pageCompileConcurrency = () => Math.max(2, (navigator.hardwareConcurrency || 2) - 2);
 
+/** Whether these settings trace an image: a debug view that replaces it is drawn without one. */
+const tracesImage = (s: RenderSettings) => s.debugView === 'none' || s.debugLayout !== 'replace';
+
+/** The recipe whose passes these settings run (none where nothing is traced, or progressive accumulation). */
+function recipeShown(s: RenderSettings): 'hybrid' | 'real-time' | undefined {
+  if (!tracesImage(s)) return undefined;
+  if (s.recipe === 'hybrid') return 'hybrid';
+  return isRealTime(s) ? 'real-time' : undefined;
+}
+
 /** What a settings change compiles before it applies, in words for the loading line (undefined: nothing new). */
 function compiledFor(before: RenderSettings, after: RenderSettings): string | undefined {
-  if (after.recipe === 'hybrid' && before.recipe !== 'hybrid') return 'the hybrid recipe';
-  if (isRealTime(after) && !isRealTime(before)) return 'the real-time chain';
+  const recipe = recipeShown(after);
+  if (recipe !== recipeShown(before) && recipe !== undefined) return recipe === 'hybrid' ? 'the hybrid recipe' : 'the real-time chain';
   if (after.debugView !== 'none' && before.debugView === 'none') return 'the debug views';
   if (after.spectral && !before.spectral) return 'spectral rendering';
   return undefined;
 }
 
-/** Compiles what a real-time recipe in these settings needs. */
+/**
+ * Compiles what a real-time recipe in these settings needs, and only where it runs: a page opened on a
+ * debug view that replaces the image (a link, the Doom and Wolfenstein door tests) compiles none of it
+ * until a layout that shows the image is chosen.
+ */
 async function enableRecipe(renderer: Renderer, s: RenderSettings): Promise<void> {
-  if (s.recipe === 'hybrid') await renderer.enableHybrid();
-  else if (isRealTime(s)) await renderer.enableRealTime();
+  const recipe = recipeShown(s);
+  if (recipe === 'hybrid') await renderer.enableHybrid();
+  else if (recipe === 'real-time') await renderer.enableRealTime();
 }
 
 /** Milliseconds without an edit after which the scene's specialised kernels are compiled (Lantern issue #11). */
@@ -254,6 +269,8 @@ export class Viewer {
   private firstFrameMs?: number;
   /** The device's batch of pipeline compiles as last reported (gpu/pipeline-compiles.ts), under way or done. */
   private compilesValue?: CompileProgress;
+  /** Every pipeline requested on the current device, by key (label and constants), in request order. */
+  private pipelinesValue: string[] = [];
   /** What a settings change under way compiles for ('the hybrid recipe'), while it waits; frames go on with the settings before it. */
   private compilingForValue?: string;
   private legendValue?: DebugLegend;
@@ -372,6 +389,11 @@ export class Viewer {
    */
   get compiles(): CompileProgress | undefined {
     return this.compilesValue;
+  }
+
+  /** Every pipeline requested on the current device (label and override constants), in request order: what a page compiled. */
+  get pipelines(): readonly string[] {
+    return this.pipelinesValue;
   }
 
   /** What the settings change under way compiles for ('the hybrid recipe'), while the frames go on with the previous settings. */
@@ -803,8 +825,15 @@ export class Viewer {
     context.configure({ device: gpu.device, format, alphaMode: 'opaque' });
     // Every compile from here on is counted, so the page can say what it waits for.
     setCompileConcurrency(gpu.device, pageCompileConcurrency());
+    const requested = new Set<string>();
+    this.pipelinesValue = [];
     observeCompiles(gpu.device, (progress) => {
       this.compilesValue = progress;
+      for (const c of progress.compiles) {
+        if (requested.has(c.key)) continue;
+        requested.add(c.key);
+        this.pipelinesValue.push(c.key);
+      }
       this.hooks.onChange(this);
     });
     // What the first frame needs and nothing more, compiled side by side: the path tracer for the
@@ -1007,7 +1036,7 @@ export class Viewer {
     let display: ViewerDisplay = 'progressive';
     let after: (() => void) | undefined;
     // A debug view that replaces the image needs no path tracing: it is drawn by present().
-    const debugOnly = render.debugView !== 'none' && render.debugLayout === 'replace';
+    const debugOnly = !tracesImage(render);
     if (debugOnly) {
       display = this.displaying;
     } else if (isRealTime(render)) {

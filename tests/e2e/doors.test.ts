@@ -49,6 +49,12 @@ describe.skipIf(!present)('Doom doors in the page', () => {
     await page.click('#play');
     // Play waits for the pipelines: on a software adapter under a loaded machine, over a minute.
     await waitForPage(page, () => window.lantern.state === 'playing', undefined, 180_000, 'Play');
+    // The normals replace the image: the page compiled the debug views and none of the real-time chain
+    // it opens in (its G-buffer and path kernels, the denoiser), whose frames would never be shown.
+    const pipelines = await page.evaluate(() => window.lantern.pipelines);
+    console.log(`E1M1 under its normals compiled ${pipelines.length} pipelines: ${pipelines.map((p) => p.split(' ')[0]).join(', ')}`);
+    expect(pipelines.some((p) => p.startsWith('passes/debug-view:debug_view'))).toBe(true);
+    expect(pipelines.filter((p) => /path-trace-frame|temporal|denoise/.test(p))).toEqual([]);
 
     // Walk north into the closed door until the walker stops: one radius short of its face.
     await page.keyboard.down('KeyW');

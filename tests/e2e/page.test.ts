@@ -47,6 +47,14 @@ function meanRgb(img: { width: number; height: number; data: Uint8Array }, x0: n
   return [r / n, g / n, b / n];
 }
 
+/**
+ * The progressive recipe, for the tests of what is not the real-time chain (input, files, links,
+ * lighting, the lens): a page in the real-time chain compiles three megakernels and
+ * the denoiser (about 20 s of a 2-core machine on SwiftShader), a progressive one the path tracer
+ * alone. The first test and the real-time chain's own test open in the default recipe.
+ */
+const PROGRESSIVE = 'temporal=0&denoise=0';
+
 /** Opens the page, collecting page errors; `query` without the leading '?'. */
 async function open(query: string): Promise<{ page: Page; errors: string[] }> {
   const page = await browser.newPage({ viewport: VIEWPORT });
@@ -122,6 +130,11 @@ describe('the page', () => {
     expect(await page.locator('#view').getAttribute('data-first-frame-ms')).toBeNull();
 
     await playUntil(page, 8);
+    // The default recipe is the real-time chain: its frame kernels and the denoiser are compiled (and
+    // the progressive path tracer, which adds to the estimate while the view is still).
+    const pipelines = await page.evaluate(() => window.lantern.pipelines);
+    console.log(`a Cornell box page in the real-time chain compiled ${pipelines.length} pipelines: ${pipelines.map((p) => p.split(' ')[0]).join(', ')}`);
+    for (const entry of ['path-trace-frame:frame_gbuffer', 'path-trace-frame:path_trace_frame', 'temporal:temporal_accumulate', 'path-trace:path_trace']) expect(pipelines.some((p) => p.startsWith(`passes/${entry} `) || p === `passes/${entry}`), entry).toBe(true);
     // Play to first frame: reported once the first frame is done, in the hook, on the canvas and in the GPU panel.
     const firstFrameMs = await page.evaluate(() => window.lantern.firstFrameMs);
     expect(firstFrameMs).toBeGreaterThan(0);
@@ -153,7 +166,7 @@ describe('the page', () => {
   });
 
   it('moves the camera with the keyboard, and restarts accumulation on a settings change', async () => {
-    const { page, errors } = await open('scene=cornell&scale=0.1');
+    const { page, errors } = await open(`scene=cornell&scale=0.1&${PROGRESSIVE}`);
     await playUntil(page, 4);
     const before = await page.evaluate(() => window.lantern.camera!);
     const imageBefore = await canvasImage(page);
@@ -184,7 +197,7 @@ describe('the page', () => {
   });
 
   it('opens a WAD through the file input, offers its maps, renders the one picked and walks in it', async () => {
-    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const { page, errors } = await open(`scene=furnace&scale=0.1&${PROGRESSIVE}`);
     await page.setInputFiles('#open-file', { name: 'rooms.wad', mimeType: 'application/octet-stream', buffer: Buffer.from(ROOMS) });
     await waitLoaded(page, 'MAP01');
     expect(await page.locator('#map-picker').isVisible()).toBe(true);
@@ -213,7 +226,7 @@ describe('the page', () => {
   });
 
   it('answers a garbage file with a readable error and keeps rendering', async () => {
-    const { page, errors } = await open('scene=cornell&scale=0.1');
+    const { page, errors } = await open(`scene=cornell&scale=0.1&${PROGRESSIVE}`);
     await playUntil(page, 2);
     const garbage = Buffer.from(Array.from({ length: 3000 }, (_, i) => (i * 7919) & 0xff));
     await page.setInputFiles('#open-file', { name: 'garbage.wad', mimeType: 'application/octet-stream', buffer: garbage });
@@ -233,7 +246,7 @@ describe('the page', () => {
 
   it('gives back every GPU buffer over 20 scene loads', async () => {
     // Progressive (the real-time chain's buffers would follow the image size too: resource-count.test.ts covers the renderer's).
-    const { page, errors } = await open('scene=cornell&scale=0.05&temporal=0&denoise=0');
+    const { page, errors } = await open(`scene=cornell&scale=0.05&${PROGRESSIVE}`);
     await playUntil(page, 1);
     await page.click('#play');
     // A WAD's map once first: what the renderer makes once, on first need, for every later scene
@@ -328,6 +341,7 @@ describe('the page', () => {
   });
 
   it('shows a BVH debug view with its legend, chosen from the panel', async () => {
+    // In the default recipe: the real-time chain is compiled only once a layout shows the image.
     const { page, errors } = await open('scene=bvh-teaching&scale=0.1&debug=heat-nodes');
     await playUntil(page, 0);
     await page.waitForFunction(() => !document.getElementById('legend')!.hidden, undefined, { timeout: 60_000 });
@@ -337,8 +351,10 @@ describe('the page', () => {
     // 'replace' shows the counts only: nothing is path traced.
     expect(await page.evaluate(() => window.lantern.samples)).toBe(0);
     await page.locator('.tp-fldv_b', { hasText: 'Debug views' }).click();
+    expect((await page.evaluate(() => window.lantern.pipelines)).filter((p) => p.startsWith('passes/path-trace-frame'))).toEqual([]);
     await page.locator('.tp-lblv', { hasText: 'layout' }).locator('select').selectOption('side-by-side');
     await playUntil(page, 2);
+    expect(await page.evaluate(() => window.lantern.display)).toBe('frame');
     await page.locator('.tp-lblv', { hasText: /^view/ }).locator('select').selectOption('none');
     await expect.poll(() => page.locator('#legend').isHidden()).toBe(true);
     expect(errors).toEqual([]);
@@ -346,7 +362,7 @@ describe('the page', () => {
   });
 
   it('opens a served WAD map from a link, and a copied link restores the camera and settings', async () => {
-    const { page, errors } = await open(`wad=${served.fileUrls[0]}&map=MAP02&skill=4&scale=0.05&bounces=3`);
+    const { page, errors } = await open(`wad=${served.fileUrls[0]}&map=MAP02&skill=4&scale=0.05&bounces=3&${PROGRESSIVE}`);
     expect(await page.evaluate(() => window.lantern.scene)).toBe('MAP02');
     await page.keyboard.down('KeyD');
     await page.waitForTimeout(300);
@@ -375,7 +391,7 @@ describe('the page', () => {
 
   it('opens a .glb through the file input: the model renders', async () => {
     if (!hasAssets('Duck/glTF-Binary/Duck.glb')) return;
-    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const { page, errors } = await open(`scene=furnace&scale=0.1&${PROGRESSIVE}`);
     const before = await settledImage(page, 2);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     await page.setInputFiles('#open-file', asset('Duck/glTF-Binary/Duck.glb'));
@@ -405,7 +421,7 @@ describe('the page', () => {
     cpSync(asset('Duck/glTF/DuckCM.png'), join(folder, 'textures/DuckCM.png'));
     // A file of the same name that is not an image: picking it would give a texture warning.
     writeFileSync(join(folder, 'decoy/DuckCM.png'), 'not a png');
-    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const { page, errors } = await open(`scene=furnace&scale=0.1&${PROGRESSIVE}`);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     await page.setInputFiles('#open-folder', folder);
     await waitNewScene(page, loads);
@@ -421,7 +437,7 @@ describe('the page', () => {
   it('opens a .gltf, its .bin and its texture dropped together on the page', async () => {
     if (!hasAssets('Duck/glTF/Duck.gltf')) return;
     const files = readdirSync(asset('Duck/glTF')).map((name) => ({ name, bytes: [...readFileSync(asset(`Duck/glTF/${name}`))] }));
-    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const { page, errors } = await open(`scene=furnace&scale=0.1&${PROGRESSIVE}`);
     const before = await settledImage(page, 2);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     // A drop as the browser delivers it: a DataTransfer of File objects on a drop event.
@@ -443,7 +459,7 @@ describe('the page', () => {
       console.warn(`skipped: ${missing} is not missing any more`);
       return;
     }
-    const { page, errors } = await open('scene=furnace&scale=0.1');
+    const { page, errors } = await open(`scene=furnace&scale=0.1&${PROGRESSIVE}`);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     await page.setInputFiles('#open-folder', asset('Lantern/glTF'));
     await waitNewScene(page, loads);
@@ -463,7 +479,7 @@ describe('the page', () => {
 
   it('relights the scene with the sky from the panel without reloading it, and a link restores the sky', async () => {
     // The spheres stand in the open, so the sky shows and lights them.
-    const { page, errors } = await open('scene=materials&scale=0.1');
+    const { page, errors } = await open(`scene=materials&scale=0.1&${PROGRESSIVE}`);
     await settledImage(page, 1);
     const loads = await page.evaluate(() => window.lantern.sceneLoads);
     await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select').selectOption({ label: 'sun and sky' });
@@ -495,7 +511,7 @@ describe('the page', () => {
   });
 
   it('opens with the lens a link gives, changes it from the panel (the image changes, the link follows)', async () => {
-    const { page, errors } = await open('scene=cornell&scale=0.05&aperture=30&focus=150');
+    const { page, errors } = await open(`scene=cornell&scale=0.05&aperture=30&focus=150&${PROGRESSIVE}`);
     expect(await page.evaluate(() => window.lantern.lens)).toEqual({ apertureRadius: 30, focusDistance: 150 });
     const aperture = page.locator('.tp-lblv', { hasText: 'aperture radius' }).locator('input');
     expect(Number(await aperture.inputValue())).toBe(30);
@@ -519,7 +535,7 @@ describe('the page', () => {
     // A flat (uncompressed) Radiance file, 4 × 2, every pixel RGBE (128, 0, 0, 130): radiance (2, 0, 0).
     const header = Buffer.from('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n', 'latin1');
     const red = Buffer.from(Array.from({ length: 8 }, () => [128, 0, 0, 130]).flat());
-    const { page, errors } = await open('scene=materials&scale=0.1');
+    const { page, errors } = await open(`scene=materials&scale=0.1&${PROGRESSIVE}`);
     await page.setInputFiles('#open-environment', { name: 'red.hdr', mimeType: 'application/octet-stream', buffer: Buffer.concat([header, red]) });
     await expect.poll(() => page.evaluate(() => window.lantern.environment), { timeout: 30_000 }).toMatchObject({ kind: 'map', name: 'red.hdr' });
     expect(await page.locator('.tp-lblv', { hasText: 'light from' }).locator('select option:checked').textContent()).toBe('HDR map');
