@@ -825,15 +825,10 @@ export class Viewer {
     context.configure({ device: gpu.device, format, alphaMode: 'opaque' });
     // Every compile from here on is counted, so the page can say what it waits for.
     setCompileConcurrency(gpu.device, pageCompileConcurrency());
-    const requested = new Set<string>();
     this.pipelinesValue = [];
     observeCompiles(gpu.device, (progress) => {
       this.compilesValue = progress;
-      for (const c of progress.compiles) {
-        if (requested.has(c.key)) continue;
-        requested.add(c.key);
-        this.pipelinesValue.push(c.key);
-      }
+      for (const c of progress.compiles) if (!this.pipelinesValue.includes(c.key)) this.pipelinesValue.push(c.key);
       this.hooks.onChange(this);
     });
     // What the first frame needs and nothing more, compiled side by side: the path tracer for the
