@@ -68,10 +68,16 @@ const LOG_LINES = 40;
  * Keeps the page's console output and uncaught errors (the last 40 lines) so that a wait that times
  * out can say what the page was doing (waitForPage). Call it before `goto`.
  */
+/** The longest a Playwright action or evaluation of a watched page waits (SwiftShader frames are slow, not this slow). */
+export const ACTION_TIMEOUT_MS = 120_000;
+
 export function watchPage(page: Page): void {
   if (pageLogs.has(page)) return;
   const log: string[] = [];
   pageLogs.set(page, log);
+  // No action (a click, a fill) may wait forever for its element: a step that cannot happen fails
+  // with its name instead of running into the test's own limit without a word.
+  page.setDefaultTimeout(ACTION_TIMEOUT_MS);
   const keep = (line: string) => {
     log.push(`${(performance.now() / 1000).toFixed(1)} s ${line}`);
     if (log.length > LOG_LINES) log.shift();

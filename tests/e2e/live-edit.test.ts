@@ -9,7 +9,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { parseViewParams } from '../../src/app/view-params.ts';
 import { decodePng } from '../../src/image/png.ts';
-import { launchBrowser, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
+import { launchBrowser, pageReport, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
 
 let browser: Browser;
 let served: ServedPage;
@@ -75,15 +75,30 @@ async function orangePixels(page: Page): Promise<number> {
   return n;
 }
 
-/** Waits in the page for the estimate to restart (fewer samples than `before`) and reads its first frame at once. */
-function firstFramesAfterRestart(page: Page, before: number): Promise<Image> {
-  return page.evaluate(async (n) => {
-    await new Promise<void>((resolve) => {
-      const check = () => (window.lantern.samples >= 1 && window.lantern.samples < n ? resolve() : requestAnimationFrame(check));
+/**
+ * Waits in the page for the estimate to restart (fewer samples than `before`) and reads its first
+ * frame at once. Bounded: an edit that never restarts the image fails naming the samples, the link
+ * and the panel's colour field instead of running into the test's limit.
+ */
+async function firstFramesAfterRestart(page: Page, before: number): Promise<Image> {
+  const first = await page.evaluate(async ([n, timeout]) => {
+    const end = performance.now() + timeout;
+    const restarted = await new Promise<boolean>((resolve) => {
+      const check = () => {
+        if (window.lantern.samples >= 1 && window.lantern.samples < n) resolve(true);
+        else if (performance.now() > end) resolve(false);
+        else requestAnimationFrame(check);
+      };
       check();
     });
-    return window.lantern.readImage();
-  }, before);
+    // Read in the same turn as the check, so that the frame read is the restart's first.
+    return restarted ? window.lantern.readImage() : undefined;
+  }, [before, 90_000] as const);
+  if (!first) {
+    const field = await page.locator('.tp-lblv').filter({ has: page.locator('.tp-lblv_l', { hasText: /^colour$/ }) }).locator('input').first().inputValue();
+    throw new Error(`the image did not restart within 90 s of the colour edit (samples before ${before}; colour field '${field}'; link ${await page.evaluate(() => window.lantern.link)}); ${await pageReport(page)}`);
+  }
+  return first;
 }
 
 describe('live material editing', () => {
