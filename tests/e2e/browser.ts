@@ -64,13 +64,13 @@ export async function dropFiles(page: Page, files: readonly { name: string; byte
 const pageLogs = new WeakMap<Page, string[]>();
 const LOG_LINES = 40;
 
+/** The longest a Playwright action (click, fill, press) on a watched page waits; page.evaluate has no limit of its own. */
+export const ACTION_TIMEOUT_MS = 120_000;
+
 /**
  * Keeps the page's console output and uncaught errors (the last 40 lines) so that a wait that times
  * out can say what the page was doing (waitForPage). Call it before `goto`.
  */
-/** The longest a Playwright action or evaluation of a watched page waits (SwiftShader frames are slow, not this slow). */
-export const ACTION_TIMEOUT_MS = 120_000;
-
 export function watchPage(page: Page): void {
   if (pageLogs.has(page)) return;
   const log: string[] = [];

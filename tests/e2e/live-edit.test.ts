@@ -80,6 +80,11 @@ async function orangePixels(page: Page): Promise<number> {
  * frame at once. Bounded: an edit that never restarts the image fails naming the samples, the link
  * and the panel's colour field instead of running into the test's limit.
  */
+/** The Material folder's colour field (the one labelled exactly 'colour', not 'emission colour'): its text input. */
+const colourInput = (page: Page) => page.locator('.tp-lblv').filter({ has: page.locator('.tp-lblv_l', { hasText: /^colour$/ }) }).locator('input').first();
+
+const RESTART_TIMEOUT_MS = 90_000;
+
 async function firstFramesAfterRestart(page: Page, before: number): Promise<Image> {
   const first = await page.evaluate(async ([n, timeout]) => {
     const end = performance.now() + timeout;
@@ -93,10 +98,10 @@ async function firstFramesAfterRestart(page: Page, before: number): Promise<Imag
     });
     // Read in the same turn as the check, so that the frame read is the restart's first.
     return restarted ? window.lantern.readImage() : undefined;
-  }, [before, 90_000] as const);
+  }, [before, RESTART_TIMEOUT_MS] as const);
   if (!first) {
-    const field = await page.locator('.tp-lblv').filter({ has: page.locator('.tp-lblv_l', { hasText: /^colour$/ }) }).locator('input').first().inputValue();
-    throw new Error(`the image did not restart within 90 s of the colour edit (samples before ${before}; colour field '${field}'; link ${await page.evaluate(() => window.lantern.link)}); ${await pageReport(page)}`);
+    const field = await colourInput(page).inputValue();
+    throw new Error(`the image did not restart within ${RESTART_TIMEOUT_MS / 1000} s of the colour edit (samples before ${before}; colour field '${field}'; link ${await page.evaluate(() => window.lantern.link)}); ${await pageReport(page)}`);
   }
   return first;
 }
@@ -119,9 +124,8 @@ describe('live material editing', () => {
     const red = meanRgb(before, ...RED_WALL);
     expect(red[0]).toBeGreaterThan(2 * red[2]);
 
-    // Type a colour into the Material folder's colour field (the one labelled exactly 'colour').
-    const colour = page.locator('.tp-lblv').filter({ has: page.locator('.tp-lblv_l', { hasText: /^colour$/ }) });
-    const text = colour.locator('input').first();
+    // Type a colour into the Material folder's colour field.
+    const text = colourInput(page);
     await text.fill('#0000ff');
     await text.press('Enter');
     const after = await firstFramesAfterRestart(page, before.samples);
