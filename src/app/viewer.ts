@@ -31,6 +31,7 @@ import { materialEditProblem, mergeMaterialEdits, type MaterialEdit } from '../s
 import type { MaterialOverride } from './material-link.ts';
 import type { DebugLegend } from '../renderer/debug-legend.ts';
 import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, type RenderSettings } from '../renderer/settings.ts';
+import { isFrameRecipe, newlyCompiled, recipeFor } from '../renderer/recipes/recipe.ts';
 import { CameraController, sceneSpeed, type HeldSpan, type MoveMode, type Pose } from './camera-controller.ts';
 import { playFrame } from './frame-clock.ts';
 import { KeyTimeline } from './key-timeline.ts';
@@ -76,13 +77,10 @@ export const CONVERGE_HANDOFF_SAMPLES = 64;
 
 /**
  * The real-time chain by default (temporal reprojection and the à-trous filter: renderer/denoiser.ts),
- * converging progressively whenever the view holds still; turning both filters off gives plain
- * progressive accumulation.
+ * converging progressively whenever the view holds still; turning the chain's switches off (temporal,
+ * spatial, ReSTIR) gives plain progressive accumulation (renderer/recipes/recipe.ts recipeFor).
  */
 export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, convergeWhenStill: true, render: DEFAULT_SETTINGS });
-
-/** Whether these settings ask for a real-time recipe: the denoiser's chain (temporal and/or spatial) or the hybrid recipe. */
-export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise' | 'recipe'>) => s.temporal || s.denoise || s.recipe === 'hybrid';
 
 /**
  * Pipelines compiled at a time on the page: Chromium compiles them on its GPU process's thread pool
@@ -90,36 +88,6 @@ export const isRealTime = (s: Pick<RenderSettings, 'temporal' | 'denoise' | 'rec
  * (gpu/pipeline-compiles.ts). One worker is left free.
  */
 const pageCompileConcurrency = () => Math.max(2, (navigator.hardwareConcurrency || 2) - 2);
-
-/** Whether these settings trace an image: a debug view that replaces it is drawn without one. */
-const tracesImage = (s: RenderSettings) => s.debugView === 'none' || s.debugLayout !== 'replace';
-
-/** The recipe whose passes these settings run (none where nothing is traced, or progressive accumulation). */
-function recipeShown(s: RenderSettings): 'hybrid' | 'real-time' | undefined {
-  if (!tracesImage(s)) return undefined;
-  if (s.recipe === 'hybrid') return 'hybrid';
-  return isRealTime(s) ? 'real-time' : undefined;
-}
-
-/** What a settings change compiles before it applies, in words for the loading line (undefined: nothing new). */
-function compiledFor(before: RenderSettings, after: RenderSettings): string | undefined {
-  const recipe = recipeShown(after);
-  if (recipe !== recipeShown(before) && recipe !== undefined) return recipe === 'hybrid' ? 'the hybrid recipe' : 'the real-time chain';
-  if (after.debugView !== 'none' && before.debugView === 'none') return 'the debug views';
-  if (after.spectral && !before.spectral) return 'spectral rendering';
-  return undefined;
-}
-
-/**
- * Compiles what a real-time recipe in these settings needs, and only where it runs: a page opened on a
- * debug view that replaces the image (a link, the Doom and Wolfenstein door tests) compiles none of it
- * until a layout that shows the image is chosen.
- */
-async function enableRecipe(renderer: Renderer, s: RenderSettings): Promise<void> {
-  const recipe = recipeShown(s);
-  if (recipe === 'hybrid') await renderer.enableHybrid();
-  else if (recipe === 'real-time') await renderer.enableRealTime();
-}
 
 /** Milliseconds without an edit after which the scene's specialised kernels are compiled (Lantern issue #11). */
 const SPECIALISE_AFTER_IDLE_MS = 1000;
@@ -664,12 +632,10 @@ export class Viewer {
     const next = { ...before, ...changes, render };
     // Compile what the new settings need before the frame loop sees them: until then frames go on
     // with the settings as they were, so the image keeps coming (the page says what compiles).
-    this.compilingForValue = this.renderer ? compiledFor(before.render, render) : undefined;
+    this.compilingForValue = this.renderer ? newlyCompiled(before.render, render) : undefined;
     if (this.compilingForValue) this.hooks.onChange(this);
     try {
-      if (this.renderer && render.debugView !== 'none') await this.renderer.enableDebugViews();
-      if (this.renderer) await enableRecipe(this.renderer, render);
-      if (this.renderer && render.spectral) await this.renderer.enableSpectral();
+      await this.renderer?.compile(render);
     } finally {
       this.compilingForValue = undefined;
     }
@@ -678,7 +644,7 @@ export class Viewer {
     const fixing = changes.scale !== undefined && !this.scaleFixed;
     if (fixing) this.scaleFixed = true;
     this.legendAt = 0;
-    const restart = ESTIMATE_SETTINGS.some((k) => render[k] !== before.render[k]) || isRealTime(render) !== isRealTime(before.render);
+    const restart = ESTIMATE_SETTINGS.some((k) => render[k] !== before.render[k]) || recipeFor(render) !== recipeFor(before.render);
     if (restart) this.realTimeFrames = 0;
     if (!this.renderer) return;
     this.renderer.updateSettings(render);
@@ -839,7 +805,7 @@ export class Viewer {
     // The renderer's idle policy: kernels specialised to the scene once it has gone this long without an
     // edit. Not on SwiftShader (a CPU): compiling them there takes minutes of the CPU the page runs on.
     if (!/swiftshader/i.test(gpu.adapterName)) renderer.setIdleSpecialisation(SPECIALISE_AFTER_IDLE_MS);
-    await Promise.all([s.debugView !== 'none' ? renderer.enableDebugViews() : undefined, enableRecipe(renderer, s), s.spectral ? renderer.enableSpectral() : undefined]);
+    await renderer.compile(s);
     this.realTimeFrames = 0;
     renderer.updateSettings(this.settings.render);
     this.gpu = gpu;
@@ -1030,11 +996,12 @@ export class Viewer {
     const parts: (() => SplitFrame)[] = [];
     let display: ViewerDisplay = 'progressive';
     let after: (() => void) | undefined;
-    // A debug view that replaces the image needs no path tracing: it is drawn by present().
-    const debugOnly = !tracesImage(render);
-    if (debugOnly) {
+    // The recipe (renderer/recipes/recipe.ts): a debug view that replaces the image needs no path
+    // tracing (present() draws it); the frame recipes run frames, the progressive one samples.
+    const recipe = recipeFor(render);
+    if (recipe === 'debug') {
       display = this.displaying;
-    } else if (isRealTime(render)) {
+    } else if (isFrameRecipe(recipe)) {
       // The real-time chain keeps its own history across camera moves (reprojection). A view that held
       // still since the last frame (no reset of the estimate: camera, world, settings) also adds to the
       // exact progressive estimate, which is shown once it has enough samples.

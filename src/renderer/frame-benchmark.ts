@@ -34,7 +34,7 @@ export interface FrameBenchmarkResult {
   readonly framesPerSecond: number;
 }
 
-/** Times frames of the renderer's recipe (enableRealTime or enableHybrid first) at its current camera and settings. */
+/** Times frames of the renderer's recipe (Renderer.compile with frames asked for, first) at its current camera and settings. */
 export async function benchmarkFrames(renderer: Renderer, o: FrameBenchmarkOptions): Promise<FrameBenchmarkResult> {
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
   try {

@@ -7,10 +7,12 @@
  * Facade: setScene, setCamera, updateSettings, resize, accumulate, present, read*. Every method that
  * changes the estimate (scene, camera, size, bounces, light sampling, seed) restarts accumulation.
  * With a debug view set (settings.debugView), present and readImage show it as settings.debugLayout
- * asks (renderer/debug-views.ts); enableDebugViews() compiles its pipelines.
+ * asks (renderer/debug-views.ts).
  *
- * Real time (after enableRealTime): renderFrame(spp) runs the denoiser's frame recipe (renderer/
- * denoiser.ts) instead; present and readImage then show its output until the next accumulate().
+ * Frames: renderFrame(spp) runs the frame recipe the settings choose (renderer/recipes/recipe.ts
+ * recipeFor: the real-time chain of renderer/denoiser.ts, the hybrid recipe, or a debug view alone);
+ * present and readImage then show its output until the next accumulate(). compile() compiles what
+ * the settings' recipe runs, before its first frame.
  *
  * Live editing: pick(x, y) traces one primary ray through a pixel (the scene's own traversal);
  * setSelection(instance) outlines an object in what present() draws (never in the estimate);
@@ -51,6 +53,7 @@ import { primaryRay, ViewUniform } from '../gpu/view.ts';
 import { describeSpecialisation, specialiseScene, type SpecialiseOptions } from '../gpu/specialisation.ts';
 import { LIGHT_SAMPLING, resolveSampler, type Sampler } from '../passes/variants.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
+import { recipeCompiles, recipeFor, type RecipeIntent } from './recipes/recipe.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;
@@ -133,11 +136,11 @@ export class Renderer {
   /** Counts scene uploads: a split frame holds the resources it began with. */
   private uploads = 0;
   private denoiser?: Denoiser;
-  /** The hybrid recipe (enableHybrid). */
+  /** The hybrid recipe (compiled by compile() for its settings). */
   private hybrid?: Hybrid;
   /** The recipe of the last real-time frame (whose output present and readFrame show). */
   private frameRecipe: 'path' | 'hybrid' = 'path';
-  /** Whether the spectral variants are compiled for each scene (enableSpectral). */
+  /** Whether the spectral variants are compiled for each scene (compile() with settings.spectral). */
   private spectralEnabled = false;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
@@ -161,7 +164,7 @@ export class Renderer {
   private pendingExposureSeconds = 0;
   /** When present() last adapted the exposure (performance.now()): the viewer adapts on the wall clock. */
   private lastPresentMs?: number;
-  /** The automatic exposure's kernels, compiled the first time an image is exposed automatically (enableAutoExposure). */
+  /** The automatic exposure's kernels, compiled the first time an image is exposed automatically (compileAutoExposure). */
   private exposure?: ExposurePass;
   private exposureCompile?: Promise<ExposurePass>;
   private destroyed = false;
@@ -182,7 +185,7 @@ export class Renderer {
    * a plain scene's variant is compiled here, so errors show at once, and setScene compiles the
    * scene's. `features` may be a promise (a scene still loading elsewhere): the path tracer is
    * reflected meanwhile, and the tone mapper compiled. `presentation`: the canvas's format, for the
-   * browser's present pass (enablePresentation), compiled alongside.
+   * browser's present pass (setPresentationFormat), compiled alongside.
    */
   static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: GPUTextureFormat } = {}): Promise<Renderer> {
     const { device } = gpu;
@@ -237,7 +240,7 @@ export class Renderer {
     const accel = this.settingsValue.accel;
     const prepared = withAccel('packed' in scene ? scene : prepareScene(scene, undefined, { accel }), accel);
     // A scene exposed automatically (a game map) compiles the exposure pass beside its path tracer.
-    const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.enableAutoExposure() : undefined;
+    const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.compileAutoExposure() : undefined;
     await Promise.all([this.upload(prepared), exposure]);
     void this.setSelection(undefined);
     // Another scene: the eye starts adapted to it, not to the last one.
@@ -557,7 +560,7 @@ export class Renderer {
     if (next.sampler !== before.sampler) this.useSamplers();
     if (culling) this.configureTileCulling();
     // The wavefront frame path tracer is compiled in the background; frames use the megakernel until it is ready.
-    if (next.integrator === 'wavefront' && this.denoiser) this.enableWavefront().catch((e: unknown) => (this.wavefrontError = e));
+    if (next.integrator === 'wavefront' && this.denoiser) this.compileWavefront().catch((e: unknown) => (this.wavefrontError = e));
     // So are the ReSTIR passes; frames take one light sample per bounce until they are ready.
     if (next.restir && this.denoiser) this.denoiser.enableRestir().catch((e: unknown) => (this.restirError = e));
     // Another acceleration structure for the static world: built and uploaded in the background
@@ -571,7 +574,7 @@ export class Renderer {
     }
     // Automatic exposure asked for: compiled in the background; present() shows the scene's exposure
     // until it is ready, readImage() waits for it (and reports a failure).
-    if (this.exposureChoice.kind === 'auto') this.enableAutoExposure().catch(() => undefined);
+    if (this.exposureChoice.kind === 'auto') this.compileAutoExposure().catch(() => undefined);
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();
@@ -764,7 +767,7 @@ export class Renderer {
   private checkAccumulate(samples: number): void {
     this.ready();
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
-    if (this.settingsValue.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
+    if (this.settingsValue.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
   }
 
   /** Records `samples` paths per pixel over `tile`, starting at the estimate's current sample index. */
@@ -777,24 +780,35 @@ export class Renderer {
   }
 
   /**
-   * Compiles the spectral variants of the path tracers (settings.spectral) for this and every later
-   * scene. RGB rendering never compiles them; call this before rendering with `spectral` on.
+   * Compiles what the recipe of the settings (with `changes`; renderer/recipes/recipe.ts) runs, for
+   * this and every later scene: the real-time chain with the wavefront integrator and ReSTIR where
+   * asked, the hybrid recipe, the debug views, the spectral variants. Call it before the first frame
+   * or sample of a recipe; nothing is compiled twice, and the progressive path tracer and the tone
+   * mapper are compiled by create(). `intent.frames`: frames are asked for even with every filter
+   * of the real-time chain off (the CLI's --frames).
    */
-  async enableSpectral(): Promise<void> {
+  async compile(changes: Partial<RenderSettings> = {}, intent: RecipeIntent = {}): Promise<void> {
+    const wants = recipeCompiles({ ...this.settingsValue, ...changes }, intent);
+    await Promise.all([wants.debugViews ? this.compileDebugViews() : undefined, wants.spectral ? this.compileSpectral() : undefined, wants.hybrid ? this.compileHybrid() : undefined]);
+    if (wants.realTime) await this.compileRealTime(wants);
+  }
+
+  /** Compiles the spectral variants of the path tracers (settings.spectral) for this and every later scene; RGB rendering never compiles them. */
+  private async compileSpectral(): Promise<void> {
     this.spectralEnabled = true;
     if (!this.prepared) return;
     const features = this.prepared.packed.features;
     await Promise.all([this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)]);
   }
 
-  /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output; the wavefront one where settings.integrator asks for it). */
-  async enableRealTime(): Promise<void> {
+  /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output; the wavefront one and ReSTIR's where asked). */
+  private async compileRealTime(wants: { readonly wavefront: boolean; readonly restir: boolean }): Promise<void> {
     const created = !this.denoiser;
     this.denoiser ??= await Denoiser.create(this.device, this.sceneFeatures);
     if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
     if (created) this.useSamplers();
-    if (this.settingsValue.integrator === 'wavefront') await this.enableWavefront();
-    if (this.settingsValue.restir) await this.enableRestir();
+    if (wants.wavefront) await this.compileWavefront();
+    if (wants.restir) await this.compileRestir();
     await this.samplerPending;
     // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
     // frame kernel): specialise again with it.
@@ -806,19 +820,15 @@ export class Renderer {
   /** The error of the last background compile of the ReSTIR passes, if it failed (frames keep one light sample per bounce). */
   restirError?: unknown;
 
-  /** Compiles the ReSTIR passes (settings.restir) for this and every later scene; enableRealTime first. Until they are ready, frames run without them. */
-  async enableRestir(): Promise<void> {
-    if (!this.denoiser) throw new Error('Renderer: enableRealTime() before enableRestir()');
-    await this.denoiser.enableRestir();
+  /** Compiles the ReSTIR passes (settings.restir) into the real-time chain. Until they are ready, frames run without them. */
+  private async compileRestir(): Promise<void> {
+    await this.denoiser!.enableRestir();
     this.restirError = undefined;
   }
 
-  /**
-   * Compiles the wavefront frame path tracer (settings.integrator = 'wavefront') for this and every
-   * later scene; enableRealTime first. Until it is ready, frames are traced by the megakernel.
-   */
-  async enableWavefront(): Promise<void> {
-    if (!this.denoiser) throw new Error('Renderer: enableRealTime() before enableWavefront()');
+  /** Compiles the wavefront frame path tracer (settings.integrator = 'wavefront') into the real-time chain. Until it is ready, frames are traced by the megakernel. */
+  private async compileWavefront(): Promise<void> {
+    if (!this.denoiser) throw new Error('Renderer: the real-time chain before its wavefront integrator');
     const created = !this.denoiser.wavefrontPass;
     await this.denoiser.enableWavefront();
     this.wavefrontError = undefined;
@@ -853,9 +863,9 @@ export class Renderer {
   traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
     const { resources, targets } = this.ready();
     const s = this.settingsValue;
-    if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before traceFrame()');
+    if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: compile() the real-time chain before traceFrame()');
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
-    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
+    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     this.settleInstances();
     const encoder = this.device.createCommandEncoder({ label: 'real-time frame path tracing' });
@@ -874,7 +884,7 @@ export class Renderer {
    * traceFrame overwrites the shown frame's output likewise.
    */
   readFrameTrace(): Promise<FrameTrace> {
-    if (!this.denoiser) throw new Error('Renderer: enableRealTime() before readFrameTrace()');
+    if (!this.denoiser) throw new Error('Renderer: compile() the real-time chain before readFrameTrace()');
     return this.denoiser.readTrace();
   }
 
@@ -899,11 +909,14 @@ export class Renderer {
   beginFrame(samples: number, timer?: GpuTimer): SplitFrame {
     const { resources, targets } = this.ready();
     const s = this.settingsValue;
-    if (s.recipe === 'hybrid') return this.wholeFrame(targets, samples, () => this.renderHybridFrame(timer));
+    const recipe = recipeFor(s, { frames: true });
+    if (recipe === 'hybrid') return this.wholeFrame(targets, samples, () => this.renderHybridFrame(timer));
+    // A debug view that replaces the image is drawn by present() and readImage(): nothing to trace.
+    if (recipe === 'debug') return this.wholeFrame(targets, samples, () => {});
     const denoiser = this.denoiser;
-    if (!denoiser || !this.cameraValue) throw new Error('Renderer: enableRealTime() before renderFrame()');
+    if (!denoiser || !this.cameraValue) throw new Error('Renderer: compile() the real-time chain before renderFrame()');
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
-    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: enableSpectral() before rendering with settings.spectral');
+    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
     const torch = effectiveTorch(this.prepared?.scene, s.torch);
     this.settleInstances();
     const request: FrameRequest = {
@@ -956,7 +969,7 @@ export class Renderer {
   }
 
   /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
-  async enableHybrid(): Promise<void> {
+  private async compileHybrid(): Promise<void> {
     this.hybrid ??= await Hybrid.create(this.device, this.sceneFeatures);
     if (this.prepared) await this.hybrid.prepare(this.prepared.packed.features);
   }
@@ -964,7 +977,7 @@ export class Renderer {
   /** One frame of the hybrid recipe (renderer/hybrid.ts): RGB always (spectral mode is the path tracer's). */
   private renderHybridFrame(timer?: GpuTimer): void {
     const { resources, targets } = this.ready();
-    if (!this.hybrid || !this.cameraValue || !this.prepared) throw new Error('Renderer: enableHybrid() before renderFrame() with the hybrid recipe');
+    if (!this.hybrid || !this.cameraValue || !this.prepared) throw new Error('Renderer: compile() the hybrid recipe before renderFrame()');
     const s = this.settingsValue;
     const torch = effectiveTorch(this.prepared.scene, s.torch);
     this.settleInstances();
@@ -1023,7 +1036,7 @@ export class Renderer {
   /** Tone-maps the current estimate and draws it onto `target` (a canvas texture); with a timer, times both passes. */
   present(target: GPUTexture, timer?: GpuTimer): void {
     const { targets } = this.ready();
-    if (!this.presentPass) throw new Error('call enablePresentation() before present()');
+    if (!this.presentPass) throw new Error('Renderer: a presentation format (create or setPresentationFormat) before present()');
     const encoder = this.device.createCommandEncoder({ label: 'present' });
     // What is presented is seen in real time: the exposure adapts over the wall-clock time since the last present.
     const now = performance.now();
@@ -1041,12 +1054,12 @@ export class Renderer {
   }
 
   /** Compiles the present pipeline for targets of `format` (a canvas's; browser only: the CLI never draws to a surface). */
-  async enablePresentation(format: GPUTextureFormat): Promise<void> {
+  async setPresentationFormat(format: GPUTextureFormat): Promise<void> {
     if (this.presentPass?.format !== format) this.presentPass = await PresentPass.create(this.device, format);
   }
 
   /** Compiles the debug views' pipelines (readImage does it by itself; present needs it done first). */
-  async enableDebugViews(): Promise<void> {
+  private async compileDebugViews(): Promise<void> {
     this.debugViews ??= await DebugViews.create(this.device, this.sceneFeatures);
     if (this.prepared) await this.debugViews.prepare(this.prepared.packed.features);
   }
@@ -1057,8 +1070,8 @@ export class Renderer {
    */
   async readImage(timer?: GpuTimer): Promise<Uint8Array> {
     const { targets } = this.ready();
-    if (this.settingsValue.debugView !== 'none') await this.enableDebugViews();
-    if (this.exposureChoice.kind === 'auto') await this.enableAutoExposure();
+    if (this.settingsValue.debugView !== 'none') await this.compileDebugViews();
+    if (this.exposureChoice.kind === 'auto') await this.compileAutoExposure();
     const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
     this.encodeTonemap(encoder, targets, this.pendingExposureSeconds, timer);
     this.pendingExposureSeconds = 0;
@@ -1180,7 +1193,7 @@ export class Renderer {
    * Compiles the automatic exposure's two kernels, once. Scenes and settings that never ask for
    * automatic exposure never compile them (start-up compiles only what the first image runs).
    */
-  enableAutoExposure(): Promise<ExposurePass> {
+  private compileAutoExposure(): Promise<ExposurePass> {
     this.exposureCompile ??= ExposurePass.create(this.device).then((pass) => {
       if (this.destroyed) pass.destroy();
       else this.exposure = pass;
@@ -1197,7 +1210,7 @@ export class Renderer {
     const radiance = frame ?? targets.accumulation;
     const sampleCount = frame ? 1 : this.samples;
     let choice = this.exposureChoice;
-    // Until its kernels are compiled (enableAutoExposure, under way), the image keeps the scene's own exposure.
+    // Until its kernels are compiled (compileAutoExposure, under way), the image keeps the scene's own exposure.
     if (choice.kind === 'auto' && !this.exposure) choice = { kind: 'manual', stops: this.cameraValue?.exposureStops ?? 0 };
     const pass = this.exposure;
     let exposure: { exposureStops: number; autoExposure?: GPUBuffer };
@@ -1220,7 +1233,7 @@ export class Renderer {
   private encodeDebugView(encoder: GPUCommandEncoder, targets: ImageTargets): GPUTexture {
     const settings = this.settingsValue;
     if (settings.debugView === 'none') return targets.output;
-    if (!this.debugViews) throw new Error('call enableDebugViews() before showing a debug view');
+    if (!this.debugViews) throw new Error('Renderer: compile() the debug views before showing one');
     return this.debugViews.encode(encoder, { prepared: this.prepared!, resources: this.resources!, view: this.view, image: targets.output, settings });
   }
 
@@ -1228,7 +1241,7 @@ export class Renderer {
   private async renderDebugView(): Promise<void> {
     const { targets } = this.ready();
     if (this.settingsValue.debugView === 'none') throw new Error("Renderer: set a debugView other than 'none' first");
-    await this.enableDebugViews();
+    await this.compileDebugViews();
     const encoder = this.device.createCommandEncoder({ label: 'debug view' });
     this.encodeDebugView(encoder, targets);
     this.device.queue.submit([encoder.finish()]);

@@ -50,7 +50,7 @@ function project(c: Camera, p: Vec3): [number, number] {
 let renderer: Renderer;
 beforeAll(async () => {
   renderer = await Renderer.create(await testGpu());
-  await renderer.enableRealTime();
+  await renderer.compile({}, { frames: true });
   await renderer.setScene(wallScene(0, { albedo: 0, emission: 0, sameMaterial: true }));
   await renderer.resize(SIZE, SIZE);
 });
@@ -232,7 +232,7 @@ describe('the Cornell box with its light in view (issue #27)', () => {
   beforeAll(async () => {
     // A renderer of its own, so that its frames' sample indices are known and a frame can be traced again without the filter.
     r = await Renderer.create(await testGpu());
-    await r.enableRealTime();
+    await r.compile({}, { frames: true });
     await r.setScene(CORNELL);
     await r.resize(N, N);
     r.setCamera(CORNELL.scene.camera);

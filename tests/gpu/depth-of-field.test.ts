@@ -120,7 +120,7 @@ describe('aperture 0', () => {
     const frame = async (c: Camera) => {
       const fresh = await Renderer.create(await testGpu());
       await fresh.resize(W, H);
-      await fresh.enableRealTime();
+      await fresh.compile({}, { frames: true });
       await fresh.setScene(cornell);
       fresh.updateSettings(renderer.settings);
       fresh.setCamera(c);
@@ -188,8 +188,8 @@ describe('G-buffer and debug views with a lens', () => {
   it('keep the chief ray through the lens centre: the same depth, normals and debug values as the pinhole', async () => {
     const cornell = prepareScene(builtinScene('cornell'));
     await renderer.setScene(cornell);
-    await renderer.enableRealTime();
-    await renderer.enableDebugViews();
+    await renderer.compile({}, { frames: true });
+    await renderer.compile({ debugView: 'normals' }, { frames: true });
     const camera = cornell.scene.camera;
     const lensed = { ...camera, lens: { apertureRadius: 30, focusDistance: 500 } };
     const gbuffer = async (c: Camera, view: 'depth' | 'normal') => {

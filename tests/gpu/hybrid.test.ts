@@ -23,7 +23,7 @@ let renderer: Renderer;
 
 beforeAll(async () => {
   renderer = await Renderer.create(await testGpu());
-  await renderer.enableHybrid();
+  await renderer.compile({ recipe: 'hybrid' });
   await renderer.resize(SIZE, SIZE);
 });
 

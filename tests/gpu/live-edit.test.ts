@@ -187,7 +187,7 @@ describe('the selection outline', () => {
     const target = device.createTexture({ size: [W, H], format: 'rgba8unorm', usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC });
     try {
       renderer.updateSettings({ maxBounces: 2, seed: 3 });
-      await renderer.enablePresentation('rgba8unorm');
+      await renderer.setPresentationFormat('rgba8unorm');
       renderer.accumulate(2);
       const drawn = async () => {
         renderer.present(target);

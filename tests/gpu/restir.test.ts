@@ -22,9 +22,9 @@ const camera = (x: number): Camera => ({ ...SCENE.scene.camera, position: [x, 1.
 let renderer: Renderer;
 beforeAll(async () => {
   renderer = await Renderer.create(await testGpu());
-  await renderer.enableRealTime();
+  await renderer.compile({}, { frames: true });
   // ReSTIR is off by default: its passes compiled now, not in the background while the first frames run without them.
-  await renderer.enableRestir();
+  await renderer.compile({ restir: true }, { frames: true });
   await renderer.setScene(SCENE);
   await renderer.resize(SIZE, SIZE);
 }, 600_000);

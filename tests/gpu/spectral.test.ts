@@ -22,7 +22,8 @@ let renderer: Renderer;
 
 beforeAll(async () => {
   renderer = await Renderer.create(await testGpu());
-  await renderer.enableSpectral();
+  // Progressive renders only: the real-time chain's switches off, so that its passes are not compiled.
+  await renderer.compile({ spectral: true, temporal: false, denoise: false });
 });
 afterAll(() => renderer?.destroy());
 

@@ -30,7 +30,7 @@ beforeAll(async () => {
   const gpu = await testGpu();
   [unsplit, split] = await Promise.all([Renderer.create(gpu), Renderer.create(gpu)]);
   for (const r of [unsplit, split]) {
-    await r.enableRealTime();
+    await r.compile({}, { frames: true });
     await r.setScene(scene);
     await r.resize(WIDTH, HEIGHT);
   }
@@ -77,7 +77,7 @@ describe('split frames', () => {
     it(`real time${restir ? ' with ReSTIR' : ''}: banded frames, one given up mid-way, equal the unsplit frames and their history`, async () => {
       for (const r of [unsplit, split]) {
         r.updateSettings({ restir });
-        if (restir) await r.enableRestir();
+        if (restir) await r.compile({ restir: true }, { frames: true });
         r.setCamera(cameraA);
         r.resetHistory();
       }

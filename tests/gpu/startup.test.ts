@@ -71,7 +71,7 @@ describe('start-up compiles', () => {
       renderer.accumulate(1);
       await renderer.readAccumulation();
       expect(pipelines(spans).filter((p) => p !== PATH_TRACE_PIPELINE && !p.includes('tonemap'))).toEqual([]);
-      await renderer.enableRealTime();
+      await renderer.compile({}, { frames: true });
       renderer.renderFrame(1);
       const frame = await renderer.readFrame();
       expect(frame.radiance.every(Number.isFinite)).toBe(true);
@@ -95,7 +95,7 @@ describe('start-up compiles', () => {
       try {
         await renderer.resize(8, 8);
         if (order === 'scene first') await renderer.setScene(prepared);
-        await renderer.enableRealTime();
+        await renderer.compile({}, { frames: true });
         if (order === 'recipe first') await renderer.setScene(prepared);
         renderer.renderFrame(1);
         expect((await renderer.readFrame()).radiance.some((v) => v > 0)).toBe(true);

@@ -36,7 +36,7 @@ interface Traced {
 /** Traces the same frame (random streams of frame 5) with each integrator. */
 async function traceBoth(renderer: Renderer, scene: Scene, size: [number, number], settings: Partial<RenderSettings>, samples: number, camera?: Camera): Promise<Record<'megakernel' | 'wavefront', Traced>> {
   // Compiled here rather than in beforeAll (a hook's time limit is shorter than a test's).
-  await renderer.enableRealTime();
+  await renderer.compile({}, { frames: true });
   await renderer.setScene(prepareScene(scene));
   await renderer.resize(size[0], size[1]);
   if (camera) renderer.setCamera(camera);
@@ -44,7 +44,7 @@ async function traceBoth(renderer: Renderer, scene: Scene, size: [number, number
   for (const integrator of ['megakernel', 'wavefront'] as const) {
     // A restarting setting: the ray counters start from zero.
     renderer.updateSettings({ ...settings, integrator });
-    if (integrator === 'wavefront') await renderer.enableWavefront();
+    if (integrator === 'wavefront') await renderer.compile({ integrator: 'wavefront' }, { frames: true });
     expect(renderer.traceFrame(samples, { sampleIndex: 5 })).toBe(integrator);
     const trace = await renderer.readFrameTrace();
     const counts = await renderer.readRayCounts();
@@ -82,7 +82,7 @@ describe('the wavefront frame path tracer', () => {
   it('traces the Cornell box as the megakernel does: spectral, through a thin lens, two samples per pixel', async () => {
     // A renderer of its own: with spectral mode enabled, every later scene would compile its spectral variants too.
     const spectral = await Renderer.create(await testGpu());
-    await spectral.enableSpectral();
+    await spectral.compile({ spectral: true }, { frames: true });
     const cornell = builtinScene('cornell');
     const camera: Camera = { ...cornell.camera!, lens: { apertureRadius: 0.05, focusDistance: 3 } };
     const r = await traceBoth(spectral, cornell, [20, 16], { maxBounces: 5, spectral: true, torch: { enabled: false } }, 2, camera);
@@ -117,7 +117,7 @@ describe('the wavefront frame path tracer', () => {
 
   // Specialised compiles of both path tracers take SwiftShader minutes: run with LANTERN_SLOW_GPU_TESTS=1.
   it.skipIf(!process.env['LANTERN_SLOW_GPU_TESTS'])('traces as the generic megakernel does once specialised to the scene', async () => {
-    await renderer.enableRealTime();
+    await renderer.compile({}, { frames: true });
     await renderer.setScene(prepareScene(builtinScene('cornell')));
     await renderer.resize(16, 12);
     const settings = { maxBounces: 4, spectral: false, torch: { enabled: false } } as const;
@@ -125,7 +125,7 @@ describe('the wavefront frame path tracer', () => {
     renderer.traceFrame(1, { sampleIndex: 2 });
     const megakernel = { trace: await renderer.readFrameTrace(), rays: await renderer.readRayCounts() };
     renderer.updateSettings({ integrator: 'wavefront' });
-    await renderer.enableWavefront();
+    await renderer.compile({ integrator: 'wavefront' }, { frames: true });
     // The BVH kept (no unrolled traversal, whose ties may go the other way): only constants differ.
     expect(await renderer.requestSpecialisation({ unrollLimit: 0 })).toBeDefined();
     expect(renderer.kernel).toBe('specialised');

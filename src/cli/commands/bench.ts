@@ -136,7 +136,8 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   await renderer.accelSettled();
-  if (renderer.settings.spectral) await renderer.enableSpectral();
+  // What the timed recipe runs (renderer/recipes/recipe.ts): --real-time asks for frames, its switches say which.
+  await renderer.compile({}, { frames: o.realTime });
   if (renderer.settings.spectral && o.kernel === 'specialised') throw new LanternError('--kernel specialised compiles RGB kernels: spectral mode runs the generic ones', 'Drop --spectral or --kernel specialised');
   // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.
   const protocolView = protocol ? tinybvhView(protocol, prepared.triangles.positions) : undefined;
@@ -226,8 +227,6 @@ function checkRealTimeOptions(o: BenchOptions, protocol: BenchProtocol | undefin
 /** `bench --real-time`: frames of the real-time recipe back to back (renderer/frame-benchmark.ts). */
 async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs: number, o: BenchOptions, context: CliContext): Promise<void> {
   const s = renderer.settings;
-  if (s.recipe === 'hybrid') await renderer.enableHybrid();
-  else await renderer.enableRealTime();
   const spp = o.spp ?? 1;
   const frames = await benchmarkFrames(renderer, { spp, frames: o.repeats, warmups: o.warmups, warmupSeconds: FRAME_WARMUP_SECONDS });
   const memory = renderer.denoiserMemory;

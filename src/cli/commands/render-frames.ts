@@ -16,6 +16,10 @@ import type { World } from '../../scene/world.ts';
 import { writeFile } from '../output-files.ts';
 import { readJsonFile } from '../user-files.ts';
 import { median } from '../../math/median.ts';
+import { isFrameRecipe, recipeFor, type Recipe, type RecipeIntent } from '../../renderer/recipes/recipe.ts';
+import { DEFAULT_SETTINGS } from '../../renderer/settings.ts';
+import { mergeSettings } from '../../renderer/settings-schema.ts';
+import { settingsFromOptions } from '../setting-options.ts';
 
 export interface FrameModeOptions {
   readonly denoise?: boolean;
@@ -34,7 +38,23 @@ export interface FrameModeOptions {
   readonly fps?: number;
 }
 
-export const isFrameMode = (o: FrameModeOptions): boolean => Boolean(o.denoise || o.temporal || o.restir || o.path !== undefined || o.frames !== undefined || o.mode === 'hybrid');
+/** What the options ask of recipeFor beyond the settings: frames in time with --frames or --path. */
+export const frameIntent = (o: FrameModeOptions): RecipeIntent => ({ frames: o.frames !== undefined || o.path !== undefined });
+
+/**
+ * The recipe the options ask for, by the rule the viewer follows (renderer/recipes/recipe.ts): the
+ * settings they give over the defaults, a switch not given being off, and frames in time with
+ * --frames or --path.
+ */
+export function recipeOf(o: FrameModeOptions): Recipe {
+  return recipeFor(mergeSettings(DEFAULT_SETTINGS, settingsFromOptions(o as Readonly<Record<string, unknown>>)), frameIntent(o));
+}
+
+/**
+ * Frame mode: the frames of a frame recipe (the real-time chain's switches --temporal, --denoise,
+ * --restir; --mode hybrid), or frames in time (--frames, --path; of a debug view too).
+ */
+export const isFrameMode = (o: FrameModeOptions): boolean => isFrameRecipe(recipeOf(o)) || Boolean(frameIntent(o).frames);
 
 /** Samples per pixel when --spp is not given: 64 for a progressive render, 1 a frame in frame mode (the real-time chain's budget). */
 export const DEFAULT_SPP = 64;
@@ -69,8 +89,7 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   const frames = o.frames ?? (path ? 30 : 1);
   const sequence = frames > 1 || path !== undefined;
   // The denoiser's settings (--temporal, --denoise, --history-cap, ...) and the hybrid recipe's are the caller's, applied with the others.
-  if (renderer.settings.recipe === 'hybrid') await renderer.enableHybrid();
-  else await renderer.enableRealTime();
+  await renderer.compile({}, { frames: true });
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
   if (o.warmup) {
     // A GPU idle a moment ago runs its first frames at low clocks: light recipes would be timed there.

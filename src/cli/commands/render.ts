@@ -20,7 +20,7 @@ import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
-import { DEFAULT_FRAME_SPP, DEFAULT_SPP, isFrameMode, renderFrames, samplesPerPixel, type FrameModeOptions } from './render-frames.ts';
+import { DEFAULT_FRAME_SPP, DEFAULT_SPP, frameIntent, isFrameMode, renderFrames, samplesPerPixel, type FrameModeOptions } from './render-frames.ts';
 import { World } from '../../scene/world.ts';
 import { processSpans } from '../process-clock.ts';
 import { Timeline } from '../timeline.ts';
@@ -114,7 +114,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   await renderer.accelSettled();
   const s = renderer.settings;
-  if (s.spectral) await renderer.enableSpectral();
+  await renderer.compile({}, frameIntent(o));
   // A moving scene as it is at --time, seen from this camera (billboards turn toward it). Frame mode
   // plays the world on from there.
   const world = World.of(prepared.scene);
