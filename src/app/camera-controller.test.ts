@@ -3,7 +3,7 @@ import type { Camera } from '../scene/types.ts';
 import type { WalkMap } from '../scene/walk-map.ts';
 import { twoRooms } from '../loaders/doom/test-wad.ts';
 import { doomMapToScene } from '../loaders/doom/to-scene.ts';
-import { World } from '../scene/world.ts';
+import { World } from '../world/world.ts';
 import { CameraController, DOOM_WALK_SPEED, forwardOf, NO_INPUT, poseFromCamera } from './camera-controller.ts';
 
 const camera: Camera = { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 };

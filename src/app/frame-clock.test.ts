@@ -3,7 +3,7 @@ import { dungeonScene, PHANTOM_ID } from '../loaders/builtin/dungeon.ts';
 import { twoRooms } from '../loaders/doom/test-wad.ts';
 import { doomMapToScene } from '../loaders/doom/to-scene.ts';
 import { CompiledPath } from '../scene/paths.ts';
-import { World } from '../scene/world.ts';
+import { World } from '../world/world.ts';
 import { CameraController, DOOM_WALK_SPEED, NO_INPUT, type HeldSpan } from './camera-controller.ts';
 import { MAX_WORLD_SECONDS, playFrame } from './frame-clock.ts';
 

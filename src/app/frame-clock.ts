@@ -4,11 +4,11 @@
  * slices of at most SLICE_SECONDS, what one frame does at 30 fps. A long frame plays as a run of
  * short ones: a door opened during it lets the walker through when it would at 30 fps, a lift
  * carries them down, a walk-over line fires where it is crossed, a closing door reopens on them.
- * The world itself steps in fixed ticks (scene/world.ts), so how the frames fall changes nothing in
+ * The world itself steps in fixed ticks (world/world.ts), so how the frames fall changes nothing in
  * it. Pure: the tests drive it with a controller, a world and spans of held keys.
  */
 import type { SceneUpdate } from '../scene/dynamics.ts';
-import { mergeUpdates, type World } from '../scene/world.ts';
+import { mergeUpdates, type World } from '../world/world.ts';
 import type { CameraController, HeldSpan } from './camera-controller.ts';
 
 /** The longest turn of the camera or the world within a frame: one frame at 30 fps. */

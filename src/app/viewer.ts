@@ -40,7 +40,7 @@ import type { LoadedScene } from './scene-request.ts';
 import { withPreparedEnvironment } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import { lensProblem } from '../scene/lens.ts';
-import { World } from '../scene/world.ts';
+import { World } from '../world/world.ts';
 import type { Camera, ThinLens } from '../scene/types.ts';
 import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';

@@ -266,7 +266,7 @@ export interface EditedMaterials {
   /** Whether an emission changed: the light table (LIGHT_BUFFERS) was packed again and must be written too. */
   readonly lightsChanged: boolean;
   /**
-   * Whether texture references changed (an animated material's uv offset, scene/material-animation.ts):
+   * Whether texture references changed (an animated material's uv offset, world/material-animation.ts):
    * `texture_refs` was packed again and must be written too.
    */
   readonly textureRefsChanged: boolean;

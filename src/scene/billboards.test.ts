@@ -2,11 +2,11 @@ import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { determinant3, IDENTITY, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { cross, dot, sub, type Vec3 } from '../math/vec3.ts';
-import { billboardPose, billboardQuad, facingYaw, frameAt, rotationIndex, type Billboard, type BillboardImage } from './billboards.ts';
+import { billboardPose, billboardQuad, facingYaw, rotationIndex } from './billboards.ts';
+import type { Billboard, BillboardImage } from './dynamics-types.ts';
 import type { Scene } from './types.ts';
 import { diffuse } from './types.ts';
 import { validateScene } from './validate.ts';
-import { World, type Viewpoint } from './world.ts';
 
 const DEG = Math.PI / 180;
 /** A viewer `d` units from `at` in the direction of map angle `deg` (0 east, 90 north = −z). */
@@ -112,10 +112,9 @@ describe('billboardPose', () => {
   });
 });
 
-describe('the billboard animator', () => {
-  const eight = Array.from({ length: 8 }, (_, k) => image({ material: k, mirrored: k >= 5 }));
+describe('billboardProblem (validateScene)', () => {
   const billboards: Billboard[] = [
-    { instance: 10, position: [0, 0, 0], facing: 0, frames: [{ duration: 0, images: eight }] },
+    { instance: 10, position: [0, 0, 0], facing: 0, frames: [{ duration: 0, images: Array.from({ length: 8 }, (_, k) => image({ material: k, mirrored: k >= 5 })) }] },
     { instance: 11, position: [500, 0, 0], facing: 0, frames: [{ duration: 0, images: [image({ material: 9 })] }] },
   ];
   const scene: Scene = {
@@ -126,40 +125,8 @@ describe('the billboard animator', () => {
     camera: { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 },
     dynamics: { billboards },
   };
-  // East of the first thing, looking west at it: it faces the viewer (rotation 1).
-  const view: Viewpoint = { position: [200, 41, 0], forward: [-1, 0, 0] };
 
-  it('poses every billboard on the first step, with the material of the rotation seen', () => {
-    const world = World.of(scene)!;
-    const u = world.advance(0, view)!;
-    expect([...u.instances.keys()].sort()).toEqual([10, 11]);
-    expect(u.instances.get(10)!.material).toBe(0);
-    expect(u.instances.get(11)!.material).toBe(9);
-  });
-
-  it('writes nothing when the view does not change a pose, and only what changed when it does', () => {
-    const world = World.of(scene)!;
-    world.advance(0, view);
-    expect(world.advance(1 / 35, view)).toBeUndefined();
-    // A small step sideways: no rotation boundary crossed, no turn.
-    expect(world.advance(1 / 35, { ...view, position: [200, 41, 0.5] })).toBeUndefined();
-    // Walking round to the thing's north-west (135°): its rotation changes to 4 (index 3); the
-    // second thing keeps its single image and its yaw.
-    const u = world.advance(1 / 35, { position: around([0, 41, 0], 135, 200), forward: [-1, 0, 0] })!;
-    expect([...u.instances.keys()]).toEqual([10]);
-    expect(u.instances.get(10)!.material).toBe(3);
-    // Behind and to the right of it (−135°): rotation 6 is rotation 4 mirrored (index 5, material 5).
-    const v = world.advance(1 / 35, { position: around([0, 41, 0], -135, 200), forward: [-1, 0, 0] })!;
-    expect(v.instances.get(10)!.material).toBe(5);
-    expect(determinant3(v.instances.get(10)!.worldFromObject!)).toBeLessThan(0);
-    // Turning the view turns every quad, but the materials stay.
-    const w = world.advance(1 / 35, { position: around([0, 41, 0], -135, 200), forward: [0, 0, -1] })!;
-    expect([...w.instances.keys()].sort()).toEqual([10, 11]);
-    expect(w.instances.get(10)!.material).toBeUndefined();
-    expect(w.instances.get(11)!.material).toBeUndefined();
-  });
-
-  it('is checked by validateScene: an instance that does not move, or a material out of range, is refused', () => {
+  it('refuses an instance that does not move, a material out of range, a cycle frame of no duration', () => {
     const placed: Scene = { ...scene, instances: [10, 11].map((id) => ({ id, mesh: 0, worldFromObject: IDENTITY, moves: true })) };
     expect(() => validateScene(placed)).not.toThrow();
     expectLanternError(() => validateScene({ ...placed, instances: placed.instances.map((i) => ({ ...i, moves: false })) }), /billboard 0 poses instance 10, which is not a moving instance/);
@@ -167,22 +134,5 @@ describe('the billboard animator', () => {
     expectLanternError(() => validateScene(bad), /billboard 0 shows material 99 of 10/);
     const still = { ...placed, dynamics: { billboards: [{ ...billboards[1]!, frames: [{ duration: 0, images: [image()] }, { duration: 0, images: [image()] }] }] } };
     expectLanternError(() => validateScene(still), /billboard 0 has a frame of no or infinite duration/);
-  });
-
-  it('plays a cycle of frames from the clock, from its phase, writing only when a frame changes', () => {
-    // A torch: frames A–D (materials 0–3) of 4 tics each, 2.5 tics into frame A at time 0.
-    const tic = 1 / 35;
-    const torch: Billboard = { instance: 10, position: [0, 0, 0], facing: 0, phase: 2.5 * tic, frames: [0, 1, 2, 3].map((m) => ({ duration: 4 * tic, images: [image({ material: m })] })) };
-    expect([0, 1, 2, 3, 4, 5, 6, 13, 14, 15, 16].map((t) => frameAt(torch, t * tic))).toEqual([0, 0, 1, 1, 1, 1, 2, 3, 0, 0, 0]);
-    const world = World.of({ ...scene, dynamics: { billboards: [torch] } })!;
-    const materials: (number | undefined)[] = [];
-    materials.push(world.advance(0, view)!.instances.get(10)!.material);
-    for (let i = 0; i < 16; i++) materials.push(world.advance(tic, view)?.instances.get(10)?.material);
-    // Frame B at tics 2..5, C at 6..9, D at 10..13, A again at 14.
-    expect(materials).toEqual([0, undefined, 1, undefined, undefined, undefined, 2, undefined, undefined, undefined, 3, undefined, undefined, undefined, 0, undefined, undefined]);
-  });
-
-  it('makes no world for a scene without billboards', () => {
-    expect(World.of({ ...scene, dynamics: { billboards: [] } })).toBeUndefined();
   });
 });

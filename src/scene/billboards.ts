@@ -1,8 +1,9 @@
 /**
  * Billboards: quads that stand at a point, turn toward the viewer and show one of several images
  * chosen by the angle between the object's facing and the direction it is seen from (Doom's
- * sprites, R_ProjectSprite). The data (`Billboard`) lives in Scene.dynamics.billboards; the
- * animator made by `billboardAnimator` poses each billboard's instance every step. Pure.
+ * sprites, R_ProjectSprite). The data (`Billboard`, scene/dynamics-types.ts) lives in
+ * Scene.dynamics.billboards; this module has its checks and the pose arithmetic, which loaders use for
+ * the scene as loaded and world/billboards.ts's animator at every step. Pure.
  *
  * The instance's mesh is a unit quad in object space (BILLBOARD_QUAD): x and y from 0 to 1, z = 0,
  * its front face toward +z, uv (0, 0) at the image's top-left corner. A pose maps it onto the
@@ -14,52 +15,8 @@
  */
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
+import type { Billboard, BillboardImage } from './dynamics-types.ts';
 import type { Mesh, Scene } from './types.ts';
-import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
-
-/** One image of a billboard: what it shows and where it sits relative to the billboard's anchor. */
-export interface BillboardImage {
-  /** Index into Scene.materials (the instance's material override while this image shows). */
-  readonly material: number;
-  /** Size in scene units. */
-  readonly width: number;
-  readonly height: number;
-  /**
-   * Where the anchor lies in the image, from its top-left corner, in scene units, x to the right and
-   * y down (Doom's left and top offsets: the image's top edge is `top` above the anchor).
-   */
-  readonly left: number;
-  readonly top: number;
-  /** Shown mirrored left to right, over the same extent (Doom's flipped rotations). */
-  readonly mirrored: boolean;
-}
-
-export interface Billboard {
-  /** The Instance.id this billboard poses (an instance of BILLBOARD_QUAD created with `moves: true`). */
-  readonly instance: number;
-  /** World position of the anchor (Doom: the thing's feet, or its top less its height when it hangs). */
-  readonly position: Vec3;
-  /**
-   * The way the object faces, in radians about +y: 0 along +x, π/2 along −z (so that Doom's map
-   * angles, counter-clockwise from east, are these angles: coordinates.ts maps north to −z).
-   */
-  readonly facing: number;
-  /** The animation's frames, played in a loop (one frame: a still billboard). */
-  readonly frames: readonly BillboardFrame[];
-  /** Seconds into the cycle at time 0 (so that a room's torches do not flicker in step). Default 0. */
-  readonly phase?: number;
-}
-
-export interface BillboardFrame {
-  /** How long the frame shows, in seconds (> 0; ignored for a still billboard's one frame). */
-  readonly duration: number;
-  /**
-   * One image for every angle (Doom's rotation 0), or eight, Doom's rotations 1–8: image k shows the
-   * object seen from 45°·k counter-clockwise (from above) of the way it faces, so image 0 is the
-   * object facing the viewer, image 2 its left side, image 4 its back.
-   */
-  readonly images: readonly BillboardImage[];
-}
 
 /** What is wrong with a scene's billboards, or undefined (validate.ts reports it). */
 export function billboardProblem(scene: Scene): string | undefined {
@@ -168,52 +125,8 @@ export function billboardPose(position: Vec3, image: BillboardImage, yaw: number
   ];
 }
 
-interface Shown {
-  frame: number;
-  rotation: number;
-  yaw: number;
-}
-
-/**
- * Poses billboards: each step, every billboard whose frame, rotation or yaw changed gets a new
- * transform and, if it changed, material; the others write nothing (a viewer who moves without
- * turning changes only the rotations that cross a sector boundary, and the frames that ran out).
- */
-export class BillboardAnimator implements Animator {
-  private readonly shown: (Shown | undefined)[];
-  /** The yaw used while the viewer looks straight up or down (the last horizontal one). */
-  private yaw = 0;
-
-  constructor(private readonly billboards: readonly Billboard[]) {
-    this.shown = billboards.map(() => undefined);
-  }
-
-  step(t: number, _dt: number, view: Viewpoint, out: UpdateBuilder): void {
-    this.yaw = facingYaw(view.forward) ?? this.yaw;
-    const yaw = this.yaw;
-    this.billboards.forEach((b, i) => {
-      const frame = frameAt(b, t);
-      const rotation = rotationOf(b, frame, view.position);
-      const before = this.shown[i];
-      if (before && before.frame === frame && before.rotation === rotation && before.yaw === yaw) return;
-      this.shown[i] = { frame, rotation, yaw };
-      const image = imageAt(b, frame, rotation);
-      const previous = before && imageAt(b, before.frame, before.rotation);
-      out.pose(b.instance, {
-        worldFromObject: billboardPose(b.position, image, yaw),
-        ...(previous?.material !== image.material ? { material: image.material } : {}),
-      });
-    });
-  }
-}
-
-export const billboardAnimator: AnimatorFactory = (scene) => {
-  const billboards = scene.dynamics?.billboards;
-  return billboards && billboards.length > 0 ? new BillboardAnimator(billboards) : undefined;
-};
-
 /** The poses of every billboard seen from `view` at time 0 (what a loader uses for the scene as loaded). */
-export function billboardPoses(billboards: readonly Billboard[], view: Viewpoint): Map<number, { worldFromObject: Mat4; material: number }> {
+export function billboardPoses(billboards: readonly Billboard[], view: { readonly position: Vec3; readonly forward: Vec3 }): Map<number, { worldFromObject: Mat4; material: number }> {
   const poses = new Map<number, { worldFromObject: Mat4; material: number }>();
   const yaw = facingYaw(view.forward) ?? 0;
   for (const b of billboards) {

@@ -7,7 +7,7 @@
  * Each field maps onto what the kind has: `color` is a diffuse material's albedo, a metallic-roughness
  * material's base colour, a dielectric's tint; `emission` is emitted radiance (linear RGB, any kind).
  *
- * Animations (scene/material-animation.ts) edit materials too, with fields no panel shows
+ * Animations (world/material-animation.ts) edit materials too, with fields no panel shows
  * (MaterialAnimationEdit): which texture a texture cycle shows, and how far a scrolling texture has
  * moved. Those need the textures packed ahead (gpu/pack/material-pack.ts packs every texture a
  * scene's animations can show, with texture references of their own), so a step of an animation
@@ -32,7 +32,7 @@ export interface MaterialFactorEdit {
 }
 
 /**
- * What animations change (scene/material-animation.ts); never shown in panels or links. Texture
+ * What animations change (world/material-animation.ts); never shown in panels or links. Texture
  * indices are into Scene.textures; a material may only be given textures its animation lists (the
  * packer placed those ahead; any other is a LanternError when the edit is packed).
  */

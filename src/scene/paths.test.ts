@@ -2,10 +2,10 @@ import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
 import { IDENTITY, transformDirection, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { length, sub, type Vec3 } from '../math/vec3.ts';
-import { CompiledPath, pathAnimator, type InstancePath } from './paths.ts';
+import type { InstancePath } from './dynamics-types.ts';
+import { CompiledPath, compilePaths } from './paths.ts';
 import { floorSquare } from './shapes.ts';
 import { diffuse, type Scene } from './types.ts';
-import { sceneUpdateAt, World } from './world.ts';
 
 const SQUARE: Vec3[] = [[0, 0, 0], [10, 0, 0], [10, 0, 10], [0, 0, 10]];
 
@@ -21,7 +21,6 @@ function sceneWith(paths: InstancePath[], moves = true): Scene {
 }
 
 const origin = (m: Mat4): Vec3 => transformPoint(m, [0, 0, 0]);
-const VIEW = { position: [0, 0, 0] as Vec3, forward: [0, 0, -1] as Vec3 };
 
 describe('paths', () => {
   it('a polyline square is 40 long and is walked at the given speed, corner to corner', () => {
@@ -75,28 +74,13 @@ describe('paths', () => {
     expect(x.map((v) => +v.toFixed(9))).toEqual([0, 0, -1]);
   });
 
-  it('the World writes the pose at t (the same whatever the steps), and nothing when time stands still', () => {
-    const path: InstancePath = { instance: 7, points: SQUARE, speed: 2, bob: { amplitude: 0.1, perLap: 2 } };
-    const scene = sceneWith([path]);
-    const expected = new CompiledPath(path).poseAt(3.3);
-    const direct = sceneUpdateAt(scene, 3.3, VIEW).instances.get(7)!.worldFromObject!;
-    for (let k = 0; k < 16; k++) expect(direct[k]!).toBeCloseTo(expected[k]!, 9);
-    const world = World.of(scene)!;
-    expect(world.advance(0, VIEW)?.instances.get(7)).toBeDefined();
-    expect(world.advance(0, VIEW)).toBeUndefined();
-    for (let i = 0; i < 33; i++) world.advance(0.1, VIEW);
-    const stepped = world.advance(0, VIEW);
-    expect(stepped).toBeUndefined();
-    expect(world.seconds).toBeCloseTo(3.3, 9);
-  });
-
   it('refuses bad paths with a message naming the problem', () => {
-    expectLanternError(() => pathAnimator(sceneWith([{ instance: 3, points: SQUARE, speed: 1 }])), /path 0 carries instance 3, which the scene does not have/);
-    expectLanternError(() => pathAnimator(sceneWith([{ instance: 7, points: SQUARE, speed: 1 }], false)), /moves: true/);
-    expectLanternError(() => pathAnimator(sceneWith([{ instance: 7, points: SQUARE.slice(0, 2), speed: 1 }])), /at least 3/);
-    expectLanternError(() => pathAnimator(sceneWith([{ instance: 7, points: [...SQUARE, [0, 0, 0]], speed: 1 }])), /points 4 and 0 are equal/);
-    expectLanternError(() => pathAnimator(sceneWith([{ instance: 7, points: SQUARE, speed: 0 }])), /speed/);
-    expectLanternError(() => pathAnimator(sceneWith([{ instance: 7, points: SQUARE, speed: 1, bob: { amplitude: 1, perLap: 2.5 } }])), /whole number/);
-    expect(pathAnimator(sceneWith([]))).toBeUndefined();
+    expectLanternError(() => compilePaths(sceneWith([{ instance: 3, points: SQUARE, speed: 1 }])), /path 0 carries instance 3, which the scene does not have/);
+    expectLanternError(() => compilePaths(sceneWith([{ instance: 7, points: SQUARE, speed: 1 }], false)), /moves: true/);
+    expectLanternError(() => compilePaths(sceneWith([{ instance: 7, points: SQUARE.slice(0, 2), speed: 1 }])), /at least 3/);
+    expectLanternError(() => compilePaths(sceneWith([{ instance: 7, points: [...SQUARE, [0, 0, 0]], speed: 1 }])), /points 4 and 0 are equal/);
+    expectLanternError(() => compilePaths(sceneWith([{ instance: 7, points: SQUARE, speed: 0 }])), /speed/);
+    expectLanternError(() => compilePaths(sceneWith([{ instance: 7, points: SQUARE, speed: 1, bob: { amplitude: 1, perLap: 2.5 } }])), /whole number/);
+    expect(compilePaths(sceneWith([]))).toEqual([]);
   });
 });

@@ -1,43 +1,20 @@
 /**
- * Instances carried along closed paths (the dungeon's phantom): the data (`InstancePath`, the field
- * `paths` of SceneDynamics) and its animator. A path is a closed loop through world-space points,
- * either a polyline or a centripetal Catmull–Rom spline through them (Barry & Goldman's pyramid,
- * "A recursive evaluation algorithm for a class of Catmull-Rom splines", SIGGRAPH 1988; centripetal
- * knots after Yuksel, Schaefer & Keyser 2011, which never form cusps or self-intersections within a
- * segment). The instance moves at a constant speed along the arc, optionally turns its object +z
- * toward the direction of motion (object +y along `up`), and bobs along `up`. The pose is a pure
- * function of time, so `lantern render --time t` and the viewer agree. Pure.
+ * Instances carried along closed paths (the dungeon's phantom): the curves of the data
+ * (`InstancePath`, scene/dynamics-types.ts, the field `paths` of SceneDynamics), checked and compiled
+ * into poses by time; world/paths.ts's animator plays them, and loaders pose what they place with
+ * them. A path is a closed loop through world-space points, either a polyline or a centripetal
+ * Catmull–Rom spline through them (Barry & Goldman's pyramid, "A recursive evaluation algorithm for a
+ * class of Catmull-Rom splines", SIGGRAPH 1988; centripetal knots after Yuksel, Schaefer & Keyser
+ * 2011, which never form cusps or self-intersections within a segment). The instance moves at a
+ * constant speed along the arc, optionally turns its object +z toward the direction of motion
+ * (object +y along `up`), and bobs along `up`. The pose is a pure function of time, so
+ * `lantern render --time t` and the viewer agree. Pure.
  */
 import { LanternError } from '../errors.ts';
 import { IDENTITY, multiply, type Mat4 } from '../math/mat4.ts';
 import { cross, dot, length, normalize, sub, type Vec3 } from '../math/vec3.ts';
-import type { Animator, AnimatorFactory, UpdateBuilder } from './world.ts';
+import type { InstancePath } from './dynamics-types.ts';
 import type { Scene } from './types.ts';
-
-/** One instance carried around a closed loop. Data only (crosses to the page by structured clone). */
-export interface InstancePath {
-  /** Instance.id of what is carried; the instance must be created with `moves: true`. */
-  readonly instance: number;
-  /** The loop's points in world space (at least 3; the last joins the first; no two consecutive equal). */
-  readonly points: readonly Vec3[];
-  /** 'catmull-rom' (default): a smooth curve through every point; 'polyline': straight segments. */
-  readonly curve?: 'catmull-rom' | 'polyline';
-  /** Scene units per second along the curve (> 0), constant. */
-  readonly speed: number;
-  /** Distance along the loop (scene units) at t = 0, from `points[0]`. Default 0. */
-  readonly offset?: number;
-  /** The world's up (default +y): object +y follows it. */
-  readonly up?: Vec3;
-  /** Turn object +z toward the direction of motion (perpendicular to up). Default true. */
-  readonly faceMotion?: boolean;
-  /**
-   * A bob along up: `amplitude` scene units, `perLap` cycles per lap (a whole number ≥ 1, so that a lap
-   * is a period of the whole pose).
-   */
-  readonly bob?: { readonly amplitude: number; readonly perLap: number };
-  /** Applied to the object before it is carried (a scale, the model's own offset). Default identity. */
-  readonly pathFromObject?: Mat4;
-}
 
 /**
  * Arc-length samples per segment of the curve: the table that makes the speed constant. Between samples
@@ -181,15 +158,3 @@ export function compilePaths(scene: Scene): CompiledPath[] {
     return new CompiledPath(path);
   });
 }
-
-/** Plays Scene.dynamics.paths: every step with time passing writes each carried instance's pose at t. */
-export const pathAnimator: AnimatorFactory = (scene: Scene): Animator | undefined => {
-  const paths = compilePaths(scene);
-  if (paths.length === 0) return undefined;
-  return {
-    step(t: number, dt: number, _view, out: UpdateBuilder, first: boolean): void {
-      if (!first && dt === 0) return;
-      for (const p of paths) out.pose(p.path.instance, { worldFromObject: p.poseAt(t) });
-    },
-  };
-};

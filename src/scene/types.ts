@@ -12,7 +12,7 @@
 import type { Mat4 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
 import type { Dispersion } from './dispersion.ts';
-import type { SceneDynamics } from './dynamics.ts';
+import type { SceneDynamics } from './dynamics-types.ts';
 import type { Environment } from './environment.ts';
 import type { WalkMap } from './walk-map.ts';
 
@@ -459,7 +459,7 @@ export interface Scene {
   readonly metersPerUnit?: number;
   /** The floor plan a viewer can walk on (Doom maps), with the walker's dimensions. */
   readonly walkMap?: WalkMap;
-  /** What moves (scene/dynamics.ts; played by scene/world.ts). Absent: a frozen scene. */
+  /** What moves (scene/dynamics-types.ts; played by world/world.ts). Absent: a frozen scene. */
   readonly dynamics?: SceneDynamics;
   /**
    * A tile map's own grid, as a hint for the uniform-grid traversal (bvh/grid.ts, setting `accel`):

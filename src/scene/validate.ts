@@ -7,8 +7,7 @@ import { cross, isFiniteVec3, length, type Vec3 } from '../math/vec3.ts';
 import { validateDispersion } from './dispersion.ts';
 import { lensProblem } from './lens.ts';
 import { billboardProblem } from './billboards.ts';
-import { pushWallProblem } from './push-walls.ts';
-import { slidingDoorProblem } from './sliding-doors.ts';
+import type { WalkGrid } from './dynamics-types.ts';
 import { morphTargetProblem } from './morph.ts';
 import type { Material, Scene, TextureRef } from './types.ts';
 
@@ -124,6 +123,47 @@ export function validateScene(scene: Scene): void {
   if (billboards) fail(billboards);
   const moving = slidingDoorProblem(scene) ?? pushWallProblem(scene);
   if (moving) fail(moving);
+}
+
+/** What is wrong with a walk grid, or undefined. */
+function gridProblem(grid: WalkGrid): string | undefined {
+  return Number.isFinite(grid.originX) && Number.isFinite(grid.originZ) && grid.size > 0 && Number.isFinite(grid.size) ? undefined : 'a grid of no or infinite cell size, or a non-finite origin';
+}
+
+/** What is wrong with a scene's sliding doors, or undefined. */
+function slidingDoorProblem(scene: Scene): string | undefined {
+  const set = scene.dynamics?.slidingDoors;
+  if (!set) return undefined;
+  const grid = gridProblem(set.grid);
+  if (grid) return `sliding doors: ${grid}`;
+  if (!(set.travelSeconds > 0 && Number.isFinite(set.travelSeconds)) || !(set.waitSeconds >= 0 && Number.isFinite(set.waitSeconds))) return 'sliding doors: travel time must be > 0 and wait ≥ 0, both finite';
+  if (!(set.proximity >= 0 && set.bodyRadius >= 0)) return 'sliding doors: proximity and body radius must be ≥ 0';
+  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
+  const sectors = scene.walkMap?.floors.length ?? 0;
+  for (const [k, d] of set.doors.entries()) {
+    if (!moving.has(d.instance)) return `sliding door ${k} moves instance ${d.instance}, which is not a moving instance of the scene`;
+    if (!(Number.isInteger(d.sector) && d.sector >= 0 && d.sector < sectors)) return `sliding door ${k} names walk-map sector ${d.sector} of ${sectors}`;
+    if (![...d.slide, ...d.across, d.floor, d.ceiling].every(Number.isFinite)) return `sliding door ${k} has a non-finite slide, direction or height`;
+  }
+  return undefined;
+}
+
+/** What is wrong with a scene's push walls, or undefined. */
+function pushWallProblem(scene: Scene): string | undefined {
+  const set = scene.dynamics?.pushWalls;
+  if (!set) return undefined;
+  const grid = gridProblem(set.grid);
+  if (grid) return `push walls: ${grid}`;
+  if (!(set.secondsPerCell > 0 && Number.isFinite(set.secondsPerCell)) || !(Number.isInteger(set.reach) && set.reach >= 0)) return 'push walls: seconds per cell must be finite and > 0, reach a whole number ≥ 0';
+  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
+  const sectors = scene.walkMap?.floors.length ?? 0;
+  const valid = (s: number) => Number.isInteger(s) && s >= 0 && s < sectors;
+  for (const [k, w] of set.walls.entries()) {
+    if (!moving.has(w.instance)) return `push wall ${k} moves instance ${w.instance}, which is not a moving instance of the scene`;
+    if (w.paths.length !== 4) return `push wall ${k} has ${w.paths.length} paths, not 4`;
+    if (!valid(w.sector) || !w.paths.every((p) => p.every((c) => valid(c.sector)))) return `push wall ${k} names a walk-map sector outside the ${sectors} there are`;
+  }
+  return undefined;
 }
 
 /** Whether the linear part of m is a rotation (or reflection) times a uniform scale, to 1e-4 relative. */

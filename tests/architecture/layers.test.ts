@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ALLOWED, checkLayers, folderOf, readSources, SRC_DIR, type SourceFile } from './layers.ts';
+import { ALLOWED, checkCycles, checkLayers, findCycles, folderOf, readSources, SRC_DIR, type SourceFile } from './layers.ts';
 
 const format = (v: { file: string; rule: string; detail: string }) => `${v.file}: [${v.rule}] ${v.detail}`;
 
@@ -10,6 +10,10 @@ describe('the layering of docs/architecture.md', () => {
     expect(files.length).toBeGreaterThan(100);
     expect(new Set(files.map((f) => folderOf(f.path)))).toEqual(new Set([...Object.keys(ALLOWED), 'errors.ts', 'budgets.ts', 'expect-lantern-error.ts']));
     expect(checkLayers(files).map(format)).toEqual([]);
+  });
+
+  it('has no import cycle in src/ (issue #28 broke the last one: scene/ and its animators, now world/)', () => {
+    expect(checkCycles(readSources(SRC_DIR)).map(format)).toEqual([]);
   });
 });
 
@@ -51,6 +55,46 @@ describe('the checker', () => {
         file('scene/walk.test.ts', "import { loadDoomMap } from '../loaders/doom/load.ts';"),
       ]),
     ).toEqual([]);
+  });
+
+  it('catches a cycle of two files and one of three, naming the files in import order, type-only imports and re-exports included', () => {
+    const v = checkCycles([
+      file('scene/a.ts', "import type { B } from './b.ts';"),
+      file('scene/b.ts', "import { a } from './a.ts';"),
+      file('world/z.ts', "import { x } from './x.ts';"),
+      file('world/x.ts', "import { y } from './sub/y.ts';"),
+      file('world/sub/y.ts', "export { z } from '../z.ts';"),
+      file('scene/c.ts', "import { a } from './a.ts';"),
+    ]);
+    expect(v.map(format)).toEqual([
+      'scene/a.ts: [cycle] import cycle: scene/a.ts -> scene/b.ts -> scene/a.ts',
+      'world/sub/y.ts: [cycle] import cycle: world/sub/y.ts -> world/z.ts -> world/x.ts -> world/sub/y.ts',
+    ]);
+  });
+
+  it('allows a DAG, dynamic import() and imports of files outside the set; a file importing itself is a cycle', () => {
+    const dag = [
+      file('scene/types.ts', "import type { D } from './dynamics-types.ts';"),
+      file('scene/dynamics-types.ts', "import type { Vec3 } from '../math/vec3.ts';"),
+      file('math/vec3.ts', ''),
+      file('scene/billboards.ts', "import type { D } from './dynamics-types.ts';\nimport type { Scene } from './types.ts';"),
+      file('world/world.ts', "import { b } from '../scene/billboards.ts';\nimport type { Scene } from '../scene/types.ts';"),
+      file('world/billboards.ts', "import type { W } from './world.ts';\nimport { b } from '../scene/billboards.ts';"),
+      file('world/lazy.ts', "import type { W } from './world.ts';\nexport const m = () => import('./lazy-user.ts');"),
+      file('world/lazy-user.ts', "import { m } from './lazy.ts';\nimport { q } from './not-listed.ts';"),
+    ];
+    expect(checkCycles(dag)).toEqual([]);
+    expect(findCycles([file('scene/self.ts', "export * from './self.ts';")])).toEqual([{ cycle: ['scene/self.ts'], component: ['scene/self.ts'] }]);
+  });
+
+  it('names the rest of a component that has more than its shortest cycle', () => {
+    const [c, ...rest] = findCycles([
+      file('a.ts', "import './b.ts';"),
+      file('b.ts', "import './a.ts';\nimport './c.ts';"),
+      file('c.ts', "import './b.ts';"),
+    ]);
+    expect(rest).toEqual([]);
+    expect(c).toEqual({ cycle: ['a.ts', 'b.ts'], component: ['a.ts', 'b.ts', 'c.ts'] });
   });
 
   it('keeps node:* in the CLI and the DOM in the page', () => {

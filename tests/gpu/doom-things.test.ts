@@ -19,7 +19,7 @@ import { cameraBasis } from '../../src/gpu/view.ts';
 import { determinant3, transformPoint } from '../../src/math/mat4.ts';
 import { dot, normalize, sub, type Vec3 } from '../../src/math/vec3.ts';
 import type { Camera, Scene } from '../../src/scene/types.ts';
-import { World } from '../../src/scene/world.ts';
+import { World } from '../../src/world/world.ts';
 import { testGpu } from './gpu-context.ts';
 
 const W = 64, H = 48;

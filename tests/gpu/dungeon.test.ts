@@ -11,7 +11,7 @@ import { cross, dot, normalize, sub, type Vec3 } from '../../src/math/vec3.ts';
 import { renderProgressive } from '../../src/renderer/progressive.ts';
 import { Renderer, type Accumulation } from '../../src/renderer/renderer.ts';
 import { emptySceneUpdate } from '../../src/scene/dynamics.ts';
-import { sceneUpdateAt } from '../../src/scene/world.ts';
+import { sceneUpdateAt } from '../../src/world/world.ts';
 import { testGpu } from './gpu-context.ts';
 
 const W = 48, H = 32;

@@ -1,5 +1,5 @@
 /**
- * Doom's animations on the GPU (scene/material-animation.ts played by scene/world.ts): the state at
+ * Doom's animations on the GPU (world/material-animation.ts played by world/world.ts): the state at
  * two times, applied with Renderer.applySceneUpdate, changes exactly the animated surfaces. A tiny
  * WAD (test-wad.ts animatedRoomWad) seen from its player start: a NUKAGE floor cycling through its
  * frames, a scrolling striped west wall, a CEIL1_2 lamp ceiling in a sector strobing between light
@@ -16,7 +16,8 @@ import { editMaterials, prepareScene, type PreparedScene } from '../../src/rende
 import { renderProgressive } from '../../src/renderer/progressive.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
 import type { Scene } from '../../src/scene/types.ts';
-import { sceneUpdateAt, type Viewpoint } from '../../src/scene/world.ts';
+import type { Viewpoint } from '../../src/world/animator.ts';
+import { sceneUpdateAt } from '../../src/world/world.ts';
 import { testGpu } from './gpu-context.ts';
 import { lum } from './scene-render.ts';
 

@@ -10,7 +10,7 @@ import { readWolfGame } from '../../src/loaders/wolf3d/game.ts';
 import { WOLF_TILE, wolfMapToScene } from '../../src/loaders/wolf3d/to-scene.ts';
 import { renderProgressive } from '../../src/renderer/progressive.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
-import { sceneUpdateAt } from '../../src/scene/world.ts';
+import { sceneUpdateAt } from '../../src/world/world.ts';
 import { testGpu } from './gpu-context.ts';
 
 const CANDIDATES = ['../shared/assets/wolf3d-shareware', '/work/shared/assets/wolf3d-shareware'];

@@ -12,7 +12,7 @@ import type { Renderer } from '../../renderer/renderer.ts';
 import { cameraAt, frameTime, parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { isEmptyUpdate } from '../../scene/dynamics.ts';
-import type { World } from '../../scene/world.ts';
+import type { World } from '../../world/world.ts';
 import { writeFile } from '../output-files.ts';
 import { readJsonFile } from '../user-files.ts';
 import { median } from '../../math/median.ts';

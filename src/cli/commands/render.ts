@@ -21,7 +21,7 @@ import type { CliContext } from '../context.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
 import { DEFAULT_FRAME_SPP, DEFAULT_SPP, frameIntent, isFrameMode, renderFrames, samplesPerPixel, type FrameModeOptions } from './render-frames.ts';
-import { World } from '../../scene/world.ts';
+import { World } from '../../world/world.ts';
 import { processSpans } from '../process-clock.ts';
 import { Timeline } from '../timeline.ts';
 import { escapeControls } from '../terminal-text.ts';

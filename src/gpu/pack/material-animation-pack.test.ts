@@ -1,5 +1,5 @@
 /**
- * Packing animated materials (scene/material-animation.ts): every texture a cycle can show is in
+ * Packing animated materials (world/material-animation.ts): every texture a cycle can show is in
  * the atlas with a texture reference of the material's own from the start, so a texture swap
  * rewrites one record to point at the new texture's atlas rectangle, and a uv offset rewrites the
  * material's own references alone. Checked on the packed bytes.

@@ -47,7 +47,7 @@ export interface PackedMaterials {
   /** Per material: each texture field it uses → the texture and its transform (transformKey) as packed. */
   readonly textureUses: readonly ReadonlyMap<string, { readonly texture: number; readonly transform: string }>[];
   /**
-   * Per animated material (scene/material-animation.ts): per texture field, every texture its
+   * Per animated material (world/material-animation.ts): per texture field, every texture its
    * animation can show → the material's own texture reference to it.
    */
   readonly animatedRefs: ReadonlyMap<number, ReadonlyMap<string, ReadonlyMap<number, number>>>;
@@ -167,7 +167,7 @@ export function packMaterials(scene: Scene, layouts: { material: StructLayout; t
     }
     return index;
   };
-  // Animated materials (scene/material-animation.ts) get texture references of their own, one per
+  // Animated materials (world/material-animation.ts) get texture references of their own, one per
   // texture each field can show, so a step of a cycle only rewrites the record's ref index and a
   // scroll rewrites only its own refs' transforms.
   const animatedTextures = animatedTextureSets(scene);
@@ -326,7 +326,7 @@ function materialRecordWriter(out: StructArray): (i: number, m: Material) => boo
  * The materials packed again after edits (scene/material-edit.ts): the records of `changed` are
  * rewritten over a copy of the packed ones, so atlases and everything derived from textures are kept
  * as they are. Constant factors may change on any material; textures and uv offsets only on animated
- * materials (scene/material-animation.ts), and only to textures their animation lists: those were
+ * materials (world/material-animation.ts), and only to textures their animation lists: those were
  * packed ahead with texture references of the material's own, so a texture swap rewrites the
  * record's reference index and a uv offset rewrites the material's own references' transforms (then
  * `textureRefs` is a new buffer: `texture_refs` must be written again). Kinds and coverage must be
@@ -356,7 +356,7 @@ export function repackMaterialRecords(
       const was = before.get(u.field)!;
       if (!animated) {
         if (u.ref.texture !== was.texture || transformKey(u.ref) !== was.transform) {
-          throw new LanternError(`material '${m.name}' changed the texture or uv transform of its ${u.field}, which only animated materials (scene/material-animation.ts) may: prepare the scene again`);
+          throw new LanternError(`material '${m.name}' changed the texture or uv transform of its ${u.field}, which only animated materials (world/material-animation.ts) may: prepare the scene again`);
         }
         continue;
       }

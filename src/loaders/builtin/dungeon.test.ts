@@ -6,7 +6,7 @@ import { CompiledPath } from '../../scene/paths.ts';
 import { flattenTriangles } from '../../scene/triangles.ts';
 import { validateScene } from '../../scene/validate.ts';
 import { moveWalker, NO_SECTOR, sectorAt } from '../../scene/walk-map.ts';
-import { sceneUpdateAt } from '../../scene/world.ts';
+import { sceneUpdateAt } from '../../world/world.ts';
 import { DUNGEON_MAP, isFloor, parseTileMap } from './dungeon-map.ts';
 import { DUNGEON_HEIGHT, DUNGEON_TILE, dungeonScene, PHANTOM_ID, PHANTOM_SPEED, tileCentre } from './dungeon.ts';
 import { PHANTOM_HEIGHT, PHANTOM_RADIUS } from './phantom.ts';

@@ -11,7 +11,8 @@
  */
 import { IDENTITY, type Mat4 } from '../../math/mat4.ts';
 import type { Vec3 } from '../../math/vec3.ts';
-import { CompiledPath, type InstancePath } from '../../scene/paths.ts';
+import type { InstancePath } from '../../scene/dynamics-types.ts';
+import { CompiledPath } from '../../scene/paths.ts';
 import { diffuse, type Material, type Mesh, type Scene } from '../../scene/types.ts';
 import type { WalkMap } from '../../scene/walk-map.ts';
 import { DOOM_TORCH } from '../doom/light-table.ts';

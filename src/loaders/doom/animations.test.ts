@@ -6,7 +6,7 @@
 import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../../expect-lantern-error.ts';
-import { sceneUpdateAt } from '../../scene/world.ts';
+import { sceneUpdateAt } from '../../world/world.ts';
 import { DOOM_ANIMATIONS, readAnimatedLump, resolveCycles, sectorLightPattern, sectorNeighbours } from './animations.ts';
 import { DEFAULT_LIGHT_TABLE, emissionOf } from './light-table.ts';
 import { loadDoomMap } from './load.ts';

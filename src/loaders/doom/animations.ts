@@ -9,12 +9,12 @@
  * - scrolling walls: linedef special 48 moves its front side's texture offset by one unit per tic,
  *   so the textures slide left as seen from the front;
  * - sector light specials: the thinkers of p_lights.c step the sector's light level once per tic
- *   (scene/material-animation.ts LightPattern plays them); this file turns a sector's special into
+ *   (world/material-animation.ts plays a LightPattern); this file turns a sector's special into
  *   the pattern's parameters (P_SpawnSpecials and its P_Spawn* helpers).
  * Pure.
  */
 import { LanternError } from '../../errors.ts';
-import type { LightPattern } from '../../scene/material-animation.ts';
+import type { LightPattern } from '../../scene/dynamics-types.ts';
 import { LINEDEF_FLAGS, NO_SIDEDEF, type DoomMap } from './map-types.ts';
 
 /** Doom's game clock. */

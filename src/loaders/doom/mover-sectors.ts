@@ -8,7 +8,7 @@ import { toWorld } from './coordinates.ts';
 import { NO_SIDEDEF, type DoomMap } from './map-types.ts';
 import { DOOR_TOP_GAP, MOVER_SPECIALS, TICS_PER_SECOND } from './specials.ts';
 import type { SectorMotionRange } from './walls.ts';
-import { moverKindOf, type MoverAction } from '../../scene/movers.ts';
+import { moverKindOf, type MoverAction } from '../../scene/dynamics-types.ts';
 
 export interface MovingSector {
   readonly sector: number;

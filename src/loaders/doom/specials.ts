@@ -8,7 +8,7 @@
  * line's back sector), S = switch (use; moves the sectors tagged like the line), W = walk over
  * (tagged sectors); 1 = once, R = repeatable.
  */
-import type { MoverAction } from '../../scene/movers.ts';
+import type { MoverAction } from '../../scene/dynamics-types.ts';
 
 /** Doom's clock: every speed and delay below is per tic. */
 export const TICS_PER_SECOND = 35;

@@ -6,7 +6,7 @@ import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../../expect-lantern-error.ts';
 import type { DiffuseMaterial, Scene } from '../../scene/types.ts';
 import { validateScene } from '../../scene/validate.ts';
-import { sceneUpdateAt } from '../../scene/world.ts';
+import { sceneUpdateAt } from '../../world/world.ts';
 import { FIRE_THING_STRENGTH, LAMP_STRENGTH } from './light-table.ts';
 import { loadDoomMap } from './load.ts';
 import type { Thing } from './map-types.ts';

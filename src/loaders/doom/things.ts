@@ -18,7 +18,7 @@ import { sectorAt, type SectorShapes } from './sectors.ts';
 import type { SpriteSource } from './sprites.ts';
 import { DEFAULT_SKILL, INVISIBLE_THINGS, MAX_SKILL, MIN_SKILL, THING_TYPES, thingAppears, TICS_PER_SECOND } from './thing-types.ts';
 import { LanternError } from '../../errors.ts';
-import type { Billboard, BillboardFrame, BillboardImage } from '../../scene/billboards.ts';
+import type { Billboard, BillboardFrame, BillboardImage } from '../../scene/dynamics-types.ts';
 
 export interface ThingOptions {
   /** 1–5; DEFAULT_SKILL (3) when absent. */

@@ -8,11 +8,10 @@
  */
 import { doomWalkMap, PLAYER_HEIGHT, PLAYER_RADIUS } from './walk-map.ts';
 import { IDENTITY } from '../../math/mat4.ts';
-import type { EmissionPattern, LightPattern, MaterialAnimations, TextureCycle, UvScroll } from '../../scene/material-animation.ts';
+import type { Billboard, EmissionPattern, LightPattern, MaterialAnimations, Mover, MoverSet, TextureCycle, UvScroll } from '../../scene/dynamics-types.ts';
 import { DoomCycles, SCROLL_LEFT_SPECIAL, sectorLightPattern, sectorNeighbours, TICS_PER_SECOND } from './animations.ts';
 import { scale, type Vec3 } from '../../math/vec3.ts';
 import { placeEachOnce } from '../../scene/instances.ts';
-import type { Mover, MoverSet } from '../../scene/movers.ts';
 import { diffuse, type Camera, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { directionFromAngle, flatUv, toWorld } from './coordinates.ts';
 import { DEFAULT_LIGHT_TABLE, DOOM_TORCH, emissionOf, glowTexture, mergeLightTables, SKY_STRENGTH, type LightSource, type LightTable } from './light-table.ts';
@@ -21,7 +20,7 @@ import { buildSectorShapes, sectorAt, type SectorFailure, type SectorShapes } fr
 import type { SpriteSource } from './sprites.ts';
 import { buildThings, type ThingOptions } from './things.ts';
 import { buildWalls, isSky, type WallQuad } from './walls.ts';
-import { billboardPoses, billboardQuad, type Billboard } from '../../scene/billboards.ts';
+import { billboardPoses, billboardQuad } from '../../scene/billboards.ts';
 import { findMovers, type MapMovers } from './mover-sectors.ts';
 
 export interface DoomSceneOptions {

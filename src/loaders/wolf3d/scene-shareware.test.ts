@@ -8,7 +8,7 @@ import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { validateScene } from '../../scene/validate.ts';
 import { moveWalker, sectorAt } from '../../scene/walk-map.ts';
-import { World } from '../../scene/world.ts';
+import { World } from '../../world/world.ts';
 import { readWolfGame } from './game.ts';
 import { WOLF_EYE_HEIGHT, WOLF_TILE, wolfMapToScene } from './to-scene.ts';
 

@@ -3,9 +3,10 @@ import { transformPoint, type Mat4 } from '../../math/mat4.ts';
 import { cross, normalize, sub, type Vec3 } from '../../math/vec3.ts';
 import { validateScene } from '../../scene/validate.ts';
 import { eyeLevel, moveWalker, sectorAt, type WalkMap, type WalkPosition } from '../../scene/walk-map.ts';
-import { World, type Viewpoint } from '../../scene/world.ts';
+import type { Viewpoint } from '../../world/animator.ts';
+import { World } from '../../world/world.ts';
 import type { Scene } from '../../scene/types.ts';
-import { PUSH_DIRECTIONS } from '../../scene/push-walls.ts';
+import { PUSH_DIRECTIONS } from '../../scene/dynamics-types.ts';
 import { DIRECTIONS } from './level.ts';
 import { testGame, testMap, TEST_PALETTE } from './test-game.ts';
 import {

@@ -7,11 +7,11 @@
  * - floor and ceiling: a quad per tile one can see into, in the game's plain colours (the floor's
  *   one colour, the map's ceiling colour), the palette's display values decoded to linear;
  * - doors: a thin panel (an eighth of a tile) across the middle of the door tile, an instance of its
- *   own that slides into the wall beside it (scene/sliding-doors.ts); the game's door pages, which
+ *   own that slides into the wall beside it (world/sliding-doors.ts); the game's door pages, which
  *   read left to right from the west (vertical doors) or south (horizontal ones), as the game draws
  *   them (mirrored from the other side);
  * - push walls: a wall block of four faces, an instance that the use key slides two tiles away
- *   (scene/push-walls.ts);
+ *   (world/push-walls.ts);
  * - static objects: alpha-tested sprites standing at their tile's centre, facing the view plane
  *   (scene/billboards.ts, one image: Wolfenstein's objects have no rotations); the lamps
  *   (chandelier, ceiling light, floor lamp) each get a small emitter facing down under the lamp's
@@ -33,9 +33,8 @@
  */
 import { IDENTITY, translation } from '../../math/mat4.ts';
 import { luminance, scale, type Vec3 } from '../../math/vec3.ts';
-import { billboardPoses, billboardQuad, type Billboard } from '../../scene/billboards.ts';
-import type { PushWall, PushWallSet } from '../../scene/push-walls.ts';
-import type { SlidingDoor, SlidingDoorSet, WalkGrid } from '../../scene/sliding-doors.ts';
+import { billboardPoses, billboardQuad } from '../../scene/billboards.ts';
+import type { Billboard, PushWall, PushWallSet, SlidingDoor, SlidingDoorSet, WalkGrid } from '../../scene/dynamics-types.ts';
 import { diffuse, type Camera, type Instance, type Material, type Mesh, type Scene, type Texture } from '../../scene/types.ts';
 import { DOOM_TORCH } from '../doom/light-table.ts';
 import type { LoadOptions } from '../format.ts';

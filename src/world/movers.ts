@@ -1,77 +1,15 @@
 /**
- * Movers: sectors whose floor or ceiling moves (Doom's doors and lifts), as data and as the
- * animator that plays them. Each mover is one mesh with two morph targets, the displacement per unit
- * of its floor height and per unit of its ceiling height, so the heights become morph weights
- * (height − rest height); its walk-map sector gets the same heights. Triggers start them: use lines
+ * Movers: sectors whose floor or ceiling moves (Doom's doors and lifts), and the animator that plays
+ * them (their data, MoverSet, is in scene/dynamics-types.ts). Each mover is one mesh with two morph
+ * targets, the displacement per unit of its floor height and per unit of its ceiling height, so the
+ * heights become morph weights (height − rest height); its walk-map sector gets the same heights. Triggers start them: use lines
  * (the use key, in front of the player) and walk-over lines. The behaviours follow vanilla Doom's
  * door and platform thinkers (p_doors.c T_VerticalDoor, EV_VerticalDoor; p_plats.c T_PlatRaise),
- * in seconds instead of tics; the World steps them at its ticks (scene/world.ts). Pure.
+ * in seconds instead of tics; the World steps them at its ticks (world/world.ts). Pure.
  */
-import { NO_SECTOR, type WalkMap } from './walk-map.ts';
-import type { AnimatorFactory, Animator, UpdateBuilder, Viewpoint } from './world.ts';
-
-/**
- * What a trigger does to its movers:
- * - open-wait-close: the ceiling rises to the door's top, waits, comes down to the floor;
- * - open: the ceiling rises to the top and stays; close: it comes down to the floor and stays;
- * - close-wait-open: down to the floor, wait, back up to where it was;
- * - lower-wait-raise (lifts): the floor goes down to the lift's bottom, waits, rises back.
- */
-export type MoverAction = 'open-wait-close' | 'open' | 'close' | 'close-wait-open' | 'lower-wait-raise';
-
-export const moverKindOf = (action: MoverAction): 'door' | 'lift' => (action === 'lower-wait-raise' ? 'lift' : 'door');
-
-/** One moving sector. Heights in world units (y). */
-export interface Mover {
-  /** Scene.meshes index; morph target 0 moves with the floor, 1 with the ceiling (per unit). */
-  readonly mesh: number;
-  /** Walk-map sector whose heights follow. */
-  readonly sector: number;
-  /** 'door', 'lift', or both when triggers of both kinds act on it. */
-  readonly kinds: readonly ('door' | 'lift')[];
-  readonly restFloor: number;
-  readonly restCeiling: number;
-  /** Where an opening door's ceiling stops (Doom: the lowest ceiling around − 4). */
-  readonly doorTop: number;
-  /** Where a lift's floor stops going down (Doom: the lowest floor around, never above its own). */
-  readonly liftBottom: number;
-  /** The sector's boundary, x0, z0, x1, z1 per line (the walk plane): does the player stand in it? */
-  readonly outline: Float32Array;
-}
-
-/** A line that starts movers. */
-export interface MoverTrigger {
-  /** x0, z0, x1, z1 in the walk plane. */
-  readonly line: readonly [number, number, number, number];
-  /**
-   * 'use': the use key, from the line's front side only, where cross((x1−x0, z1−z0), (px−x0,
-   * pz−z0)) > 0 (the walk map's first side); 'walk': the player's centre crossing it either way.
-   */
-  readonly activation: 'use' | 'walk';
-  readonly repeatable: boolean;
-  /** Indices into MoverSet.movers. */
-  readonly movers: readonly number[];
-  readonly action: MoverAction;
-  /** World units per second. */
-  readonly speed: number;
-  /** Seconds of the action's wait. */
-  readonly wait: number;
-  /**
-   * Doom's manual (DR) doors: using the line of a door already moving sends it back (a closing door
-   * reopens, an opening or waiting one closes). Other triggers leave a moving sector alone.
-   */
-  readonly reverses: boolean;
-}
-
-/** Scene.dynamics.movers. */
-export interface MoverSet {
-  readonly movers: readonly Mover[];
-  readonly triggers: readonly MoverTrigger[];
-  /** How far the use key reaches from the player's centre (Doom: 64 units). */
-  readonly useRange: number;
-  /** The player's body: a closing door that would come lower than `height` over it reopens. */
-  readonly body: { readonly radius: number; readonly height: number };
-}
+import { moverKindOf, type MoverSet, type MoverTrigger } from '../scene/dynamics-types.ts';
+import { NO_SECTOR, type WalkMap } from '../scene/walk-map.ts';
+import type { AnimatorFactory, Animator, UpdateBuilder, Viewpoint } from './animator.ts';
 
 type Phase = 'up' | 'down' | 'waiting';
 

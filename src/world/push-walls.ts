@@ -1,9 +1,10 @@
 /**
  * Push walls: wall blocks that slide away from the player who uses them (Wolfenstein 3D's secret
- * doors, WL_ACT1.C PushWall and MovePWalls), as data (Scene.dynamics.pushWalls) and as the animator
- * that plays them. Each is an instance (created with `moves: true`) of a cube's four wall faces and
- * a walk-map sector per cell it may stand in: shut ([floor, floor]) while the block is in it or on
- * its way into it, open ([floor, ceiling]) once it has left. Pure.
+ * doors, WL_ACT1.C PushWall and MovePWalls): the animator that plays Scene.dynamics.pushWalls (the
+ * data: scene/dynamics-types.ts; its checks: scene/validate.ts). Each is an instance (created with
+ * `moves: true`) of a cube's four wall faces and a walk-map sector per cell it may stand in: shut
+ * ([floor, floor]) while the block is in it or on its way into it, open ([floor, ceiling]) once it
+ * has left. Pure.
  *
  * The game's rules, in seconds instead of 70 Hz tics:
  * - the use key, from the cell next to the block, facing it (the direction of view rounded to east,
@@ -16,63 +17,9 @@
  *   shut from the moment it starts toward it.
  */
 import type { Mat4 } from '../math/mat4.ts';
-import { gridProblem, usedCell, type WalkGrid } from './sliding-doors.ts';
-import type { Scene } from './types.ts';
-import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
-
-/** A cell a push wall may enter, with its walk-map sector. */
-export interface PushWallCell {
-  readonly cell: readonly [number, number];
-  readonly sector: number;
-}
-
-export interface PushWall {
-  /** The Instance.id of the block (created with `moves: true`). */
-  readonly instance: number;
-  /** Its world-from-object transform where the level starts it. */
-  readonly restPose: Mat4;
-  /** Where it starts, a cell of PushWallSet.grid, and that cell's walk-map sector. */
-  readonly cell: readonly [number, number];
-  readonly sector: number;
-  /**
-   * The free cells in each direction, nearest first, at most PushWallSet.reach: east (+x), north
-   * (−z), west (−x), south (+z).
-   */
-  readonly paths: readonly [readonly PushWallCell[], readonly PushWallCell[], readonly PushWallCell[], readonly PushWallCell[]];
-  /** Walk-map heights of an open cell. */
-  readonly floor: number;
-  readonly ceiling: number;
-}
-
-export interface PushWallSet {
-  readonly walls: readonly PushWall[];
-  readonly grid: WalkGrid;
-  /** Seconds to move one cell (the game: 128 tics at 70 Hz). */
-  readonly secondsPerCell: number;
-  /** The most cells a block moves (the game: 2). */
-  readonly reach: number;
-}
-
-/** What is wrong with a scene's push walls, or undefined (validate.ts reports it). */
-export function pushWallProblem(scene: Scene): string | undefined {
-  const set = scene.dynamics?.pushWalls;
-  if (!set) return undefined;
-  const grid = gridProblem(set.grid);
-  if (grid) return `push walls: ${grid}`;
-  if (!(set.secondsPerCell > 0 && Number.isFinite(set.secondsPerCell)) || !(Number.isInteger(set.reach) && set.reach >= 0)) return 'push walls: seconds per cell must be finite and > 0, reach a whole number ≥ 0';
-  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
-  const sectors = scene.walkMap?.floors.length ?? 0;
-  const valid = (s: number) => Number.isInteger(s) && s >= 0 && s < sectors;
-  for (const [k, w] of set.walls.entries()) {
-    if (!moving.has(w.instance)) return `push wall ${k} moves instance ${w.instance}, which is not a moving instance of the scene`;
-    if (w.paths.length !== 4) return `push wall ${k} has ${w.paths.length} paths, not 4`;
-    if (!valid(w.sector) || !w.paths.every((p) => p.every((c) => valid(c.sector)))) return `push wall ${k} names a walk-map sector outside the ${sectors} there are`;
-  }
-  return undefined;
-}
-
-/** Unit steps of the four directions, in the order of PushWall.paths. */
-export const PUSH_DIRECTIONS: readonly (readonly [number, number])[] = [[1, 0], [0, -1], [-1, 0], [0, 1]];
+import { PUSH_DIRECTIONS, type PushWallCell, type PushWallSet } from '../scene/dynamics-types.ts';
+import { usedCell } from './sliding-doors.ts';
+import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './animator.ts';
 
 interface Push {
   readonly direction: number;

@@ -1,7 +1,8 @@
 import { describe, expect, it } from 'vitest';
 import { IDENTITY } from '../math/mat4.ts';
-import { doorPose, SlidingDoorAnimator, usedCell, type SlidingDoor, type SlidingDoorSet, type WalkGrid } from './sliding-doors.ts';
-import { UpdateBuilder, type Viewpoint } from './world.ts';
+import type { SlidingDoor, SlidingDoorSet, WalkGrid } from '../scene/dynamics-types.ts';
+import { UpdateBuilder, type Viewpoint } from './animator.ts';
+import { doorPose, SlidingDoorAnimator, usedCell } from './sliding-doors.ts';
 
 const GRID: WalkGrid = { originX: 0, originZ: 0, size: 10 };
 /** A door in cell (2, 0), passed east–west, sliding 10 units south; sector 4. */

@@ -1,5 +1,6 @@
 /**
- * Materials that change with time, as data (Scene.dynamics.materialAnimations) and their animator:
+ * Materials that change with time: the animator of Scene.dynamics.materialAnimations (the data:
+ * scene/dynamics-types.ts), its checks, and the pure functions of time it steps:
  * - texture cycles: a material shows the frames of a cycle in turn (Doom's animated flats and wall
  *   textures: NUKAGE1–3, FIREWALA–FIREWALL, ...);
  * - uv scrolls: a material's textures slide at a constant uv velocity (Doom's linedef special 48);
@@ -14,83 +15,10 @@
  */
 import { LanternError } from '../errors.ts';
 import type { Vec3 } from '../math/vec3.ts';
-import type { MaterialEdit } from './material-edit.ts';
-import type { Scene } from './types.ts';
-import type { Animator, AnimatorFactory, UpdateBuilder } from './world.ts';
-
-/** A material showing the frames of a cycle in turn, `secondsPerFrame` each, wrapping. */
-export interface TextureCycle {
-  /** Index into Scene.materials (it must have a colour texture: an albedo or base colour texture). */
-  readonly material: number;
-  /** The colour texture of each frame, indices into Scene.textures (at least two). */
-  readonly frames: readonly number[];
-  /**
-   * The emission texture of each frame (as many as `frames`), for a material that emits through a
-   * texture; absent: the emission texture does not change.
-   */
-  readonly emissionFrames?: readonly number[];
-  readonly secondsPerFrame: number;
-  /** The frame shown at t = 0 (default 0). */
-  readonly firstFrame?: number;
-}
-
-/** A material whose textures slide: uv offset = velocity · t (wrapped to [0, 1)). */
-export interface UvScroll {
-  readonly material: number;
-  /** uv units per second (u: one unit is the texture's width). */
-  readonly velocity: readonly [number, number];
-  /** The offset moves in steps of this many seconds (Doom: one tic, 1/35 s); absent or 0: continuously. */
-  readonly stepSeconds?: number;
-}
-
-/**
- * A light level stepped once per tic, as the thinkers of Doom's p_lights.c step a sector's light.
- * Levels are Doom's 0–255 (they may leave that range where Doom's do: a flicker's floor is 16 above
- * its darkest neighbour). Every pattern starts at `maxLevel`, the sector's own level.
- * - flash (T_LightFlash, sector special 1): max for (random & maxTime) + 1 tics, then min for
- *   (random & minTime) + 1 tics (Doom: maxTime 64, minTime 7 — a bit mask, not a modulus, so the
- *   bright spells last 1 or 65 tics);
- * - strobe (T_StrobeFlash, specials 2, 3, 4, 12, 13): min for `darkTics`, max for `brightTics`; the
- *   first change after 1 tic (`inSync`) or (random & 7) + 1 tics;
- * - glow (T_Glow, special 8): down by `step` per tic to just above min, then up to just below max,
- *   and back;
- * - flicker (T_FireFlicker, special 17): every 4 tics, level = max − 16·(random & 3), or min where
- *   the current level minus that amount would be below min.
- */
-export type LightPattern =
-  | { readonly kind: 'flash'; readonly maxLevel: number; readonly minLevel: number; readonly maxTime: number; readonly minTime: number; readonly seed: number }
-  | {
-      readonly kind: 'strobe';
-      readonly maxLevel: number;
-      readonly minLevel: number;
-      readonly brightTics: number;
-      readonly darkTics: number;
-      readonly inSync: boolean;
-      readonly seed: number;
-    }
-  | { readonly kind: 'glow'; readonly maxLevel: number; readonly minLevel: number; readonly step: number }
-  | { readonly kind: 'flicker'; readonly maxLevel: number; readonly minLevel: number; readonly seed: number };
-
-/** A material whose emission follows a light pattern: emission = `emission` × clamp(level / fullLevel, 0, 1)^exponent. */
-export interface EmissionPattern {
-  readonly material: number;
-  /** The emission at `fullLevel` (linear RGB). */
-  readonly emission: Vec3;
-  /** The level at which the material emits `emission` (Doom: 255). */
-  readonly fullLevel: number;
-  /** How emission grows with the level (Doom scenes: 2, light-table.ts sectorLightFactor). */
-  readonly exponent: number;
-  /** Steps per second (Doom: 35). */
-  readonly ticsPerSecond: number;
-  readonly pattern: LightPattern;
-}
-
-/** Scene.dynamics.materialAnimations. */
-export interface MaterialAnimations {
-  readonly cycles?: readonly TextureCycle[];
-  readonly scrolls?: readonly UvScroll[];
-  readonly patterns?: readonly EmissionPattern[];
-}
+import type { EmissionPattern, LightPattern, MaterialAnimations, TextureCycle, UvScroll } from '../scene/dynamics-types.ts';
+import type { MaterialEdit } from '../scene/material-edit.ts';
+import type { Scene } from '../scene/types.ts';
+import type { Animator, AnimatorFactory, UpdateBuilder } from './animator.ts';
 
 /** A count of whole periods in `t` (seconds), robust to `t` being a float multiple of `period`. */
 function wholeSteps(t: number, period: number): number {
@@ -276,7 +204,7 @@ export function materialAnimationProblem(scene: Scene, a: MaterialAnimations): s
   return undefined;
 }
 
-/** The animator of Scene.dynamics.materialAnimations (registered in scene/world.ts ANIMATORS). */
+/** The animator of Scene.dynamics.materialAnimations (registered in world/world.ts ANIMATORS). */
 export const materialAnimator: AnimatorFactory = (scene) => {
   const a = scene.dynamics?.materialAnimations;
   if (!a || (a.cycles?.length ?? 0) + (a.scrolls?.length ?? 0) + (a.patterns?.length ?? 0) === 0) return undefined;

@@ -1,7 +1,8 @@
 /**
  * Sliding doors: panels that slide sideways into the wall beside them, wait, and slide back
- * (Wolfenstein 3D's doors, WL_ACT1.C: OpenDoor, DoorOpening, DoorOpen, CloseDoor, DoorClosing), as
- * data (Scene.dynamics.slidingDoors) and as the animator that plays them. Each door is an instance
+ * (Wolfenstein 3D's doors, WL_ACT1.C: OpenDoor, DoorOpening, DoorOpen, CloseDoor, DoorClosing): the
+ * animator that plays Scene.dynamics.slidingDoors (the data: scene/dynamics-types.ts; its checks:
+ * scene/validate.ts), and the walk grid's use rule, which push walls share. Each door is an instance
  * (created with `moves: true`) carried from its closed pose along `slide`, and a walk-map sector
  * that lets the walker through only while the door is fully open (the game clears the door's tile
  * only then). Pure.
@@ -28,49 +29,9 @@
  *   open door restarts its wait: here its wait starts when the viewer leaves).
  */
 import type { Mat4 } from '../math/mat4.ts';
-import type { Vec3 } from '../math/vec3.ts';
+import type { SlidingDoor, SlidingDoorSet, WalkGrid } from '../scene/dynamics-types.ts';
 import { touches } from './movers.ts';
-import type { Scene } from './types.ts';
-import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './world.ts';
-
-/** A square grid in the walk plane (x, z): cell (i, j) covers [ox + i·size, ox + (i+1)·size) × [oz + j·size, …). */
-export interface WalkGrid {
-  readonly originX: number;
-  readonly originZ: number;
-  readonly size: number;
-}
-
-export interface SlidingDoor {
-  /** The Instance.id of the panel (an instance created with `moves: true`). */
-  readonly instance: number;
-  /** The panel's world-from-object transform while closed. */
-  readonly closedPose: Mat4;
-  /** World displacement of the panel when fully open (it moves along it linearly). */
-  readonly slide: Vec3;
-  /** The door's cell of SlidingDoorSet.grid: [i, j]. */
-  readonly cell: readonly [number, number];
-  /** The unit direction in the walk plane (x, z) one goes through the door (across the panel). */
-  readonly across: readonly [number, number];
-  /** Walk-map sector of the doorway: [floor, floor] while the door is not fully open, [floor, ceiling] when it is. */
-  readonly sector: number;
-  readonly floor: number;
-  readonly ceiling: number;
-}
-
-export interface SlidingDoorSet {
-  readonly doors: readonly SlidingDoor[];
-  readonly grid: WalkGrid;
-  /** 'use': the use key only; 'proximity': the use key, and standing in front of a door opens it. */
-  readonly trigger: 'use' | 'proximity';
-  /** How far in front of a door's panel (across it, world units) the viewer opens it. */
-  readonly proximity: number;
-  /** Seconds to slide fully open, and fully closed. */
-  readonly travelSeconds: number;
-  /** Seconds an open door waits before it closes. */
-  readonly waitSeconds: number;
-  /** The player's body radius: a door does not close on a body that overlaps its cell. */
-  readonly bodyRadius: number;
-}
+import type { Animator, AnimatorFactory, UpdateBuilder, Viewpoint } from './animator.ts';
 
 /** What a door is doing (the game's dr_closed, dr_opening, dr_open, dr_closing). */
 export type DoorAction = 'closed' | 'opening' | 'open' | 'closing';
@@ -81,29 +42,6 @@ interface DoorState {
   position: number;
   /** Seconds spent open. */
   waited: number;
-}
-
-/** What is wrong with a walk grid, or undefined. */
-export function gridProblem(grid: WalkGrid): string | undefined {
-  return Number.isFinite(grid.originX) && Number.isFinite(grid.originZ) && grid.size > 0 && Number.isFinite(grid.size) ? undefined : 'a grid of no or infinite cell size, or a non-finite origin';
-}
-
-/** What is wrong with a scene's sliding doors, or undefined (validate.ts reports it). */
-export function slidingDoorProblem(scene: Scene): string | undefined {
-  const set = scene.dynamics?.slidingDoors;
-  if (!set) return undefined;
-  const grid = gridProblem(set.grid);
-  if (grid) return `sliding doors: ${grid}`;
-  if (!(set.travelSeconds > 0 && Number.isFinite(set.travelSeconds)) || !(set.waitSeconds >= 0 && Number.isFinite(set.waitSeconds))) return 'sliding doors: travel time must be > 0 and wait ≥ 0, both finite';
-  if (!(set.proximity >= 0 && set.bodyRadius >= 0)) return 'sliding doors: proximity and body radius must be ≥ 0';
-  const moving = new Set(scene.instances.filter((i) => i.moves).map((i) => i.id));
-  const sectors = scene.walkMap?.floors.length ?? 0;
-  for (const [k, d] of set.doors.entries()) {
-    if (!moving.has(d.instance)) return `sliding door ${k} moves instance ${d.instance}, which is not a moving instance of the scene`;
-    if (!(Number.isInteger(d.sector) && d.sector >= 0 && d.sector < sectors)) return `sliding door ${k} names walk-map sector ${d.sector} of ${sectors}`;
-    if (![...d.slide, ...d.across, d.floor, d.ceiling].every(Number.isFinite)) return `sliding door ${k} has a non-finite slide, direction or height`;
-  }
-  return undefined;
 }
 
 /** The cell [i, j] of `grid` containing (x, z). */

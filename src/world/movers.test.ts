@@ -1,7 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { MoverAnimator, type Mover, type MoverSet, type MoverTrigger } from './movers.ts';
-import type { WalkMap } from './walk-map.ts';
-import { UpdateBuilder, type Viewpoint } from './world.ts';
+import type { Mover, MoverSet, MoverTrigger } from '../scene/dynamics-types.ts';
+import type { WalkMap } from '../scene/walk-map.ts';
+import { UpdateBuilder, type Viewpoint } from './animator.ts';
+import { MoverAnimator } from './movers.ts';
 
 /**
  * A door sector x 128..144, z −128..0 (the walk plane), closed (floor = ceiling = 0), opening to 124;

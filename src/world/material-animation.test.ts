@@ -1,5 +1,5 @@
 /**
- * scene/material-animation.ts: cycle frames, scroll offsets and the light patterns against hand-
+ * world/material-animation.ts: cycle frames, scroll offsets and the light patterns against hand-
  * computed sequences of p_lights.c's thinkers; the animator writes what changed and only that.
  */
 import { describe, expect, it } from 'vitest';
@@ -14,14 +14,11 @@ import {
   scrollOffsetAt,
   startLightPattern,
   tickLightPattern,
-  type EmissionPattern,
-  type LightPattern,
-  type MaterialAnimations,
-  type TextureCycle,
-  type UvScroll,
 } from './material-animation.ts';
-import { diffuse, type Scene } from './types.ts';
-import { sceneUpdateAt, World, type Viewpoint } from './world.ts';
+import type { EmissionPattern, LightPattern, MaterialAnimations, TextureCycle, UvScroll } from '../scene/dynamics-types.ts';
+import { diffuse, type Scene } from '../scene/types.ts';
+import type { Viewpoint } from './animator.ts';
+import { sceneUpdateAt, World } from './world.ts';
 
 const TIC = 1 / 35;
 const view: Viewpoint = { position: [0, 0, 0], forward: [0, 0, -1] };

@@ -8,14 +8,16 @@ import { doomMapToScene } from '../loaders/doom/to-scene.ts';
 import { readWad, WadStack } from '../loaders/doom/wad.ts';
 import { testGame, testMap } from '../loaders/wolf3d/test-game.ts';
 import { PUSH_WALL_SECONDS_PER_TILE, WOLF_EYE_HEIGHT, WOLF_TILE, wolfMapToScene } from '../loaders/wolf3d/to-scene.ts';
+import { CompiledPath } from '../scene/paths.ts';
+import { diffuse, type Scene } from '../scene/types.ts';
+import type { Animator, AnimatorFactory, Viewpoint } from './animator.ts';
 import { billboardAnimator } from './billboards.ts';
 import { materialAnimator } from './material-animation.ts';
 import { moverAnimator, MoverAnimator } from './movers.ts';
-import { CompiledPath, pathAnimator } from './paths.ts';
+import { pathAnimator } from './paths.ts';
 import { pushWallAnimator, PushWallAnimator } from './push-walls.ts';
 import { slidingDoorAnimator, SlidingDoorAnimator } from './sliding-doors.ts';
-import { mergeUpdates, sceneUpdateAt, TICKS_PER_SECOND, World, type Animator, type AnimatorFactory, type Viewpoint } from './world.ts';
-import { diffuse, type Scene } from './types.ts';
+import { mergeUpdates, sceneUpdateAt, TICKS_PER_SECOND, World } from './world.ts';
 
 const scene: Scene = {
   name: 'moving',
