@@ -24,7 +24,9 @@ import type { ResourceCount } from '../gpu/resource-count.ts';
 import { GpuTimer } from '../gpu/timestamps.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
-import { Renderer, type KernelKind, type PickResult, type SplitFrame } from '../renderer/renderer.ts';
+import { Renderer, type PickResult } from '../renderer/renderer.ts';
+import type { KernelKind } from '../renderer/specialisation-schedule.ts';
+import type { SplitFrame } from '../renderer/split-frame.ts';
 import { adapterKind, ChunkSizer, describeFixedScale, displayRateHz, FrameBudget } from './frame-budget.ts';
 import { editMaterials } from '../renderer/prepare.ts';
 import { materialEditProblem, mergeMaterialEdits, type MaterialEdit } from '../scene/material-edit.ts';
@@ -291,7 +293,7 @@ export class Viewer {
 
   /**
    * The use key (E, or Space when walking): opens the door or starts the lift in front of the
-   * camera (scene/movers.ts). True when something answered; it moves in the following frames.
+   * camera (world/movers.ts). True when something answered; it moves in the following frames.
    */
   use(): boolean {
     const c = this.controllerValue;

@@ -1,6 +1,7 @@
 /** Parsing and checking of numeric command-line options, with messages that name the option. */
 import { InvalidArgumentError, type Command } from 'commander';
-import { KERNEL_KINDS, MAX_IMAGE_SIDE, type KernelKind } from '../renderer/renderer.ts';
+import { MAX_IMAGE_SIDE } from '../renderer/renderer.ts';
+import { KERNEL_KINDS, type KernelKind } from '../renderer/specialisation-schedule.ts';
 
 export function integerOption(name: string, min: number, max: number): (value: string) => number {
   return (value: string) => {

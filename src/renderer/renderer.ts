@@ -27,7 +27,7 @@ import { createBufferWithData, readBuffer, readTexture4x8 } from '../gpu/readbac
 import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
 import { packInstances } from '../gpu/pack/scene-pack.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import { PathTracePass, type Tile, type TracingKernels } from '../passes/path-trace-pass.ts';
+import type { Tile, TracingKernels } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
 import { SelectionOutlinePass, type SelectedRange } from '../passes/selection-outline-pass.ts';
 import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes/trace-rays-pass.ts';
@@ -42,38 +42,29 @@ import { adaptationKeep, exposureChoice, type ExposureChoice } from './exposure.
 import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
-import { DebugViews } from './debug-views.ts';
-import { Denoiser, type DenoiserBufferSize, type FrameRequest, type FrameTrace } from './denoiser.ts';
-import { Hybrid } from './hybrid.ts';
+import { DebugViews } from './recipes/debug.ts';
+import { RealTimeRecipe, type DenoiserBufferSize, type FrameTrace } from './recipes/real-time.ts';
+import { HybridRecipe } from './recipes/hybrid.ts';
+import { ProgressiveRecipe } from './recipes/progressive.ts';
+import type { FrameRecipe, RecipeFrame } from './recipes/frame-recipe.ts';
+import { wholeImage, type FrameContext, type ImageTargets } from './frame.ts';
 import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
 import { primaryRay, ViewUniform } from '../gpu/view.ts';
-import { describeSpecialisation, specialiseScene, type SpecialiseOptions } from '../gpu/specialisation.ts';
-import { LIGHT_SAMPLING, resolveSampler, type Sampler } from '../passes/variants.ts';
+import type { SpecialiseOptions } from '../gpu/specialisation.ts';
+import { SpecialisationSchedule, type KernelKind, type SpecialisationReport } from './specialisation-schedule.ts';
+import { SceneResidency } from './scene-residency.ts';
+import { resolveSampler, type Sampler } from '../passes/variants.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
+import { SplitFrame } from './split-frame.ts';
 import { recipeCompiles, recipeFor, type RecipeIntent } from './recipes/recipe.ts';
 
 /** Bytes per pixel of the accumulation buffer (one vec4f). */
 const ACCUMULATION_BYTES_PER_PIXEL = 16;
 /** An image side beyond this is refused even where the GPU would allow it. */
 export const MAX_IMAGE_SIDE = 16384;
-
-/** Which kernels the tracing passes run: the generic ones (the scene read from buffers) or those specialised to the frozen scene. */
-export const KERNEL_KINDS = ['generic', 'specialised'] as const;
-export type KernelKind = (typeof KERNEL_KINDS)[number];
-
-/** What requestSpecialisation compiled and switched to. */
-export interface SpecialisationReport {
-  /** Wall milliseconds of the asynchronous compile (every specialised pipeline, in parallel). */
-  readonly compileMs: number;
-  /** gpu/specialisation.ts describeSpecialisation: traversal, material kinds, inlined settings. */
-  readonly description: string;
-  /** Traced without a BVH (primitives unrolled as constants). */
-  readonly unrolled: boolean;
-  readonly primitiveCount: number;
-}
 
 export interface RayCounts {
   readonly extension: number;
@@ -115,17 +106,9 @@ export interface PickResult {
   readonly primitive: number;
 }
 
-interface ImageTargets {
-  readonly width: number;
-  readonly height: number;
-  readonly accumulation: GPUBuffer;
-  readonly rayCounters: GPUBuffer;
-  readonly output: GPUTexture;
-}
-
 export class Renderer {
-  private prepared?: PreparedScene;
-  private resources?: SceneResources;
+  /** The scene on the GPU, kept in step with the world (renderer/scene-residency.ts). */
+  private readonly residency: SceneResidency;
   private targets?: ImageTargets;
   private cameraValue?: Camera;
   private settingsValue: RenderSettings = DEFAULT_SETTINGS;
@@ -133,25 +116,21 @@ export class Renderer {
   private epoch = 0;
   /** Counts resetHistory() calls: a split frame begun before one is given up (SplitFrame.valid). */
   private historyResets = 0;
-  /** Counts scene uploads: a split frame holds the resources it began with. */
-  private uploads = 0;
-  private denoiser?: Denoiser;
+  /** The real-time recipe (compiled by compile() for its settings). */
+  private realTime?: RealTimeRecipe;
   /** The hybrid recipe (compiled by compile() for its settings). */
-  private hybrid?: Hybrid;
-  /** The recipe of the last real-time frame (whose output present and readFrame show). */
-  private frameRecipe: 'path' | 'hybrid' = 'path';
+  private hybrid?: HybridRecipe;
+  /** The recipe of the last frame (whose output present and readFrame show). */
+  private lastFrame?: FrameRecipe;
   /** Whether the spectral variants are compiled for each scene (compile() with settings.spectral). */
   private spectralEnabled = false;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
-  /** Specialisation (see requestSpecialisation): bumped by every edit, so a compile that an edit overtook is dropped. */
-  private specialisationEpoch = 0;
-  private pendingSpecialisation?: { readonly epoch: number; readonly done: Promise<SpecialisationReport | undefined> };
-  private specialisationValue?: SpecialisationReport;
-  private idleSpecialisationMs?: number;
-  private idleTimer?: ReturnType<typeof setTimeout>;
-  /** The error of the last automatic (idle) specialisation, if it failed; rendering stays generic. */
-  specialisationError?: unknown;
+  /** When the tracing kernels are specialised to the scene (requestSpecialisation, the idle policy). */
+  private readonly specialising = new SpecialisationSchedule({
+    current: () => (this.prepared && this.resources ? { prepared: this.prepared, resources: this.resources, settings: this.settingsValue } : undefined),
+    kernels: () => ({ sets: [this.progressive.kernels, ...(this.realTime ? [this.realTime.frameKernels] : [])], ...(this.realTime?.wavefrontPass ? { wavefront: this.realTime.wavefrontPass } : {}) }),
+  });
   private tracePass?: Promise<TraceRaysPass>;
   private selectionPass?: SelectionOutlinePass;
   /** The selected instance's source triangles, outlined by present(). */
@@ -172,11 +151,34 @@ export class Renderer {
   private constructor(
     readonly gpu: GpuContext,
     private readonly view: ViewUniform,
-    private readonly pathTrace: PathTracePass,
+    private readonly progressive: ProgressiveRecipe,
     private readonly tonemap: TonemapPass,
     private presentPass?: PresentPass,
     private debugViews?: DebugViews,
-  ) {}
+  ) {
+    this.residency = new SceneResidency(gpu.device, {
+      compile: (features) => Promise.all([
+        this.progressive.prepare(features), this.realTime?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
+        ...(this.spectralEnabled ? [this.progressive.prepare(features, true), this.realTime?.prepare(features, true)] : []),
+      ]),
+      tileCulling: () => this.settingsValue.tileCulling,
+      cameraPosition: () => this.cameraValue?.position,
+      uploaded: () => this.invalidateSpecialisation(),
+      geometryChanged: () => (this.selectionStale = true),
+      edited: () => {
+        this.invalidateSpecialisation();
+        this.resetAccumulation();
+      },
+      restarted: () => this.resetAccumulation(),
+    });
+  }
+
+  private get prepared(): PreparedScene | undefined {
+    return this.residency.prepared;
+  }
+  private get resources(): SceneResources | undefined {
+    return this.residency.resources;
+  }
 
   /**
    * Compiles the path tracer and the tone mapper, side by side. `features`: those of the scene that
@@ -190,13 +192,13 @@ export class Renderer {
   static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: GPUTextureFormat } = {}): Promise<Renderer> {
     const { device } = gpu;
     // The small passes first: they compile while the path tracer is reflected and its scene awaited.
-    const [tonemap, present, pathTrace, features] = await Promise.all([
+    const [tonemap, present, progressive, features] = await Promise.all([
       TonemapPass.create(device),
       options.presentation ? PresentPass.create(device, options.presentation) : undefined,
-      PathTracePass.create(device, options.features),
+      ProgressiveRecipe.create(device, options.features),
       options.features,
     ]);
-    const renderer = new Renderer(gpu, new ViewUniform(device), pathTrace, tonemap, present);
+    const renderer = new Renderer(gpu, new ViewUniform(device), progressive, tonemap, present);
     renderer.expectedFeatures = features;
     return renderer;
   }
@@ -241,7 +243,7 @@ export class Renderer {
     const prepared = withAccel('packed' in scene ? scene : prepareScene(scene, undefined, { accel }), accel);
     // A scene exposed automatically (a game map) compiles the exposure pass beside its path tracer.
     const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.compileAutoExposure() : undefined;
-    await Promise.all([this.upload(prepared), exposure]);
+    await Promise.all([this.residency.upload(prepared), exposure]);
     void this.setSelection(undefined);
     // Another scene: the eye starts adapted to it, not to the last one.
     this.exposureAdapted = false;
@@ -259,39 +261,11 @@ export class Renderer {
     if (!this.prepared) throw new Error('Renderer: setScene() before setEnvironment()');
     const before = this.prepared.scene.camera.exposureStops ?? 0;
     const prepared = withPreparedEnvironment(this.prepared, environment);
-    await this.upload(prepared);
+    await this.residency.upload(prepared);
     const shift = (prepared.scene.camera.exposureStops ?? 0) - before;
     if (this.cameraValue) this.setCamera({ ...this.cameraValue, exposureStops: (this.cameraValue.exposureStops ?? 0) + shift });
     this.resetAccumulation();
     return prepared;
-  }
-
-  /** Compiles what the scene needs, then uploads it and frees the previous one (a failure leaves the old scene). */
-  private async upload(prepared: PreparedScene): Promise<void> {
-    const features = prepared.packed.features;
-    const compiling = Promise.all([
-      this.pathTrace.prepare(features), this.denoiser?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
-      ...(this.spectralEnabled ? [this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)] : []),
-    ]);
-    // The scene uploads while the GPU driver compiles (its threads, not this one).
-    const uploading = timedStage(this.device, 'upload scene', () => SceneResources.upload(this.device, prepared.packed, prepared.scene.name));
-    const [compiled, uploaded] = await Promise.allSettled([compiling, uploading]);
-    if (compiled.status === 'rejected') {
-      if (uploaded.status === 'fulfilled') uploaded.value.destroy();
-      throw compiled.reason;
-    }
-    if (uploaded.status === 'rejected') throw uploaded.reason;
-    const resources = uploaded.value;
-    this.resources?.destroy();
-    this.resources = resources;
-    this.uploads++;
-    this.prepared = prepared;
-    this.selectionStale = true;
-    // A new scene: its own tiles, if the setting asks for them.
-    this.tileCulled = undefined;
-    this.configureTileCulling();
-    // After the swap, so the idle timer it restarts sees the new scene.
-    this.invalidateSpecialisation();
   }
 
   /**
@@ -303,62 +277,19 @@ export class Renderer {
   }
 
   /**
-   * One step of a moving world (scene/world.ts): instances moved or changed material, meshes morphed,
+   * One step of a moving world (world/world.ts): instances moved or changed material, meshes morphed,
    * materials animated. Nothing is rebuilt: geometry is refitted and its buffers rewritten in place
    * (renderer/prepare.ts updateGeometry), materials repacked (updateMaterials). Restarts
    * accumulation; returns the updated scene (keep it to upload again after a lost device).
    * `walkHeights` is the viewer's business.
    */
   applySceneUpdate(update: SceneUpdate): PreparedScene {
-    // The other tiles' scenes catch up when they are swapped in.
-    this.tileCulled?.noteUpdate(update);
-    return this.applyToCurrent(update);
-  }
-
-  private applyToCurrent(update: SceneUpdate): PreparedScene {
-    const resources = this.resources;
-    if (!resources || !this.prepared) throw new Error('Renderer: setScene() before applySceneUpdate()');
-    if (update.instances.size > 0 || update.morphWeights.size > 0) {
-      const { prepared, writes, attributes, ms } = updateGeometry(this.prepared, update.instances, update.morphWeights);
-      this.writeScene(writes);
-      if (attributes) writeTriangleAttributes(this.device, this.resources!.triangleAttributes, prepared.packed.triangleAttributes);
-      this.prepared = prepared;
-      this.lastUpdateMs = ms;
-      this.selectionStale = true;
-      // The instance records now carry last frame's transforms as the previous ones: after one frame
-      // with them, they are settled (previous = current) unless another update comes first.
-      this.settle = prepared.levels ? 'after-frame' : 'no';
-    }
-    if (update.materials.size > 0) return this.updateMaterials(update.materials);
-    this.invalidateSpecialisation();
-    this.resetAccumulation();
-    return this.prepared;
-  }
-
-  /** Writes a geometry update's buffers: in place, or anew for a whole buffer that grew (the light table). */
-  private writeScene(writes: readonly BufferWrite[]): void {
-    let resources = this.resources!;
-    for (const w of writes) {
-      if (w.name === 'instances') resources = resources.rewriteInstances(this.device, w.data);
-      else if (w.offset === 0 && w.data.byteLength > resources.buffers[w.name].size) resources = resources.rewriteBuffer(this.device, w.name, w.data);
-      else this.device.queue.writeBuffer(resources.buffers[w.name], w.offset, w.data);
-    }
-    this.resources = resources;
+    return this.residency.apply(update);
   }
 
   /** CPU milliseconds of the last geometry update: bottom-level refits, the top-level build, packing. */
-  lastUpdateMs?: GeometryUpdate['ms'];
-
-  /** Whether the instance records' previous transforms must be made current ('after-frame': once the next frame has used them). */
-  private settle: 'no' | 'after-frame' | 'now' = 'no';
-
-  /** Before a real-time frame: instances that stopped moving get previous = current (no motion vectors left over). */
-  private settleInstances(): void {
-    if (this.settle !== 'now' || !this.prepared?.levels) return;
-    const p = this.prepared;
-    const bytes = packInstances(p.scene, p.levels, p.packed.layout, p.packed.packedMaterials, new Map());
-    this.resources = this.resources!.rewriteInstances(this.device, bytes);
-    this.settle = 'no';
+  get lastUpdateMs(): GeometryUpdate['ms'] | undefined {
+    return this.residency.lastUpdateMs;
   }
 
   /**
@@ -370,18 +301,7 @@ export class Renderer {
    * returns the edited scene (keep it to upload again after a lost device).
    */
   updateMaterials(edits: ReadonlyMap<number, MaterialEdit>): PreparedScene {
-    let resources = this.resources;
-    if (!resources || !this.prepared) throw new Error('Renderer: setScene() before updateMaterials()');
-    const { prepared, lightsChanged, textureRefsChanged } = editMaterials(this.prepared, edits);
-    resources = resources.rewriteBuffer(this.device, 'materials', prepared.packed.materials);
-    // Animated textures scroll by their texture references' transforms.
-    if (textureRefsChanged) resources = resources.rewriteBuffer(this.device, 'texture_refs', prepared.packed.texture_refs);
-    if (lightsChanged) for (const name of LIGHT_BUFFERS) resources = resources.rewriteBuffer(this.device, name, prepared.packed[name]);
-    this.resources = resources;
-    this.prepared = prepared;
-    this.invalidateSpecialisation();
-    this.resetAccumulation();
-    return prepared;
+    return this.residency.updateMaterials(edits);
   }
 
   /**
@@ -471,53 +391,13 @@ export class Renderer {
     const problem = camera.lens && lensProblem(camera.lens);
     if (problem) throw new LanternError(problem, 'Give an aperture radius ≥ 0 and a focus distance > 0 (scene units)');
     this.cameraValue = camera;
-    this.swapTile(camera.position);
+    this.residency.swapTile(camera.position);
     this.updateView();
   }
 
-  /** The per-tile culled scenes while the tileCulling setting is on (and the scene has a walk map). */
-  private tileCulled?: TileCulledScenes;
-
   /** What tile culling costs and saves, while it is on. */
   get tileCullingStats(): TileCullingStats | undefined {
-    return this.tileCulled?.stats();
-  }
-
-  /** Builds or drops the per-tile scenes as the setting says (the scene as it is now is the full one). */
-  private configureTileCulling(): void {
-    const want = this.settingsValue.tileCulling && this.prepared !== undefined;
-    if (!want) {
-      const culled = this.tileCulled;
-      this.tileCulled = undefined;
-      // Back to the whole scene, caught up with what moved.
-      if (culled && this.resources) this.swapGeometry(culled.full, culled.catchUp());
-      return;
-    }
-    if (this.tileCulled) return;
-    const config = defaultTileCulling(this.prepared!.scene);
-    if (!config) return;
-    this.tileCulled = TileCulledScenes.prepare(this.prepared!, config.grid, config.distance);
-    if (this.cameraValue) this.swapTile(this.cameraValue.position);
-  }
-
-  /** With tile culling, the camera stepped onto another tile: that tile's geometry replaces the current. */
-  private swapTile(position: Vec3): void {
-    if (!this.tileCulled || !this.resources) return;
-    const selection = this.tileCulled.select(position);
-    if (!selection.changed) return;
-    this.swapGeometry(selection.prepared, selection.catchUp);
-  }
-
-  /** Writes another prepared scene's geometry (same materials, textures, environment) and catches it up with the world. */
-  private swapGeometry(prepared: PreparedScene, catchUp: SceneUpdate | undefined): void {
-    let resources = this.resources!;
-    for (const name of TILE_SWAP_BUFFERS) resources = name === 'instances' ? resources.rewriteInstances(this.device, prepared.packed.instances) : resources.rewriteBuffer(this.device, name, prepared.packed[name]);
-    this.resources = resources;
-    if (prepared.packed.triangleAttributes.height === 1) writeTriangleAttributes(this.device, resources.triangleAttributes, prepared.packed.triangleAttributes);
-    this.prepared = prepared;
-    this.selectionStale = true;
-    if (catchUp && !isEmptyUpdate(catchUp)) this.applyToCurrent(catchUp);
-    this.resetAccumulation();
+    return this.residency.tileCullingStats;
   }
 
   private accelPending: Promise<void> = Promise.resolve();
@@ -540,8 +420,8 @@ export class Renderer {
    */
   private useSamplers(): void {
     const s = this.settingsValue;
-    const wanted: [TracingKernels, Sampler][] = [[this.pathTrace.kernels, resolveSampler(s.sampler, 'progressive')]];
-    if (this.denoiser) wanted.push([this.denoiser.frameKernels, resolveSampler(s.sampler, 'real-time')]);
+    const wanted: [TracingKernels, Sampler][] = [[this.progressive.kernels, resolveSampler(s.sampler, 'progressive')]];
+    if (this.realTime) wanted.push([this.realTime.frameKernels, resolveSampler(s.sampler, 'real-time')]);
     const switching = wanted.filter(([k, sampler]) => k.sampler !== sampler);
     if (switching.length === 0) return;
     const done = Promise.all(switching.map(([k, sampler]) => k.useSampler(sampler))).then(() => undefined);
@@ -558,18 +438,18 @@ export class Renderer {
     const accel = next.accel !== this.settingsValue.accel;
     this.settingsValue = next;
     if (next.sampler !== before.sampler) this.useSamplers();
-    if (culling) this.configureTileCulling();
+    if (culling) this.residency.configureTileCulling();
     // The wavefront frame path tracer is compiled in the background; frames use the megakernel until it is ready.
-    if (next.integrator === 'wavefront' && this.denoiser) this.compileWavefront().catch((e: unknown) => (this.wavefrontError = e));
+    if (next.integrator === 'wavefront' && this.realTime) this.compileWavefront().catch((e: unknown) => (this.wavefrontError = e));
     // So are the ReSTIR passes; frames take one light sample per bounce until they are ready.
-    if (next.restir && this.denoiser) this.denoiser.enableRestir().catch((e: unknown) => (this.restirError = e));
+    if (next.restir && this.realTime) this.realTime.enableRestir().catch((e: unknown) => (this.restirError = e));
     // Another acceleration structure for the static world: built and uploaded in the background
     // (frames trace the current one meanwhile); accelSettled() waits for it.
     if (accel && this.prepared) {
       // One switch at a time, each to the accel set by then (a quick bvh → grid → bvh ends on the BVH).
       this.accelPending = this.accelPending
         .catch(() => undefined)
-        .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
+        .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.residency.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
       this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
     }
     // Automatic exposure asked for: compiled in the background; present() shows the scene's exposure
@@ -588,71 +468,44 @@ export class Renderer {
    * goes back to generic at once. Camera moves, resizes and display settings keep the kernel.
    */
   get kernel(): KernelKind {
-    return this.resources && this.pathTrace.kernels.isSpecialised(this.resources) ? 'specialised' : 'generic';
+    return this.specialising.kernel;
   }
 
   /** Which kernels the wavefront frame path tracer runs now: generic until specialised with the others (requestSpecialisation). */
   get wavefrontKernel(): KernelKind {
-    return this.resources && this.denoiser?.wavefrontPass?.isSpecialised(this.resources) ? 'specialised' : 'generic';
+    return this.specialising.wavefrontKernel;
   }
 
   /** What the specialised kernels in use were compiled for, and how long that took. */
   get specialisation(): SpecialisationReport | undefined {
-    return this.kernel === 'specialised' ? this.specialisationValue : undefined;
+    return this.specialising.report;
+  }
+
+  /** The error of the last automatic (idle) specialisation, if it failed; rendering stays generic. */
+  get specialisationError(): unknown {
+    return this.specialising.error;
   }
 
   /**
    * Compiles the tracing kernels specialised to the scene and settings as they are now
-   * (gpu/specialisation.ts), asynchronously: frames keep rendering with the generic kernels until
-   * the compile is ready, then the next one uses them. Accumulation continues, since both compute the
-   * same estimator. Resolves with the report once switched, or undefined when an edit came first (the
-   * result is dropped), and at once with undefined in spectral mode (specialised kernels are RGB) and
-   * for scenes with moving instances (nothing there is frozen).
-   * Calling it again while a compile runs waits for that one.
+   * (renderer/specialisation-schedule.ts, gpu/specialisation.ts), asynchronously: frames keep
+   * rendering with the generic kernels until the compile is ready, then the next one uses them.
+   * Accumulation continues, since both compute the same estimator. Resolves with the report once
+   * switched, or undefined when an edit came first (the result is dropped), and at once with
+   * undefined in spectral mode (specialised kernels are RGB) and for scenes with moving instances
+   * (nothing there is frozen). Calling it again while a compile runs waits for that one.
    */
   requestSpecialisation(options: SpecialiseOptions = {}): Promise<SpecialisationReport | undefined> {
-    if (!this.prepared || !this.resources) throw new Error('Renderer: setScene() before requestSpecialisation()');
-    // Specialised kernels are compiled in RGB; spectral mode keeps the generic spectral variants.
-    if (this.settingsValue.spectral) return Promise.resolve(undefined);
-    // A scene with moving instances is never frozen: its generic two-level kernels are the ones to use.
-    if (this.prepared.levels) return Promise.resolve(undefined);
-    if (this.kernel === 'specialised') return Promise.resolve(this.specialisationValue);
-    const epoch = this.specialisationEpoch;
-    if (this.pendingSpecialisation?.epoch === epoch) return this.pendingSpecialisation.done;
-    const done = this.specialise(epoch, options);
-    this.pendingSpecialisation = { epoch, done };
-    return done;
-  }
-
-  private async specialise(epoch: number, options: SpecialiseOptions): Promise<SpecialisationReport | undefined> {
-    const prepared = this.prepared!, resources = this.resources!;
-    const s = this.settingsValue;
-    const spec = specialiseScene(prepared.packed, prepared.scene.name, { maxBounces: s.maxBounces, lightSampling: LIGHT_SAMPLING.indexOf(s.lightSampling) }, options);
-    const sets = [this.pathTrace.kernels, ...(this.denoiser ? [this.denoiser.frameKernels] : [])];
-    const wavefront = this.denoiser?.wavefrontPass;
-    const t0 = performance.now();
-    const [compiled, wavefrontKernels] = await Promise.all([Promise.all(sets.map((k) => k.compileSpecialised(spec))), wavefront?.compileSpecialised(spec)]);
-    const compileMs = performance.now() - t0;
-    if (epoch !== this.specialisationEpoch || resources !== this.resources) return undefined;
-    sets.forEach((k, i) => k.useSpecialised({ scene: resources, kernel: compiled[i]!.kernel }));
-    if (wavefront && wavefrontKernels) wavefront.useSpecialised({ scene: resources, kernels: wavefrontKernels });
-    this.specialisationValue = { compileMs, description: describeSpecialisation(spec), unrolled: spec.unrolled !== undefined, primitiveCount: spec.primitiveCount };
-    return this.specialisationValue;
+    return this.specialising.request(options);
   }
 
   /**
    * Goes back to the generic kernels at once and drops any compile under way; with an idle delay set
    * (setIdleSpecialisation), restarts its timer. Every method that edits the scene or an estimate
-   * setting calls it; so must any new one (material editing, for instance).
+   * setting calls it; so must any new one.
    */
   invalidateSpecialisation(): void {
-    this.specialisationEpoch++;
-    this.pendingSpecialisation = undefined;
-    this.specialisationValue = undefined;
-    this.pathTrace.kernels.useSpecialised(undefined);
-    this.denoiser?.frameKernels.useSpecialised(undefined);
-    this.denoiser?.wavefrontPass?.useSpecialised(undefined);
-    this.scheduleSpecialisation();
+    this.specialising.invalidate();
   }
 
   /**
@@ -661,23 +514,7 @@ export class Renderer {
    * specialisationError and rendering stays generic.
    */
   setIdleSpecialisation(idleMs: number | undefined): void {
-    if (idleMs !== undefined && !(Number.isFinite(idleMs) && idleMs >= 0)) throw new LanternError(`the idle delay before specialising must be a number of milliseconds ≥ 0, not ${idleMs}`);
-    this.idleSpecialisationMs = idleMs;
-    this.scheduleSpecialisation();
-  }
-
-  private scheduleSpecialisation(): void {
-    if (this.idleTimer !== undefined) clearTimeout(this.idleTimer);
-    this.idleTimer = undefined;
-    if (this.idleSpecialisationMs === undefined || !this.prepared || this.kernel === 'specialised') return;
-    this.idleTimer = setTimeout(() => {
-      this.idleTimer = undefined;
-      if (!this.prepared) return;
-      this.requestSpecialisation().then(
-        () => (this.specialisationError = undefined),
-        (e: unknown) => (this.specialisationError = e),
-      );
-    }, this.idleSpecialisationMs);
+    this.specialising.setIdle(idleMs);
   }
 
   /** Sets the image size, checked against the GPU's limits. */
@@ -724,7 +561,22 @@ export class Renderer {
 
   /** The whole image as one tile. */
   fullImage(): Tile {
-    return { x: 0, y: 0, width: this.width, height: this.height };
+    return wholeImage(this);
+  }
+
+  /**
+   * What the recipes' passes are given for a frame (renderer/frame.ts): the scene, the view and the
+   * camera, the settings, the image's targets, the torch the settings leave, the scene's size.
+   */
+  private frameContext(timer?: GpuTimer): FrameContext {
+    const { resources, targets } = this.ready();
+    const camera = this.cameraValue;
+    if (!camera) throw new Error('Renderer: setCamera() before rendering');
+    const torch = effectiveTorch(this.prepared!.scene, this.settingsValue.torch);
+    return {
+      device: this.device, scene: resources, prepared: this.prepared!, view: this.view, camera, settings: this.settingsValue, targets, sceneSize: this.sceneSize(),
+      ...(torch ? { torch } : {}), ...(timer ? { timer } : {}),
+    };
   }
 
   /**
@@ -733,10 +585,11 @@ export class Renderer {
    * timer, each tile's pass is timed and the timestamps are resolved with the last tile.
    */
   accumulate(samples: number, tiles: readonly Tile[] = [this.fullImage()], timer?: GpuTimer): void {
-    this.checkAccumulate(samples);
+    this.checkSamples(samples, 'dispatch');
+    const frame = this.frameContext(timer);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      this.encodeAccumulate(encoder, tile, samples, timer);
+      this.progressive.encode(encoder, frame, tile, this.samples, samples);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
     });
@@ -751,32 +604,33 @@ export class Renderer {
    * (the reset cleared what its bands added).
    */
   beginAccumulate(samples: number, timer?: GpuTimer): SplitFrame {
-    const { targets } = this.ready();
-    this.checkAccumulate(samples);
-    return new SplitFrame(this, targets, samples, true, {
-      band: (encoder, tile) => this.encodeAccumulate(encoder, tile, samples, timer && timer.room > TIMER_ROOM_AFTER_BANDS ? timer : undefined),
-      finish: (encoder) => timer?.resolve(encoder),
-      done: () => {
-        this.samples += samples;
-        this.shown = 'accumulation';
-      },
-      abandon: () => {},
-    }, 'path trace');
+    this.checkSamples(samples, 'dispatch');
+    const work = this.progressive.begin(this.frameContext(timer), samples, this.samples);
+    return this.split(work, samples, 'path trace', () => {
+      this.samples += samples;
+      this.shown = 'accumulation';
+    });
   }
 
-  private checkAccumulate(samples: number): void {
+  /** Samples must be a positive whole number, and spectral paths (where they are traced: not by the hybrid recipe) compiled. */
+  private checkSamples(samples: number, per: 'dispatch' | 'frame', tracesSpectral = true): void {
     this.ready();
-    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per dispatch must be a positive whole number, not ${samples}`);
-    if (this.settingsValue.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
+    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per ${per} must be a positive whole number, not ${samples}`);
+    if (tracesSpectral && this.settingsValue.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
   }
 
-  /** Records `samples` paths per pixel over `tile`, starting at the estimate's current sample index. */
-  private encodeAccumulate(encoder: GPUCommandEncoder, tile: Tile, samples: number, timer?: GpuTimer): void {
-    const { resources, targets } = this.ready();
-    const s = this.settingsValue;
-    const torch = effectiveTorch(this.prepared?.scene, s.torch);
-    const dispatch = { tile, sampleIndex: this.samples, samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: resolveSampler(s.sampler, 'progressive'), torch, spectral: s.spectral };
-    this.pathTrace.encode(encoder, resources, this.view, targets, dispatch, timer);
+  /** A SplitFrame driving a recipe's frame; `done` runs after the recipe's own once the last band is submitted. */
+  private split(work: RecipeFrame, samples: number, label: string, done: () => void): SplitFrame {
+    const { targets } = this.ready();
+    return new SplitFrame(this, targets, samples, work.splittable, {
+      band: (encoder, tile) => work.band(encoder, tile),
+      finish: (encoder) => work.finish(encoder),
+      done: () => {
+        work.done();
+        done();
+      },
+      abandon: () => work.abandon(),
+    }, label);
   }
 
   /**
@@ -798,14 +652,14 @@ export class Renderer {
     this.spectralEnabled = true;
     if (!this.prepared) return;
     const features = this.prepared.packed.features;
-    await Promise.all([this.pathTrace.prepare(features, true), this.denoiser?.prepare(features, true)]);
+    await Promise.all([this.progressive.prepare(features, true), this.realTime?.prepare(features, true)]);
   }
 
   /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output; the wavefront one and ReSTIR's where asked). */
   private async compileRealTime(wants: { readonly wavefront: boolean; readonly restir: boolean }): Promise<void> {
-    const created = !this.denoiser;
-    this.denoiser ??= await Denoiser.create(this.device, this.sceneFeatures);
-    if (this.prepared) await Promise.all([this.denoiser.prepare(this.prepared.packed.features), this.spectralEnabled ? this.denoiser.prepare(this.prepared.packed.features, true) : undefined]);
+    const created = !this.realTime;
+    this.realTime ??= await RealTimeRecipe.create(this.device, this.sceneFeatures);
+    if (this.prepared) await Promise.all([this.realTime.prepare(this.prepared.packed.features), this.spectralEnabled ? this.realTime.prepare(this.prepared.packed.features, true) : undefined]);
     if (created) this.useSamplers();
     if (wants.wavefront) await this.compileWavefront();
     if (wants.restir) await this.compileRestir();
@@ -822,33 +676,39 @@ export class Renderer {
 
   /** Compiles the ReSTIR passes (settings.restir) into the real-time chain. Until they are ready, frames run without them. */
   private async compileRestir(): Promise<void> {
-    await this.denoiser!.enableRestir();
+    await this.realTime!.enableRestir();
     this.restirError = undefined;
   }
 
   /** Compiles the wavefront frame path tracer (settings.integrator = 'wavefront') into the real-time chain. Until it is ready, frames are traced by the megakernel. */
   private async compileWavefront(): Promise<void> {
-    if (!this.denoiser) throw new Error('Renderer: the real-time chain before its wavefront integrator');
-    const created = !this.denoiser.wavefrontPass;
-    await this.denoiser.enableWavefront();
+    if (!this.realTime) throw new Error('Renderer: the real-time chain before its wavefront integrator');
+    const created = !this.realTime.wavefrontPass;
+    await this.realTime.enableWavefront();
     this.wavefrontError = undefined;
     // Specialised kernels are compiled for every tracing pass at once (one under way lacks the wavefront's): specialise again with it.
     if (created) this.invalidateSpecialisation();
   }
 
-  /** Which path tracer traced the last real-time frame (settings.integrator, or the megakernel while the wavefront compiles). */
-  get frameIntegrator(): Integrator {
-    return this.denoiser?.frameIntegrator ?? 'megakernel';
+  /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
+  private async compileHybrid(): Promise<void> {
+    this.hybrid ??= await HybridRecipe.create(this.device, this.sceneFeatures);
+    if (this.prepared) await this.hybrid.prepare(this.prepared.packed.features);
   }
 
-  /** Bytes per pixel of the real-time denoising chain's buffers, each and in all (Denoiser.bufferSizes; empty until a frame). */
+  /** Which path tracer traced the last real-time frame (settings.integrator, or the megakernel while the wavefront compiles). */
+  get frameIntegrator(): Integrator {
+    return this.realTime?.frameIntegrator ?? 'megakernel';
+  }
+
+  /** Bytes per pixel of the real-time denoising chain's buffers, each and in all (RealTimeRecipe.bufferSizes; empty until a frame). */
   get denoiserMemory(): { readonly bytesPerPixel: number; readonly buffers: readonly DenoiserBufferSize[] } {
-    return { bytesPerPixel: this.denoiser?.bytesPerPixel() ?? 0, buffers: this.denoiser?.bufferSizes() ?? [] };
+    return { bytesPerPixel: this.realTime?.bytesPerPixel() ?? 0, buffers: this.realTime?.bufferSizes() ?? [] };
   }
 
   /** Bytes the wavefront path tracer's own buffers hold (path state and queues; 0 until it traced a frame). */
   get wavefrontBytes(): number {
-    return this.denoiser?.wavefrontAllocatedBytes ?? 0;
+    return this.realTime?.wavefrontAllocatedBytes ?? 0;
   }
 
   /**
@@ -857,22 +717,15 @@ export class Renderer {
    * timer its passes are timed ('frame G-buffer', 'frame emission' and 'path trace (frame)' for the
    * megakernel; 'frame G-buffer', 'frame emission' and 'path trace (wavefront)' for the wavefront);
    * `breakdown` times the wavefront's stages apart instead (WavefrontFramePass.encode names them).
-   * ReSTIR does not run here (Denoiser.encodeTraceOnly); renderFrame times its passes.
+   * ReSTIR does not run here (RealTimeRecipe.encodeTraceOnly); renderFrame times its passes.
    * For timing the two integrators (bench) and comparing them (readFrameTrace). Returns which traced.
    */
   traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
-    const { resources, targets } = this.ready();
-    const s = this.settingsValue;
-    if (!this.denoiser || !this.cameraValue) throw new Error('Renderer: compile() the real-time chain before traceFrame()');
-    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
-    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
-    const torch = effectiveTorch(this.prepared?.scene, s.torch);
-    this.settleInstances();
+    if (!this.realTime) throw new Error('Renderer: compile() the real-time chain before traceFrame()');
+    this.checkSamples(samples, 'frame');
+    this.residency.settleBeforeFrame();
     const encoder = this.device.createCommandEncoder({ label: 'real-time frame path tracing' });
-    const integrator = this.denoiser.encodeTraceOnly(encoder, {
-      scene: resources, view: this.view, camera: this.cameraValue, settings: s, samples, rayCounters: targets.rayCounters, depthScale: this.sceneSize(),
-      ...(torch ? { torch } : {}), ...(options.timer ? { timer: options.timer } : {}),
-    }, options.sampleIndex ?? 0, options.breakdown ?? false);
+    const integrator = this.realTime.encodeTraceOnly(encoder, this.frameContext(options.timer), samples, options.sampleIndex ?? 0, options.breakdown ?? false);
     options.timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
     return integrator;
@@ -884,15 +737,17 @@ export class Renderer {
    * traceFrame overwrites the shown frame's output likewise.
    */
   readFrameTrace(): Promise<FrameTrace> {
-    if (!this.denoiser) throw new Error('Renderer: compile() the real-time chain before readFrameTrace()');
-    return this.denoiser.readTrace();
+    if (!this.realTime) throw new Error('Renderer: compile() the real-time chain before readFrameTrace()');
+    return this.realTime.readTrace();
   }
 
   /**
-   * One real-time frame: `samples` paths per pixel, then temporal accumulation (settings.temporal)
-   * and the spatial filter (settings.denoise), in one submit. The history survives setCamera (it is
-   * reprojected) and setScene (changed pixels fail the G-buffer tests); resize or resetHistory()
-   * drop it. With a timer, every pass is timed. present(), readImage() and readFrame() show the result.
+   * One frame of the recipe the settings choose (renderer/recipes/recipe.ts recipeFor, frames asked
+   * for): the real-time chain (`samples` paths per pixel, then temporal accumulation and the spatial
+   * filter), the hybrid recipe, or a debug view alone (nothing traced), in one submit. The history
+   * survives setCamera (it is reprojected) and setScene (changed pixels fail the G-buffer tests);
+   * resize or resetHistory() drop it. With a timer, every pass is timed. present(), readImage() and
+   * readFrame() show the result.
    */
   renderFrame(samples: number, timer?: GpuTimer): void {
     const frame = this.beginFrame(samples, timer);
@@ -900,62 +755,42 @@ export class Renderer {
   }
 
   /**
-   * One real-time frame (renderFrame) as a sequence of submissions: the path tracing in row bands,
-   * each submitted by SplitFrame.submitChunk, the filters with the last band. Awaiting finish()
-   * between bands keeps every submission short, so the page answers input, Pause and settings between
-   * them; the frame adds up to exactly renderFrame's. The wavefront integrator and the hybrid recipe
-   * trace whole frames: their frames have one band (splittable false).
+   * One frame (renderFrame) as a sequence of submissions: the path tracing in row bands, each
+   * submitted by SplitFrame.submitChunk, the filters with the last band. Awaiting finish() between
+   * bands keeps every submission short, so the page answers input, Pause and settings between them;
+   * the frame adds up to exactly renderFrame's. The wavefront integrator and the hybrid recipe trace
+   * whole frames: their frames have one band (splittable false).
    */
   beginFrame(samples: number, timer?: GpuTimer): SplitFrame {
-    const { resources, targets } = this.ready();
-    const s = this.settingsValue;
-    const recipe = recipeFor(s, { frames: true });
-    if (recipe === 'hybrid') return this.wholeFrame(targets, samples, () => this.renderHybridFrame(timer));
+    const recipe = this.frameRecipe();
+    this.checkSamples(samples, 'frame', recipe === this.realTime);
     // A debug view that replaces the image is drawn by present() and readImage(): nothing to trace.
-    if (recipe === 'debug') return this.wholeFrame(targets, samples, () => {});
-    const denoiser = this.denoiser;
-    if (!denoiser || !this.cameraValue) throw new Error('Renderer: compile() the real-time chain before renderFrame()');
-    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per frame must be a positive whole number, not ${samples}`);
-    if (s.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
-    const torch = effectiveTorch(this.prepared?.scene, s.torch);
-    this.settleInstances();
-    const request: FrameRequest = {
-      scene: this.resources!,
-      view: this.view,
-      camera: this.cameraValue,
-      settings: s,
-      samples,
-      rayCounters: targets.rayCounters,
-      depthScale: this.sceneSize(),
-      ...(torch ? { torch } : {}),
-      ...(timer ? { timer } : {}),
-    };
-    const whole = denoiser.tracesWavefront(resources, s);
-    denoiser.beginFrame(request);
-    return new SplitFrame(this, targets, samples, !whole, {
-      // Bands are timed while the timer has room for them and the passes after (each band's passes are named alike: readers sum them).
-      band: (encoder, tile) => denoiser.encodeBand(encoder, timedWhileRoom(request, timer), whole ? undefined : tile),
-      finish: (encoder) => {
-        denoiser.finishFrame(encoder, request);
-        timer?.resolve(encoder);
-      },
-      done: () => {
-        this.frameRecipe = 'path';
-        this.shown = 'frame';
-        if (this.settle === 'after-frame') this.settle = 'now';
-      },
-      abandon: () => denoiser.abandonFrame(),
-    }, 'real-time frame');
+    if (!recipe) return this.split({ splittable: false, band: () => {}, finish: () => {}, done: () => {}, abandon: () => {} }, samples, 'frame', () => {});
+    this.residency.settleBeforeFrame();
+    const frame = this.frameContext(timer);
+    const work = recipe.begin(frame, samples);
+    return this.split({ ...work, finish: (encoder) => {
+      work.finish(encoder);
+      timer?.resolve(encoder);
+    } }, samples, recipe === this.hybrid ? 'hybrid frame' : 'real-time frame', () => {
+      this.lastFrame = recipe;
+      this.shown = 'frame';
+      this.residency.frameDone();
+    });
   }
 
-  /** A frame traced whole (the hybrid recipe): one band, submitted by `render`. */
-  private wholeFrame(targets: ImageTargets, samples: number, render: () => void): SplitFrame {
-    return new SplitFrame(this, targets, samples, false, { band: () => {}, finish: () => {}, done: () => {}, abandon: () => {}, whole: render }, 'frame');
+  /** The recipe a frame runs now (undefined: a debug view alone), compiled. */
+  private frameRecipe(): FrameRecipe | undefined {
+    const recipe = recipeFor(this.settingsValue, { frames: true });
+    if (recipe === 'debug') return undefined;
+    const compiled = recipe === 'hybrid' ? this.hybrid : this.realTime;
+    if (!compiled) throw new Error(`Renderer: compile() the ${recipe} recipe before renderFrame()`);
+    return compiled;
   }
 
   /** What SplitFrame checks before each band: the estimate, the history and the scene are those the frame began with. */
   frameGeneration(): string {
-    return `${this.epoch} ${this.historyResets} ${this.uploads}`;
+    return `${this.epoch} ${this.historyResets} ${this.residency.uploads}`;
   }
 
   /** Submits an encoder (SplitFrame's bands). */
@@ -968,63 +803,26 @@ export class Renderer {
     return this.targets;
   }
 
-  /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
-  private async compileHybrid(): Promise<void> {
-    this.hybrid ??= await Hybrid.create(this.device, this.sceneFeatures);
-    if (this.prepared) await this.hybrid.prepare(this.prepared.packed.features);
-  }
-
-  /** One frame of the hybrid recipe (renderer/hybrid.ts): RGB always (spectral mode is the path tracer's). */
-  private renderHybridFrame(timer?: GpuTimer): void {
-    const { resources, targets } = this.ready();
-    if (!this.hybrid || !this.cameraValue || !this.prepared) throw new Error('Renderer: compile() the hybrid recipe before renderFrame()');
-    const s = this.settingsValue;
-    const torch = effectiveTorch(this.prepared.scene, s.torch);
-    this.settleInstances();
-    const encoder = this.device.createCommandEncoder({ label: 'hybrid frame' });
-    this.hybrid.encodeFrame(encoder, {
-      scene: resources,
-      prepared: this.prepared,
-      view: this.view,
-      camera: this.cameraValue,
-      settings: s,
-      rayCounters: targets.rayCounters,
-      sceneSize: 2 * this.sceneSize(),
-      ...(torch ? { torch } : {}),
-      ...(timer ? { timer } : {}),
-    });
-    timer?.resolve(encoder);
-    this.device.queue.submit([encoder.finish()]);
-    this.frameRecipe = 'hybrid';
-    this.shown = 'frame';
-    if (this.settle === 'after-frame') this.settle = 'now';
-  }
-
-  /** The linear output of the last real-time frame, of whichever recipe made it. */
-  private frameOutput(): GPUBuffer | undefined {
-    return this.frameRecipe === 'hybrid' ? this.hybrid?.output : this.denoiser?.output;
-  }
-
   /**
    * Chooses what present() and readImage() show: the progressive estimate or the last real-time frame
    * (by default, whichever was rendered last). The viewer renders both while a still view converges.
    */
   show(image: 'accumulation' | 'frame'): void {
-    if (image === 'frame' && !this.frameOutput()) throw new Error('Renderer: renderFrame() before show(\'frame\')');
+    if (image === 'frame' && !this.lastFrame?.output) throw new Error('Renderer: renderFrame() before show(\'frame\')');
     this.shown = image;
   }
 
   /** Drops the real-time history: the next frame starts from its own samples. */
   resetHistory(): void {
     this.historyResets++;
-    this.denoiser?.resetHistory();
+    this.realTime?.resetHistory();
     this.hybrid?.resetHistory();
   }
 
   /** The linear radiance of the last real-time frame (before tone mapping; a debug view if one is chosen). */
   async readFrame(): Promise<LinearImage> {
     const { targets } = this.ready();
-    const output = this.frameOutput();
+    const output = this.lastFrame?.output;
     if (!output) throw new Error('Renderer: renderFrame() before readFrame()');
     const raw = new Float32Array(await readBuffer(this.device, output));
     const n = targets.width * targets.height;
@@ -1142,15 +940,14 @@ export class Renderer {
   destroy(): void {
     this.setIdleSpecialisation(undefined);
     this.invalidateSpecialisation();
-    this.resources?.destroy();
-    this.resources = undefined;
+    this.residency.destroy();
     this.destroyTargets();
     this.view.destroy();
-    this.denoiser?.destroy();
-    this.denoiser = undefined;
+    this.realTime?.destroy();
+    this.realTime = undefined;
     this.hybrid?.destroy();
     this.hybrid = undefined;
-    this.pathTrace.destroy();
+    this.progressive.destroy();
     this.tonemap.destroy();
     this.destroyed = true;
     this.exposure?.destroy();
@@ -1204,9 +1001,9 @@ export class Renderer {
 
   private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, seconds: number, timer?: GpuTimer): void {
     const s = this.settingsValue;
-    const frame = this.shown === 'frame' ? this.frameOutput() : undefined;
-    // Debug views are shown as computed: no exposure, no tone curve.
-    const debug = frame !== undefined && this.frameRecipe === 'path' && s.denoiseView !== 'output';
+    const frame = this.shown === 'frame' ? this.lastFrame?.output : undefined;
+    // Debug views of a recipe are shown as computed: no exposure, no tone curve.
+    const debug = frame !== undefined && this.lastFrame!.showsRawValues({ settings: s });
     const radiance = frame ?? targets.accumulation;
     const sampleCount = frame ? 1 : this.samples;
     let choice = this.exposureChoice;
@@ -1271,139 +1068,6 @@ export class Renderer {
     this.targets.rayCounters.destroy();
     this.targets.output.destroy();
     this.targets = undefined;
-  }
-}
-
-/** Timestamp slots a split frame leaves for the passes after its bands (temporal, à-trous ×5, tone map, present, debug). */
-const TIMER_ROOM_AFTER_BANDS = 12;
-/**
- * The most timed passes one band records: its G-buffer, emission and paths (3), or with ReSTIR the
- * first band's whole-image G-buffer and emission, 'restir initial', 'restir temporal', 'restir
- * spatial', 'restir lend' and its paths (7).
- */
-const TIMER_SLOTS_PER_BAND = 7;
-
-/** The request with the timer while it has room for a band's passes and those after the bands. */
-function timedWhileRoom(request: FrameRequest, timer: GpuTimer | undefined): FrameRequest {
-  if (!timer || timer.room >= TIMER_ROOM_AFTER_BANDS + TIMER_SLOTS_PER_BAND) return request;
-  const { timer: _, ...untimed } = request;
-  return untimed;
-}
-
-/** What a SplitFrame records: a band of the tracing, the passes after the last band, and what completes or gives up the frame. */
-interface SplitWork {
-  band(encoder: GPUCommandEncoder, tile: Tile): void;
-  finish(encoder: GPUCommandEncoder): void;
-  done(): void;
-  abandon(): void;
-  /** A frame traced whole, submitting itself (the hybrid recipe). */
-  whole?: () => void;
-}
-
-/**
- * A frame's GPU work cut into row bands (Renderer.beginFrame, beginAccumulate), submitted one at a
- * time top to bottom: submitChunk records the next band of rows, or a piece of one (and, with the last,
- * the passes after the tracing) and submits it; the caller awaits Renderer.finish() before the next, so each submission
- * is a short wait for the page. Every pixel's paths depend on that pixel alone (its random streams are
- * keyed by pixel and sample index, never by tile), so the bands add up to exactly the unsplit frame.
- * Anything that changes what the frame computes (a camera move, a resize, a scene or settings
- * change: each resets the estimate or the history) makes it invalid; the caller then abandons it.
- */
-export class SplitFrame {
-  /** The next chunk's corner, and the height of the band under way. */
-  private x = 0;
-  private y = 0;
-  private bandRows = 0;
-  private finished = false;
-  private abandoned = false;
-  private readonly generation: string;
-
-  constructor(
-    private readonly renderer: Renderer,
-    private readonly targets: ImageTargets,
-    /** Paths per pixel of the frame. */
-    readonly samples: number,
-    /** Whether the tracing can be cut into bands (false: the first submitChunk submits the whole frame). */
-    readonly splittable: boolean,
-    private readonly work: SplitWork,
-    private readonly label: string,
-  ) {
-    this.generation = renderer.frameGeneration();
-  }
-
-  get width(): number {
-    return this.targets.width;
-  }
-
-  get height(): number {
-    return this.targets.height;
-  }
-
-  /** Rows done so far (whole bands). */
-  get rowsDone(): number {
-    return this.y;
-  }
-
-  /** Rows not yet done, the current band's included. */
-  get rowsLeft(): number {
-    return this.height - this.y;
-  }
-
-  /** Columns of the current band not yet done (the width between bands). */
-  get columnsLeft(): number {
-    return this.width - this.x;
-  }
-
-  /** Whether the whole frame has been submitted. */
-  get done(): boolean {
-    return this.finished;
-  }
-
-  /** Whether the frame may go on: nothing reset the estimate or the history and the image was not resized since it began. */
-  get valid(): boolean {
-    return !this.abandoned && !this.finished && this.renderer.currentTargets() === this.targets && this.renderer.frameGeneration() === this.generation;
-  }
-
-  /**
-   * Records and submits the next chunk: `columns` pixels (default the whole width) of a band of
-   * `rows` rows; a band's height is set by its first chunk, and chunks go left to right, bands top to
-   * bottom. A frame that is not splittable is submitted whole. The last chunk carries the passes
-   * after the tracing in the same submission. Returns the pixels traced.
-   */
-  submitChunk(rows: number, columns = this.width): number {
-    if (!this.valid) throw new Error('SplitFrame: the frame was finished, abandoned or overtaken by a change; begin another');
-    if (!this.splittable) {
-      rows = this.height;
-      columns = this.width;
-    }
-    if (this.x === 0) this.bandRows = Math.min(Math.max(1, Math.floor(rows)), this.height - this.y);
-    const tile = { x: this.x, y: this.y, width: Math.min(Math.max(1, Math.floor(columns)), this.width - this.x), height: this.bandRows };
-    this.x += tile.width;
-    if (this.x === this.width) {
-      this.x = 0;
-      this.y += this.bandRows;
-    }
-    const last = this.y === this.height;
-    if (this.work.whole) {
-      this.work.whole();
-    } else {
-      const encoder = this.renderer.device.createCommandEncoder({ label: `${this.label} (${tile.x}, ${tile.y}) ${tile.width}×${tile.height}` });
-      this.work.band(encoder, tile);
-      if (last) this.work.finish(encoder);
-      this.renderer.submit(encoder);
-    }
-    if (last) {
-      this.finished = true;
-      this.work.done();
-    }
-    return tile.width * tile.height;
-  }
-
-  /** Gives the frame up (the real-time chain's history stays that of the last finished frame). */
-  abandon(): void {
-    if (this.finished || this.abandoned) return;
-    this.abandoned = true;
-    this.work.abandon();
   }
 }
 

@@ -11,7 +11,7 @@ import { primaryRay } from '../../src/gpu/view.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
 import { DEFAULT_SETTINGS } from '../../src/renderer/settings.ts';
-import { haltonJitter } from '../../src/renderer/hybrid.ts';
+import { haltonJitter } from '../../src/renderer/recipes/hybrid.ts';
 import { traceScene } from '../../src/bvh/levels.ts';
 import { renderProgressive } from '../../src/renderer/progressive.ts';
 import { IDENTITY } from '../../src/math/mat4.ts';

@@ -10,7 +10,8 @@
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
-import { Renderer, type SplitFrame } from '../../src/renderer/renderer.ts';
+import { Renderer } from '../../src/renderer/renderer.ts';
+import type { SplitFrame } from '../../src/renderer/split-frame.ts';
 import { GpuTimer } from '../../src/gpu/timestamps.ts';
 import type { Camera } from '../../src/scene/types.ts';
 import { testGpu } from './gpu-context.ts';

@@ -14,7 +14,7 @@ import { loadDoomMap } from '../../src/loaders/doom/load.ts';
 import { encodeMap, encodePatch, squareRoom, squareRoomWad, WadBuilder } from '../../src/loaders/doom/test-wad.ts';
 import { readWad, WadStack } from '../../src/loaders/doom/wad.ts';
 import { wavefrontBytesPerPixel } from '../../src/passes/wavefront-frame-pass.ts';
-import type { FrameTrace } from '../../src/renderer/denoiser.ts';
+import type { FrameTrace } from '../../src/renderer/recipes/real-time.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
 import type { RenderSettings } from '../../src/renderer/settings.ts';

@@ -13,7 +13,7 @@ import { centreFocusDistance } from '../../renderer/focus.ts';
 import { cameraFromOptions, withCameraOptions } from '../camera-option.ts';
 import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { integerOption, numberOption, pathOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
-import type { KernelKind } from '../../renderer/renderer.ts';
+import type { KernelKind } from '../../renderer/specialisation-schedule.ts';
 import { writeDebugExr, writeExr, writePng } from '../output-files.ts';
 import { sceneHelp } from '../scene-source.ts';
 import { openSession } from '../session.ts';

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { builtinScene } from '../loaders/builtin/index.ts';
+import { builtinScene } from '../../loaders/builtin/index.ts';
 import { giSize, haltonJitter, hybridBytesPerPixel, radicalInverse, rasterDraws } from './hybrid.ts';
-import { prepareScene } from './prepare.ts';
+import { prepareScene } from '../prepare.ts';
 
 describe('the hybrid recipe, host side', () => {
   it("jitters by Halton (2, 3): stratified in both axes over the period, centred on the pixel", () => {

@@ -1,5 +1,6 @@
 /**
- * The real-time frame recipe (Renderer.renderFrame):
+ * The real-time recipe (recipeFor's 'real-time'; Renderer.renderFrame), the chain once called the
+ * Denoiser:
  *
  *   [ReSTIR: G-buffer, reservoirs: initial, temporal, spatial — the whole image, with the first band]
  *   path trace (N spp, demodulated radiance + G-buffer) → temporal (reprojected history, variance)
@@ -7,7 +8,7 @@
  *     (without the filter, or for a debug view: → output pass → tone map)
  *
  * after SVGF (Schied et al. 2017), with its feedback: the first à-trous iteration's output is the
- * colour history. The Denoiser owns the per-pixel buffers (72 bytes a pixel in all, 80 with ReSTIR, bufferSizes():
+ * colour history. The recipe owns the per-pixel buffers (72 bytes a pixel in all, 80 with ReSTIR, bufferSizes():
  * packed records, and buffers shared by passes whose lifetimes do not overlap, atrousSchedule),
  * ping-pongs the surface records and the moments between frames, and remembers the camera of the
  * previous frame, so moving the
@@ -15,23 +16,25 @@
  * still runs the temporal pass without history, which then only estimates the variance spatially;
  * spatial off skips the à-trous iterations.
  */
-import { LanternError } from '../errors.ts';
-import type { SceneResources } from '../gpu/scene-resources.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
-import { reflectModule } from '../gpu/wgsl/reflect.ts';
+import { LanternError } from '../../errors.ts';
+import type { SceneResources } from '../../gpu/scene-resources.ts';
+import type { GpuTimer } from '../../gpu/timestamps.ts';
+import { pathDispatch, wholeImage, type FrameContext } from '../frame.ts';
+import type { FrameRecipe, RecipeFrame } from './frame-recipe.ts';
+import { reflectModule } from '../../gpu/wgsl/reflect.ts';
 import {
   ATROUS_SLOPES_LABEL, ATROUS_SLOPES_SLOT, EXACT_WEIGHT_ITERATIONS, atrousLabel, atrousSchedule, atrousWeightsLabel, atrousWeightsSlot, createDenoisePasses, denoiseAtrousParams,
   denoiseOutputParams, denoiseSlopesParams, denoiseWeightsParams, temporalParams, type DenoisePasses,
-} from '../passes/denoise-passes.ts';
-import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
-import { PathTraceFramePass, type FrameTarget } from '../passes/path-trace-frame-pass.ts';
-import { WavefrontFramePass } from '../passes/wavefront-frame-pass.ts';
-import { RestirPass, type RestirTarget } from '../passes/restir-pass.ts';
-import { readBuffer } from '../gpu/readback.ts';
-import type { Tile, TracingKernels } from '../passes/path-trace-pass.ts';
-import type { Camera, Torch } from '../scene/types.ts';
-import { resolveSampler, type Integrator, type RenderSettings } from './settings.ts';
-import type { ViewUniform } from '../gpu/view.ts';
+} from '../../passes/denoise-passes.ts';
+import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
+import { PathTraceFramePass, type FrameTarget } from '../../passes/path-trace-frame-pass.ts';
+import { WavefrontFramePass } from '../../passes/wavefront-frame-pass.ts';
+import { RestirPass, type RestirTarget } from '../../passes/restir-pass.ts';
+import { readBuffer } from '../../gpu/readback.ts';
+import type { Tile, TracingKernels } from '../../passes/path-trace-pass.ts';
+import type { Camera } from '../../scene/types.ts';
+import type { Integrator, RenderSettings } from '../settings.ts';
+import type { ViewUniform } from '../../gpu/view.ts';
 
 /** Bytes of the frame scratch per pixel: four words (FRAME_* of shaders/denoise/gbuffer.wgsl), at the end the output vec4f. */
 const SCRATCH_BYTES = 16;
@@ -77,6 +80,9 @@ interface Buffers {
 
 /** A frame begun and not yet finished or abandoned. */
 interface OpenFrame {
+  readonly frame: FrameContext;
+  /** Paths per pixel. */
+  readonly samples: number;
   readonly buffers: Buffers;
   /** Whether it runs ReSTIR (settled when it begins). */
   readonly restir: boolean;
@@ -104,18 +110,20 @@ interface ParityGroups {
   readonly output: Record<number, GPUBindGroup>;
 }
 
-export interface FrameRequest {
-  readonly scene: SceneResources;
-  readonly view: ViewUniform;
-  readonly camera: Camera;
-  readonly settings: RenderSettings;
-  readonly torch?: Torch;
-  readonly samples: number;
-  /** Where extension and shadow rays are counted (the renderer's counters). */
-  readonly rayCounters: GPUBuffer;
-  /** Linear depth shown as mid grey in the depth view. */
-  readonly depthScale: number;
-  readonly timer?: GpuTimer;
+/** Timestamp slots a split frame leaves for the passes after its bands (temporal, à-trous ×5, tone map, present, debug). */
+const TIMER_ROOM_AFTER_BANDS = 12;
+/**
+ * The most timed passes one band records: its G-buffer, emission and paths (3), or with ReSTIR the
+ * first band's whole-image G-buffer and emission, 'restir initial', 'restir temporal', 'restir
+ * spatial', 'restir lend' and its paths (7).
+ */
+const TIMER_SLOTS_PER_BAND = 7;
+
+/** The frame with its timer while the timer has room for a band's passes and those after the bands (each band's passes are named alike: readers sum them). */
+function timedWhileRoom(frame: FrameContext, timer: GpuTimer | undefined): FrameContext {
+  if (!timer || timer.room >= TIMER_ROOM_AFTER_BANDS + TIMER_SLOTS_PER_BAND) return frame;
+  const { timer: _, ...untimed } = frame;
+  return untimed;
 }
 
 /** The raw output of a frame's path tracing (before any filter), as the frame kernels write it, unpacked. */
@@ -135,7 +143,7 @@ export interface FrameTrace {
   readonly integrator: Integrator;
 }
 
-export class Denoiser {
+export class RealTimeRecipe implements FrameRecipe {
   private buffers?: Buffers;
   /** The wavefront frame path tracer, made by enableWavefront (settings.integrator = 'wavefront'). */
   private wavefront?: WavefrontFramePass;
@@ -164,9 +172,9 @@ export class Denoiser {
   ) {}
 
   /** `first`: the features of the scene to be rendered, where known (its frame kernels compile instead of a plain scene's). */
-  static async create(device: GPUDevice, first?: SceneFeatures): Promise<Denoiser> {
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<RealTimeRecipe> {
     const [frame, passes] = await Promise.all([PathTraceFramePass.create(device, first), createDenoisePasses(device)]);
-    return new Denoiser(device, frame, passes);
+    return new RealTimeRecipe(device, frame, passes);
   }
 
   /** Compiles the frame path tracer's variant for a scene with these features. */
@@ -263,6 +271,11 @@ export class Denoiser {
     return this.bufferSizes().reduce((sum, b) => sum + b.bytesPerPixel, 0);
   }
 
+  /** A debug view of the chain (settings.denoiseView) is shown as computed: no exposure, no tone curve. */
+  showsRawValues(frame: Pick<FrameContext, 'settings'>): boolean {
+    return frame.settings.denoiseView !== 'output';
+  }
+
   /** Forgets the history: the next frame starts from its own samples alone. */
   resetHistory(): void {
     this.historyValid = false;
@@ -270,25 +283,28 @@ export class Denoiser {
     this.previousCamera = undefined;
   }
 
-  /** Records one real-time frame into `encoder` (parameters are written now: submit before the next frame). */
-  encodeFrame(encoder: GPUCommandEncoder, r: FrameRequest): void {
-    this.beginFrame(r);
-    this.encodeBand(encoder, r);
-    this.finishFrame(encoder, r);
-  }
-
   /**
-   * Starts a real-time frame whose path tracing is recorded in row bands (encodeBand, each band may go
-   * in a submission of its own) and whose filters finishFrame records: what encodeFrame does in one
-   * encoder. Until finishFrame, abandonFrame gives the frame up and leaves the history as it was.
+   * Begins a frame of `samples` paths per pixel: its path tracing is recorded in row bands (each band
+   * may go in a submission of its own; the wavefront traces whole frames only), its temporal pass and
+   * filter with the last (finish). Until then, abandon gives the frame up and leaves the history as
+   * it was. Parameters are written as each part is recorded: submit it before the next is recorded.
    */
-  beginFrame(r: FrameRequest): void {
-    if (this.open) throw new Error('Denoiser: finishFrame() or abandonFrame() before the next beginFrame()');
-    const buffers = this.ensureBuffers(r.view, r.settings.restir);
+  begin(frame: FrameContext, samples: number): RecipeFrame {
+    if (this.open) throw new Error('RealTimeRecipe: finish or abandon a frame before the next begins');
+    const buffers = this.ensureBuffers(frame.view, frame.settings.restir);
     // The surface records ping-pong: this frame writes the other one.
     this.parity ^= 1;
     // Whether the frame runs ReSTIR is settled now, for all its bands (the passes may become ready mid-frame).
-    this.open = { buffers, restir: this.usesRestir(r, buffers), preludeDone: false };
+    const open: OpenFrame = { frame, samples, buffers, restir: this.usesRestir(frame, buffers), preludeDone: false };
+    this.open = open;
+    const whole = this.tracesWavefront(frame.scene, frame.settings);
+    return {
+      splittable: !whole,
+      band: (encoder, tile) => this.encodeBand(encoder, open, timedWhileRoom(frame, frame.timer), whole ? undefined : tile),
+      finish: (encoder) => this.finishFrame(encoder, open),
+      done: () => {},
+      abandon: () => this.abandonFrame(open),
+    };
   }
 
   /**
@@ -298,18 +314,17 @@ export class Denoiser {
    * whole image's G-buffer and reservoir passes before its paths, and every band traces paths alone.
    * The wavefront traces whole frames only: it asks for the whole image.
    */
-  encodeBand(encoder: GPUCommandEncoder, r: FrameRequest, tile?: Tile): void {
-    const f = this.open;
-    if (!f) throw new Error('Denoiser: beginFrame() before encodeBand()');
-    this.encodeTrace(encoder, r, f.buffers, this.sampleIndex, { ...(tile ? { tile } : {}), restir: f.restir, prelude: !f.preludeDone });
+  private encodeBand(encoder: GPUCommandEncoder, f: OpenFrame, r: FrameContext, tile?: Tile): void {
+    if (this.open !== f) throw new Error('RealTimeRecipe: a band of a frame finished or given up');
+    this.encodeTrace(encoder, r, f.samples, f.buffers, this.sampleIndex, { ...(tile ? { tile } : {}), restir: f.restir, prelude: !f.preludeDone });
     f.preludeDone = true;
   }
 
   /** Records the frame's temporal pass and filter (after every band) and makes it the history. */
-  finishFrame(encoder: GPUCommandEncoder, r: FrameRequest): void {
-    const f = this.open;
-    if (!f) throw new Error('Denoiser: beginFrame() before finishFrame()');
+  private finishFrame(encoder: GPUCommandEncoder, f: OpenFrame): void {
+    if (this.open !== f) throw new Error('RealTimeRecipe: a frame finished or given up already');
     this.open = undefined;
+    const r = f.frame;
     const b = f.buffers;
     const groups = b.groups[this.parity]!;
     // The frame's final reservoirs become the history before the temporal pass overwrites the moments they were lent.
@@ -349,11 +364,11 @@ export class Denoiser {
       });
     } else {
       const fullHistory = unlimited ? 256 : (s.historyCap as number);
-      this.passes.output.write(denoiseOutputParams(s.denoiseView, fullHistory, r.depthScale));
+      this.passes.output.write(denoiseOutputParams(s.denoiseView, fullHistory, r.sceneSize));
       this.passes.output.encode(encoder, groups.output, b.width, b.height, r.timer);
     }
 
-    this.sampleIndex = (this.sampleIndex + r.samples) >>> 0;
+    this.sampleIndex = (this.sampleIndex + f.samples) >>> 0;
     this.previousCamera = r.camera;
     this.historyValid = true;
   }
@@ -364,8 +379,8 @@ export class Denoiser {
    * reservoirs included: finishFrame copies a frame's to them) were not touched by the bands; the scratch (the output of the last frame) was, so present the next frame,
    * not this one's.
    */
-  abandonFrame(): void {
-    if (!this.open) return;
+  private abandonFrame(f: OpenFrame): void {
+    if (this.open !== f) return;
     this.open = undefined;
     this.parity ^= 1;
   }
@@ -377,14 +392,14 @@ export class Denoiser {
    * reservoirs borrow the moments, which here belong to the history): one light sample per bounce.
    * For timing the integrators (bench) and comparing them (readTrace); returns which one traced.
    */
-  encodeTraceOnly(encoder: GPUCommandEncoder, r: FrameRequest, sampleIndex: number, breakdown = false): Integrator {
-    return this.encodeTrace(encoder, r, this.ensureBuffers(r.view, r.settings.restir), sampleIndex, { breakdown });
+  encodeTraceOnly(encoder: GPUCommandEncoder, r: FrameContext, samples: number, sampleIndex: number, breakdown = false): Integrator {
+    return this.encodeTrace(encoder, r, samples, this.ensureBuffers(r.view, r.settings.restir), sampleIndex, { breakdown });
   }
 
   /** The raw output of the last encodeTraceOnly, once it is submitted (encodeFrame reuses the radiance words for its output). */
   async readTrace(): Promise<FrameTrace> {
     const b = this.buffers;
-    if (!b) throw new Error('Denoiser: no frame traced yet');
+    if (!b) throw new Error('RealTimeRecipe: no frame traced yet');
     const [scratch, gbuffer, records] = await Promise.all([readBuffer(this.device, b.scratch), readBuffer(this.device, b.surfaces[this.parity]!), readBuffer(this.device, b.frameRecords)]);
     const pixels = b.width * b.height;
     const words = new Uint32Array(scratch), surface = new DataView(gbuffer), frame = new Uint32Array(records);
@@ -401,7 +416,7 @@ export class Denoiser {
   }
 
   /** Whether a frame of this request runs ReSTIR: asked for, compiled for its scene, and traced by the megakernel in RGB with bounces. */
-  private usesRestir(r: FrameRequest, b: Buffers): boolean {
+  private usesRestir(r: FrameContext, b: Buffers): boolean {
     const s = r.settings;
     // The wavefront's shade kernel and spectral paths keep one light sample per bounce.
     return b.reservoirs !== undefined && this.restir !== undefined && this.restirReady.has(featureKey(r.scene.features, false)) && !this.tracesWavefront(r.scene, s) && !s.spectral && s.maxBounces > 0;
@@ -412,19 +427,19 @@ export class Denoiser {
    * moments the temporal pass writes at the end of the frame (8 bytes a pixel too; until then they
    * hold nothing the frame needs), so that a frame given up leaves the history's reservoirs alone.
    */
-  private restirTarget(b: Buffers, r: FrameRequest): RestirTarget {
-    if (!b.reservoirs) throw new Error('Denoiser: ReSTIR without its reservoirs');
-    return { scratch: b.scratch, surface: b.surfaces[this.parity]!, previousSurface: b.surfaces[1 - this.parity]!, reservoirs: b.moments[this.parity]!, previousReservoirs: b.reservoirs, rayCounters: r.rayCounters };
+  private restirTarget(b: Buffers, r: FrameContext): RestirTarget {
+    if (!b.reservoirs) throw new Error('RealTimeRecipe: ReSTIR without its reservoirs');
+    return { scratch: b.scratch, surface: b.surfaces[this.parity]!, previousSurface: b.surfaces[1 - this.parity]!, reservoirs: b.moments[this.parity]!, previousReservoirs: b.reservoirs, rayCounters: r.targets.rayCounters };
   }
 
-  private encodeTrace(encoder: GPUCommandEncoder, r: FrameRequest, b: Buffers, sampleIndex: number, o: TraceOptions): Integrator {
+  private encodeTrace(encoder: GPUCommandEncoder, r: FrameContext, samples: number, b: Buffers, sampleIndex: number, o: TraceOptions): Integrator {
     const s = r.settings;
     const previousCamera = this.previousCamera ?? r.camera;
-    const image = { x: 0, y: 0, width: b.width, height: b.height };
-    const dispatch = { tile: o.tile ?? image, sampleIndex, samples: r.samples, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: resolveSampler(s.sampler, 'real-time'), spectral: s.spectral, ...(r.torch ? { torch: r.torch } : {}) };
+    const image = wholeImage(b);
+    const dispatch = pathDispatch(r, 'real-time', o.tile ?? image, sampleIndex, samples);
     const restir = o.restir ? this.restirTarget(b, r) : undefined;
     // The path kernel always binds the reservoirs' buffer (and reads it only with ReSTIR).
-    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.rayCounters, restir: restir !== undefined };
+    const target: FrameTarget = { scratch: b.scratch, surface: b.surfaces[this.parity]!, frameRecords: b.frameRecords, rayCounters: r.targets.rayCounters, restir: restir !== undefined };
     if (restir) {
       // The whole image's G-buffer and reservoirs before the first band's paths (encodeBand).
       if (o.prelude) {

@@ -11,18 +11,18 @@
  * whatever the path tracer has accumulated. Owns its GPU buffers: per image size (values, lines,
  * composed image) and per scene (node depths, the node list of each wireframe depth).
  */
-import { maxNodeDepth, nodeDepths, nodesAtDepth } from '../bvh/depths.ts';
-import { boundsDiagonal, bvhStats } from '../bvh/stats.ts';
-import type { SceneResources } from '../gpu/scene-resources.ts';
-import { createBufferWithData, readBuffer } from '../gpu/readback.ts';
-import { BvhWireframePass, WIREFRAME_FORMAT } from '../passes/bvh-wireframe-pass.ts';
-import { DebugComposePass } from '../passes/debug-compose-pass.ts';
-import { DebugViewPass } from '../passes/debug-view-pass.ts';
-import { debugLegend, scaleMax, type DebugLegend, type LegendFacts } from './debug-legend.ts';
-import type { PreparedScene } from './prepare.ts';
-import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
-import type { RenderSettings } from './settings.ts';
-import type { ViewUniform } from '../gpu/view.ts';
+import { maxNodeDepth, nodeDepths, nodesAtDepth } from '../../bvh/depths.ts';
+import { boundsDiagonal, bvhStats } from '../../bvh/stats.ts';
+import type { SceneResources } from '../../gpu/scene-resources.ts';
+import { createBufferWithData, readBuffer } from '../../gpu/readback.ts';
+import { BvhWireframePass, WIREFRAME_FORMAT } from '../../passes/bvh-wireframe-pass.ts';
+import { DebugComposePass } from '../../passes/debug-compose-pass.ts';
+import { DebugViewPass } from '../../passes/debug-view-pass.ts';
+import { debugLegend, scaleMax, type DebugLegend, type LegendFacts } from '../debug-legend.ts';
+import type { PreparedScene } from '../prepare.ts';
+import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
+import type { RenderSettings } from '../settings.ts';
+import type { ViewUniform } from '../../gpu/view.ts';
 
 /** Bytes per pixel of the raw values (one vec4f). */
 const VALUE_BYTES_PER_PIXEL = 16;

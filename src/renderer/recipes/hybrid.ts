@@ -11,19 +11,20 @@
  * history (ping-ponged) and the previous camera (motion vectors). docs/hybrid.md says what the
  * recipe gets right and what it cannot see.
  */
-import { LanternError } from '../errors.ts';
-import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
-import type { SceneResources } from '../gpu/scene-resources.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
-import { cameraUniform, ViewUniform } from '../gpu/view.ts';
-import { ATROUS_STEPS, atrousParams } from '../passes/denoise-passes.ts';
-import { HybridRasterPass, DEPTH_FORMAT, VISIBILITY_FORMAT, type RasterDraw } from '../passes/hybrid-raster-pass.ts';
-import { ImagePass } from '../passes/image-pass.ts';
-import { pathTraceParams, TracingKernels } from '../passes/path-trace-pass.ts';
-import { UniformParams, type UniformValues } from '../passes/uniform-params.ts';
-import type { Camera, Torch } from '../scene/types.ts';
-import type { PreparedScene } from './prepare.ts';
-import { resolveSampler, type RenderSettings } from './settings.ts';
+import { LanternError } from '../../errors.ts';
+import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
+import type { SceneResources } from '../../gpu/scene-resources.ts';
+import type { GpuTimer } from '../../gpu/timestamps.ts';
+import { cameraUniform, ViewUniform } from '../../gpu/view.ts';
+import { ATROUS_STEPS, atrousParams } from '../../passes/denoise-passes.ts';
+import { HybridRasterPass, DEPTH_FORMAT, VISIBILITY_FORMAT, type RasterDraw } from '../../passes/hybrid-raster-pass.ts';
+import { ImagePass } from '../../passes/image-pass.ts';
+import { pathTraceParams, TracingKernels } from '../../passes/path-trace-pass.ts';
+import { UniformParams, type UniformValues } from '../../passes/uniform-params.ts';
+import type { Camera } from '../../scene/types.ts';
+import type { PreparedScene } from '../prepare.ts';
+import { pathDispatch, type FrameContext } from '../frame.ts';
+import type { FrameRecipe, RecipeFrame } from './frame-recipe.ts';
 
 const MODULE = 'passes/hybrid';
 const VEC4_BYTES = 16;
@@ -82,19 +83,6 @@ function makeRasterDraws(prepared: PreparedScene): RasterDraw[] {
   return draws;
 }
 
-export interface HybridFrameRequest {
-  readonly scene: SceneResources;
-  readonly prepared: PreparedScene;
-  readonly view: ViewUniform;
-  readonly camera: Camera;
-  readonly settings: RenderSettings;
-  readonly torch?: Torch;
-  readonly rayCounters: GPUBuffer;
-  /** The scene's size (its bounding box's diagonal): sets the near plane. */
-  readonly sceneSize: number;
-  readonly timer?: GpuTimer;
-}
-
 interface Buffers {
   readonly width: number;
   readonly height: number;
@@ -119,7 +107,7 @@ interface Buffers {
   readonly rayCounters: GPUBuffer;
 }
 
-export class Hybrid {
+export class HybridRecipe implements FrameRecipe {
   private buffers?: Buffers;
   private previousCamera?: Camera;
   private frameIndex = 0;
@@ -138,7 +126,7 @@ export class Hybrid {
   ) {}
 
   /** `first`: the features of the scene to be rendered, where known (its tracing variants compile instead of a plain scene's). */
-  static async create(device: GPUDevice, first?: SceneFeatures): Promise<Hybrid> {
+  static async create(device: GPUDevice, first?: SceneFeatures): Promise<HybridRecipe> {
     const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, { CAPTURE_PRIMARY: 1 }, first);
     const [raster, resolve, shade, reflect, gi, compose, taa, atrous] = await Promise.all([
       HybridRasterPass.create(device, first),
@@ -150,10 +138,10 @@ export class Hybrid {
       ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_taa', 'taa'),
       ImagePass.create(device, 'passes/atrous', 'atrous_step', 'a-trous (GI)', GI_FILTER_ITERATIONS),
     ]);
-    return new Hybrid(device, raster, { resolve, shade, reflect, gi }, compose, taa, atrous, new UniformParams(device, 'passes/path-trace'), new UniformParams(device, MODULE, 'hybrid'));
+    return new HybridRecipe(device, raster, { resolve, shade, reflect, gi }, compose, taa, atrous, new UniformParams(device, 'passes/path-trace'), new UniformParams(device, MODULE, 'hybrid'));
   }
 
-  /** Compiles the variants a scene with these features needs. */
+  /** Compiles the variants a scene with these features needs (RGB always: spectral mode is the path tracers'). */
   async prepare(features: SceneFeatures): Promise<void> {
     await Promise.all([this.raster.prepare(features), ...Object.values(this.kernels).map((k) => k.prepare(features))]);
   }
@@ -169,20 +157,30 @@ export class Hybrid {
     this.previousCamera = undefined;
   }
 
+  /** The hybrid's output is always a lit image (its debug views are the debug recipe's). */
+  showsRawValues(): boolean {
+    return false;
+  }
+
+  /** Begins a frame: one sample per pixel, traced whole (no bands), recorded in the one band's encoder. */
+  begin(frame: FrameContext): RecipeFrame {
+    return { splittable: false, band: (encoder) => this.encodeFrame(encoder, frame), finish: () => {}, done: () => {}, abandon: () => {} };
+  }
+
   /** Records one hybrid frame into `encoder` (parameters are written now: submit before the next frame). */
-  encodeFrame(encoder: GPUCommandEncoder, r: HybridFrameRequest): void {
+  private encodeFrame(encoder: GPUCommandEncoder, r: FrameContext): void {
     const s = r.settings;
     const h = s.hybrid;
-    const b = this.ensureBuffers(r.view, r.camera, h.giScale, r.rayCounters);
+    const b = this.ensureBuffers(r.view, r.camera, h.giScale, r.targets.rayCounters);
     b.giView.update(r.camera, b.giWidth, b.giHeight);
     this.parity ^= 1;
     const jitter = haltonJitter(this.frameIndex);
     const previousCamera = this.previousCamera ?? r.camera;
     const aspect = r.view.width / r.view.height;
-    this.raster.encode(encoder, { scene: r.scene, view: r.view, visibility: b.visibilityView, depth: b.depthView, draws: rasterDraws(r.prepared), jitter, near: Math.max(r.sceneSize * NEAR_FRACTION, 1e-6), ...(r.timer ? { timer: r.timer } : {}) });
+    this.raster.encode(encoder, { scene: r.scene, view: r.view, visibility: b.visibilityView, depth: b.depthView, draws: rasterDraws(r.prepared), jitter, near: Math.max(2 * r.sceneSize * NEAR_FRACTION, 1e-6), ...(r.timer ? { timer: r.timer } : {}) });
 
     const tile = { x: 0, y: 0, width: b.width, height: b.height };
-    this.params.write(pathTraceParams({ tile, sampleIndex: this.frameIndex, samples: 1, maxBounces: s.maxBounces, seed: s.seed, lightSampling: s.lightSampling, sampler: resolveSampler(s.sampler, 'real-time'), ...(r.torch ? { torch: r.torch } : {}) }));
+    this.params.write(pathTraceParams(pathDispatch(r, 'real-time', tile, this.frameIndex, 1)));
     this.hybridParams.write({
       previous_camera: cameraUniform(previousCamera, aspect),
       jitter,
@@ -196,7 +194,7 @@ export class Hybrid {
       reflection_bounces: h.reflectionBounces,
     });
     const targets = () => ({
-      params: this.params.buffer, hybrid: this.hybridParams.buffer, ray_counters: r.rayCounters, visibility: b.visibilityView,
+      params: this.params.buffer, hybrid: this.hybridParams.buffer, ray_counters: r.targets.rayCounters, visibility: b.visibilityView,
       guide: b.guide, motion: b.motion, lit: b.lit, diffuse_weight: b.diffuseWeight, gi: b.gi, gi_guide: b.giGuide,
     });
     // The kernels cache group 2 by this buffer: made anew with the buffers, which are made anew when the counters change.
