@@ -1,6 +1,6 @@
 /** Parsing and checking of numeric command-line options, with messages that name the option. */
 import { InvalidArgumentError, type Command } from 'commander';
-import { MAX_IMAGE_SIDE } from '../renderer/renderer.ts';
+import { MAX_IMAGE_SIDE } from '../renderer/image.ts';
 import { KERNEL_KINDS, type KernelKind } from '../renderer/specialisation-schedule.ts';
 
 export function integerOption(name: string, min: number, max: number): (value: string) => number {

@@ -107,7 +107,7 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
   const warmups = options.warmups ?? 5;
   const rayOrder = options.rayOrder ?? 'tiles';
   const { device } = renderer;
-  const { resources, view } = renderer.internals();
+  const { scene: resources, view } = renderer.frame();
   const width = renderer.width, height = renderer.height;
   const count = width * height;
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(device) : undefined;
@@ -123,7 +123,7 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
     // measured 5.5× slower right after a compile. Keep it busy for a while before timing anything.
     const warmUntil = performance.now() + WARM_UP_MS;
     for (let i = 0; i < 1000 && performance.now() < warmUntil; i++) {
-      renderer.accumulate(1, [renderer.fullImage()]);
+      renderer.accumulate(1);
       await renderer.finish();
     }
     renderer.resetAccumulation();
@@ -178,7 +178,7 @@ async function timePathTracing(renderer: Renderer, timer: GpuTimer | undefined, 
   const sampleTimes: number[] = [];
   for (let i = 0; i < warmups + repeats; i++) {
     const t0 = performance.now();
-    renderer.accumulate(1, [renderer.fullImage()], timer);
+    renderer.accumulate(1, undefined, timer);
     await renderer.finish();
     const wall = performance.now() - t0;
     const ms = timer ? (await timer.read()).reduce((sum, p) => sum + p.ms, 0) : wall;

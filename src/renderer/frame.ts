@@ -12,20 +12,9 @@ import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import type { PathTraceDispatch, Tile } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
+import type { ImageTargets } from './image.ts';
 import type { PreparedScene } from './prepare.ts';
 import { resolveSampler, type RenderSettings } from './settings.ts';
-
-/** The image's own buffers, which outlive frames and recipes (the Renderer's; a resize replaces them). */
-export interface ImageTargets {
-  readonly width: number;
-  readonly height: number;
-  /** The progressive estimate: a vec4f per pixel (radiance sum, luminance square sum). */
-  readonly accumulation: GPUBuffer;
-  /** Extension and shadow rays traced since the estimate restarted (two u64 as four u32). */
-  readonly rayCounters: GPUBuffer;
-  /** The tone-mapped image (rgba8unorm). */
-  readonly output: GPUTexture;
-}
 
 export interface FrameContext {
   readonly device: GPUDevice;

@@ -1,170 +1,107 @@
 /**
- * The Renderer: one object shared by the browser page, the CLI and the tests. It owns the GPU state
- * of a scene and an image and runs the frame recipe
+ * The Renderer: the one facade the browser page, the CLI and the tests share. It holds the scene on
+ * the GPU (renderer/scene-residency.ts), the camera, the settings and the image (renderer/image.ts),
+ * and renders what recipeFor (renderer/recipes/recipe.ts) says a frame is:
  *
- *   path trace (adds samples to the float32 accumulation) → tone map (8-bit sRGB) → present | read back
+ *   accumulate / beginAccumulate   the progressive recipe: samples added to the exact estimate
+ *   renderFrame / beginFrame       the real-time chain, the hybrid recipe, or a debug view alone
+ *   present / readImage / read*    exposure, tone map, debug view, selection outline (renderer/image-output.ts)
  *
- * Facade: setScene, setCamera, updateSettings, resize, accumulate, present, read*. Every method that
- * changes the estimate (scene, camera, size, bounces, light sampling, seed) restarts accumulation.
- * With a debug view set (settings.debugView), present and readImage show it as settings.debugLayout
- * asks (renderer/debug-views.ts).
- *
- * Frames: renderFrame(spp) runs the frame recipe the settings choose (renderer/recipes/recipe.ts
- * recipeFor: the real-time chain of renderer/denoiser.ts, the hybrid recipe, or a debug view alone);
- * present and readImage then show its output until the next accumulate(). compile() compiles what
- * the settings' recipe runs, before its first frame.
- *
- * Live editing: pick(x, y) traces one primary ray through a pixel (the scene's own traversal);
- * setSelection(instance) outlines an object in what present() draws (never in the estimate);
- * updateMaterials(edits) rewrites material records (and the light table for emission) in place.
+ * compile() compiles what the settings' recipe runs before its first frame. Every method that changes
+ * the estimate (scene, camera, size, an estimate setting) restarts accumulation; the frame recipes'
+ * histories survive camera moves (reprojected). Live editing: pick, setSelection, updateMaterials.
  */
 import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
-import { withErrorScope } from '../gpu/device.ts';
-import { timedStage } from '../gpu/stage-log.ts';
-import { createBufferWithData, readBuffer, readTexture4x8 } from '../gpu/readback.ts';
-import { SceneResources, writeTriangleAttributes } from '../gpu/scene-resources.ts';
-import { packInstances } from '../gpu/pack/scene-pack.ts';
+import { readAccumulation, readLinear, readRayCounts, type Accumulation, type LinearImage, type RayCounts } from './image-readback.ts';
+import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
-import type { Tile, TracingKernels } from '../passes/path-trace-pass.ts';
+import type { Tile } from '../passes/path-trace-pass.ts';
 import { PresentPass } from '../passes/present-pass.ts';
-import { SelectionOutlinePass, type SelectedRange } from '../passes/selection-outline-pass.ts';
-import { packRays, rayBufferStrides, TraceRaysPass, unpackHits } from '../passes/trace-rays-pass.ts';
-import { dot, type Vec3 } from '../math/vec3.ts';
-import { emptySceneUpdate, isEmptyUpdate, type SceneUpdate } from '../scene/dynamics.ts';
-import { defaultTileCulling } from '../scene/tile-culling.ts';
-import { TILE_SWAP_BUFFERS, TileCulledScenes, type TileCullingStats } from './tile-culled.ts';
+import type { SelectedRange } from '../passes/selection-outline-pass.ts';
+import { ImageOutput, type ShownImage } from './image-output.ts';
+import { TraceRaysPass } from '../passes/trace-rays-pass.ts';
+import { emptySceneUpdate, type SceneUpdate } from '../scene/dynamics.ts';
+import type { TileCullingStats } from './tile-culled.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { TonemapPass } from '../passes/tonemap-pass.ts';
-import { ExposurePass, type ExposureReading } from '../passes/exposure-pass.ts';
-import { adaptationKeep, exposureChoice, type ExposureChoice } from './exposure.ts';
+import type { ExposureReading } from '../passes/exposure-pass.ts';
+import { exposureChoice, type ExposureChoice } from './exposure.ts';
 import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
-import { DebugViews } from './recipes/debug.ts';
-import { RealTimeRecipe, type DenoiserBufferSize, type FrameTrace } from './recipes/real-time.ts';
-import { HybridRecipe } from './recipes/hybrid.ts';
+import type { DebugViews } from './recipes/debug.ts';
+import type { DenoiserBufferSize, FrameTrace } from './recipes/real-time.ts';
 import { ProgressiveRecipe } from './recipes/progressive.ts';
+import { RecipeSet } from './recipes/recipe-set.ts';
 import type { FrameRecipe, RecipeFrame } from './recipes/frame-recipe.ts';
-import { wholeImage, type FrameContext, type ImageTargets } from './frame.ts';
-import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
+import { wholeImage, type FrameContext } from './frame.ts';
+import { ImageEstimate, type ImageTargets } from './image.ts';
+import { pickPixel, type PickResult } from './pick.ts';
+import { type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
-import { primaryRay, ViewUniform } from '../gpu/view.ts';
+import { ViewUniform } from '../gpu/view.ts';
 import type { SpecialiseOptions } from '../gpu/specialisation.ts';
 import { SpecialisationSchedule, type KernelKind, type SpecialisationReport } from './specialisation-schedule.ts';
 import { SceneResidency } from './scene-residency.ts';
-import { resolveSampler, type Sampler } from '../passes/variants.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { SplitFrame } from './split-frame.ts';
 import { recipeCompiles, recipeFor, type RecipeIntent } from './recipes/recipe.ts';
 
-/** Bytes per pixel of the accumulation buffer (one vec4f). */
-const ACCUMULATION_BYTES_PER_PIXEL = 16;
-/** An image side beyond this is refused even where the GPU would allow it. */
-export const MAX_IMAGE_SIDE = 16384;
-
-export interface RayCounts {
-  readonly extension: number;
-  readonly shadow: number;
-}
-
-export interface Accumulation {
-  readonly width: number;
-  readonly height: number;
-  readonly samples: number;
-  /** Mean radiance, 3 floats per pixel, row-major, top row first. */
-  readonly radiance: Float32Array;
-  /** Per-pixel sample variance of luminance (unbiased), 1 float per pixel. */
-  readonly luminanceVariance: Float32Array;
-}
-
-/** Linear radiance of a real-time frame. */
-export interface LinearImage {
-  readonly width: number;
-  readonly height: number;
-  /** 3 floats per pixel, row-major, top row first. */
-  readonly radiance: Float32Array;
-}
-
-/** What one primary ray through a pixel hit (Renderer.pick). */
-export interface PickResult {
-  /** Distance from the camera along the ray (scene units). */
-  readonly distance: number;
-  /** Distance along the camera's forward axis: what a thin lens's focusDistance measures. */
-  readonly depth: number;
-  /** World-space hit point. */
-  readonly position: Vec3;
-  /** Index into Scene.instances, and that instance's id. */
-  readonly instanceIndex: number;
-  readonly instanceId: number;
-  /** Index into Scene.materials. */
-  readonly material: number;
-  /** Source primitive index (scene/triangles.ts order). */
-  readonly primitive: number;
-}
+export type { Accumulation, LinearImage, RayCounts } from './image-readback.ts';
+export type { PickResult } from './pick.ts';
 
 export class Renderer {
   /** The scene on the GPU, kept in step with the world (renderer/scene-residency.ts). */
   private readonly residency: SceneResidency;
-  private targets?: ImageTargets;
+  /** The image's targets and the progressive estimate in them. */
+  private readonly image: ImageEstimate;
   private cameraValue?: Camera;
   private settingsValue: RenderSettings = DEFAULT_SETTINGS;
-  private samples = 0;
-  private epoch = 0;
   /** Counts resetHistory() calls: a split frame begun before one is given up (SplitFrame.valid). */
   private historyResets = 0;
-  /** The real-time recipe (compiled by compile() for its settings). */
-  private realTime?: RealTimeRecipe;
-  /** The hybrid recipe (compiled by compile() for its settings). */
-  private hybrid?: HybridRecipe;
+  /** The recipes compiled so far (renderer/recipes/recipe-set.ts). */
+  private readonly recipes: RecipeSet;
   /** The recipe of the last frame (whose output present and readFrame show). */
   private lastFrame?: FrameRecipe;
-  /** Whether the spectral variants are compiled for each scene (compile() with settings.spectral). */
-  private spectralEnabled = false;
   /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
   private shown: 'accumulation' | 'frame' = 'accumulation';
   /** When the tracing kernels are specialised to the scene (requestSpecialisation, the idle policy). */
   private readonly specialising = new SpecialisationSchedule({
     current: () => (this.prepared && this.resources ? { prepared: this.prepared, resources: this.resources, settings: this.settingsValue } : undefined),
-    kernels: () => ({ sets: [this.progressive.kernels, ...(this.realTime ? [this.realTime.frameKernels] : [])], ...(this.realTime?.wavefrontPass ? { wavefront: this.realTime.wavefrontPass } : {}) }),
+    kernels: () => this.recipes.tracingKernels(),
   });
   private tracePass?: Promise<TraceRaysPass>;
-  private selectionPass?: SelectionOutlinePass;
-  /** The selected instance's source triangles, outlined by present(). */
-  private selectionRange?: SelectedRange;
-  /** Whether the selection mask must be traced again (view, size, scene or selection changed). */
-  private selectionStale = true;
-  /** Whether the adapted exposure holds this scene's (false: the next tone map snaps to its target). */
-  private exposureAdapted = false;
-  /** Seconds of adaptation readImage() applies next (advanceExposure). */
-  private pendingExposureSeconds = 0;
-  /** When present() last adapted the exposure (performance.now()): the viewer adapts on the wall clock. */
-  private lastPresentMs?: number;
-  /** The automatic exposure's kernels, compiled the first time an image is exposed automatically (compileAutoExposure). */
-  private exposure?: ExposurePass;
-  private exposureCompile?: Promise<ExposurePass>;
-  private destroyed = false;
+  /** What a traced image becomes: exposure, tone map, debug view, selection outline, present. */
+  private readonly output: ImageOutput;
 
   private constructor(
     readonly gpu: GpuContext,
     private readonly view: ViewUniform,
-    private readonly progressive: ProgressiveRecipe,
-    private readonly tonemap: TonemapPass,
-    private presentPass?: PresentPass,
-    private debugViews?: DebugViews,
+    progressive: ProgressiveRecipe,
+    tonemap: TonemapPass,
+    present?: PresentPass,
   ) {
+    this.image = new ImageEstimate(gpu.device);
+    this.output = new ImageOutput(gpu.device, tonemap, present);
+    this.recipes = new RecipeSet(gpu.device, progressive, {
+      firstFeatures: () => this.sceneFeatures,
+      sceneFeatures: () => this.prepared?.packed.features,
+      sampler: () => this.settingsValue.sampler,
+      tracingAdded: async () => {
+        // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the new one's): specialise again with it.
+        this.invalidateSpecialisation();
+      },
+    });
     this.residency = new SceneResidency(gpu.device, {
-      compile: (features) => Promise.all([
-        this.progressive.prepare(features), this.realTime?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features), this.selectionPass?.prepare(features),
-        ...(this.spectralEnabled ? [this.progressive.prepare(features, true), this.realTime?.prepare(features, true)] : []),
-      ]),
+      compile: (features) => Promise.all([this.recipes.prepare(features), this.output.selection.prepare(features)]),
       tileCulling: () => this.settingsValue.tileCulling,
       cameraPosition: () => this.cameraValue?.position,
       uploaded: () => this.invalidateSpecialisation(),
-      geometryChanged: () => (this.selectionStale = true),
+      geometryChanged: () => this.output.selection.markStale(),
       edited: () => {
         this.invalidateSpecialisation();
         this.resetAccumulation();
@@ -181,13 +118,10 @@ export class Renderer {
   }
 
   /**
-   * Compiles the path tracer and the tone mapper, side by side. `features`: those of the scene that
-   * setScene will get (PackedScene.features), where the caller knows them: the path tracer variant
-   * for that scene alone starts compiling, and setScene awaits it (and reports its errors). Without,
-   * a plain scene's variant is compiled here, so errors show at once, and setScene compiles the
-   * scene's. `features` may be a promise (a scene still loading elsewhere): the path tracer is
-   * reflected meanwhile, and the tone mapper compiled. `presentation`: the canvas's format, for the
-   * browser's present pass (setPresentationFormat), compiled alongside.
+   * Compiles the progressive path tracer and the tone mapper, side by side. `features`: those of the
+   * scene setScene will get, where known (maybe still a promise): that scene's variant alone compiles,
+   * and setScene awaits it; without, a plain scene's. `presentation`: the canvas's format, for the
+   * present pass.
    */
   static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: GPUTextureFormat } = {}): Promise<Renderer> {
     const { device } = gpu;
@@ -215,7 +149,7 @@ export class Renderer {
     return this.gpu.device;
   }
   get sampleCount(): number {
-    return this.samples;
+    return this.image.samples;
   }
   get settings(): RenderSettings {
     return this.settingsValue;
@@ -224,17 +158,13 @@ export class Renderer {
     return this.cameraValue;
   }
   get width(): number {
-    return this.targets?.width ?? 0;
+    return this.image.targets?.width ?? 0;
   }
   get height(): number {
-    return this.targets?.height ?? 0;
+    return this.image.targets?.height ?? 0;
   }
   get scene(): PreparedScene | undefined {
     return this.prepared;
-  }
-  /** Bytes of GPU memory held for the scene. */
-  get sceneBytes(): number {
-    return this.resources?.byteSize ?? 0;
   }
 
   /** Uploads a scene (prepared here unless given prepared) and frees the previous one. Uses its camera. */
@@ -242,20 +172,19 @@ export class Renderer {
     const accel = this.settingsValue.accel;
     const prepared = withAccel('packed' in scene ? scene : prepareScene(scene, undefined, { accel }), accel);
     // A scene exposed automatically (a game map) compiles the exposure pass beside its path tracer.
-    const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.compileAutoExposure() : undefined;
+    const exposure = exposureChoice(prepared.scene, 0, this.settingsValue).kind === 'auto' ? this.output.exposure.compile() : undefined;
     await Promise.all([this.residency.upload(prepared), exposure]);
     void this.setSelection(undefined);
     // Another scene: the eye starts adapted to it, not to the last one.
-    this.exposureAdapted = false;
+    this.output.exposure.snap();
     this.setCamera(prepared.scene.camera);
     return prepared;
   }
 
   /**
-   * Lights the scene with another environment (a sky, an HDR map, none) without preparing it again:
-   * the environment, the light table and the scene info are packed anew and the scene's GPU resources
-   * replaced. The camera is kept, with the exposure change the sky brings (scene/environment-override.ts).
-   * Restarts accumulation.
+   * Lights the scene with another environment (a sky, an HDR map, none) without preparing it again
+   * (the environment, light table and scene info packed anew). The camera keeps its pose, with the
+   * exposure change the sky brings (scene/environment-override.ts). Restarts accumulation.
    */
   async setEnvironment(environment: Environment): Promise<PreparedScene> {
     if (!this.prepared) throw new Error('Renderer: setScene() before setEnvironment()');
@@ -277,11 +206,9 @@ export class Renderer {
   }
 
   /**
-   * One step of a moving world (world/world.ts): instances moved or changed material, meshes morphed,
-   * materials animated. Nothing is rebuilt: geometry is refitted and its buffers rewritten in place
-   * (renderer/prepare.ts updateGeometry), materials repacked (updateMaterials). Restarts
-   * accumulation; returns the updated scene (keep it to upload again after a lost device).
-   * `walkHeights` is the viewer's business.
+   * One step of a moving world (world/world.ts), applied in place (renderer/scene-residency.ts):
+   * nothing is rebuilt. Restarts accumulation; returns the updated scene (keep it to upload again
+   * after a lost device).
    */
   applySceneUpdate(update: SceneUpdate): PreparedScene {
     return this.residency.apply(update);
@@ -293,12 +220,9 @@ export class Renderer {
   }
 
   /**
-   * Edits materials by index (scene/material-edit.ts: colour, roughness, metallic, IOR, transmission,
-   * emission) without rebuilding anything: the edited records are packed again and the materials
-   * buffer rewritten; an emission edit also packs the light table again (renderer/prepare.ts
-   * editMaterials) and rewrites it, reallocating the light-slot buffer alone where it grew (an
-   * emitter appeared). No texture upload, no BVH build, no pipeline compile. Restarts accumulation;
-   * returns the edited scene (keep it to upload again after a lost device).
+   * Edits materials by index (scene/material-edit.ts), their records and the light table rewritten in
+   * place: no texture upload, no BVH build, no pipeline compile. Restarts accumulation; returns the
+   * edited scene (keep it to upload again after a lost device).
    */
   updateMaterials(edits: ReadonlyMap<number, MaterialEdit>): PreparedScene {
     return this.residency.updateMaterials(edits);
@@ -310,75 +234,20 @@ export class Renderer {
    * a miss. Pixels count from the top-left corner of the rendered image.
    */
   async pick(x: number, y: number): Promise<PickResult | null> {
-    const { resources, targets } = this.ready();
-    const camera = this.cameraValue;
-    const prepared = this.prepared!;
-    if (!camera) throw new Error('Renderer: setCamera() before pick()');
-    if (!(x >= 0 && x < targets.width && y >= 0 && y < targets.height)) throw new LanternError(`pixel (${x}, ${y}) is outside the ${targets.width}×${targets.height} image`);
-    const ray = primaryRay(camera, targets.width, targets.height, Math.floor(x) + 0.5, Math.floor(y) + 0.5);
-    this.tracePass ??= TraceRaysPass.create(this.device, prepared.packed.features);
-    const pass = await this.tracePass;
-    const device = this.device;
-    const rays = createBufferWithData(device, 'pick ray', packRays([ray]), GPUBufferUsage.STORAGE);
-    const hits = device.createBuffer({ label: 'pick hit', size: unpackHitsSize(), usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
-    try {
-      const encoder = device.createCommandEncoder({ label: 'pick' });
-      pass.encode(encoder, await pass.bind(resources, rays, hits, 1), undefined, 'pick');
-      device.queue.submit([encoder.finish()]);
-      const hit = unpackHits(await readBuffer(device, hits), 1)[0]!;
-      if (hit.triangle === NO_PRIMITIVE || hit.triangle >= prepared.triangles.count) return null;
-      const instanceIndex = prepared.triangles.instanceIds[hit.triangle]!;
-      const { origin, direction } = ray;
-      return {
-        distance: hit.t,
-        depth: hit.t * dot(direction, cameraForward(camera)),
-        position: [origin[0] + hit.t * direction[0], origin[1] + hit.t * direction[1], origin[2] + hit.t * direction[2]],
-        instanceIndex,
-        instanceId: prepared.scene.instances[instanceIndex]!.id,
-        material: prepared.triangles.materialIds[hit.triangle]!,
-        primitive: hit.triangle,
-      };
-    } finally {
-      rays.destroy();
-      hits.destroy();
-    }
+    const frame = this.frame();
+    this.tracePass ??= TraceRaysPass.create(this.device, frame.prepared.packed.features);
+    return pickPixel(frame, await this.tracePass, x, y);
   }
 
-  /**
-   * Outlines the part of an instance (index into Scene.instances) made of one material (what a pick
-   * returns; the part a material edit there changes) in what present() draws, or nothing
-   * (undefined). The estimate and readImage() are untouched. Compiles the outline's pipelines on
-   * first use.
-   */
+  /** Outlines one material's part of an instance (what a pick returns) in what present() draws, or nothing (undefined); never in the estimate. */
   async setSelection(selected: { readonly instanceIndex: number; readonly material: number } | undefined): Promise<void> {
-    if (selected === undefined) {
-      this.selectionRange = undefined;
-      this.selectionPass?.destroyTargets();
-      return;
-    }
-    const prepared = this.prepared;
-    if (!prepared) throw new Error('Renderer: setScene() before setSelection()');
-    const triangles = prepared.triangles;
-    const { instanceIndex, material } = selected;
-    if (!(material >= 0 && material < prepared.scene.materials.length)) throw new LanternError(`scene '${prepared.scene.name}' has no material ${material}`);
-    if (!Number.isInteger(instanceIndex) || instanceIndex < 0 || instanceIndex >= triangles.instanceFirstTriangle.length) {
-      throw new LanternError(`scene '${prepared.scene.name}' has no instance ${instanceIndex}`);
-    }
-    if (!this.selectionPass) {
-      const pass = await SelectionOutlinePass.create(this.device, prepared.packed.features);
-      this.selectionPass ??= pass;
-    }
-    await this.selectionPass.prepare(prepared.packed.features);
-    // The instance's triangles are contiguous in the flattened list (scene/triangles.ts).
-    const first = triangles.instanceFirstTriangle[instanceIndex]!;
-    const end = triangles.instanceFirstTriangle[instanceIndex + 1] ?? triangles.count;
-    this.selectionRange = { first, end, material };
-    this.selectionStale = true;
+    if (selected !== undefined && !this.prepared) throw new Error('Renderer: setScene() before setSelection()');
+    await this.output.selection.set(this.prepared!, selected);
   }
 
   /** The selection (source triangle range and material), if any. */
   get selection(): SelectedRange | undefined {
-    return this.selectionRange;
+    return this.output.selection.range;
   }
 
   /**
@@ -400,33 +269,12 @@ export class Renderer {
     return this.residency.tileCullingStats;
   }
 
-  private accelPending: Promise<void> = Promise.resolve();
-  /** The path tracers' kernels for the sampler setting, compiling after a change (useSamplers). */
-  private samplerPending: Promise<void> = Promise.resolve();
-
   /**
    * Resolves once the scene is traced as the settings say: through the structure the `accel` setting
    * names, by kernels compiled for the `sampler` setting (rejects if building or compiling failed).
    */
   accelSettled(): Promise<void> {
-    return Promise.all([this.accelPending, this.samplerPending]).then(() => undefined);
-  }
-
-  /**
-   * Compiles the path tracers for the samplers the settings resolve to, where they are compiled for
-   * others (a PCG kernel holds no Sobol code: lib/random.wgsl SAMPLER). Until they are ready, samples
-   * and frames are traced with the old ones (unbiased, but the old sampler's): renders that want the
-   * new sampler's estimate alone await accelSettled() first, as renderProgressive and the CLI do.
-   */
-  private useSamplers(): void {
-    const s = this.settingsValue;
-    const wanted: [TracingKernels, Sampler][] = [[this.progressive.kernels, resolveSampler(s.sampler, 'progressive')]];
-    if (this.realTime) wanted.push([this.realTime.frameKernels, resolveSampler(s.sampler, 'real-time')]);
-    const switching = wanted.filter(([k, sampler]) => k.sampler !== sampler);
-    if (switching.length === 0) return;
-    const done = Promise.all(switching.map(([k, sampler]) => k.useSampler(sampler))).then(() => undefined);
-    this.samplerPending = this.samplerPending.catch(() => undefined).then(() => done);
-    this.samplerPending.catch(() => undefined); // the error is accelSettled()'s to report
+    return Promise.all([this.residency.accelSettled(), this.recipes.samplersSettled()]).then(() => undefined);
   }
 
   /** Applies changed settings; those that change the estimate restart accumulation. */
@@ -437,24 +285,16 @@ export class Renderer {
     const culling = next.tileCulling !== this.settingsValue.tileCulling;
     const accel = next.accel !== this.settingsValue.accel;
     this.settingsValue = next;
-    if (next.sampler !== before.sampler) this.useSamplers();
+    if (next.sampler !== before.sampler) this.recipes.useSamplers(next.sampler);
     if (culling) this.residency.configureTileCulling();
-    // The wavefront frame path tracer is compiled in the background; frames use the megakernel until it is ready.
-    if (next.integrator === 'wavefront' && this.realTime) this.compileWavefront().catch((e: unknown) => (this.wavefrontError = e));
-    // So are the ReSTIR passes; frames take one light sample per bounce until they are ready.
-    if (next.restir && this.realTime) this.realTime.enableRestir().catch((e: unknown) => (this.restirError = e));
+    // What the new settings add to the recipes compiled (the wavefront integrator, ReSTIR) compiles in the background.
+    this.recipes.follow(next);
     // Another acceleration structure for the static world: built and uploaded in the background
     // (frames trace the current one meanwhile); accelSettled() waits for it.
-    if (accel && this.prepared) {
-      // One switch at a time, each to the accel set by then (a quick bvh → grid → bvh ends on the BVH).
-      this.accelPending = this.accelPending
-        .catch(() => undefined)
-        .then(() => (this.prepared && accelOf(this.prepared) !== this.settingsValue.accel ? this.residency.upload(withAccel(this.prepared, this.settingsValue.accel)) : undefined));
-      this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
-    }
+    if (accel) this.residency.switchAccel(() => this.settingsValue.accel);
     // Automatic exposure asked for: compiled in the background; present() shows the scene's exposure
     // until it is ready, readImage() waits for it (and reports a failure).
-    if (this.exposureChoice.kind === 'auto') this.compileAutoExposure().catch(() => undefined);
+    if (this.exposureChoice.kind === 'auto') this.output.exposure.compile().catch(() => undefined);
     if (restart) {
       // Bounces and light sampling are inlined into specialised kernels; every estimate setting counts as an edit.
       this.invalidateSpecialisation();
@@ -462,16 +302,14 @@ export class Renderer {
     }
   }
 
-  /**
-   * Which kernels accumulate() and renderFrame() run now. Generic until requestSpecialisation's
-   * compile is ready; every edit (scene, environment, instances, materials, an estimate setting)
-   * goes back to generic at once. Camera moves, resizes and display settings keep the kernel.
-   */
+  // Specialisation (renderer/specialisation-schedule.ts): kernels compiled for the frozen scene, used once ready.
+
+  /** Which kernels accumulate() and renderFrame() run now (camera moves, resizes and display settings keep them). */
   get kernel(): KernelKind {
     return this.specialising.kernel;
   }
 
-  /** Which kernels the wavefront frame path tracer runs now: generic until specialised with the others (requestSpecialisation). */
+  /** Which kernels the wavefront frame path tracer runs now. */
   get wavefrontKernel(): KernelKind {
     return this.specialising.wavefrontKernel;
   }
@@ -487,88 +325,45 @@ export class Renderer {
   }
 
   /**
-   * Compiles the tracing kernels specialised to the scene and settings as they are now
-   * (renderer/specialisation-schedule.ts, gpu/specialisation.ts), asynchronously: frames keep
-   * rendering with the generic kernels until the compile is ready, then the next one uses them.
-   * Accumulation continues, since both compute the same estimator. Resolves with the report once
-   * switched, or undefined when an edit came first (the result is dropped), and at once with
-   * undefined in spectral mode (specialised kernels are RGB) and for scenes with moving instances
-   * (nothing there is frozen). Calling it again while a compile runs waits for that one.
+   * Compiles the kernels specialised to the scene and settings as they are now: resolves with the
+   * report once switched, undefined when an edit came first, and at once with undefined in spectral
+   * mode and for scenes with moving instances. Accumulation continues (the same estimator).
    */
   requestSpecialisation(options: SpecialiseOptions = {}): Promise<SpecialisationReport | undefined> {
     return this.specialising.request(options);
   }
 
-  /**
-   * Goes back to the generic kernels at once and drops any compile under way; with an idle delay set
-   * (setIdleSpecialisation), restarts its timer. Every method that edits the scene or an estimate
-   * setting calls it; so must any new one.
-   */
+  /** Back to the generic kernels, any compile under way dropped; every method that edits the scene or an estimate setting calls it. */
   invalidateSpecialisation(): void {
     this.specialising.invalidate();
   }
 
-  /**
-   * The idle policy shared by the front ends: specialise once the scene has gone `idleMs` without an
-   * edit (the viewer uses 1000); undefined turns it off (the default). A failed compile is kept in
-   * specialisationError and rendering stays generic.
-   */
+  /** The front ends' idle policy: specialise once the scene has gone `idleMs` without an edit (the viewer: 1000); undefined turns it off. */
   setIdleSpecialisation(idleMs: number | undefined): void {
     this.specialising.setIdle(idleMs);
   }
 
   /** Sets the image size, checked against the GPU's limits. */
   async resize(width: number, height: number): Promise<void> {
-    checkImageSize(width, height, this.device.limits);
-    if (this.targets && this.targets.width === width && this.targets.height === height) return;
-    const device = this.device;
-    const targets = await withErrorScope(device, `a ${width}×${height} image`, () => ({
-      width,
-      height,
-      accumulation: device.createBuffer({
-        label: 'accumulation',
-        size: width * height * ACCUMULATION_BYTES_PER_PIXEL,
-        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST,
-      }),
-      rayCounters: device.createBuffer({ label: 'ray counters', size: 16, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC | GPUBufferUsage.COPY_DST }),
-      output: device.createTexture({
-        label: 'tone-mapped image',
-        size: [width, height],
-        format: 'rgba8unorm',
-        usage: GPUTextureUsage.STORAGE_BINDING | GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_SRC,
-      }),
-    }));
-    this.destroyTargets();
-    this.targets = targets;
-    this.updateView();
+    if (await this.image.resize(width, height)) this.updateView();
   }
 
   /** Counts resetAccumulation() calls (the ray counters restart with each): callers tell fresh counts from running ones. */
   get accumulationEpoch(): number {
-    return this.epoch;
+    return this.image.epoch;
   }
 
   /** Discards every accumulated sample and the ray counts (the next frame starts a new estimate). */
   resetAccumulation(): void {
-    this.samples = 0;
-    this.epoch++;
-    if (!this.targets) return;
-    const encoder = this.device.createCommandEncoder({ label: 'reset accumulation' });
-    encoder.clearBuffer(this.targets.accumulation);
-    encoder.clearBuffer(this.targets.rayCounters);
-    this.device.queue.submit([encoder.finish()]);
-  }
-
-  /** The whole image as one tile. */
-  fullImage(): Tile {
-    return wholeImage(this);
+    this.image.restart();
   }
 
   /**
    * What the recipes' passes are given for a frame (renderer/frame.ts): the scene, the view and the
-   * camera, the settings, the image's targets, the torch the settings leave, the scene's size.
+   * camera, the settings, the image's targets, the torch the settings leave, the scene's size. Passes
+   * outside the recipes (the traversal benchmark) take it too.
    */
-  private frameContext(timer?: GpuTimer): FrameContext {
+  frame(timer?: GpuTimer): FrameContext {
     const { resources, targets } = this.ready();
     const camera = this.cameraValue;
     if (!camera) throw new Error('Renderer: setCamera() before rendering');
@@ -584,30 +379,29 @@ export class Renderer {
    * that no single submit runs long enough to trip a GPU watchdog. Returns without waiting. With a
    * timer, each tile's pass is timed and the timestamps are resolved with the last tile.
    */
-  accumulate(samples: number, tiles: readonly Tile[] = [this.fullImage()], timer?: GpuTimer): void {
+  accumulate(samples: number, tiles: readonly Tile[] = [wholeImage(this)], timer?: GpuTimer): void {
     this.checkSamples(samples, 'dispatch');
-    const frame = this.frameContext(timer);
+    const frame = this.frame(timer);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      this.progressive.encode(encoder, frame, tile, this.samples, samples);
+      this.recipes.progressive.encode(encoder, frame, tile, this.image.samples, samples);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
     });
-    this.samples += samples;
+    this.image.add(samples);
     this.shown = 'accumulation';
   }
 
   /**
-   * Adds `samples` paths per pixel as a sequence of row bands, each submitted by SplitFrame.submitChunk
-   * (the viewer awaits each; the CLI's long renders use accumulate with DispatchPlanner's tiles). The
-   * samples count once the last band is submitted; an estimate reset meanwhile gives the frame up
-   * (the reset cleared what its bands added).
+   * Adds `samples` paths per pixel as a SplitFrame of row bands (the viewer's; the CLI's long renders
+   * use accumulate with DispatchPlanner's tiles). The samples count once the last band is submitted;
+   * an estimate reset meanwhile gives the frame up.
    */
   beginAccumulate(samples: number, timer?: GpuTimer): SplitFrame {
     this.checkSamples(samples, 'dispatch');
-    const work = this.progressive.begin(this.frameContext(timer), samples, this.samples);
+    const work = this.recipes.progressive.begin(this.frame(timer), samples, this.image.samples);
     return this.split(work, samples, 'path trace', () => {
-      this.samples += samples;
+      this.image.add(samples);
       this.shown = 'accumulation';
     });
   }
@@ -616,116 +410,65 @@ export class Renderer {
   private checkSamples(samples: number, per: 'dispatch' | 'frame', tracesSpectral = true): void {
     this.ready();
     if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per ${per} must be a positive whole number, not ${samples}`);
-    if (tracesSpectral && this.settingsValue.spectral && !this.spectralEnabled) throw new Error('Renderer: compile() before rendering with settings.spectral');
+    if (tracesSpectral && this.settingsValue.spectral && !this.recipes.spectral) throw new Error('Renderer: compile() before rendering with settings.spectral');
   }
 
   /** A SplitFrame driving a recipe's frame; `done` runs after the recipe's own once the last band is submitted. */
   private split(work: RecipeFrame, samples: number, label: string, done: () => void): SplitFrame {
-    const { targets } = this.ready();
-    return new SplitFrame(this, targets, samples, work.splittable, {
-      band: (encoder, tile) => work.band(encoder, tile),
-      finish: (encoder) => work.finish(encoder),
-      done: () => {
-        work.done();
-        done();
-      },
-      abandon: () => work.abandon(),
-    }, label);
+    const after = () => {
+      work.done();
+      done();
+    };
+    return new SplitFrame(this, this.ready().targets, samples, work.splittable, { ...work, done: after }, label);
   }
 
   /**
-   * Compiles what the recipe of the settings (with `changes`; renderer/recipes/recipe.ts) runs, for
-   * this and every later scene: the real-time chain with the wavefront integrator and ReSTIR where
-   * asked, the hybrid recipe, the debug views, the spectral variants. Call it before the first frame
-   * or sample of a recipe; nothing is compiled twice, and the progressive path tracer and the tone
-   * mapper are compiled by create(). `intent.frames`: frames are asked for even with every filter
-   * of the real-time chain off (the CLI's --frames).
+   * Compiles what the recipe of the settings (with `changes`) runs (recipeCompiles), for this and
+   * every later scene, before its first frame; nothing is compiled twice. `intent.frames`: frames are
+   * asked for even with every filter of the real-time chain off (the CLI's --frames).
    */
   async compile(changes: Partial<RenderSettings> = {}, intent: RecipeIntent = {}): Promise<void> {
-    const wants = recipeCompiles({ ...this.settingsValue, ...changes }, intent);
-    await Promise.all([wants.debugViews ? this.compileDebugViews() : undefined, wants.spectral ? this.compileSpectral() : undefined, wants.hybrid ? this.compileHybrid() : undefined]);
-    if (wants.realTime) await this.compileRealTime(wants);
-  }
-
-  /** Compiles the spectral variants of the path tracers (settings.spectral) for this and every later scene; RGB rendering never compiles them. */
-  private async compileSpectral(): Promise<void> {
-    this.spectralEnabled = true;
-    if (!this.prepared) return;
-    const features = this.prepared.packed.features;
-    await Promise.all([this.progressive.prepare(features, true), this.realTime?.prepare(features, true)]);
-  }
-
-  /** Compiles the real-time frame passes (path tracer with G-buffer, temporal, à-trous, output; the wavefront one and ReSTIR's where asked). */
-  private async compileRealTime(wants: { readonly wavefront: boolean; readonly restir: boolean }): Promise<void> {
-    const created = !this.realTime;
-    this.realTime ??= await RealTimeRecipe.create(this.device, this.sceneFeatures);
-    if (this.prepared) await Promise.all([this.realTime.prepare(this.prepared.packed.features), this.spectralEnabled ? this.realTime.prepare(this.prepared.packed.features, true) : undefined]);
-    if (created) this.useSamplers();
-    if (wants.wavefront) await this.compileWavefront();
-    if (wants.restir) await this.compileRestir();
-    await this.samplerPending;
-    // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the
-    // frame kernel): specialise again with it.
-    if (created) this.invalidateSpecialisation();
+    await this.recipes.compile(recipeCompiles({ ...this.settingsValue, ...changes }, intent));
   }
 
   /** The error of the last background compile of the wavefront path tracer, if it failed (frames stay on the megakernel). */
-  wavefrontError?: unknown;
+  get wavefrontError(): unknown {
+    return this.recipes.wavefrontError;
+  }
+
   /** The error of the last background compile of the ReSTIR passes, if it failed (frames keep one light sample per bounce). */
-  restirError?: unknown;
-
-  /** Compiles the ReSTIR passes (settings.restir) into the real-time chain. Until they are ready, frames run without them. */
-  private async compileRestir(): Promise<void> {
-    await this.realTime!.enableRestir();
-    this.restirError = undefined;
-  }
-
-  /** Compiles the wavefront frame path tracer (settings.integrator = 'wavefront') into the real-time chain. Until it is ready, frames are traced by the megakernel. */
-  private async compileWavefront(): Promise<void> {
-    if (!this.realTime) throw new Error('Renderer: the real-time chain before its wavefront integrator');
-    const created = !this.realTime.wavefrontPass;
-    await this.realTime.enableWavefront();
-    this.wavefrontError = undefined;
-    // Specialised kernels are compiled for every tracing pass at once (one under way lacks the wavefront's): specialise again with it.
-    if (created) this.invalidateSpecialisation();
-  }
-
-  /** Compiles the hybrid recipe's passes (raster, resolve, shade, GI, compose, TAA) for this and every later scene. */
-  private async compileHybrid(): Promise<void> {
-    this.hybrid ??= await HybridRecipe.create(this.device, this.sceneFeatures);
-    if (this.prepared) await this.hybrid.prepare(this.prepared.packed.features);
+  get restirError(): unknown {
+    return this.recipes.restirError;
   }
 
   /** Which path tracer traced the last real-time frame (settings.integrator, or the megakernel while the wavefront compiles). */
   get frameIntegrator(): Integrator {
-    return this.realTime?.frameIntegrator ?? 'megakernel';
+    return this.recipes.realTime?.frameIntegrator ?? 'megakernel';
   }
 
   /** Bytes per pixel of the real-time denoising chain's buffers, each and in all (RealTimeRecipe.bufferSizes; empty until a frame). */
   get denoiserMemory(): { readonly bytesPerPixel: number; readonly buffers: readonly DenoiserBufferSize[] } {
-    return { bytesPerPixel: this.realTime?.bytesPerPixel() ?? 0, buffers: this.realTime?.bufferSizes() ?? [] };
+    return { bytesPerPixel: this.recipes.realTime?.bytesPerPixel() ?? 0, buffers: this.recipes.realTime?.bufferSizes() ?? [] };
   }
 
   /** Bytes the wavefront path tracer's own buffers hold (path state and queues; 0 until it traced a frame). */
   get wavefrontBytes(): number {
-    return this.realTime?.wavefrontAllocatedBytes ?? 0;
+    return this.recipes.realTime?.wavefrontAllocatedBytes ?? 0;
   }
 
   /**
-   * The path tracing of one real-time frame alone, by settings.integrator: `samples` paths per pixel
-   * with the random streams of frame `sampleIndex` (default 0), no filter, the history kept. With a
-   * timer its passes are timed ('frame G-buffer', 'frame emission' and 'path trace (frame)' for the
-   * megakernel; 'frame G-buffer', 'frame emission' and 'path trace (wavefront)' for the wavefront);
-   * `breakdown` times the wavefront's stages apart instead (WavefrontFramePass.encode names them).
-   * ReSTIR does not run here (RealTimeRecipe.encodeTraceOnly); renderFrame times its passes.
-   * For timing the two integrators (bench) and comparing them (readFrameTrace). Returns which traced.
+   * The path tracing of one real-time frame alone (RealTimeRecipe.encodeTraceOnly: no filter, no
+   * ReSTIR, the history kept), `samples` paths per pixel with the random streams of frame
+   * `sampleIndex`; `breakdown` times the wavefront's stages apart. For timing and comparing the two
+   * integrators (bench, readFrameTrace). Returns which traced.
    */
   traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
-    if (!this.realTime) throw new Error('Renderer: compile() the real-time chain before traceFrame()');
+    const realTime = this.recipes.realTime;
+    if (!realTime) throw new Error('Renderer: compile() the real-time chain before traceFrame()');
     this.checkSamples(samples, 'frame');
     this.residency.settleBeforeFrame();
     const encoder = this.device.createCommandEncoder({ label: 'real-time frame path tracing' });
-    const integrator = this.realTime.encodeTraceOnly(encoder, this.frameContext(options.timer), samples, options.sampleIndex ?? 0, options.breakdown ?? false);
+    const integrator = realTime.encodeTraceOnly(encoder, this.frame(options.timer), samples, options.sampleIndex ?? 0, options.breakdown ?? false);
     options.timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
     return integrator;
@@ -737,17 +480,16 @@ export class Renderer {
    * traceFrame overwrites the shown frame's output likewise.
    */
   readFrameTrace(): Promise<FrameTrace> {
-    if (!this.realTime) throw new Error('Renderer: compile() the real-time chain before readFrameTrace()');
-    return this.realTime.readTrace();
+    const realTime = this.recipes.realTime;
+    if (!realTime) throw new Error('Renderer: compile() the real-time chain before readFrameTrace()');
+    return realTime.readTrace();
   }
 
   /**
-   * One frame of the recipe the settings choose (renderer/recipes/recipe.ts recipeFor, frames asked
-   * for): the real-time chain (`samples` paths per pixel, then temporal accumulation and the spatial
-   * filter), the hybrid recipe, or a debug view alone (nothing traced), in one submit. The history
-   * survives setCamera (it is reprojected) and setScene (changed pixels fail the G-buffer tests);
-   * resize or resetHistory() drop it. With a timer, every pass is timed. present(), readImage() and
-   * readFrame() show the result.
+   * One frame of the recipe the settings choose (recipeFor, frames asked for), in one submit: the
+   * real-time chain, the hybrid recipe, or a debug view alone (nothing traced). The history survives
+   * setCamera (reprojected) and setScene; resize or resetHistory() drop it. With a timer, every pass
+   * is timed. present(), readImage() and readFrame() show the result.
    */
   renderFrame(samples: number, timer?: GpuTimer): void {
     const frame = this.beginFrame(samples, timer);
@@ -755,24 +497,22 @@ export class Renderer {
   }
 
   /**
-   * One frame (renderFrame) as a sequence of submissions: the path tracing in row bands, each
-   * submitted by SplitFrame.submitChunk, the filters with the last band. Awaiting finish() between
-   * bands keeps every submission short, so the page answers input, Pause and settings between them;
-   * the frame adds up to exactly renderFrame's. The wavefront integrator and the hybrid recipe trace
-   * whole frames: their frames have one band (splittable false).
+   * One frame (renderFrame) as a SplitFrame: the tracing in row bands submitted one at a time (the
+   * page answers input between them), the filters with the last; it adds up to exactly renderFrame's.
+   * The wavefront integrator and the hybrid recipe trace whole frames (one band).
    */
   beginFrame(samples: number, timer?: GpuTimer): SplitFrame {
     const recipe = this.frameRecipe();
-    this.checkSamples(samples, 'frame', recipe === this.realTime);
+    this.checkSamples(samples, 'frame', recipe === this.recipes.realTime);
     // A debug view that replaces the image is drawn by present() and readImage(): nothing to trace.
     if (!recipe) return this.split({ splittable: false, band: () => {}, finish: () => {}, done: () => {}, abandon: () => {} }, samples, 'frame', () => {});
     this.residency.settleBeforeFrame();
-    const frame = this.frameContext(timer);
+    const frame = this.frame(timer);
     const work = recipe.begin(frame, samples);
     return this.split({ ...work, finish: (encoder) => {
       work.finish(encoder);
       timer?.resolve(encoder);
-    } }, samples, recipe === this.hybrid ? 'hybrid frame' : 'real-time frame', () => {
+    } }, samples, recipe === this.recipes.hybrid ? 'hybrid frame' : 'real-time frame', () => {
       this.lastFrame = recipe;
       this.shown = 'frame';
       this.residency.frameDone();
@@ -781,16 +521,12 @@ export class Renderer {
 
   /** The recipe a frame runs now (undefined: a debug view alone), compiled. */
   private frameRecipe(): FrameRecipe | undefined {
-    const recipe = recipeFor(this.settingsValue, { frames: true });
-    if (recipe === 'debug') return undefined;
-    const compiled = recipe === 'hybrid' ? this.hybrid : this.realTime;
-    if (!compiled) throw new Error(`Renderer: compile() the ${recipe} recipe before renderFrame()`);
-    return compiled;
+    return this.recipes.frameRecipe(recipeFor(this.settingsValue, { frames: true }) as 'real-time' | 'hybrid' | 'debug');
   }
 
   /** What SplitFrame checks before each band: the estimate, the history and the scene are those the frame began with. */
   frameGeneration(): string {
-    return `${this.epoch} ${this.historyResets} ${this.residency.uploads}`;
+    return `${this.image.epoch} ${this.historyResets} ${this.residency.uploads}`;
   }
 
   /** Submits an encoder (SplitFrame's bands). */
@@ -800,7 +536,7 @@ export class Renderer {
 
   /** The targets in use (SplitFrame checks that a resize has not replaced them). */
   currentTargets(): object | undefined {
-    return this.targets;
+    return this.image.targets;
   }
 
   /**
@@ -815,8 +551,7 @@ export class Renderer {
   /** Drops the real-time history: the next frame starts from its own samples. */
   resetHistory(): void {
     this.historyResets++;
-    this.realTime?.resetHistory();
-    this.hybrid?.resetHistory();
+    this.recipes.resetHistory();
   }
 
   /** The linear radiance of the last real-time frame (before tone mapping; a debug view if one is chosen). */
@@ -824,42 +559,17 @@ export class Renderer {
     const { targets } = this.ready();
     const output = this.lastFrame?.output;
     if (!output) throw new Error('Renderer: renderFrame() before readFrame()');
-    const raw = new Float32Array(await readBuffer(this.device, output));
-    const n = targets.width * targets.height;
-    const radiance = new Float32Array(n * 3);
-    for (let i = 0; i < n; i++) for (let c = 0; c < 3; c++) radiance[i * 3 + c] = raw[i * 4 + c]!;
-    return { width: targets.width, height: targets.height, radiance };
+    return readLinear(this.device, output, targets);
   }
 
   /** Tone-maps the current estimate and draws it onto `target` (a canvas texture); with a timer, times both passes. */
   present(target: GPUTexture, timer?: GpuTimer): void {
-    const { targets } = this.ready();
-    if (!this.presentPass) throw new Error('Renderer: a presentation format (create or setPresentationFormat) before present()');
-    const encoder = this.device.createCommandEncoder({ label: 'present' });
-    // What is presented is seen in real time: the exposure adapts over the wall-clock time since the last present.
-    const now = performance.now();
-    const seconds = this.lastPresentMs === undefined ? 0 : (now - this.lastPresentMs) / 1000;
-    this.lastPresentMs = now;
-    this.encodeTonemap(encoder, targets, seconds, timer);
-    let shown = this.encodeDebugView(encoder, targets);
-    if (this.selectionRange && this.selectionPass && this.resources) {
-      shown = this.selectionPass.encode(encoder, { scene: this.resources, view: this.view, selection: this.selectionRange, image: shown, traceMask: this.selectionStale });
-      this.selectionStale = false;
-    }
-    this.presentPass.encode(encoder, shown, target, timer);
-    timer?.resolve(encoder);
-    this.device.queue.submit([encoder.finish()]);
+    this.output.present(target, this.shownImage(), timer);
   }
 
   /** Compiles the present pipeline for targets of `format` (a canvas's; browser only: the CLI never draws to a surface). */
   async setPresentationFormat(format: GPUTextureFormat): Promise<void> {
-    if (this.presentPass?.format !== format) this.presentPass = await PresentPass.create(this.device, format);
-  }
-
-  /** Compiles the debug views' pipelines (readImage does it by itself; present needs it done first). */
-  private async compileDebugViews(): Promise<void> {
-    this.debugViews ??= await DebugViews.create(this.device, this.sceneFeatures);
-    if (this.prepared) await this.debugViews.prepare(this.prepared.packed.features);
+    await this.output.setPresentationFormat(format);
   }
 
   /**
@@ -867,16 +577,8 @@ export class Renderer {
    * With a timer, the exposure and tone map passes are timed (resolved here; read them after).
    */
   async readImage(timer?: GpuTimer): Promise<Uint8Array> {
-    const { targets } = this.ready();
-    if (this.settingsValue.debugView !== 'none') await this.compileDebugViews();
-    if (this.exposureChoice.kind === 'auto') await this.compileAutoExposure();
-    const encoder = this.device.createCommandEncoder({ label: 'tone map for readback' });
-    this.encodeTonemap(encoder, targets, this.pendingExposureSeconds, timer);
-    this.pendingExposureSeconds = 0;
-    timer?.resolve(encoder);
-    const image = this.encodeDebugView(encoder, targets);
-    this.device.queue.submit([encoder.finish()]);
-    return readTexture4x8(this.device, image);
+    if (this.settingsValue.debugView !== 'none') await this.recipes.compileDebugViews();
+    return this.output.readImage(this.shownImage(), timer);
   }
 
   /**
@@ -884,8 +586,7 @@ export class Renderer {
    * shaders/passes/debug-view.wgsl), e.g. x = BVH nodes visited for 'heat-nodes'.
    */
   async readDebugValues(): Promise<Float32Array> {
-    await this.renderDebugView();
-    return this.debugViews!.readValues();
+    return (await this.renderDebugView()).readValues();
   }
 
   /** What the current debug view shows, with the numbers and colours of its scale (draw it as legendGradientCss()). */
@@ -893,8 +594,7 @@ export class Renderer {
     const { resources } = this.ready();
     const settings = this.settingsValue;
     if (settings.debugView === 'none') return debugLegend(settings, { maxDepth: this.bvhMaxDepth, maxLeafSize: 0, imageMax: 0 });
-    await this.renderDebugView();
-    return this.debugViews!.legend(this.settingsValue, this.prepared!, resources);
+    return (await this.renderDebugView()).legend(settings, this.prepared!, resources);
   }
 
   /** Depth of the deepest node of the scene's BVH (root = 0): the wireframe depth's upper bound. */
@@ -904,31 +604,12 @@ export class Renderer {
 
   /** The linear radiance estimate and its per-pixel luminance variance. */
   async readAccumulation(): Promise<Accumulation> {
-    const { targets } = this.ready();
-    const raw = new Float32Array(await readBuffer(this.device, targets.accumulation));
-    const n = targets.width * targets.height;
-    const radiance = new Float32Array(n * 3);
-    const luminanceVariance = new Float32Array(n);
-    const samples = this.samples;
-    const inv = samples > 0 ? 1 / samples : 0;
-    for (let i = 0; i < n; i++) {
-      const r = raw[i * 4]! * inv, g = raw[i * 4 + 1]! * inv, b = raw[i * 4 + 2]! * inv;
-      radiance[i * 3] = r;
-      radiance[i * 3 + 1] = g;
-      radiance[i * 3 + 2] = b;
-      if (samples > 1) {
-        const mean = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-        luminanceVariance[i] = Math.max(0, (raw[i * 4 + 3]! - samples * mean * mean) / (samples - 1));
-      }
-    }
-    return { width: targets.width, height: targets.height, samples, radiance, luminanceVariance };
+    return readAccumulation(this.device, this.ready().targets, this.image.samples);
   }
 
   /** Rays traced since accumulation last restarted: extension (closest hit) and shadow (any hit). */
   async readRayCounts(): Promise<RayCounts> {
-    const { targets } = this.ready();
-    const w = new Uint32Array(await readBuffer(this.device, targets.rayCounters));
-    return { extension: w[0]! + w[1]! * 2 ** 32, shadow: w[2]! + w[3]! * 2 ** 32 };
+    return readRayCounts(this.device, this.ready().targets);
   }
 
   /** Resolves when the GPU has finished everything submitted so far. */
@@ -941,25 +622,11 @@ export class Renderer {
     this.setIdleSpecialisation(undefined);
     this.invalidateSpecialisation();
     this.residency.destroy();
-    this.destroyTargets();
+    this.image.destroy();
     this.view.destroy();
-    this.realTime?.destroy();
-    this.realTime = undefined;
-    this.hybrid?.destroy();
-    this.hybrid = undefined;
-    this.progressive.destroy();
-    this.tonemap.destroy();
-    this.destroyed = true;
-    this.exposure?.destroy();
-    this.debugViews?.destroy();
-    this.selectionPass?.destroy();
+    this.recipes.destroy();
+    this.output.destroy();
     void this.tracePass?.then((p) => p.destroy());
-  }
-
-  /** For passes outside the facade (benchmarks, tests): the scene's GPU resources and the view. */
-  internals(): { resources: SceneResources; view: ViewUniform } {
-    const { resources } = this.ready();
-    return { resources, view: this.view };
   }
 
   /**
@@ -976,73 +643,36 @@ export class Renderer {
    * takes its target exposure at once.
    */
   advanceExposure(seconds: number): void {
-    if (!(seconds >= 0) || !Number.isFinite(seconds)) throw new Error(`Renderer.advanceExposure: ${seconds} is not a duration in seconds`);
-    this.pendingExposureSeconds += seconds;
+    this.output.exposure.advance(seconds);
   }
 
   /** The automatic exposure as the last tone map left it: the image's log-average luminance (log2) and the exposure (stops). */
   readExposure(): Promise<ExposureReading> {
-    if (!this.exposure) throw new Error('Renderer: no image has been exposed automatically yet');
-    return this.exposure.read();
+    return this.output.exposure.read();
   }
 
-  /**
-   * Compiles the automatic exposure's two kernels, once. Scenes and settings that never ask for
-   * automatic exposure never compile them (start-up compiles only what the first image runs).
-   */
-  private compileAutoExposure(): Promise<ExposurePass> {
-    this.exposureCompile ??= ExposurePass.create(this.device).then((pass) => {
-      if (this.destroyed) pass.destroy();
-      else this.exposure = pass;
-      return pass;
-    });
-    return this.exposureCompile;
-  }
-
-  private encodeTonemap(encoder: GPUCommandEncoder, targets: ImageTargets, seconds: number, timer?: GpuTimer): void {
-    const s = this.settingsValue;
+  /** What present() and readImage() show now: the estimate or the last frame, as the settings expose it. */
+  private shownImage(): ShownImage {
+    const { resources, targets } = this.ready();
     const frame = this.shown === 'frame' ? this.lastFrame?.output : undefined;
-    // Debug views of a recipe are shown as computed: no exposure, no tone curve.
-    const debug = frame !== undefined && this.lastFrame!.showsRawValues({ settings: s });
-    const radiance = frame ?? targets.accumulation;
-    const sampleCount = frame ? 1 : this.samples;
-    let choice = this.exposureChoice;
-    // Until its kernels are compiled (compileAutoExposure, under way), the image keeps the scene's own exposure.
-    if (choice.kind === 'auto' && !this.exposure) choice = { kind: 'manual', stops: this.cameraValue?.exposureStops ?? 0 };
-    const pass = this.exposure;
-    let exposure: { exposureStops: number; autoExposure?: GPUBuffer };
-    if (debug) exposure = { exposureStops: 0 };
-    else if (choice.kind === 'manual') exposure = { exposureStops: choice.stops };
-    // No samples yet: a black image, and nothing to adapt to.
-    else if (sampleCount === 0) exposure = { exposureStops: 0 };
-    else {
-      const keep = this.exposureAdapted ? adaptationKeep(seconds, choice.adaptationSeconds) : 0;
-      pass!.encode(encoder, this.view, radiance, targets.width, targets.height, { sampleCount, keep, compensationStops: choice.compensationStops }, timer);
-      this.exposureAdapted = true;
-      exposure = { exposureStops: 0, autoExposure: pass!.state };
-    }
-    // A manual exposure between automatic ones: the eye adapts afresh when automatic comes back.
-    if (choice.kind === 'manual') this.exposureAdapted = false;
-    this.tonemap.encode(encoder, this.view, radiance, targets.output, { ...exposure, toneMapper: debug ? 'linear' : s.toneMapper, sampleCount }, timer);
-  }
-
-  /** Encodes the debug view when one is set and returns the image to show: the composed one, or the tone-mapped one. */
-  private encodeDebugView(encoder: GPUCommandEncoder, targets: ImageTargets): GPUTexture {
-    const settings = this.settingsValue;
-    if (settings.debugView === 'none') return targets.output;
-    if (!this.debugViews) throw new Error('Renderer: compile() the debug views before showing one');
-    return this.debugViews.encode(encoder, { prepared: this.prepared!, resources: this.resources!, view: this.view, image: targets.output, settings });
+    return {
+      targets, view: this.view, settings: this.settingsValue,
+      radiance: frame ?? targets.accumulation,
+      sampleCount: frame ? 1 : this.image.samples,
+      raw: frame !== undefined && this.lastFrame!.showsRawValues({ settings: this.settingsValue }),
+      exposure: this.exposureChoice,
+      sceneStops: this.cameraValue?.exposureStops ?? 0,
+      scene: { prepared: this.prepared!, resources },
+      debugViews: this.recipes.debugViews,
+    };
   }
 
   /** Runs the current debug view once (a debug view must be set) and waits for it. */
-  private async renderDebugView(): Promise<void> {
-    const { targets } = this.ready();
+  private async renderDebugView(): Promise<DebugViews> {
     if (this.settingsValue.debugView === 'none') throw new Error("Renderer: set a debugView other than 'none' first");
-    await this.compileDebugViews();
-    const encoder = this.device.createCommandEncoder({ label: 'debug view' });
-    this.encodeDebugView(encoder, targets);
-    this.device.queue.submit([encoder.finish()]);
-    await this.finish();
+    const views = await this.recipes.compileDebugViews();
+    await this.output.renderDebugView(this.shownImage());
+    return views;
   }
 
   /** Half the diagonal of the scene's bounds (the depth view's scale). */
@@ -1052,48 +682,13 @@ export class Renderer {
 
   private ready(): { resources: SceneResources; targets: ImageTargets } {
     if (!this.resources) throw new Error('Renderer: setScene() first');
-    if (!this.targets) throw new Error('Renderer: resize() first');
-    return { resources: this.resources, targets: this.targets };
+    if (!this.image.targets) throw new Error('Renderer: resize() first');
+    return { resources: this.resources, targets: this.image.targets };
   }
 
   private updateView(): void {
-    if (this.cameraValue && this.targets) this.view.update(this.cameraValue, this.targets.width, this.targets.height);
-    this.selectionStale = true;
+    if (this.cameraValue && this.image.targets) this.view.update(this.cameraValue, this.image.targets.width, this.image.targets.height);
+    this.output.selection.markStale();
     this.resetAccumulation();
   }
-
-  private destroyTargets(): void {
-    if (!this.targets) return;
-    this.targets.accumulation.destroy();
-    this.targets.rayCounters.destroy();
-    this.targets.output.destroy();
-    this.targets = undefined;
-  }
-}
-
-/** Throws a LanternError when an image of this size is not a sensible request or exceeds the GPU's limits. */
-export function checkImageSize(width: number, height: number, limits: GPUSupportedLimits): void {
-  for (const [name, v] of [['width', width], ['height', height]] as const) {
-    if (!Number.isInteger(v) || v < 1) throw new LanternError(`image ${name} must be a whole number of pixels ≥ 1, not ${v}`);
-  }
-  const maxSide = Math.min(MAX_IMAGE_SIDE, limits.maxTextureDimension2D);
-  if (width > maxSide || height > maxSide) {
-    throw new LanternError(`image ${width}×${height} is too large: each side may be at most ${maxSide} pixels on this GPU`);
-  }
-  const bytes = width * height * ACCUMULATION_BYTES_PER_PIXEL;
-  if (bytes > limits.maxStorageBufferBindingSize || bytes > limits.maxBufferSize) {
-    const maxPixels = Math.floor(Math.min(limits.maxStorageBufferBindingSize, limits.maxBufferSize) / ACCUMULATION_BYTES_PER_PIXEL);
-    throw new LanternError(`image ${width}×${height} is too large for this GPU: at most ${maxPixels} pixels fit one accumulation buffer`);
-  }
-}
-
-/** A miss in a HitRecord (shaders/scene/types.wgsl NO_TRIANGLE). */
-const NO_PRIMITIVE = 0xffffffff;
-
-const unpackHitsSize = () => rayBufferStrides().hit;
-
-function cameraForward(camera: Camera): Vec3 {
-  const [x, y, z] = camera.forward;
-  const len = Math.hypot(x, y, z);
-  return [x / len, y / len, z / len];
 }

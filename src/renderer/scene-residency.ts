@@ -12,7 +12,8 @@ import type { Vec3 } from '../math/vec3.ts';
 import { isEmptyUpdate, type SceneUpdate } from '../scene/dynamics.ts';
 import type { MaterialEdit } from '../scene/material-edit.ts';
 import { defaultTileCulling } from '../scene/tile-culling.ts';
-import { editMaterials, LIGHT_BUFFERS, updateGeometry, type BufferWrite, type GeometryUpdate, type PreparedScene } from './prepare.ts';
+import { accelOf, editMaterials, LIGHT_BUFFERS, updateGeometry, withAccel, type BufferWrite, type GeometryUpdate, type PreparedScene } from './prepare.ts';
+import type { Accel } from '../bvh/grid.ts';
 import { TILE_SWAP_BUFFERS, TileCulledScenes, type TileCullingStats } from './tile-culled.ts';
 
 /** What the residency asks of the renderer. */
@@ -43,6 +44,8 @@ export class SceneResidency {
   private settle: 'no' | 'after-frame' | 'now' = 'no';
   /** CPU milliseconds of the last geometry update: bottom-level refits, the top-level build, packing. */
   lastUpdateMs?: GeometryUpdate['ms'];
+  /** The switches of acceleration structure under way, one after another (switchAccel). */
+  private accelPending: Promise<void> = Promise.resolve();
 
   constructor(
     private readonly device: GPUDevice,
@@ -82,7 +85,29 @@ export class SceneResidency {
     this.hooks.uploaded();
   }
 
-  /** Renderer.applySceneUpdate. */
+  /**
+   * Builds and uploads the static world again in the structure `accel()` names by the time the
+   * switch runs, in the background (frames trace the current one meanwhile); one switch at a time,
+   * so a quick bvh → grid → bvh ends on the BVH. accelSettled() waits for it.
+   */
+  switchAccel(accel: () => Accel): void {
+    if (!this.preparedValue) return;
+    this.accelPending = this.accelPending
+      .catch(() => undefined)
+      .then(() => (this.preparedValue && accelOf(this.preparedValue) !== accel() ? this.upload(withAccel(this.preparedValue, accel())) : undefined));
+    this.accelPending.catch(() => undefined); // the error is accelSettled()'s to report
+  }
+
+  /** Resolves once the last switchAccel is done (rejects if building or uploading failed). */
+  accelSettled(): Promise<void> {
+    return this.accelPending;
+  }
+
+  /**
+   * Renderer.applySceneUpdate: instances moved or changed material, meshes morphed, materials
+   * animated. Geometry is refitted and its buffers rewritten in place (renderer/prepare.ts
+   * updateGeometry), materials repacked (updateMaterials).
+   */
   apply(update: SceneUpdate): PreparedScene {
     // The other tiles' scenes catch up when they are swapped in.
     this.tileCulled?.noteUpdate(update);
@@ -133,7 +158,11 @@ export class SceneResidency {
     if (this.settle === 'after-frame') this.settle = 'now';
   }
 
-  /** Renderer.updateMaterials. */
+  /**
+   * Renderer.updateMaterials: the edited records are packed again and the materials buffer rewritten;
+   * an emission edit also packs the light table again (renderer/prepare.ts editMaterials) and rewrites
+   * it, reallocating the light-slot buffer alone where it grew (an emitter appeared).
+   */
   updateMaterials(edits: ReadonlyMap<number, MaterialEdit>): PreparedScene {
     let resources = this.resourcesValue;
     if (!resources || !this.preparedValue) throw new Error('Renderer: setScene() before updateMaterials()');

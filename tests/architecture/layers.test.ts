@@ -32,6 +32,17 @@ describe('the checker', () => {
     expect(v[0]).toMatchObject({ rule: 'layer', detail: expect.stringMatching(/^passes -> renderer/) });
   });
 
+  it('catches a recipe importing the Renderer, which recipes never see', () => {
+    const v = checkLayers([
+      file('renderer/recipes/a.ts', "import type { Renderer } from '../renderer.ts';"),
+      file('renderer/recipes/b.ts', "import { pathDispatch } from '../frame.ts';"),
+      file('renderer/viewerish.ts', "import { Renderer } from './renderer.ts';"),
+      file('renderer/recipes/c.test.ts', "import { Renderer } from '../renderer.ts';"),
+    ]);
+    expect(v.map((x) => `${x.file} ${x.rule}`)).toEqual(['renderer/recipes/a.ts layer']);
+    expect(v[0]!.detail).toMatch(/^renderer\/recipes\/ -> renderer\/renderer\.ts .*FrameContext/);
+  });
+
   it('catches the CLI importing the page, and loaders importing the GPU or the renderer', () => {
     const v = checkLayers([
       file('cli/commands/view.ts', "import { formatViewParams } from '../../app/view-params.ts';"),

@@ -39,6 +39,15 @@ export const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   cli: [...GPU_BELOW, 'gpu', 'passes', 'renderer', 'loaders', 'image', 'exporters', 'world'],
 };
 
+/**
+ * Arrows forbidden inside a folder: no file under `from` (a prefix of paths relative to src/) may
+ * import `to`, tests beside the code excepted.
+ */
+export const FORBIDDEN_INSIDE: readonly { readonly from: string; readonly to: string; readonly why: string }[] = [
+  // Issue #28: a trial split that handed recipes the Renderer closed a nine-file cycle.
+  { from: 'renderer/recipes/', to: 'renderer/renderer.ts', why: 'recipes take a FrameContext (renderer/frame.ts), never the Renderer' },
+];
+
 /** Files at src/ that every folder may import (budgets.ts: the size limits every reader of files checks). */
 const SHARED = new Set(['errors.ts', 'budgets.ts', 'types']);
 /** Imported by tests only. */
@@ -121,6 +130,8 @@ export function checkLayers(files: readonly SourceFile[]): Violation[] {
       if (!specifier.startsWith('.')) continue; // packages: their own concern
       const target = posix.normalize(posix.join(posix.dirname(file.path), specifier));
       if (target.startsWith('..')) continue; // outside src/ (tests importing src are not checked here)
+      const inside = FORBIDDEN_INSIDE.find((rule) => file.path.startsWith(rule.from) && target === rule.to);
+      if (inside && !isTest(file.path)) violations.push({ file: file.path, rule: 'layer', detail: `${inside.from} -> ${inside.to} (imports ${specifier}): ${inside.why}` });
       const to = folderOf(target);
       if (to === from || SHARED.has(to)) continue;
       if (TEST_HELPERS.has(to)) {

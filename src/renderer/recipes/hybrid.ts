@@ -13,10 +13,9 @@
  */
 import { LanternError } from '../../errors.ts';
 import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
-import type { SceneResources } from '../../gpu/scene-resources.ts';
 import type { GpuTimer } from '../../gpu/timestamps.ts';
 import { cameraUniform, ViewUniform } from '../../gpu/view.ts';
-import { ATROUS_STEPS, atrousParams } from '../../passes/denoise-passes.ts';
+import { atrousParams } from '../../passes/denoise-passes.ts';
 import { HybridRasterPass, DEPTH_FORMAT, VISIBILITY_FORMAT, type RasterDraw } from '../../passes/hybrid-raster-pass.ts';
 import { ImagePass } from '../../passes/image-pass.ts';
 import { pathTraceParams, TracingKernels } from '../../passes/path-trace-pass.ts';
