@@ -6,7 +6,8 @@
 import { skyEnvironment } from '../scene/environment-override.ts';
 import type { Environment, EnvironmentImage } from '../scene/environment.ts';
 import type { Scene } from '../scene/types.ts';
-import { DEFAULT_TURBIDITY, type ViewParams } from './view-params.ts';
+import type { ViewParams } from './view-params.ts';
+import { VIEWER_DEFAULTS } from './viewer-settings.ts';
 
 export const ENVIRONMENT_CHOICES = ['scene', 'sky', 'map', 'none'] as const;
 export type EnvironmentChoiceKind = (typeof ENVIRONMENT_CHOICES)[number];
@@ -24,8 +25,14 @@ export interface EnvironmentChoice {
   rotation: number;
 }
 
-/** A sun high in the afternoon: what the sky shows the first time it is picked. */
-export const DEFAULT_ENVIRONMENT_CHOICE: Readonly<EnvironmentChoice> = Object.freeze({ kind: 'scene', elevation: 35, azimuth: 45, turbidity: DEFAULT_TURBIDITY, skyIntensity: 1, mapIntensity: 1, rotation: 0 });
+/** A sun high in the afternoon: what the sky shows the first time it is picked (the sky's defaults in VIEWER_SETTINGS). */
+export const DEFAULT_ENVIRONMENT_CHOICE: Readonly<EnvironmentChoice> = Object.freeze({
+  kind: 'scene',
+  ...VIEWER_DEFAULTS.sky,
+  skyIntensity: VIEWER_DEFAULTS.envIntensity,
+  mapIntensity: 1,
+  rotation: 0,
+});
 
 /**
  * The environment a choice asks for: undefined for the scene's own; for a map without an image

@@ -1,14 +1,46 @@
 /**
- * Which render settings the panel shows and with what Tweakpane limits, from their schema entries;
- * each control's one-line tooltip; and which controls do nothing for the scene and settings shown
- * (the panel disables those, saying why). Pure (no Tweakpane, no DOM), so that unit tests hold the
- * panel's ranges to the schema's and every control to a tooltip.
+ * Which render settings the panel shows and with what Tweakpane limits, from their schema entries,
+ * and the same for the viewer's own settings (viewer-settings.ts); each control's one-line tooltip;
+ * and which controls do nothing for the scene and settings shown (the panel disables those, saying
+ * why). Pure (no Tweakpane, no DOM), so that unit tests hold the panel's ranges to the schema's
+ * (and so to the links') and every control to a tooltip.
  */
-import type { SettingEntry } from '../renderer/settings-schema.ts';
+import { settingDescription, type SettingEntry } from '../renderer/settings-schema.ts';
 import { SETTING_ENTRIES, type RenderSettings } from '../renderer/settings.ts';
+import { viewerEntry } from './viewer-settings.ts';
 
 /** The settings the panel shows. */
 export const PANEL_SETTINGS: readonly SettingEntry[] = SETTING_ENTRIES.filter((e) => e.spec.panel !== undefined);
+
+/**
+ * The viewer's settings the panel binds (panel.ts binds each by hand, as each has its own way to
+ * apply), keyed by their panel key (TOOLTIPS, notApplicable) with the viewer setting each binds.
+ */
+export const VIEWER_PANEL_BINDINGS = {
+  samplesPerFrame: 'samplesPerFrame',
+  scale: 'scale',
+  accumulate: 'accumulate',
+  animate: 'animate',
+  convergeWhenStill: 'convergeWhenStill',
+  fov: 'fovDegrees',
+  sunElevation: 'sky.elevation',
+  sunAzimuth: 'sky.azimuth',
+  turbidity: 'sky.turbidity',
+  skyIntensity: 'envIntensity',
+} as const;
+export type ViewerPanelKey = keyof typeof VIEWER_PANEL_BINDINGS;
+
+/**
+ * The Tweakpane parameters of the binding of a viewer setting (by its panel key): the label of its
+ * panel hint and, for a number, the limits, step and slider span of numberBindingLimits, so the
+ * panel takes what a link takes.
+ */
+export function viewerBinding(key: ViewerPanelKey): { label: string; min?: number; max?: number; step?: number; slider?: readonly [number, number] } {
+  const entry = viewerEntry(VIEWER_PANEL_BINDINGS[key]);
+  const hint = entry.spec.panel;
+  if (!hint) throw new Error(`viewer setting ${entry.id} has no panel binding`);
+  return { label: hint.label, ...numberBindingLimits(entry) };
+}
 
 /** A bound setting's key in the panel's own object: for 'integer-or-unlimited', the key of its checkbox. */
 export const unlimitedKey = (id: string) => `${id}#unlimited`;
@@ -81,11 +113,11 @@ export const TOOLTIPS: Readonly<Record<string, string>> = {
   'hybrid.taa': 'Temporal anti-aliasing: smooth jagged edges by blending jittered frames over time.',
 };
 
-/** The tooltip of a render setting: its entry in TOOLTIPS, else its schema description as a sentence. */
+/** The tooltip of a render setting: its entry in TOOLTIPS, else its schema description (with its mode) as a sentence. */
 export function settingTooltip(entry: SettingEntry): string {
   const own = TOOLTIPS[entry.id];
   if (own) return own;
-  const d = entry.spec.description;
+  const d = settingDescription(entry.spec);
   return `${d.charAt(0).toUpperCase()}${d.slice(1)}.`;
 }
 

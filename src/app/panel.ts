@@ -3,8 +3,10 @@
  * environment (scene's own, sky, HDR map, none), the selected material (material-panel.ts), what
  * the GPU is doing, and output.
  * Every change goes through the Viewer, which restarts accumulation when the change invalidates the
- * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts):
- * label, limits, step and slider span come from there, so the panel accepts what validation accepts.
+ * image. The render settings' bindings are derived from their schema entries (renderer/settings.ts),
+ * and the viewer's own (samples per frame, resolution, field of view, the sky) from theirs
+ * (viewer-settings.ts, through panel-settings.ts viewerBinding): label, limits, step and slider span
+ * come from there, so the panel accepts what validation and links accept.
  * The numbers are the viewer's own measurements: frame rate and time on the wall clock, pass
  * times from GPU timestamp queries (where the adapter offers them), rays from the GPU's counters;
  * written with figures that fit their size (number-format.ts).
@@ -20,11 +22,11 @@ import { formatSettingText, getAt, isValidValue, mergeSettings, parseSettingText
 import { effectiveTorch, type RenderSettings } from '../renderer/settings.ts';
 import { exposureChoice } from '../renderer/exposure.ts';
 import { lookSettings } from '../renderer/looks.ts';
-import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, unlimitedKey, type PanelContext } from './panel-settings.ts';
+import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, unlimitedKey, viewerBinding, type PanelContext, type ViewerPanelKey } from './panel-settings.ts';
 import { duration, significant, withUnit } from './number-format.ts';
 import { fNumberForAperture, focalLengthForFov } from '../scene/lens.ts';
 import type { MoveMode } from './camera-controller.ts';
-import { LIMITS } from './view-params.ts';
+import { VIEWER_DEFAULTS } from './viewer-settings.ts';
 import type { Viewer, ViewerDisplay } from './viewer.ts';
 import { MaterialPanel } from './material-panel.ts';
 import type { EnvironmentImage } from '../scene/environment.ts';
@@ -53,16 +55,29 @@ function unreachable(spec: never): never {
 /** What the 'showing' read-out says for each kind of image on the canvas. */
 const DISPLAY_NAMES: Record<ViewerDisplay, string> = { frame: 'real-time frame', converged: 'still: progressive estimate', progressive: 'progressive estimate' };
 
+/**
+ * Adds a binding with Tweakpane parameters from a setting's entry (label, limits, step): the limits
+ * bound what is accepted, typed values too, and the slider then covers `slider` where one is given
+ * (it may be narrower than the limits, which typed values still reach).
+ */
+function addBound<T extends object, K extends keyof T & string>(folder: FolderApi, target: T, key: K, params: { label: string; min?: number; max?: number; step?: number; slider?: readonly [number, number] }) {
+  const { slider, ...limits } = params;
+  const binding = folder.addBinding(target, key, limits);
+  if (slider && limits.min !== undefined && limits.max !== undefined) [(binding as unknown as SliderInputBindingApi).min, (binding as unknown as SliderInputBindingApi).max] = slider;
+  return binding;
+}
+
 export class SettingsPanel {
   private readonly pane: Pane;
   private readonly params = {
-    samplesPerFrame: 1,
-    scale: 1,
+    samplesPerFrame: VIEWER_DEFAULTS.samplesPerFrame,
+    scale: VIEWER_DEFAULTS.scale,
     // The frame budget chooses the resolution (and samples per frame) until the user fixes one.
     autoScale: true,
-    accumulate: true,
-    animate: true,
-    convergeWhenStill: true,
+    accumulate: VIEWER_DEFAULTS.accumulate,
+    animate: VIEWER_DEFAULTS.animate,
+    convergeWhenStill: VIEWER_DEFAULTS.convergeWhenStill,
+    // Shown until a scene's camera gives the field of view.
     fov: 60,
     mode: 'fly' as MoveMode,
     // The thin lens: aperture radius and focus distance in scene units (aperture 0: a pinhole).
@@ -111,7 +126,8 @@ export class SettingsPanel {
     this.read();
     const p = this.params;
     const render = this.pane.addFolder({ title: 'Render' });
-    this.control('samplesPerFrame', render.addBinding(p, 'samplesPerFrame', { label: 'samples/frame', min: LIMITS.samplesPerFrame[0], max: 16, step: 1 }).on('change', (e) => this.apply({ samplesPerFrame: e.value })));
+    const bind = <K extends ViewerPanelKey & keyof typeof p>(folder: FolderApi, key: K) => addBound(folder, p, key, viewerBinding(key));
+    this.control('samplesPerFrame', bind(render, 'samplesPerFrame').on('change', (e) => this.apply({ samplesPerFrame: e.value })));
     const autoScale = this.control(
       'autoScale',
       render.addBinding(p, 'autoScale', { label: 'auto resolution' }).on('change', (e) => {
@@ -121,16 +137,16 @@ export class SettingsPanel {
         else this.apply({ scale: this.viewer.budget.scale });
       }),
     );
-    // Down to the budget's smallest step (1/32: a software adapter at a large canvas).
-    const scale = this.control('scale', render.addBinding(p, 'scale', { label: 'resolution', min: Math.min(1 / 32, p.scale), max: 2, step: 0.01 }).on('change', (e) => this.apply({ scale: e.value })));
+    // The slider down to the budget's smallest step (1/32: a software adapter at a large canvas).
+    const scale = this.control('scale', bind(render, 'scale').on('change', (e) => this.apply({ scale: e.value })));
     this.scaleBindings = [autoScale, scale];
-    this.control('accumulate', render.addBinding(p, 'accumulate', { label: 'accumulate' }).on('change', (e) => this.apply({ accumulate: e.value })));
-    this.control('animate', render.addBinding(p, 'animate', { label: 'animate scene' }).on('change', (e) => this.apply({ animate: e.value })));
+    this.control('accumulate', bind(render, 'accumulate').on('change', (e) => this.apply({ accumulate: e.value })));
+    this.control('animate', bind(render, 'animate').on('change', (e) => this.apply({ animate: e.value })));
 
     const camera = this.pane.addFolder({ title: 'Camera and torch' });
     this.control(
       'fov',
-      camera.addBinding(p, 'fov', { label: 'field of view', min: LIMITS.fovDegrees[0], max: 120, step: 1 }).on('change', (e) => {
+      bind(camera, 'fov').on('change', (e) => {
         if (this.syncing) return;
         viewer.setFieldOfView(e.value);
         // The same aperture is another f-number at another focal length.
@@ -151,19 +167,20 @@ export class SettingsPanel {
 
     this.addLensBindings(camera);
 
-    this.addEnvironmentFolder(container, actions);
+    const environment = this.addEnvironmentFolder(container, actions);
     this.materialPanel = new MaterialPanel(this.pane, viewer, actions.report);
 
     const folders: Record<PanelFolder, FolderApi> = {
       render,
-      torch: camera,
+      camera,
+      environment,
       exposure: this.addExposureFolder(),
       denoise: this.pane.addFolder({ title: 'Denoising (real time)' }),
       hybrid: this.pane.addFolder({ title: 'Hybrid recipe', expanded: false }),
       debug: this.pane.addFolder({ title: 'Debug views', expanded: false }),
     };
     // Before the filters' own settings: whether a still view hands over to the exact progressive estimate.
-    this.control('convergeWhenStill', folders.denoise.addBinding(p, 'convergeWhenStill', { label: 'converge when still' }).on('change', (e) => this.apply({ convergeWhenStill: e.value })));
+    this.control('convergeWhenStill', bind(folders.denoise, 'convergeWhenStill').on('change', (e) => this.apply({ convergeWhenStill: e.value })));
     for (const entry of PANEL_SETTINGS) this.addSettingBinding(folders[entry.spec.panel!.folder], entry);
     this.fitDepthSlider();
 
@@ -300,7 +317,7 @@ export class SettingsPanel {
    * through the viewer at once (no reload; the image restarts). The HDR file is decoded in the
    * scene worker, so that a large panorama does not stall the page.
    */
-  private addEnvironmentFolder(container: HTMLElement, actions: PanelActions): void {
+  private addEnvironmentFolder(container: HTMLElement, actions: PanelActions): FolderApi {
     const e = this.environment;
     const folder = this.pane.addFolder({ title: 'Environment' });
     folder.element.title =
@@ -340,11 +357,12 @@ export class SettingsPanel {
       this.applyEnvironment();
     });
     const onChange = () => this.applyEnvironment();
+    // The sky's limits are its settings' (viewer-settings.ts): what a link's sky= accepts.
     this.environmentControls.sky = [
-      folder.addBinding(e, 'elevation', { label: 'sun elevation (°)', min: -10, max: 90, step: 0.5 }).on('change', onChange),
-      folder.addBinding(e, 'azimuth', { label: 'sun azimuth (°)', min: -180, max: 180, step: 1 }).on('change', onChange),
-      folder.addBinding(e, 'turbidity', { label: 'turbidity', min: 1, max: 10, step: 0.1 }).on('change', onChange),
-      folder.addBinding(e, 'skyIntensity', { label: 'sky intensity', min: 0, max: 4, step: 0.01 }).on('change', onChange),
+      addBound(folder, e, 'elevation', viewerBinding('sunElevation')).on('change', onChange),
+      addBound(folder, e, 'azimuth', viewerBinding('sunAzimuth')).on('change', onChange),
+      addBound(folder, e, 'turbidity', viewerBinding('turbidity')).on('change', onChange),
+      addBound(folder, e, 'skyIntensity', viewerBinding('skyIntensity')).on('change', onChange),
     ];
     this.openMapButton = folder.addButton({ title: 'Open HDR…' }).on('click', () => mapInput.click());
     this.environmentControls.map = [
@@ -353,6 +371,7 @@ export class SettingsPanel {
       folder.addBinding(e, 'rotation', { label: 'rotation (°)', min: -180, max: 180, step: 1 }).on('change', onChange),
     ];
     this.showEnvironmentControls();
+    return folder;
   }
 
   /** Takes the environment the viewer has into the folder (a map chosen but never opened is undone). */
@@ -508,16 +527,12 @@ export class SettingsPanel {
       case 'number':
       case 'number-or-auto':
       case 'integer-or-unlimited': {
-        const { slider, ...limits } = numberBindingLimits(entry);
-        const binding = this.control(entry.id, folder.addBinding(this.settingParams, entry.id, { label: hint.label, ...limits }));
+        const limits = numberBindingLimits(entry);
+        // The slider's span is apart from the limits: it may be narrower, while typed values reach the limits.
+        const binding = this.control(entry.id, addBound(folder, this.settingParams, entry.id, { label: hint.label, ...limits }));
         binding.on('change', onChange);
-        if (limits.min !== undefined && limits.max !== undefined) {
-          const sliderBinding = binding as unknown as SliderInputBindingApi;
-          // The slider's span is apart from the limits: it may be narrower, while typed values reach the limits.
-          if (slider) [sliderBinding.min, sliderBinding.max] = slider;
-          // The depth slider reaches the scene's own BVH depth (see readFromViewer).
-          if (entry.id === 'wireframeDepth') this.depthBinding = sliderBinding;
-        }
+        // The depth slider reaches the scene's own BVH depth (see readFromViewer).
+        if (entry.id === 'wireframeDepth' && limits.min !== undefined && limits.max !== undefined) this.depthBinding = binding as unknown as SliderInputBindingApi;
         if (spec.type === 'integer-or-unlimited') this.control(entry.id, folder.addBinding(this.settingParams, unlimitedKey(entry.id), { label: hint.unlimitedLabel ?? 'unlimited' }).on('change', onChange));
         return;
       }

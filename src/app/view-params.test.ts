@@ -73,7 +73,8 @@ describe('view parameters', () => {
     expect(view).toEqual({ exposureStops: 1, heatMax: 40 });
     expect(problems).toHaveLength(9);
     expect(problems.join('\n')).toMatch(/cam=1,2,3 is not 5 numbers/);
-    expect(problems.join('\n')).toMatch(/spf=0 is outside 1–64/);
+    expect(problems.join('\n')).toMatch(/spf=0 is not a whole number from 1 to 64/);
+    expect(problems.join('\n')).toMatch(/scale=9 is not a number from 0.01 to 2/);
   });
 
   it('reads a lens: aperture 0 is a pinhole, a focus distance must be positive', () => {

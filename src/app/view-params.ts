@@ -6,8 +6,11 @@
  *   wad=<url>[&wad=<url>…]&map=E1M1    a Doom map from WAD files the server offers (IWAD first)
  *   ply=<url>                          a PLY mesh the server offers
  *                                      (the scene parameters: loaders/scene-link.ts, from the registry)
- *   cam=x,y,z,yaw,pitch  fov=deg  mode=walk|fly  spf  scale  acc=0|1  anim=0|1
- *   converge=0|1                       converge when still (ViewerSettings.convergeWhenStill)
+ *   cam=x,y,z,yaw,pitch  mode=walk|fly
+ *   and every viewer setting with a `link` name in VIEWER_SETTINGS (viewer-settings.ts): fov=deg,
+ *   spf, scale, acc=0|1, anim=0|1, converge=0|1 (converge when still), env-intensity; with
+ *   sky=elevation,azimuth[,turbidity] (SKY_LINK): parsed, checked and written from their entries,
+ *   so they accept what the panel accepts
  *   aperture=<radius>  focus=<distance>  the camera's thin lens, scene units (aperture 0: a pinhole;
  *                                      a link with only one of them takes the other from the scene's
  *                                      lens, or focuses on what lies at the image centre;
@@ -22,8 +25,9 @@
  *                                      the link names itself (a link written back names the settings)
  *   sky=elevation,azimuth[,turbidity]  env-intensity=x
  *                                      the Hosek–Wilkie sky instead of the scene's own environment
- *                                      (as the CLI's --sky and --env-intensity); an HDR map opened
- *                                      from this computer cannot be linked
+ *                                      (as the CLI's --sky and --env-intensity; turbidity left off:
+ *                                      its default, 3); an HDR map opened from this computer cannot
+ *                                      be linked
  */
 import { formatSettingText, getAt, mergeSettings, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
 import { isLook, lookSettings, LOOKS } from '../renderer/looks.ts';
@@ -32,11 +36,15 @@ import { formatSceneLocation, parseSceneLocation, type SceneLocation } from '../
 import { formatLensLink, parseLensLink } from '../renderer/lens-link.ts';
 import { MOVE_MODES, type MoveMode, type Pose } from './camera-controller.ts';
 import { formatMaterialOverride, MATERIAL_LINK_PARAM, parseMaterialOverride, type MaterialOverride } from './material-link.ts';
+import { SKY_LINK, VIEWER_DEFAULTS, VIEWER_ENTRIES } from './viewer-settings.ts';
 
 export type { SceneLocation };
 
 /** The settings that links carry. */
 export const LINKED_SETTINGS: readonly SettingEntry[] = SETTING_ENTRIES.filter((e) => e.spec.link !== undefined);
+
+/** The viewer's settings that links carry each under its own name (the sky's three travel together: SKY_LINK). Their paths are ViewParams' fields. */
+export const LINKED_VIEWER_SETTINGS: readonly SettingEntry[] = VIEWER_ENTRIES.filter((e) => e.spec.link !== undefined);
 
 /** Everything a link carries besides the scene; absent fields keep their defaults. */
 export type ViewParams = RenderSettingsPatch & {
@@ -70,7 +78,7 @@ export interface SkyParams {
 }
 
 /** The sky's default turbidity when a link gives only elevation and azimuth (the CLI's --sky too). */
-export const DEFAULT_TURBIDITY = 3;
+export const DEFAULT_TURBIDITY = VIEWER_DEFAULTS.sky.turbidity;
 
 /** The top-level render settings a link carries under their RenderSettings names (the torch, a group, apart: its parts wait for the scene). */
 export const LINKED_RENDER_SETTINGS: readonly (keyof RenderSettings)[] = LINKED_SETTINGS.filter((e) => e.path.length === 1).map((e) => e.path[0] as keyof RenderSettings);
@@ -81,17 +89,6 @@ export function linkedRenderSettings(view: ViewParams): Partial<RenderSettings> 
   for (const key of LINKED_RENDER_SETTINGS) if (view[key] !== undefined) out[key] = view[key];
   return out as Partial<RenderSettings>;
 }
-
-/** The view's own parameters (not render settings: those have their ranges in the schema); values outside are refused with a note. */
-export const LIMITS = {
-  samplesPerFrame: [1, 64],
-  scale: [0.01, 2],
-  fovDegrees: [5, 150],
-  skyElevation: [-90, 90],
-  skyAzimuth: [-360, 360],
-  turbidity: [1, 10],
-  envIntensity: [0, 1e6],
-} as const;
 
 const round = (v: number) => Number(v.toFixed(4));
 
@@ -108,51 +105,34 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
     }
     return values;
   };
-  const ranged = (name: string, [lo, hi]: readonly [number, number], integer = false): number | undefined => {
-    const v = numbers(name, 1)?.[0];
-    if (v === undefined) return undefined;
-    if (v < lo || v > hi || (integer && !Number.isInteger(v))) {
-      problems.push(`${name}=${v} is outside ${lo}–${hi}${integer ? ' (whole numbers)' : ''}`);
-      return undefined;
-    }
-    return v;
+  /** A setting's value from its parameter, or a note of why not (the same words for render and viewer settings). */
+  const setting = (spec: SettingEntry['spec']): unknown => {
+    const name = spec.link!;
+    const raw = params.get(name);
+    if (raw === null) return undefined;
+    const parsed = parseSettingText(spec, raw);
+    if (parsed.ok) return parsed.value;
+    problems.push(`${name}=${raw} ${parsed.problem.replace(/^must be/, 'is not')}`);
+    return undefined;
   };
   const scene = parseSceneLocation(params);
   if (scene) view.scene = scene;
 
   const cam = numbers('cam', 5);
   if (cam) view.pose = { position: [cam[0]!, cam[1]!, cam[2]!], yaw: cam[3]!, pitch: cam[4]! };
-  const fov = ranged('fov', LIMITS.fovDegrees);
-  if (fov !== undefined) view.fovDegrees = fov;
   Object.assign(view, parseLensLink(params, problems));
   const mode = params.get('mode');
   if (mode !== null) {
     if ((MOVE_MODES as readonly string[]).includes(mode)) view.mode = mode as MoveMode;
     else problems.push(`mode=${mode} is not one of ${MOVE_MODES.join(', ')}`);
   }
-  const spf = ranged('spf', LIMITS.samplesPerFrame, true);
-  if (spf !== undefined) view.samplesPerFrame = spf;
-  const scale = ranged('scale', LIMITS.scale);
-  if (scale !== undefined) view.scale = scale;
-  const acc = params.get('acc');
-  if (acc !== null) view.accumulate = acc !== '0';
-  const anim = params.get('anim');
-  if (anim !== null) view.animate = anim !== '0';
-  const converge = params.get('converge');
-  if (converge !== null) view.convergeWhenStill = converge !== '0';
-  const skyRaw = params.get('sky');
-  if (skyRaw !== null) {
-    const values = skyRaw.split(',').map(Number);
-    const [elevation, azimuth, turbidity = DEFAULT_TURBIDITY] = values as [number, number, number?];
-    const inside = (v: number, [lo, hi]: readonly [number, number]) => v >= lo && v <= hi;
-    if ((values.length !== 2 && values.length !== 3) || !values.every(Number.isFinite)) problems.push(`sky=${skyRaw} is not elevation,azimuth[,turbidity]`);
-    else if (!inside(elevation, LIMITS.skyElevation)) problems.push(`sky=${skyRaw}: the sun's elevation must be from -90 to 90 degrees`);
-    else if (!inside(azimuth, LIMITS.skyAzimuth)) problems.push(`sky=${skyRaw}: the azimuth must be from -360 to 360 degrees`);
-    else if (!inside(turbidity, LIMITS.turbidity)) problems.push(`sky=${skyRaw}: turbidity must be from 1 to 10`);
-    else view.sky = { elevation, azimuth, turbidity };
+  // The viewer's settings, each by its entry (fov, spf, scale, acc, anim, converge, env-intensity).
+  for (const { path, spec } of LINKED_VIEWER_SETTINGS) {
+    const value = setting(spec);
+    if (value !== undefined) setAt(view as Record<string, unknown>, path, value);
   }
-  const envIntensity = ranged('env-intensity', LIMITS.envIntensity);
-  if (envIntensity !== undefined) view.envIntensity = envIntensity;
+  const sky = setting(SKY_LINK) as readonly number[] | undefined;
+  if (sky) view.sky = { elevation: sky[0]!, azimuth: sky[1]!, turbidity: sky[2] ?? DEFAULT_TURBIDITY };
 
   const materials: MaterialOverride[] = [];
   for (const raw of params.getAll(MATERIAL_LINK_PARAM)) {
@@ -170,12 +150,8 @@ export function parseViewParams(params: URLSearchParams): { view: ViewParams; pr
     else problems.push(`look=${look} is not one of ${LOOKS.join(', ')}`);
   }
   for (const { path, spec } of LINKED_SETTINGS) {
-    const name = spec.link!;
-    const raw = params.get(name);
-    if (raw === null) continue;
-    const parsed = parseSettingText(spec, raw);
-    if (parsed.ok) setAt(view as Record<string, unknown>, path, parsed.value);
-    else problems.push(`${name}=${raw} ${parsed.problem.replace(/^must be/, 'is not')}`);
+    const value = setting(spec);
+    if (value !== undefined) setAt(view as Record<string, unknown>, path, value);
   }
   return { view, problems };
 }
@@ -184,16 +160,13 @@ export function formatViewParams(view: ViewParams): URLSearchParams {
   const p = new URLSearchParams();
   if (view.scene) formatSceneLocation(view.scene, p);
   if (view.pose) p.set('cam', [...view.pose.position, view.pose.yaw, view.pose.pitch].map(round).join(','));
-  if (view.fovDegrees !== undefined) p.set('fov', String(round(view.fovDegrees)));
   formatLensLink(view, p);
   if (view.mode) p.set('mode', view.mode);
-  if (view.samplesPerFrame !== undefined) p.set('spf', String(view.samplesPerFrame));
-  if (view.scale !== undefined) p.set('scale', String(round(view.scale)));
-  if (view.accumulate !== undefined) p.set('acc', view.accumulate ? '1' : '0');
-  if (view.animate !== undefined) p.set('anim', view.animate ? '1' : '0');
-  if (view.convergeWhenStill !== undefined) p.set('converge', view.convergeWhenStill ? '1' : '0');
-  if (view.sky) p.set('sky', [view.sky.elevation, view.sky.azimuth, view.sky.turbidity].map(round).join(','));
-  if (view.envIntensity !== undefined) p.set('env-intensity', String(round(view.envIntensity)));
+  for (const { path, spec } of LINKED_VIEWER_SETTINGS) {
+    const value = getAt(view, path);
+    if (value !== undefined) p.set(spec.link!, formatSettingText(spec, value));
+  }
+  if (view.sky) p.set(SKY_LINK.link!, formatSettingText(SKY_LINK, [view.sky.elevation, view.sky.azimuth, view.sky.turbidity]));
   for (const m of view.materials ?? []) p.append(MATERIAL_LINK_PARAM, formatMaterialOverride(m));
   for (const { path, spec } of LINKED_SETTINGS) {
     const value = getAt(view, path);

@@ -46,12 +46,14 @@ import { World } from '../world/world.ts';
 import type { Camera, ThinLens } from '../scene/types.ts';
 import { centreFocusDistance } from '../renderer/focus.ts';
 import { LINKED_RENDER_SETTINGS, type ViewParams } from './view-params.ts';
+import { VIEWER_DEFAULTS } from './viewer-settings.ts';
 
 /** A scene without an environment has this one (black), one object so that it compares equal to itself. */
 const NO_ENVIRONMENT: Environment = Object.freeze({ kind: 'none' });
 
 export type ViewerState = 'idle' | 'starting' | 'playing' | 'paused' | 'failed';
 
+/** The page's own settings besides the render settings; their defaults and ranges are declared in VIEWER_SETTINGS (viewer-settings.ts). */
 export interface ViewerSettings {
   /** Paths per pixel traced each frame. */
   readonly samplesPerFrame: number;
@@ -82,7 +84,15 @@ export const CONVERGE_HANDOFF_SAMPLES = 64;
  * converging progressively whenever the view holds still; turning the chain's switches off (temporal,
  * spatial, ReSTIR) gives plain progressive accumulation (renderer/recipes/recipe.ts recipeFor).
  */
-export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({ samplesPerFrame: 1, scale: 1, accumulate: true, animate: true, convergeWhenStill: true, render: DEFAULT_SETTINGS });
+export const DEFAULT_VIEWER_SETTINGS: ViewerSettings = Object.freeze({
+  // From their entries in VIEWER_SETTINGS (viewer-settings.ts), where their ranges are too.
+  samplesPerFrame: VIEWER_DEFAULTS.samplesPerFrame,
+  scale: VIEWER_DEFAULTS.scale,
+  accumulate: VIEWER_DEFAULTS.accumulate,
+  animate: VIEWER_DEFAULTS.animate,
+  convergeWhenStill: VIEWER_DEFAULTS.convergeWhenStill,
+  render: DEFAULT_SETTINGS,
+});
 
 /**
  * Pipelines compiled at a time on the page: Chromium compiles them on its GPU process's thread pool

@@ -4,7 +4,10 @@ import { expectLanternError } from '../expect-lantern-error.ts';
 import { malformedTexts, outOfRangeValues, validValues } from '../renderer/setting-samples.ts';
 import { describeValues, formatSettingText, mergeSettings, setAt } from '../renderer/settings-schema.ts';
 import { DEFAULT_SETTINGS, SETTING_ENTRIES, validateSettings } from '../renderer/settings.ts';
-import { CLI_SETTINGS, parseCliSetting, settingsFromOptions, withSettingOptions } from './setting-options.ts';
+import { PANEL_SETTINGS, settingTooltip } from '../app/panel-settings.ts';
+import { registerRender } from './commands/render.ts';
+import type { CliContext } from './context.ts';
+import { CLI_SETTINGS, parseCliSetting, settingMode, settingOption, settingsFromOptions, withSettingOptions } from './setting-options.ts';
 
 /** Parses a command line the way `lantern render` does, and returns the settings it asks for. */
 function settingsOf(args: string[]) {
@@ -65,5 +68,35 @@ describe('render settings on the command line', () => {
     const debug = CLI_SETTINGS.find((e) => e.id === 'debugView')!;
     expect(() => parseCliSetting(debug, 'none')).toThrow(/--debug must be one of heat-nodes, /);
     expect(settingsOf([])).not.toHaveProperty('debugView');
+  });
+});
+
+describe('the mode a setting applies to', () => {
+  it('is the schema field, never a prefix of the description', () => {
+    for (const entry of SETTING_ENTRIES) {
+      expect(settingMode(entry), entry.id).toBe(entry.spec.mode);
+      expect(entry.spec.description, entry.id).not.toMatch(/^(frame mode|hybrid):/);
+    }
+    expect(SETTING_ENTRIES.filter((e) => e.spec.mode === 'frame').map((e) => e.id)).toEqual(['integrator', 'temporal', 'denoise', 'clampK', 'historyCap', 'restir', 'restirCandidates', 'denoiseView']);
+    expect(SETTING_ENTRIES.filter((e) => e.spec.mode === 'hybrid').map((e) => e.id)).toEqual(SETTING_ENTRIES.filter((e) => e.path[0] === 'hybrid').map((e) => e.id));
+  });
+
+  it('opens the help text as it always has', () => {
+    const help = (id: string) => settingOption(SETTING_ENTRIES.find((e) => e.id === id)!).description;
+    expect(help('clampK')).toBe('frame mode: history clamp to mean ± k·σ of the 3×3 neighbourhood (0: off) (default: 1.25)');
+    expect(help('temporal')).toBe('frame mode: accumulate over frames with reprojection (temporal denoising)');
+    expect(help('hybrid.giScale')).toBe('hybrid: GI texels per pixel along each axis (0.5: one GI path per four pixels), upsampled by a joint bilateral filter (default: 0.5)');
+    expect(help('hybrid.taa')).toBe('hybrid: temporal anti-aliasing (history reprojected and clamped to the 3×3 neighbourhood) (default: 1)');
+    expect(help('maxBounces')).toBe('maximum bounces per path (0: emitters only, 1: direct light, ...) (default: 8)');
+    // `lantern render --help` prints them so.
+    const program = new Command();
+    registerRender(program, {} as CliContext);
+    const text = program.commands.find((c) => c.name() === 'render')!.helpInformation();
+    expect(text).toMatch(/--clamp-k <k> +frame mode: history clamp to mean ± k·σ of the 3×3 neighbourhood \(0: off\) \(default: 1\.25\)/);
+    expect(text).toMatch(/--gi-scale <0\.25\.\.1> +hybrid: GI texels per pixel along each axis/);
+  });
+
+  it("keeps the panel's tooltips that come from a description, mode and all", () => {
+    expect(settingTooltip(PANEL_SETTINGS.find((e) => e.id === 'restir')!)).toMatch(/^Frame mode: direct light at the first bounce by ReSTIR DI/);
   });
 });

@@ -4,7 +4,7 @@
  * entry, so the CLI accepts exactly what validation and links accept.
  */
 import { InvalidArgumentError, Option, type Command } from 'commander';
-import { formatSettingText, parseSettingText, setAt, type SettingEntry } from '../renderer/settings-schema.ts';
+import { formatSettingText, parseSettingText, setAt, settingDescription, type SettingEntry, type SettingMode } from '../renderer/settings-schema.ts';
 import { SETTING_ENTRIES, type RenderSettingsPatch } from '../renderer/settings.ts';
 
 /** The settings that have a CLI flag. */
@@ -31,23 +31,22 @@ export function settingOption(entry: SettingEntry): Option {
   const cli = cliOf(entry);
   const spec = entry.spec;
   const flags = `${cli.short ? `${cli.short}, ` : ''}${cli.flag}`;
-  if (cli.switch) return new Option(flags, spec.description);
+  // The mode goes first ('frame mode: …'), from the setting's `mode`, as the help has always said it.
+  const description = settingDescription(spec);
+  if (cli.switch) return new Option(flags, description);
   const argument = cli.argument ?? `<${spec.type === 'choice' ? 'value' : 'n'}>`;
   const values = spec.type === 'choice' ? ` (${(cli.values ?? spec.values).join(', ')})` : '';
   // A default the CLI cannot spell (--debug's 'none') is what "not given" means: no need to show it.
   const spellable = spec.type !== 'choice' || !cli.values || cli.values.includes(String(spec.default));
   const shown = entry.optional || spec.default === undefined || !spellable ? '' : ` (default: ${formatSettingText(spec, spec.default)})`;
   // No commander default: an option not given leaves the setting as the renderer has it.
-  return new Option(`${flags} ${argument}`, `${spec.description}${values}${shown}`).argParser((text) => parseCliSetting(entry, text));
+  return new Option(`${flags} ${argument}`, `${description}${values}${shown}`).argParser((text) => parseCliSetting(entry, text));
 }
 
-/** Adds the options of these settings (all that have a flag unless told which) to a command. */
-/** The mode a setting applies to, as its description begins ('frame mode:', 'hybrid:'); undefined: every mode. */
-export const settingMode = (entry: SettingEntry): 'frame' | 'hybrid' | undefined => {
-  const d = entry.spec.description;
-  return d.startsWith('frame mode:') ? 'frame' : d.startsWith('hybrid:') ? 'hybrid' : undefined;
-};
+/** The mode a setting applies to alone (its schema entry's `mode`); undefined: every mode. */
+export const settingMode = (entry: SettingEntry): SettingMode | undefined => entry.spec.mode;
 
+/** Adds the options of these settings (all that have a flag unless told which) to a command. */
 export function withSettingOptions(command: Command, which: (entry: SettingEntry) => boolean = () => true): Command {
   for (const entry of CLI_SETTINGS) if (which(entry)) command.addOption(settingOption(entry));
   return command;

@@ -1,9 +1,11 @@
 /**
  * The machinery of the settings schema: a setting is declared once (its type, default, one valid
- * range, description, CLI flag, link parameter, panel hint) in the table RENDER_SETTINGS of
- * settings.ts, and everything else is derived from that declaration here: the TypeScript type, the
- * defaults, validation, and the text form that the CLI and the links share. Pure: no DOM, no node:*,
- * no commander; the front ends (cli/setting-options.ts, app/view-params.ts, app/panel.ts) adapt it.
+ * range, description, the mode it applies to, CLI flag, link parameter, panel hint) in a table, and
+ * everything else is derived from that declaration here: the TypeScript type, the defaults,
+ * validation, and the text form that the CLI and the links share. The tables: RENDER_SETTINGS of
+ * settings.ts (the renderer's), VIEWER_SETTINGS of app/viewer-settings.ts (the page's own). Pure: no
+ * DOM, no node:*, no commander; the front ends (cli/setting-options.ts, app/view-params.ts,
+ * app/panel.ts) adapt it.
  */
 import { LanternError } from '../errors.ts';
 
@@ -11,9 +13,20 @@ import { LanternError } from '../errors.ts';
 export const SETTING_TYPES = ['integer', 'number', 'boolean', 'choice', 'color', 'number-or-auto', 'integer-or-unlimited', 'numbers', 'text'] as const;
 export type SettingType = (typeof SETTING_TYPES)[number];
 
-/** The folders of the viewer's panel that settings go into, in the panel's order. */
-export const PANEL_FOLDERS = ['render', 'torch', 'exposure', 'denoise', 'hybrid', 'debug'] as const;
+/** The folders of the viewer's panel that settings go into, in the panel's order ('camera': Camera and torch). */
+export const PANEL_FOLDERS = ['render', 'camera', 'environment', 'exposure', 'denoise', 'hybrid', 'debug'] as const;
 export type PanelFolder = (typeof PANEL_FOLDERS)[number];
+
+/**
+ * The modes a setting may apply to alone: 'frame', the real-time frame (`render --frames`, `--path`,
+ * a real-time switch, or the hybrid recipe); 'hybrid', the hybrid recipe. A setting without one
+ * applies in every mode.
+ */
+export const SETTING_MODES = ['frame', 'hybrid'] as const;
+export type SettingMode = (typeof SETTING_MODES)[number];
+
+/** How the help and the tooltips name a mode before a setting's description ('frame mode: …'). */
+const MODE_WORDS: Readonly<Record<SettingMode, string>> = { frame: 'frame mode', hybrid: 'hybrid' };
 
 export interface CliHint {
   /** The long flag, e.g. '--bounces'. Scripts depend on it: never rename one. */
@@ -43,8 +56,13 @@ export interface PanelHint {
 interface Common {
   /** How messages name the setting: 'bounces', 'torch intensity'. */
   readonly name: string;
-  /** One line: the CLI's help text and the documentation. */
+  /**
+   * One line: the CLI's help text and the documentation. It leaves out the mode: settingDescription
+   * puts `mode` before it ('frame mode: …').
+   */
   readonly description: string;
+  /** The mode the setting applies to alone (absent: every mode); `lantern render` refuses it outside that mode. */
+  readonly mode?: SettingMode;
   readonly cli?: CliHint;
   /** The URL parameter of the viewer's links. Saved links depend on it: never rename one. */
   readonly link?: string;
@@ -195,6 +213,11 @@ export function mergeSettings<S>(base: S, patch: SettingsPatch<S>): S {
     out[key] = isGroup(value) && isGroup(old) ? mergeSettings(old, value as SettingsPatch<unknown>) : value;
   }
   return out as S;
+}
+
+/** A setting's description as the help and the panel's tooltips give it: the mode it applies to first, where it has one. */
+export function settingDescription(spec: SettingSpec): string {
+  return spec.mode ? `${MODE_WORDS[spec.mode]}: ${spec.description}` : spec.description;
 }
 
 const plain = (n: number) => String(n);

@@ -1,7 +1,7 @@
 /**
  * Render settings: what a user can change without changing the scene, declared once in the table
- * RENDER_SETTINGS below (one entry per setting: type, default, valid range, description, CLI flag,
- * link parameter, whether it restarts accumulation, panel hint). The closed lists mirror WGSL
+ * RENDER_SETTINGS below (one entry per setting: type, default, valid range, description, the mode
+ * it applies to, CLI flag, link parameter, whether it restarts accumulation, panel hint). The closed lists mirror WGSL
  * constants by position (passes/variants.ts says which); a unit test keeps the two in step.
  */
 import type { Scene, Torch } from '../scene/types.ts';
@@ -46,7 +46,7 @@ export const RENDER_SETTINGS = {
     cli: { flag: '--mode', argument: '<path|hybrid>' }, link: 'recipe', restarts: true, panel: { folder: 'render', label: 'recipe' },
   }),
   integrator: choice(INTEGRATORS, {
-    name: 'integrator', description: "frame mode: the path tracer of the real-time frame: one thread follows each path (megakernel), or extend, shade and shadow kernels over compacted queues of paths (wavefront; same image up to rounding)", default: 'megakernel',
+    name: 'integrator', description: "the path tracer of the real-time frame: one thread follows each path (megakernel), or extend, shade and shadow kernels over compacted queues of paths (wavefront; same image up to rounding)", mode: 'frame', default: 'megakernel',
     cli: { flag: '--integrator', argument: '<megakernel|wavefront>' }, link: 'integrator', restarts: true, panel: { folder: 'render', label: 'integrator' },
   }),
   maxBounces: integer({
@@ -97,19 +97,19 @@ export const RENDER_SETTINGS = {
   torch: {
     enabled: boolean({
       name: 'torch', description: 'the light carried at the camera (on where the scene has one, as Doom maps do)', words: ['off', 'on'], default: true,
-      cli: { flag: '--torch', argument: '<on|off>' }, link: 'torch', restarts: true, panel: { folder: 'torch', label: 'torch' },
+      cli: { flag: '--torch', argument: '<on|off>' }, link: 'torch', restarts: true, panel: { folder: 'camera', label: 'torch' },
     }),
     color: optional(color({
       name: 'torch colour', description: 'torch colour, linear RGB (it tints; --torch-intensity sets the strength)', min: 0, max: 1, default: [1, 1, 1],
-      cli: { flag: '--torch-color', argument: '<r,g,b>' }, link: 'torch-color', restarts: true, panel: { folder: 'torch', label: 'torch colour' },
+      cli: { flag: '--torch-color', argument: '<r,g,b>' }, link: 'torch-color', restarts: true, panel: { folder: 'camera', label: 'torch colour' },
     })),
     intensity: optional(number({
       name: 'torch intensity', description: 'torch intensity in W/sr (with --torch-range, gives any scene a torch)', min: 0, max: Infinity, default: 0,
-      cli: { flag: '--torch-intensity', argument: '<W/sr>' }, link: 'torch-intensity', restarts: true, panel: { folder: 'torch', label: 'intensity (W/sr)' },
+      cli: { flag: '--torch-intensity', argument: '<W/sr>' }, link: 'torch-intensity', restarts: true, panel: { folder: 'camera', label: 'intensity (W/sr)' },
     })),
     range: optional(number({
       name: 'torch range', description: 'distance at which the torch fades out', min: 0, above: true, max: Infinity, default: 1,
-      cli: { flag: '--torch-range', argument: '<distance>' }, link: 'torch-range', restarts: true, panel: { folder: 'torch', label: 'range' },
+      cli: { flag: '--torch-range', argument: '<distance>' }, link: 'torch-range', restarts: true, panel: { folder: 'camera', label: 'range' },
     })),
     radius: optional(number({ name: 'torch radius', description: 'radius of the torch (soft shadows)', min: 0, above: true, max: Infinity, default: 1, restarts: true })),
   },
@@ -145,65 +145,65 @@ export const RENDER_SETTINGS = {
     cli: { flag: '--wireframe-level', argument: '<level>' }, link: 'wf-level', restarts: false, panel: { folder: 'debug', label: 'boxes of' },
   }),
   temporal: boolean({
-    name: 'temporal', description: 'frame mode: accumulate over frames with reprojection (temporal denoising)', words: ['0', '1'], default: true,
+    name: 'temporal', description: 'accumulate over frames with reprojection (temporal denoising)', mode: 'frame', words: ['0', '1'], default: true,
     cli: { flag: '--temporal', switch: true }, link: 'temporal', restarts: false, panel: { folder: 'denoise', label: 'temporal' },
   }),
   denoise: boolean({
-    name: 'denoise', description: 'frame mode: the edge-aware spatial (à-trous) filter', words: ['0', '1'], default: true,
+    name: 'denoise', description: 'the edge-aware spatial (à-trous) filter', mode: 'frame', words: ['0', '1'], default: true,
     cli: { flag: '--denoise', switch: true }, link: 'denoise', restarts: false, panel: { folder: 'denoise', label: 'spatial (à-trous)' },
   }),
   clampK: number({
-    name: 'clamp k', description: 'frame mode: history clamp to mean ± k·σ of the 3×3 neighbourhood (0: off)', min: 0, max: 16, default: 1.25,
+    name: 'clamp k', description: 'history clamp to mean ± k·σ of the 3×3 neighbourhood (0: off)', mode: 'frame', min: 0, max: 16, default: 1.25,
     cli: { flag: '--clamp-k', argument: '<k>' }, link: 'clamp-k', restarts: false, panel: { folder: 'denoise', label: 'clamp k·σ (0: off)', step: 0.05, slider: [0, 4] },
   }),
   historyCap: integerOrUnlimited({
-    name: 'history cap', description: "frame mode: longest temporal history in frames ('unlimited' also lifts the clamp while the camera is still)", min: 1, max: MAX_HISTORY_CAP, default: 32,
+    name: 'history cap', description: "longest temporal history in frames ('unlimited' also lifts the clamp while the camera is still)", mode: 'frame', min: 1, max: MAX_HISTORY_CAP, default: 32,
     cli: { flag: '--history-cap', argument: '<n|unlimited>' }, link: 'history-cap', restarts: false,
     panel: { folder: 'denoise', label: 'history cap', step: 1, slider: [1, 256], unlimitedLabel: 'unlimited' },
   }),
   restir: boolean({
-    name: 'restir', description: 'frame mode: direct light at the first bounce by ReSTIR DI (reservoirs of light samples reused over frames and neighbours, unbiased; docs/denoise.md); off: one light sample per bounce', words: ['0', '1'], default: false,
+    name: 'restir', description: 'direct light at the first bounce by ReSTIR DI (reservoirs of light samples reused over frames and neighbours, unbiased; docs/denoise.md); off: one light sample per bounce', mode: 'frame', words: ['0', '1'], default: false,
     cli: { flag: '--restir', switch: true }, link: 'restir', restarts: false, panel: { folder: 'denoise', label: 'ReSTIR direct light' },
   }),
   restirCandidates: integer({
-    name: 'ReSTIR candidates', description: 'frame mode: light samples per pixel per frame that ReSTIR resamples (before temporal and spatial reuse)', min: 1, max: 64, default: 16,
+    name: 'ReSTIR candidates', description: 'light samples per pixel per frame that ReSTIR resamples (before temporal and spatial reuse)', mode: 'frame', min: 1, max: 64, default: 16,
     cli: { flag: '--restir-candidates', argument: '<n>' }, link: 'restir-candidates', restarts: false, panel: { folder: 'denoise', label: 'ReSTIR candidates', step: 1, slider: [1, 32] },
   }),
   denoiseView: choice(DENOISE_VIEWS, {
-    name: 'denoise view', description: 'frame mode: what the real-time chain shows', default: 'output',
+    name: 'denoise view', description: 'what the real-time chain shows', mode: 'frame', default: 'output',
     cli: { flag: '--denoise-view', argument: '<view>' }, link: 'denoise-view', restarts: false, panel: { folder: 'denoise', label: 'show' },
   }),
   hybrid: {
     giScale: number({
-      name: 'GI buffer scale', description: 'hybrid: GI texels per pixel along each axis (0.5: one GI path per four pixels), upsampled by a joint bilateral filter', min: 0.25, max: 1, default: 0.5,
+      name: 'GI buffer scale', description: 'GI texels per pixel along each axis (0.5: one GI path per four pixels), upsampled by a joint bilateral filter', mode: 'hybrid', min: 0.25, max: 1, default: 0.5,
       cli: { flag: '--gi-scale', argument: '<0.25..1>' }, link: 'gi-scale', restarts: true, panel: { folder: 'hybrid', label: 'GI buffer scale', step: 0.25 },
     }),
     giBounces: integer({
-      name: 'GI bounces', description: 'hybrid: bounces of each GI path (1: the light its first hit receives)', min: 0, max: 16, default: 2,
+      name: 'GI bounces', description: 'bounces of each GI path (1: the light its first hit receives)', mode: 'hybrid', min: 0, max: 16, default: 2,
       cli: { flag: '--gi-bounces', argument: '<n>' }, link: 'gi-bounces', restarts: true, panel: { folder: 'hybrid', label: 'GI bounces', step: 1 },
     }),
     giSamples: integer({
-      name: 'GI samples', description: 'hybrid: GI paths per GI texel per frame', min: 1, max: 64, default: 1,
+      name: 'GI samples', description: 'GI paths per GI texel per frame', mode: 'hybrid', min: 1, max: 64, default: 1,
       cli: { flag: '--gi-samples', argument: '<n>' }, link: 'gi-samples', restarts: true, panel: { folder: 'hybrid', label: 'GI samples', step: 1, slider: [1, 8] },
     }),
     giFilter: boolean({
-      name: 'GI filter', description: 'hybrid: the à-trous filter on the GI target before upsampling', words: ['0', '1'], default: true,
+      name: 'GI filter', description: 'the à-trous filter on the GI target before upsampling', mode: 'hybrid', words: ['0', '1'], default: true,
       cli: { flag: '--gi-filter', argument: '<0|1>' }, link: 'gi-filter', restarts: false, panel: { folder: 'hybrid', label: 'GI à-trous filter' },
     }),
     lightSamples: integer({
-      name: 'light samples', description: 'hybrid: light samples (each with a shadow ray) per pixel per frame', min: 1, max: 64, default: 1,
+      name: 'light samples', description: 'light samples (each with a shadow ray) per pixel per frame', mode: 'hybrid', min: 1, max: 64, default: 1,
       cli: { flag: '--light-samples', argument: '<n>' }, link: 'light-samples', restarts: true, panel: { folder: 'hybrid', label: 'light samples', step: 1, slider: [1, 8] },
     }),
     reflections: boolean({
-      name: 'reflections', description: 'hybrid: trace reflection rays from glossy, mirror and glass surfaces, weighted by their Fresnel reflectance', words: ['0', '1'], default: true,
+      name: 'reflections', description: 'trace reflection rays from glossy, mirror and glass surfaces, weighted by their Fresnel reflectance', mode: 'hybrid', words: ['0', '1'], default: true,
       cli: { flag: '--reflections', argument: '<0|1>' }, link: 'reflections', restarts: true, panel: { folder: 'hybrid', label: 'reflections' },
     }),
     reflectionBounces: integer({
-      name: 'reflection bounces', description: 'hybrid: bounces a reflection path may take after the reflection', min: 0, max: 16, default: 2,
+      name: 'reflection bounces', description: 'bounces a reflection path may take after the reflection', mode: 'hybrid', min: 0, max: 16, default: 2,
       cli: { flag: '--reflection-bounces', argument: '<n>' }, link: 'reflection-bounces', restarts: true, panel: { folder: 'hybrid', label: 'reflection bounces', step: 1 },
     }),
     taa: boolean({
-      name: 'TAA', description: 'hybrid: temporal anti-aliasing (history reprojected and clamped to the 3×3 neighbourhood)', words: ['0', '1'], default: true,
+      name: 'TAA', description: 'temporal anti-aliasing (history reprojected and clamped to the 3×3 neighbourhood)', mode: 'hybrid', words: ['0', '1'], default: true,
       cli: { flag: '--taa', argument: '<0|1>' }, link: 'taa', restarts: false, panel: { folder: 'hybrid', label: 'TAA' },
     }),
   },
