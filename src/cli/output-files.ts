@@ -93,10 +93,15 @@ export async function writePng(renderer: Renderer, path: string, timeline?: Time
 
 /** The debug view's raw values as EXR: R, G, B = the first three of shaders/passes/debug-view.wgsl's four. */
 export async function writeDebugExr(renderer: Renderer, path: string): Promise<void> {
+  writeFile(path, encodeExr(renderer.width, renderer.height, await readDebugRgb(renderer)));
+}
+
+/** The debug view's raw values, the first three of each pixel's four (what an EXR of a debug view holds). */
+export async function readDebugRgb(renderer: Renderer): Promise<Float32Array> {
   const values = await renderer.readDebugValues();
   const rgb = new Float32Array(renderer.width * renderer.height * 3);
   for (let i = 0; i < rgb.length / 3; i++) rgb.set(values.subarray(i * 4, i * 4 + 3), i * 3);
-  writeFile(path, encodeExr(renderer.width, renderer.height, rgb));
+  return rgb;
 }
 
 export async function writeExr(renderer: Renderer, path: string): Promise<void> {

@@ -13,7 +13,7 @@ import { cameraAt, frameTime, parseCameraPath, type CameraPath } from '../../sce
 import type { Camera } from '../../scene/types.ts';
 import { isEmptyUpdate } from '../../scene/dynamics.ts';
 import type { World } from '../../world/world.ts';
-import { writeFile } from '../output-files.ts';
+import { readDebugRgb, writeFile } from '../output-files.ts';
 import { readJsonFile } from '../user-files.ts';
 import { median } from '../../math/median.ts';
 import { isFrameRecipe, recipeFor, type Recipe, type RecipeIntent } from '../../renderer/recipes/recipe.ts';
@@ -90,6 +90,7 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   const sequence = frames > 1 || path !== undefined;
   // The denoiser's settings (--temporal, --denoise, --history-cap, ...) and the hybrid recipe's are the caller's, applied with the others.
   await renderer.compile({}, { frames: true });
+  const debugOnly = recipeFor(renderer.settings, { frames: true }) === 'debug';
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
   if (o.warmup) {
     // A GPU idle a moment ago runs its first frames at low clocks: light recipes would be timed there.
@@ -122,7 +123,8 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
     if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
     if (image && out.png) writeFile(sequence ? join(out.png, `${name}.png`) : out.png, encodePng(renderer.width, renderer.height, image));
     if (out.exr) {
-      const { width, height, radiance } = await renderer.readFrame();
+      // A debug view that replaces the image has no radiance: its frames hold its values, as a still render's EXR does.
+      const { width, height, radiance } = debugOnly ? { width: renderer.width, height: renderer.height, radiance: await readDebugRgb(renderer) } : await renderer.readFrame();
       if (previous && f >= frames / 2) changes.push(rmse(radiance, previous));
       previous = radiance;
       writeFile(sequence ? join(out.exr, `${name}.exr`) : out.exr, encodeExr(width, height, radiance));
