@@ -11,7 +11,7 @@
  * a long corridor).
  *
  * Every change of scale resizes the image, and a resize drops the real-time chain's history (the
- * denoiser's buffers are per pixel and reallocated: renderer/denoiser.ts ensureBuffers) and restarts
+ * denoiser's buffers are per pixel and reallocated: renderer/recipes/real-time.ts ensureBuffers) and restarts
  * the progressive estimate, so the budget changes the scale rarely: only over a hysteresis band
  * (down when frames are clearly over the target, up only when the next step up is predicted to stay
  * clearly under it), after several frames at the current scale, and up only after a longer wait.

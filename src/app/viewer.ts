@@ -80,7 +80,7 @@ export interface ViewerSettings {
 export const CONVERGE_HANDOFF_SAMPLES = 64;
 
 /**
- * The real-time chain by default (temporal reprojection and the à-trous filter: renderer/denoiser.ts),
+ * The real-time chain by default (temporal reprojection and the à-trous filter: renderer/recipes/real-time.ts),
  * converging progressively whenever the view holds still; turning the chain's switches off (temporal,
  * spatial, ReSTIR) gives plain progressive accumulation (renderer/recipes/recipe.ts recipeFor).
  */

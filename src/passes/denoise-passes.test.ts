@@ -20,7 +20,7 @@ describe('the à-trous schedule of the real-time chain', () => {
         }
         const next = schedule[i + 1]!;
         expect(next.source).toEqual(it.result);
-        // Bound as source_words and other_words (renderer/denoiser.ts): 0 is the source's own buffer.
+        // Bound as source_words and other_words (renderer/recipes/real-time.ts): 0 is the source's own buffer.
         expect(p.result_array).toBe(it.result.array === it.source.array ? 0 : 1);
         expect(p).toMatchObject({ source_stride: it.source.stride, source_offset: it.source.offset, result_stride: it.result.stride, result_offset: it.result.offset });
         const read = words(it.source);

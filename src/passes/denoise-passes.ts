@@ -30,7 +30,7 @@ export interface DenoisePasses {
   readonly output: ImagePass<UniformValues>;
 }
 
-/** The chain's passes as GpuTimer labels them (renderer/denoiser.ts). */
+/** The chain's passes as GpuTimer labels them (renderer/recipes/real-time.ts). */
 const TEMPORAL_LABEL = 'temporal';
 const OUTPUT_LABEL = 'denoise output';
 /** Iteration i's label (0-based): 'a-trous 1' … 'a-trous 5'. */
@@ -127,7 +127,7 @@ export function atrousSchedule(feedback: boolean): readonly AtrousIteration[] {
 
 /**
  * Parameters of the real-time chain's iteration i (shaders/passes/denoise-atrous.wgsl), whose bind
- * group has the buffer of `it.source` as source_words and the other as other_words (renderer/denoiser.ts).
+ * group has the buffer of `it.source` as source_words and the other as other_words (renderer/recipes/real-time.ts).
  */
 export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): UniformValues => {
   const result = it.result === 'output' ? SCRATCH_LOW : it.result;

@@ -43,7 +43,7 @@ export function resolveSampler(setting: SamplerSetting, chain: 'progressive' | '
 /**
  * What the debug views show instead of (or beside, or over) the rendered image: BVH work per primary
  * ray (nodes visited, triangles tested), the boxes at one depth, the size and depth of the leaf hit,
- * and surface attributes. 'none' shows the rendered image only. See renderer/debug-views.ts.
+ * and surface attributes. 'none' shows the rendered image only. See renderer/recipes/debug.ts.
  */
 export const DEBUG_VIEWS = ['none', 'heat-nodes', 'heat-triangles', 'wireframe', 'leaf-size', 'bvh-depth', 'normals', 'albedo', 'barycentrics', 'triangle-id'] as const;
 export type DebugView = (typeof DEBUG_VIEWS)[number];

@@ -1,7 +1,7 @@
 /**
  * The real-time frame's path tracer as a wavefront (shaders/wavefront/frame.wgsl): the estimator of
  * PathTraceFramePass (same random streams, same radiance, albedo and emission; the G-buffer pass is
- * PathTraceFramePass's own, run before: Denoiser.encodeTrace) run as generate →
+ * PathTraceFramePass's own, run before: RealTimeRecipe.encodeTrace) run as generate →
  * per bounce (queue args → extend → shade → shadow args → light and torch shadow rays) → finish, with
  * the queues compacted by atomics and their sizes driving indirect dispatches (generate traces the
  * camera rays itself, in pixel tiles, so extension starts at the second bounce). All of a frame's

@@ -19,7 +19,7 @@ export type { DebugLayout, DebugView, DenoiseView, LightSampling, Sampler, ToneM
 /** The deepest wireframe depth accepted (the builder caps BVH depth at 60). */
 export const MAX_WIREFRAME_DEPTH = 64;
 
-/** The frame recipes (settings.recipe): the path tracer, or the hybrid raster + ray-traced recipe (renderer/hybrid.ts). */
+/** The frame recipes (settings.recipe): the path tracer, or the hybrid raster + ray-traced recipe (renderer/recipes/hybrid.ts). */
 export const RENDER_MODES = ['path', 'hybrid'] as const;
 export type RenderMode = (typeof RENDER_MODES)[number];
 

@@ -231,7 +231,7 @@ async function benchRealTime(renderer: Renderer, prepared: PreparedScene, loadMs
   const spp = o.spp ?? 1;
   const frames = await benchmarkFrames(renderer, { spp, frames: o.repeats, warmups: o.warmups, warmupSeconds: FRAME_WARMUP_SECONDS });
   const memory = renderer.denoiserMemory;
-  // ReSTIR runs only in the megakernel's RGB paths (renderer/denoiser.ts usesRestir): say so where it was asked for and no ReSTIR pass was timed.
+  // ReSTIR runs only in the megakernel's RGB paths (renderer/recipes/real-time.ts usesRestir): say so where it was asked for and no ReSTIR pass was timed.
   const restirRan = frames.frameMs === undefined ? s.restir : Object.keys(frames.passMs).some((name) => name.startsWith('restir'));
   const timing = renderer.gpu.hasTimestamps ? 'gpu-timestamps' : 'wall-clock';
   const report = {

@@ -4,9 +4,9 @@
  * choose it.
  *
  *   debug        a debug view that replaces the image: drawn from the scene, nothing traced
- *   hybrid       settings.recipe 'hybrid': raster first hit, ray-traced light, TAA (renderer/hybrid.ts)
+ *   hybrid       settings.recipe 'hybrid': raster first hit, ray-traced light, TAA (recipes/hybrid.ts)
  *   real-time    the real-time path tracing chain: frame paths (megakernel or wavefront, ReSTIR as an
- *                option), temporal accumulation, à-trous (renderer/denoiser.ts)
+ *                option), temporal accumulation, à-trous (recipes/real-time.ts)
  *   progressive  samples added to the exact running estimate (passes/path-trace-pass.ts)
  *
  * The order is the precedence: a debug view that replaces the image needs no frame, the hybrid

@@ -1,7 +1,7 @@
 // The real-time frame's per-pixel records, packed (docs/denoise.md, "Memory"): what the path tracer
 // writes and what the temporal pass keeps from one frame to the next. Shared by
 // passes/path-trace-frame, wavefront/frame, temporal, denoise-atrous and denoise-output; the host
-// sizes buffers from these structs by reflection (renderer/denoiser.ts).
+// sizes buffers from these structs by reflection (renderer/recipes/real-time.ts).
 //
 //   SurfaceTexel (12 B, two: current and previous frame) the surface through the pixel centre
 //   FrameTexel (8 B)        the current frame's albedo and first-hit emission, read at remodulation
