@@ -1,5 +1,5 @@
 /**
- * The hybrid recipe (renderer/hybrid.ts): its raster first hit is the ray tracer's first hit, and
+ * The hybrid recipe (renderer/recipes/hybrid.ts): its raster first hit is the ray tracer's first hit, and
  * its light adds up to the analytic answer of the white furnace, where
  *   L = Le + direct (a·Le) + a · GI(B bounces) = Σ_{k=0..B+1} a^k Le
  * in expectation at every pixel, whatever the GI buffer's scale and with or without its filter.
