@@ -128,22 +128,6 @@ export class SahBinner {
     return true;
   }
 
-  /** Counts a triangle into bin slot k. A bin's box is set by its first triangle, so no reset is needed. */
-  private addToBin(k: number, x0: number, y0: number, z0: number, x1: number, y1: number, z1: number): void {
-    const m = k * 6, box = this.binBox;
-    if (this.counts[k]!++ === 0) {
-      box[m] = x0; box[m + 1] = y0; box[m + 2] = z0;
-      box[m + 3] = x1; box[m + 4] = y1; box[m + 5] = z1;
-      return;
-    }
-    if (x0 < box[m]!) box[m] = x0;
-    if (y0 < box[m + 1]!) box[m + 1] = y0;
-    if (z0 < box[m + 2]!) box[m + 2] = z0;
-    if (x1 > box[m + 3]!) box[m + 3] = x1;
-    if (y1 > box[m + 4]!) box[m + 4] = y1;
-    if (z1 > box[m + 5]!) box[m + 5] = z1;
-  }
-
   /**
    * Scores the planes of one axis. Planes next to an empty bin split the triangles exactly as their
    * neighbours do, so the non-empty bins are listed first and only the gaps between consecutive

@@ -5,6 +5,8 @@
 import { fromTrs, IDENTITY, translation } from '../math/mat4.ts';
 import { seededRandom } from '../math/seeded-random.ts';
 import { diffuse, type Mesh, type Scene } from '../scene/types.ts';
+import type { Vec3 } from '../math/vec3.ts';
+import type { Ray } from './ray.ts';
 
 /** The seeded PRNG the BVH tests share (math/seeded-random.ts). */
 export const makeRandom = seededRandom;
@@ -109,3 +111,46 @@ export function movingTestScene(): Scene {
     camera: { position: [0, 0, 20], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 },
   };
 }
+
+/**
+ * Rays for traversal oracles over a triangle soup (9 floats a triangle): origins in the scene's box
+ * grown by `margin` times its largest side on every side (some inside, some outside, off the plane
+ * of a flat scene). By default of every kind: axis-aligned (exact zero components, -0 included),
+ * random, and aimed at a point strictly inside a random triangle (so that many hit), some of those
+ * scaled by 1e-3 (t in other units), and every seventh with a short (tMin, tMax). `aimed`: aimed rays
+ * only, no interval.
+ */
+export function testRays(positions: Float32Array, count: number, seed: number, options: { readonly aimed?: boolean; readonly margin?: number } = {}): Ray[] {
+  const rnd = makeRandom(seed);
+  const n = positions.length / 9;
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < positions.length; i++) {
+    lo[i % 3] = Math.min(lo[i % 3]!, positions[i]!);
+    hi[i % 3] = Math.max(hi[i % 3]!, positions[i]!);
+  }
+  const margin = Math.max(hi[0]! - lo[0]!, hi[1]! - lo[1]!, hi[2]! - lo[2]!) * (options.margin ?? 0.5);
+  const rays: Ray[] = [];
+  for (let k = 0; k < count; k++) {
+    const origin = [0, 1, 2].map((a) => lo[a]! - margin + (hi[a]! - lo[a]! + 2 * margin) * rnd()) as unknown as Vec3;
+    const kind = options.aimed ? 2 : k % 4;
+    let direction: Vec3;
+    if (kind === 0) {
+      const axis = Math.floor(rnd() * 3), sign = rnd() < 0.5 ? -1 : 1;
+      const d = [rnd() < 0.5 ? 0 : -0, rnd() < 0.5 ? 0 : -0, rnd() < 0.5 ? 0 : -0];
+      d[axis] = sign;
+      direction = d as unknown as Vec3;
+    } else if (kind === 1) {
+      direction = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
+    } else {
+      const t = Math.floor(rnd() * n) * 9;
+      let u = rnd(), v = rnd();
+      if (u + v > 1) [u, v] = [1 - u, 1 - v];
+      const target = [0, 1, 2].map((a) => positions[t + a]! * (1 - u - v) + positions[t + 3 + a]! * u + positions[t + 6 + a]! * v);
+      direction = [target[0]! - origin[0], target[1]! - origin[1], target[2]! - origin[2]];
+      if (kind === 3) direction = [direction[0] * 1e-3, direction[1] * 1e-3, direction[2] * 1e-3];
+    }
+    rays.push(!options.aimed && k % 7 === 0 ? { origin, direction, tMin: rnd() * 0.5, tMax: 0.5 + rnd() * 2 } : { origin, direction });
+  }
+  return rays;
+}
+

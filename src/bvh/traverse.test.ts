@@ -1,8 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import type { Vec3 } from '../math/vec3.ts';
 import { buildBvh } from './build.ts';
 import { intersectTriangle, prepareRay, T_MISS, type Ray } from './ray.ts';
-import { degenerateSoup, makeRandom, quadGrid, randomSoup, uvSphere } from './test-scenes.ts';
+import { degenerateSoup, makeRandom, quadGrid, randomSoup, testRays, uvSphere } from './test-scenes.ts';
 import { intersectAll, traceClosest, traverseAny, traverseClosest } from './traverse.ts';
 
 const scenes: Record<string, () => Float32Array> = {
@@ -13,55 +12,13 @@ const scenes: Record<string, () => Float32Array> = {
   'huge coordinates': () => randomSoup(1500, 9, 1e37),
 };
 
-/**
- * Rays of every kind: origins inside and around the scene box, directions random, axis-aligned
- * (exact zero components, including -0) or aimed at a point inside a random triangle (so that many
- * rays hit), and a mix of tMin / tMax.
- */
-function makeRays(positions: Float32Array, count: number, seed: number): Ray[] {
-  const rnd = makeRandom(seed);
-  const n = positions.length / 9;
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < positions.length; i++) {
-    lo[i % 3] = Math.min(lo[i % 3]!, positions[i]!);
-    hi[i % 3] = Math.max(hi[i % 3]!, positions[i]!);
-  }
-  const rays: Ray[] = [];
-  for (let k = 0; k < count; k++) {
-    // Origins in the box grown by half its largest side on every side: some inside, some outside
-    // (and off the plane of a flat scene).
-    const margin = Math.max(hi[0]! - lo[0]!, hi[1]! - lo[1]!, hi[2]! - lo[2]!) / 2;
-    const origin = [0, 1, 2].map((a) => lo[a]! - margin + (hi[a]! - lo[a]! + 2 * margin) * rnd()) as unknown as Vec3;
-    let direction: Vec3;
-    const kind = k % 4;
-    if (kind === 0) {
-      const axis = Math.floor(rnd() * 3), sign = rnd() < 0.5 ? -1 : 1;
-      const d = [rnd() < 0.5 ? 0 : -0, rnd() < 0.5 ? 0 : -0, rnd() < 0.5 ? 0 : -0];
-      d[axis] = sign;
-      direction = d as unknown as Vec3;
-    } else if (kind === 1) {
-      direction = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
-    } else {
-      // Toward a random point strictly inside a random triangle.
-      const t = Math.floor(rnd() * n) * 9;
-      let u = rnd(), v = rnd();
-      if (u + v > 1) [u, v] = [1 - u, 1 - v];
-      const target = [0, 1, 2].map((a) => positions[t + a]! * (1 - u - v) + positions[t + 3 + a]! * u + positions[t + 6 + a]! * v);
-      direction = [target[0]! - origin[0], target[1]! - origin[1], target[2]! - origin[2]];
-      if (kind === 3) direction = [direction[0] * 1e-3, direction[1] * 1e-3, direction[2] * 1e-3]; // t in other units
-    }
-    const ray: Ray = k % 7 === 0 ? { origin, direction, tMin: rnd() * 0.5, tMax: 0.5 + rnd() * 2 } : { origin, direction };
-    rays.push(ray);
-  }
-  return rays;
-}
 
 describe('traverseClosest against brute force', () => {
   for (const [name, make] of Object.entries(scenes)) {
     it(`agrees on hits, t and triangle: ${name}`, () => {
       const positions = make();
       const bvh = buildBvh(positions);
-      const rays = makeRays(positions, 3000, 42);
+      const rays = testRays(positions, 3000, 42);
       let hits = 0, ties = 0;
       for (const ray of rays) {
         const oracle = intersectAll(positions, ray);
@@ -126,7 +83,7 @@ describe('traverseAny', () => {
       const positions = make();
       const bvh = buildBvh(positions);
       const rnd = makeRandom(7);
-      for (const base of makeRays(positions, 1500, 99)) {
+      for (const base of testRays(positions, 1500, 99)) {
         const closest = traverseClosest(bvh, positions, base);
         // Shorten some rays to just before / after the closest hit, as shadow rays do.
         const ray: Ray = closest && rnd() < 0.5 ? { ...base, tMax: closest.t * (rnd() < 0.5 ? 0.999 : 1.001) } : base;

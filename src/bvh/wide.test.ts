@@ -5,11 +5,10 @@
  * statistics.
  */
 import { describe, expect, it } from 'vitest';
-import type { Vec3 } from '../math/vec3.ts';
 import { buildBvh } from './build.ts';
 import { emptyBvh } from './levels.ts';
 import { intersectPrimitive, prepareRay, T_MISS, type Ray } from './ray.ts';
-import { degenerateSoup, makeRandom, quadGrid, randomSoup, uvSphere } from './test-scenes.ts';
+import { degenerateSoup, makeRandom, quadGrid, randomSoup, testRays, uvSphere } from './test-scenes.ts';
 import { traceClosest, traverseAny } from './traverse.ts';
 import { computeTriangleBoxes } from './triangle-boxes.ts';
 import {
@@ -25,37 +24,6 @@ const scenes: Record<string, () => Float32Array> = {
   'small coordinates': () => randomSoup(800, 4, 1e-8),
 };
 
-/** Rays from around the scene: random directions, axis-aligned ones (±0 components), and rays aimed into random triangles; some with a short (tMin, tMax). */
-function makeRays(positions: Float32Array, count: number, seed: number): Ray[] {
-  const rnd = makeRandom(seed);
-  const n = positions.length / 9;
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < positions.length; i++) {
-    lo[i % 3] = Math.min(lo[i % 3]!, positions[i]!);
-    hi[i % 3] = Math.max(hi[i % 3]!, positions[i]!);
-  }
-  const margin = Math.max(hi[0]! - lo[0]!, hi[1]! - lo[1]!, hi[2]! - lo[2]!) / 2;
-  const rays: Ray[] = [];
-  for (let k = 0; k < count; k++) {
-    const origin = [0, 1, 2].map((a) => lo[a]! - margin + (hi[a]! - lo[a]! + 2 * margin) * rnd()) as unknown as Vec3;
-    let direction: Vec3;
-    if (k % 4 === 0) {
-      const d = [rnd() < 0.5 ? 0 : -0, rnd() < 0.5 ? 0 : -0, rnd() < 0.5 ? 0 : -0];
-      d[Math.floor(rnd() * 3)] = rnd() < 0.5 ? -1 : 1;
-      direction = d as unknown as Vec3;
-    } else if (k % 4 === 1) {
-      direction = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
-    } else {
-      const t = Math.floor(rnd() * n) * 9;
-      let u = rnd(), v = rnd();
-      if (u + v > 1) [u, v] = [1 - u, 1 - v];
-      const target = [0, 1, 2].map((a) => positions[t + a]! * (1 - u - v) + positions[t + 3 + a]! * u + positions[t + 6 + a]! * v);
-      direction = [target[0]! - origin[0], target[1]! - origin[1], target[2]! - origin[2]];
-    }
-    rays.push(k % 7 === 0 ? { origin, direction, tMin: rnd() * 0.5, tMax: 0.5 + rnd() * 2 } : { origin, direction });
-  }
-  return rays;
-}
 
 /** Leaf references under each node, as (first, count) lists, by walking the packed words. */
 function leafRefs(wide: WideBvh, node: number): [number, number][] {
@@ -100,7 +68,7 @@ describe.each(WIDE_LAYOUTS)('%s', (layout) => {
       const wide = buildWideBvh(bvh, layout, { collapse });
       const rnd = makeRandom(11);
       let hits = 0, ties = 0;
-      for (const ray of makeRays(positions, 500, 5)) {
+      for (const ray of testRays(positions, 500, 5)) {
         const binary = traceClosest(bvh, positions, ray).hit;
         const trace = traceWide(wide, positions, ray);
         const got = trace.hit;

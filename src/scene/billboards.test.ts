@@ -3,10 +3,9 @@ import { expectLanternError } from '../expect-lantern-error.ts';
 import { determinant3, IDENTITY, transformPoint, type Mat4 } from '../math/mat4.ts';
 import { cross, dot, sub, type Vec3 } from '../math/vec3.ts';
 import { billboardPose, billboardQuad, facingYaw, rotationIndex } from './billboards.ts';
-import type { Billboard, BillboardImage } from './dynamics-types.ts';
 import type { Scene } from './types.ts';
-import { diffuse } from './types.ts';
 import { validateScene } from './validate.ts';
+import { billboardImage as image, twoBillboardScene } from '../../tests/fixtures/billboard-scene.ts';
 
 const DEG = Math.PI / 180;
 /** A viewer `d` units from `at` in the direction of map angle `deg` (0 east, 90 north = −z). */
@@ -64,7 +63,6 @@ function worldTriangles(m: Mat4): [Vec3, Vec3, Vec3][] {
   return out;
 }
 
-const image = (over: Partial<BillboardImage> = {}): BillboardImage => ({ material: 0, width: 40, height: 60, left: 15, top: 57, mirrored: false, ...over });
 
 describe('billboardPose', () => {
   const foot: Vec3 = [300, 24, -500];
@@ -113,18 +111,7 @@ describe('billboardPose', () => {
 });
 
 describe('billboardProblem (validateScene)', () => {
-  const billboards: Billboard[] = [
-    { instance: 10, position: [0, 0, 0], facing: 0, frames: [{ duration: 0, images: Array.from({ length: 8 }, (_, k) => image({ material: k, mirrored: k >= 5 })) }] },
-    { instance: 11, position: [500, 0, 0], facing: 0, frames: [{ duration: 0, images: [image({ material: 9 })] }] },
-  ];
-  const scene: Scene = {
-    name: 'billboards',
-    meshes: [billboardQuad(0)],
-    instances: [],
-    materials: Array.from({ length: 10 }, (_, i) => diffuse(`m${i}`, [0.5, 0.5, 0.5])),
-    camera: { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 },
-    dynamics: { billboards },
-  };
+  const { billboards, scene } = twoBillboardScene();
 
   it('refuses an instance that does not move, a material out of range, a cycle frame of no duration', () => {
     const placed: Scene = { ...scene, instances: [10, 11].map((id) => ({ id, mesh: 0, worldFromObject: IDENTITY, moves: true })) };

@@ -2,32 +2,19 @@
 import { describe, expect, it } from 'vitest';
 import { determinant3 } from '../math/mat4.ts';
 import type { Vec3 } from '../math/vec3.ts';
-import { billboardQuad, frameAt } from '../scene/billboards.ts';
-import type { Billboard, BillboardImage } from '../scene/dynamics-types.ts';
-import { diffuse, type Scene } from '../scene/types.ts';
+import { frameAt } from '../scene/billboards.ts';
+import type { Billboard } from '../scene/dynamics-types.ts';
 import type { Viewpoint } from './animator.ts';
 import { World } from './world.ts';
+import { billboardImage as image, twoBillboardScene } from '../../tests/fixtures/billboard-scene.ts';
 
 const DEG = Math.PI / 180;
 /** A viewer `d` units from `at` in the direction of map angle `deg` (0 east, 90 north = −z). */
 const around = (at: Vec3, deg: number, d = 100): Vec3 => [at[0] + d * Math.cos(deg * DEG), at[1], at[2] - d * Math.sin(deg * DEG)];
 
-const image = (over: Partial<BillboardImage> = {}): BillboardImage => ({ material: 0, width: 40, height: 60, left: 15, top: 57, mirrored: false, ...over });
 
 describe('the billboard animator', () => {
-  const eight = Array.from({ length: 8 }, (_, k) => image({ material: k, mirrored: k >= 5 }));
-  const billboards: Billboard[] = [
-    { instance: 10, position: [0, 0, 0], facing: 0, frames: [{ duration: 0, images: eight }] },
-    { instance: 11, position: [500, 0, 0], facing: 0, frames: [{ duration: 0, images: [image({ material: 9 })] }] },
-  ];
-  const scene: Scene = {
-    name: 'billboards',
-    meshes: [billboardQuad(0)],
-    instances: [],
-    materials: Array.from({ length: 10 }, (_, i) => diffuse(`m${i}`, [0.5, 0.5, 0.5])),
-    camera: { position: [0, 0, 0], forward: [0, 0, -1], up: [0, 1, 0], vfovDegrees: 60 },
-    dynamics: { billboards },
-  };
+  const { scene } = twoBillboardScene();
   // East of the first thing, looking west at it: it faces the viewer (rotation 1).
   const view: Viewpoint = { position: [200, 41, 0], forward: [-1, 0, 0] };
 

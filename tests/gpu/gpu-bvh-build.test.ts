@@ -5,8 +5,8 @@
  */
 import { beforeAll, describe, expect, it } from 'vitest';
 import { buildBvh } from '../../src/bvh/build.ts';
-import { intersectTriangle, prepareRay, T_MISS, type Ray } from '../../src/bvh/ray.ts';
-import { degenerateSoup, makeRandom, pointCloud, quadGrid, randomSoup, uvSphere } from '../../src/bvh/test-scenes.ts';
+import { intersectTriangle, prepareRay, T_MISS } from '../../src/bvh/ray.ts';
+import { degenerateSoup, makeRandom, pointCloud, quadGrid, randomSoup, testRays, uvSphere } from '../../src/bvh/test-scenes.ts';
 import { traceClosest } from '../../src/bvh/traverse.ts';
 import type { Bvh } from '../../src/bvh/types.ts';
 import { checkBvh } from '../../src/bvh/validate.ts';
@@ -38,25 +38,6 @@ async function expectLanternError(promise: Promise<unknown>, pattern: RegExp): P
   await expect(promise).rejects.toThrow(pattern);
 }
 
-/** Rays from around the scene's box toward random points inside random triangles, most of which hit. */
-function raysAt(positions: Float32Array, count: number, seed: number): Ray[] {
-  const rnd = makeRandom(seed);
-  const n = positions.length / 9;
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (let i = 0; i < positions.length; i++) {
-    lo[i % 3] = Math.min(lo[i % 3]!, positions[i]!);
-    hi[i % 3] = Math.max(hi[i % 3]!, positions[i]!);
-  }
-  const margin = Math.max(hi[0]! - lo[0]!, hi[1]! - lo[1]!, hi[2]! - lo[2]!);
-  return Array.from({ length: count }, () => {
-    const origin = [0, 1, 2].map((a) => lo[a]! - margin + (hi[a]! - lo[a]! + 2 * margin) * rnd()) as [number, number, number];
-    const t = Math.floor(rnd() * n) * 9;
-    let u = rnd(), v = rnd();
-    if (u + v > 1) [u, v] = [1 - u, 1 - v];
-    const target = [0, 1, 2].map((a) => positions[t + a]! * (1 - u - v) + positions[t + 3 + a]! * u + positions[t + 6 + a]! * v);
-    return { origin, direction: [target[0]! - origin[0], target[1]! - origin[1], target[2]! - origin[2]] as [number, number, number] };
-  });
-}
 
 describe('GPU radix sort', () => {
   it('sorts random keys with many duplicates stably, and full 32-bit keys', async () => {
@@ -97,7 +78,7 @@ describe('GPU BVH builder (PLOC)', () => {
     const gpu = await gpuBuild(positions, 1200);
     const cpu = buildBvh(positions);
     let hits = 0, ties = 0;
-    for (const ray of raysAt(positions, 400, 5)) {
+    for (const ray of testRays(positions, 400, 5, { aimed: true, margin: 1 })) {
       const a = traceClosest(gpu, positions, ray).hit, b = traceClosest(cpu, positions, ray).hit;
       expect(a === null).toBe(b === null);
       if (!a || !b) continue;
