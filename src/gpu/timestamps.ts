@@ -10,7 +10,7 @@ export class GpuTimer {
   private readonly readBuffer: GPUBuffer;
   private names: string[] = [];
 
-  constructor(private readonly device: GPUDevice, readonly capacity = 64) {
+  constructor(device: GPUDevice, readonly capacity = 64) {
     this.querySet = device.createQuerySet({ label: 'pass timestamps', type: 'timestamp', count: capacity * 2 });
     this.resolveBuffer = device.createBuffer({ label: 'timestamp resolve', size: capacity * 16, usage: GPUBufferUsage.QUERY_RESOLVE | GPUBufferUsage.COPY_SRC });
     this.readBuffer = device.createBuffer({ label: 'timestamp read', size: capacity * 16, usage: GPUBufferUsage.COPY_DST | GPUBufferUsage.MAP_READ });

@@ -30,7 +30,7 @@ import type { Environment } from './environment.ts';
 import { withEnvironment } from './environment-override.ts';
 import { punctualPower } from './punctual-power.ts';
 import { DAYLIGHT_EXPOSURE_STOPS, SkyModel } from './sky.ts';
-import type { Instance, Material, Mesh, PunctualLight, Scene, Texture, TextureRef } from './types.ts';
+import type { Instance, Material, Mesh, Scene, Texture, TextureRef } from './types.ts';
 
 /** What lights a model whose emitters cannot: a clear afternoon sky. */
 export const DEFAULT_SKY: Extract<Environment, { kind: 'sky' }> = Object.freeze({ kind: 'sky', sunElevationDeg: 40, sunAzimuthDeg: 30, turbidity: 3, groundAlbedo: 0.3, intensity: 1 });

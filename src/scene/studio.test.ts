@@ -4,7 +4,7 @@ import { boundsOfPositions, type Aabb } from '../math/aabb.ts';
 import { add, cross, dot, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
 import { inView } from './framing.ts';
 import { meshBounds, studioScene } from './studio.ts';
-import type { Material, Mesh, Scene } from './types.ts';
+import type { Material, Mesh } from './types.ts';
 import { baseColorOf } from './types.ts';
 import { validateScene } from './validate.ts';
 

@@ -8,7 +8,7 @@ import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../math/aa
 import { add, cross, length, normalize, scale, sub, type Vec3 } from '../math/vec3.ts';
 import { frameBounds } from './framing.ts';
 import { placeEachOnce } from './instances.ts';
-import { diffuse, type Camera, type Material, type Mesh, type Scene } from './types.ts';
+import { diffuse, type Material, type Mesh, type Scene } from './types.ts';
 
 export const STUDIO_VFOV_DEGREES = 40;
 

@@ -10,7 +10,8 @@ import { uploadBsdfTables } from '../../src/gpu/scene-resources.ts';
 import type { ComputeKernel } from '../../src/gpu/kernel.ts';
 
 const DIFFUSE = 0, METALLIC_ROUGHNESS = 1, DIELECTRIC = 2;
-const FLAG_VALID = 1, FLAG_DELTA = 2, FLAG_TRANSMITTED = 4;
+// Bits of the sample's flags (4: transmitted, not read here).
+const FLAG_VALID = 1, FLAG_DELTA = 2;
 const THREADS_PER_GROUP = 64;
 const COS_BINS = 16, PHI_BINS = 32, BINS = COS_BINS * PHI_BINS;
 /** Midpoints per bin axis when integrating bsdf_pdf over a bin. */

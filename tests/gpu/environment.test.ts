@@ -12,7 +12,7 @@ import type { Environment } from '../../src/scene/environment.ts';
 import { directionFromLatLong } from '../../src/scene/environment.ts';
 import { SUN_ANGULAR_RADIUS_DEG } from '../../src/scene/sky.ts';
 import type { ComputeKernel } from '../../src/gpu/kernel.ts';
-import { outputBuffer, storageBuffer, testKernel, uniformBuffer } from './compute.ts';
+import { outputBuffer, storageBuffer, testKernel } from './compute.ts';
 import { testGpu } from './gpu-context.ts';
 
 const SAMPLES_PER_THREAD = 16;
@@ -76,11 +76,6 @@ async function kernel(device: GPUDevice, entry: string): Promise<ComputeKernel> 
   let k = kernels.get(entry);
   if (!k) kernels.set(entry, (k = testKernel(device, 'test/environment', KERNEL, entry)));
   return k;
-}
-
-interface Uploaded {
-  readonly resources: Record<string, GPUBuffer | GPUTextureView>;
-  destroy(): void;
 }
 
 /** Runs one entry point over `threads` threads with `count` vec4 outputs in out_a and out_b. */

@@ -7,7 +7,7 @@
  */
 import { makeStructuredView } from 'webgpu-utils';
 import { buildAliasTable } from '../../math/alias-table.ts';
-import { luminance, normalize, scale } from '../../math/vec3.ts';
+import { normalize, scale } from '../../math/vec3.ts';
 import type { PunctualLight } from '../../scene/types.ts';
 import { punctualPower } from '../../scene/punctual-power.ts';
 import type { StructLayout } from '../wgsl/reflect.ts';

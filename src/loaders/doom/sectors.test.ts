@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { ccw, cw, MapBuilder, type MapPoint } from './test-wad.ts';
+import { ccw, cw, MapBuilder } from './test-wad.ts';
 import { buildSectorShapes, GAP_TOLERANCE, ringArea, sectorAt, type SectorShape } from './sectors.ts';
 
 function build(m: MapBuilder) {

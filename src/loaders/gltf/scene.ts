@@ -8,7 +8,7 @@
  * says its triangles' winding is reversed, and that is the consumer's business (the flattener), as
  * the instance carries the whole transform.
  */
-import type { Document, Node } from '@gltf-transform/core';
+import type { Node } from '@gltf-transform/core';
 import type { InstancedMesh, Light } from '@gltf-transform/extensions';
 import { LanternError } from '../../errors.ts';
 import { boundsOfPositions, isEmptyAabb, unionAabb, type Aabb } from '../../math/aabb.ts';

@@ -6,7 +6,7 @@ import type { Mesh } from '../../scene/types.ts';
 import { CAFFEINE_MOL } from './caffeine.ts';
 import { ELEMENTS, findElement, linearColor } from './elements.ts';
 import { isMoleculeHead, MOLECULE_FORMAT } from './format.ts';
-import { parseMolfile, type Molecule } from './molfile.ts';
+import { parseMolfile } from './molfile.ts';
 import { parseSdf } from './sdf.ts';
 import { LineReader } from './lines.ts';
 import { atomRadius, BOND_RADIUS, bondCapsules, hillFormula, moleculeMesh, moleculeScene } from './to-scene.ts';
