@@ -145,7 +145,7 @@ export interface FrameTrace {
 
 export class RealTimeRecipe implements FrameRecipe {
   private buffers?: Buffers;
-  /** The wavefront frame path tracer, made by enableWavefront (settings.integrator = 'wavefront'). */
+  /** The wavefront frame path tracer, made by compileWavefront (settings.integrator = 'wavefront'). */
   private wavefront?: WavefrontFramePass;
   private wavefrontPending?: Promise<WavefrontFramePass>;
   /** Every (features, spectral) the frame kernels were prepared for, so a wavefront made later compiles them too. */
@@ -160,7 +160,7 @@ export class RealTimeRecipe implements FrameRecipe {
   private open?: OpenFrame;
   /** Whether the reservoirs hold the last finished frame's (it ran ReSTIR at this size). */
   private restirHistoryValid = false;
-  /** The ReSTIR passes, made by enableRestir (settings.restir), and the scenes they are compiled for. */
+  /** The ReSTIR passes, made by compileRestir (settings.restir), and the scenes they are compiled for. */
   private restir?: RestirPass;
   private restirPending?: Promise<RestirPass>;
   private readonly restirReady = new Set<string>();
@@ -187,7 +187,7 @@ export class RealTimeRecipe implements FrameRecipe {
    * Compiles the wavefront frame path tracer for every scene prepared so far and later. Until it is
    * ready for a frame's scene, frames asking for it are traced by the megakernel (frameIntegrator says which ran).
    */
-  async enableWavefront(): Promise<void> {
+  async compileWavefront(): Promise<void> {
     if (!this.wavefrontPending) {
       this.wavefrontPending = WavefrontFramePass.create(this.device, this.firstPrepared(false)).then(async (w) => {
         await Promise.all([...this.preparedFor.values()].map((p) => this.prepareWavefront(w, p.features, p.spectral)));
@@ -200,7 +200,7 @@ export class RealTimeRecipe implements FrameRecipe {
   }
 
   /** Compiles the ReSTIR passes for every scene prepared so far and later; frames use them once ready for their scene. */
-  async enableRestir(): Promise<void> {
+  async compileRestir(): Promise<void> {
     if (!this.restirPending) {
       this.restirPending = RestirPass.create(this.device, this.firstPrepared(false)).then(async (r) => {
         await Promise.all([...this.preparedFor.values()].filter((p) => !p.spectral).map((p) => this.prepareRestir(r, p.features)));
@@ -228,7 +228,7 @@ export class RealTimeRecipe implements FrameRecipe {
     this.wavefrontReady.add(featureKey(features, spectral));
   }
 
-  /** The wavefront frame path tracer, once enableWavefront made it (the renderer specialises it with the other tracing kernels). */
+  /** The wavefront frame path tracer, once compileWavefront made it (the renderer specialises it with the other tracing kernels). */
   get wavefrontPass(): WavefrontFramePass | undefined {
     return this.wavefront;
   }

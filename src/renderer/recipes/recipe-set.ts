@@ -98,7 +98,7 @@ export class RecipeSet {
   async compileWavefront(): Promise<void> {
     if (!this.realTime) throw new Error('Renderer: the real-time chain before its wavefront integrator');
     const created = !this.realTime.wavefrontPass;
-    await this.realTime.enableWavefront();
+    await this.realTime.compileWavefront();
     this.wavefrontError = undefined;
     if (created) await this.hooks.tracingAdded();
   }
@@ -106,7 +106,7 @@ export class RecipeSet {
   /** The ReSTIR passes, into the real-time chain (compiled first). Until they are ready, frames run without them. */
   async compileRestir(): Promise<void> {
     if (!this.realTime) throw new Error('Renderer: the real-time chain before ReSTIR');
-    await this.realTime.enableRestir();
+    await this.realTime.compileRestir();
     this.restirError = undefined;
   }
 
