@@ -230,7 +230,7 @@ export class PathTracePass {
 }
 
 /** A bind group cached per kernel and resource (both weakly held). */
-function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
+export function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
   let perKernel = cache.get(kernel);
   if (!perKernel) cache.set(kernel, (perKernel = new WeakMap()));
   let group = perKernel.get(key);

@@ -18,7 +18,7 @@ import { cameraUniform, type ViewUniform } from '../gpu/view.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
 import type { Camera } from '../scene/types.ts';
 import type { FrameTarget } from './path-trace-frame-pass.ts';
-import { PATH_TRACE_MODULE, pathTraceParams, type PathTraceDispatch } from './path-trace-pass.ts';
+import { cached, PATH_TRACE_MODULE, pathTraceParams, type PathTraceDispatch } from './path-trace-pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'wavefront/frame';
@@ -238,13 +238,4 @@ async function sceneKernelSet(device: GPUDevice, extra: Record<string, number>, 
   const set = kernelSet(device, extra);
   await Promise.all(SCENE_ENTRIES.map((e) => set[e].prepare(first)));
   return set;
-}
-
-/** A bind group cached per kernel and resource (both weakly held). */
-function cached<K extends object>(cache: WeakMap<ComputeKernel, WeakMap<K, GPUBindGroup>>, kernel: ComputeKernel, key: K, make: () => GPUBindGroup): GPUBindGroup {
-  let perKernel = cache.get(kernel);
-  if (!perKernel) cache.set(kernel, (perKernel = new WeakMap()));
-  let group = perKernel.get(key);
-  if (!group) perKernel.set(key, (group = make()));
-  return group;
 }
