@@ -134,7 +134,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
     // The real-time chain's memory (the path recipe's): bytes per pixel in all and per buffer.
     const memory = s.recipe === 'path' ? { denoiserBytesPerPixel: renderer.denoiserMemory.bytesPerPixel, denoiserBuffers: renderer.denoiserMemory.buffers } : {};
     const report = { scene: prepared.scene.name, width: o.width, height: o.height, recipe: s.recipe, ...integrator, sppPerFrame: samples, bounces: s.maxBounces, temporal: s.temporal, denoise: s.denoise, adapter: renderer.gpu.adapterName, ...memory, ...result, ...(prepared.scene.lightingNote ? { notes: [prepared.scene.lightingNote] } : {}) };
-    const gpu = result.gpuMs ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
+    const gpu = result.gpuMs && Object.keys(result.gpuMs).length > 0 ? `; GPU ms per frame: ${Object.entries(result.gpuMs).map(([k, v]) => `${k} ${v.toFixed(3)}`).join(', ')}` : '';
     context.print(o.json ? JSON.stringify(report, null, 2) : `${report.scene}: ${result.frames} frames of ${o.width}×${o.height} at ${samples} spp in ${result.seconds.toFixed(2)} s on ${report.adapter}${gpu}`);
     renderer.destroy();
     return;
