@@ -20,26 +20,29 @@
  * selection and live GPU resources, and reads the estimate with its sample count; the canvas
  * carries data-state and data-samples, so scripts can wait for frames, and data-first-frame-ms (the
  * milliseconds from the first Play to its first frame, also in the panel's GPU folder).
+ *
+ * This file is the page's entry (index.html loads it): it finds the elements, holds the page's state
+ * in one object (page-state.ts) and wires the parts; page-status.ts shows messages, the status line,
+ * the legend and the overlay before Play; page-scenes.ts loads scenes (the pickers, files opened,
+ * dropped or served); page-storage.ts is what the page remembers between visits.
  */
 import { LanternError } from '../errors.ts';
 import { BUILTIN_SCENES, builtinSceneNames, isBuiltinScene } from '../loaders/builtin/index.ts';
-import { acceptedExtensions, describeFormats, SNIFF_BYTES, sortFiles } from '../loaders/registry.ts';
+import { acceptedExtensions, describeFormats } from '../loaders/registry.ts';
 import type { Pose } from './camera-controller.ts';
 import { Input } from './input.ts';
 import { SettingsPanel } from './panel.ts';
-import { pathRelativeTo, walkEntries, type PathedFile, type WalkEntry } from './dropped-files.ts';
-import { environmentOfLink, lightingNoteOf } from './environment-choice.ts';
+import { environmentOfLink } from './environment-choice.ts';
 import { SceneLoader } from './scene-loader.ts';
-import type { SceneRequest } from './scene-request.ts';
-import { formatViewParams, linkedRenderSettings, parseViewParams, type SceneLocation, type ViewParams } from './view-params.ts';
+import { formatViewParams, linkedRenderSettings, parseViewParams } from './view-params.ts';
 import { describeError, Viewer, type BudgetState, type FrameProgress } from './viewer.ts';
 import type { ResourceCount } from '../gpu/resource-count.ts';
 import type { ThinLens } from '../scene/types.ts';
-import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
-import { frameRate } from './number-format.ts';
-import { adapterKey, describeEstimate, estimateFirstFrame, frameMs, remainingCompileMs, roughDuration, withMeasuredCompiles, type AdapterFacts, type CompileTimesRecord, type FirstFrameRecord } from './first-frame-estimate.ts';
-import { fitStatus, part, type StatusPart } from './status-line.ts';
-import type { CompileProgress } from '../gpu/pipeline-compiles.ts';
+import { adapterKey, type FirstFrameRecord } from './first-frame-estimate.ts';
+import { initialPageState, type PageState } from './page-state.ts';
+import { droppedFiles, fetchFiles, FILE_OPTION, PageScenes, pickedFiles } from './page-scenes.ts';
+import { PageStatus } from './page-status.ts';
+import { FIRST_FRAME_KEY, HELP_SEEN_KEY, remember, storage } from './page-storage.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 const canvas = $<HTMLCanvasElement>('view');
@@ -62,44 +65,12 @@ const help = $<HTMLElement>('help');
 const helpButton = $<HTMLButtonElement>('help-button');
 const panelToggle = $<HTMLButtonElement>('panel-toggle');
 
-/** The option of the scene picker that stands for a scene opened from a file. */
-const FILE_OPTION = '__file__';
+/** The page's mutable state (page-state.ts: a doc comment per field). */
+const page: PageState = initialPageState();
+const status = new PageStatus({ canvas, progress, stats, message, messageBox, legend, start, startPlay }, page);
+const showMessage = status.showMessage.bind(status);
+const clearMessage = status.clearMessage.bind(status);
 
-/** How long an info message stays (warnings and errors stay until closed or replaced). */
-const INFO_MESSAGE_MS = 8000;
-let messageTimer: ReturnType<typeof setTimeout> | undefined;
-
-/**
- * Shows one message (it replaces the last). Info expires after INFO_MESSAGE_MS; warnings and errors
- * stay until closed (×) or replaced. `details` (a scene's loading warnings) fold under the text,
- * which then reads as their count, and open on a click. `note` (information shown with warnings: how
- * a scene is lit) is a line of its own above them, in the colour of information.
- */
-function showMessage(text: string, kind: 'info' | 'warning' | 'error', details: readonly string[] = [], note?: string): void {
-  clearTimeout(messageTimer);
-  messageBox.hidden = false;
-  message.hidden = false;
-  message.dataset.kind = kind;
-  let body: Node = document.createTextNode(text);
-  if (details.length > 0) {
-    const fold = document.createElement('details');
-    const summary = document.createElement('summary');
-    summary.textContent = text;
-    const list = document.createElement('div');
-    list.textContent = details.map((d) => `· ${d}`).join('\n');
-    fold.append(summary, list);
-    body = fold;
-  }
-  const noteLine = note !== undefined ? [Object.assign(document.createElement('div'), { className: 'note', textContent: note })] : [];
-  message.replaceChildren(...noteLine, body);
-  if (kind === 'info') messageTimer = setTimeout(clearMessage, INFO_MESSAGE_MS);
-}
-function clearMessage(): void {
-  clearTimeout(messageTimer);
-  messageBox.hidden = true;
-  message.hidden = true;
-  message.textContent = '';
-}
 $('message-close').addEventListener('click', () => {
   clearMessage();
   canvas.focus();
@@ -108,17 +79,7 @@ $('message-close').addEventListener('click', () => {
 const { view: linked, problems } = parseViewParams(new URLSearchParams(location.search));
 const viewer = new Viewer(canvas, { onChange: showViewer, onMessage: showMessage });
 const loader = new SceneLoader();
-let panel: SettingsPanel | undefined;
-/** Where the current scene came from (for links); undefined for files opened from this computer. */
-let current: SceneLocation | undefined;
-let loading: string | undefined;
-/** How far the scene's loading has got (0–1), while `loading`. */
-let loadFraction = 0;
-/** Where the open file set was served from (links can name it), or undefined for local files. */
-let fileSource: { format: string; urls: readonly string[]; skill?: number } | undefined;
-let loadToken = 0;
-/** Scenes shown so far (the test hook: an environment change must not load the scene again). */
-let sceneLoads = 0;
+const scenes = new PageScenes({ viewer, loader, page, status, sceneSelect, mapSelect, mapPicker, linked, problems, showViewer: () => showViewer(viewer) });
 
 // What the picker offers and the drop zone says come from the registry, like everything else about formats.
 fileInput.accept = acceptedExtensions();
@@ -142,259 +103,11 @@ function showViewer(v: Viewer): void {
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
   playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
   playButton.title = navigator.gpu ? '' : NO_WEBGPU;
-  showStatus(v);
-  panel?.showStats();
-  showLegend(v.legend);
-  showStart(v);
+  status.showStatus(v);
+  page.panel?.showStats();
+  status.showLegend(v.legend);
+  status.showStart(v);
   if (v.state === 'playing') onPlaying();
-}
-
-/**
- * The status line and the bar beside it: what the page waits for (the scene loading, the pipelines
- * compiling, with how many of how many and the time left) or, while playing, the readings. Fitted
- * to its width (status-line.ts: the least important figures go first); the whole line and the
- * budget's reasons are the tooltip.
- */
-function showStatus(v: Viewer): void {
-  const s = v.stats;
-  const c = v.compiles;
-  noteCompiles(c);
-  const compiling = c !== undefined && c.done < c.needed ? c : undefined;
-  progress.hidden = loading === undefined && !compiling;
-  progress.value = compiling ? compiling.done / compiling.needed : loadFraction;
-  const waitParts = (prefix: string, what: string) => {
-    if (!compiling) return [];
-    const { done, needed } = compiling;
-    const leftMs = adapterFacts ? remainingCompileMs(compiling, performance.now(), knownCompileTimes(), adapterFacts) + (v.awaitingFirstFrame ? frameMs(adapterFacts, expectedPixels()) : 0) : undefined;
-    return [
-      part(10, `${prefix}compiling ${what}, ${done} of ${needed}`, `compiling, ${done} of ${needed}`, `${done}/${needed} compiled`),
-      leftMs === undefined ? undefined : part(6, `about ${roughDuration(leftMs)} left`, `~${roughDuration(leftMs)}`),
-    ];
-  };
-  let parts: (StatusPart | undefined)[];
-  if (loading !== undefined) parts = compiling ? waitParts('loading: ', 'shaders') : [part(10, `loading: ${loading}…`)];
-  else if (!navigator.gpu) parts = [part(10, 'no WebGPU in this browser')];
-  else if (v.state === 'idle') parts = [part(10, 'press Play to start')];
-  else if (v.state === 'starting' || (v.awaitingFirstFrame && compiling)) parts = compiling ? waitParts('', 'shaders') : [part(10, 'starting the GPU…')];
-  else if (v.awaitingFirstFrame) parts = [part(10, 'rendering the first frame…')];
-  else {
-    const r = v.settings.render;
-    const fps = frameRate(s.framesPerSecond);
-    parts = [
-      // A recipe switched to compiles while the frames go on with the one before.
-      ...waitParts('', v.compilingFor ?? 'shaders'),
-      // A debug view that replaces the image traces no paths: no samples to count.
-      part(9, r.debugView !== 'none' && r.debugLayout === 'replace' ? 'debug view' : `${s.samples} spp`),
-      part(8, fps, fps.replace(/ \(.*\)$/, '')),
-      part(5, `${s.width}×${s.height}`),
-      part(3, v.budgetText(true), v.budget.on ? `budget ${v.budget.scale.toFixed(2)}×` : undefined),
-      part(2, s.adapter),
-      document.hidden && v.state === 'playing' ? part(9, 'paused while the tab is hidden', 'paused (hidden)') : undefined,
-    ];
-  }
-  stats.textContent = fitStatus(parts, (text) => {
-    stats.textContent = text;
-    return stats.scrollWidth <= stats.clientWidth;
-  });
-  const whole = parts.flatMap((p) => (p ? [p.forms[0]] : [])).join(' · ');
-  stats.title = s.budget && v.state !== 'idle' ? `${whole}\n${s.budget}` : whole;
-}
-
-/** Pipeline compile times measured on this computer (this adapter's), merged as compiles complete and kept for the next visit. */
-let compileTimes: CompileTimesRecord | undefined;
-function knownCompileTimes(): Readonly<Record<string, number>> {
-  if (!adapterFacts) return {};
-  const adapter = adapterKey(adapterFacts);
-  if (compileTimes?.adapter !== adapter) {
-    let stored: Partial<CompileTimesRecord> | undefined;
-    try {
-      stored = JSON.parse(storage()?.getItem(COMPILE_TIMES_KEY) ?? 'null') ?? undefined;
-    } catch {
-      stored = undefined;
-    }
-    const ms = stored?.adapter === adapter && stored.ms && typeof stored.ms === 'object' ? Object.fromEntries(Object.entries(stored.ms).filter(([, v]) => typeof v === 'number' && v >= 0)) : {};
-    compileTimes = { adapter, ms };
-  }
-  return compileTimes.ms;
-}
-function noteCompiles(c: CompileProgress | undefined): void {
-  if (!c || !adapterFacts) return;
-  const known = knownCompileTimes();
-  const next = withMeasuredCompiles(known, c.compiles);
-  if (next === known) return;
-  compileTimes = { adapter: compileTimes!.adapter, ms: next };
-  remember(COMPILE_TIMES_KEY, JSON.stringify(compileTimes));
-}
-
-/** The debug view's legend under the image: what it shows and, for scalar views, the colour scale with its numbers. */
-function showLegend(l: DebugLegend | undefined): void {
-  legend.hidden = !l;
-  if (!l) return;
-  legend.querySelector('.label')!.textContent = l.label;
-  const bar = legend.querySelector<HTMLDivElement>('.bar')!;
-  bar.hidden = !l.scale;
-  if (l.scale) {
-    bar.style.background = legendGradientCss();
-    bar.querySelector('.min')!.textContent = formatScale(l.scale.min);
-    bar.querySelector('.max')!.textContent = `${formatScale(l.scale.max)}${l.scale.auto ? ' (image max)' : ''}`;
-  }
-}
-
-const formatScale = (v: number) => (Number.isInteger(v) ? String(v) : v.toFixed(1));
-
-// ---- loading scenes ----
-
-/** What the scene picker names: a built-in scene, or a file scene with its label and the part (map) shown. */
-type PickerLabel = { kind: 'builtin'; name: string } | { kind: 'file'; label: string; part?: string };
-/** The picker's label of the scene rendering now (set once a scene is shown). */
-let shownLabel: PickerLabel | undefined;
-
-/** Loads a scene in the worker and shows it; a failure leaves the current scene as it was, and the pickers naming it. */
-async function show(request: SceneRequest, where: SceneLocation | undefined, label: PickerLabel, view: ViewParams = {}): Promise<void> {
-  const token = ++loadToken;
-  loadFraction = 0;
-  loading = 'starting';
-  showViewer(viewer);
-  try {
-    const loaded = await loader.load(request, (stage, fraction) => {
-      if (token !== loadToken) return;
-      loadFraction = fraction;
-      loading = stage;
-      showViewer(viewer);
-    });
-    if (token !== loadToken) return;
-    const { pose, mode, fovDegrees, apertureRadius, focusDistance } = view;
-    await viewer.setScene(loaded, { pose, mode, fovDegrees, apertureRadius, focusDistance });
-    if (view.torch) await viewer.updateSettings({ render: { torch: { ...viewer.settings.render.torch, ...view.torch } } });
-    current = where;
-    // The link's problems again (this warning replaces the line that named them), with the material
-    // edits that do not fit the scene.
-    const ignored = [...(view === linked ? problems : []), ...(view.materials ? await viewer.applyMaterialOverrides(view.materials) : [])];
-    sceneLoads++;
-    panel?.readFromViewer();
-    // Each warning once (a texture missing from ten materials is one problem), one per line.
-    const warnings = [...new Set([...loaded.warnings, ...ignored.map((p) => `ignored in the link: ${p}`)])];
-    // How the scene is lit and why is information, not one of the warnings.
-    const name = loaded.prepared.scene.name;
-    const lighting = lightingNoteOf(loaded.prepared.scene, viewer.environment);
-    if (warnings.length > 0) showMessage(`${name}: ${warnings.length === 1 ? 'a warning' : `${warnings.length} warnings`} (click to see)`, 'warning', warnings, lighting);
-    else if (lighting) showMessage(lighting, 'info');
-    shownLabel = label;
-  } catch (e) {
-    if (token === loadToken) showMessage(describeError(e), 'error');
-  } finally {
-    if (token === loadToken) {
-      loading = undefined;
-      showPicked();
-      showViewer(viewer);
-    }
-  }
-}
-
-/**
- * The scene picker names what is rendering: after a load that failed (a broken PLY), it goes back
- * to the scene still shown, and the map picker hides when its maps are not those of that scene.
- */
-function showPicked(): void {
-  const fileOption = sceneSelect.querySelector<HTMLOptionElement>(`option[value="${FILE_OPTION}"]`);
-  if (shownLabel?.kind === 'builtin') {
-    sceneSelect.value = shownLabel.name;
-    fileOption?.remove();
-    mapPicker.hidden = true;
-  } else if (shownLabel?.kind === 'file') {
-    markFileScene(shownLabel.label);
-    const part = shownLabel.part;
-    if (part !== undefined && [...mapSelect.options].some((o) => o.value === part)) mapSelect.value = part;
-    else mapPicker.hidden = true;
-  }
-}
-
-function showBuiltin(name: string, view: ViewParams = {}): Promise<void> {
-  sceneSelect.value = name;
-  mapPicker.hidden = true;
-  return show({ kind: 'builtin', name }, { kind: 'builtin', name }, { kind: 'builtin', name }, view);
-}
-
-/** The file-scene entry of the scene picker, labelled with what was opened. */
-function markFileScene(label: string): void {
-  let option = sceneSelect.querySelector<HTMLOptionElement>(`option[value="${FILE_OPTION}"]`);
-  if (!option) {
-    option = document.createElement('option');
-    option.value = FILE_OPTION;
-    sceneSelect.append(option);
-  }
-  option.textContent = label;
-  sceneSelect.value = FILE_OPTION;
-}
-
-/**
- * Opens files picked or dropped (or served): the registry sorts them into one scene's files (a
- * WAD stack, IWAD first) and siblings (a glTF's buffers and textures); a set of several scenes
- * (a WAD's maps) gets a map picker, a set of one is shown at once.
- */
-async function openFiles(files: readonly PathedFile[], where?: { urls: readonly string[]; part?: string; skill?: number }, view: ViewParams = {}): Promise<void> {
-  try {
-    const heads = await Promise.all(files.map(async ({ file, path }) => ({ file, path, name: file.name, head: new Uint8Array(await file.slice(0, SNIFF_BYTES).arrayBuffer()) })));
-    const { format, main, siblings } = sortFiles(heads);
-    const baseUrl = where?.urls[0] ? new URL(where.urls[0], location.href).href : undefined;
-    // Siblings are named from the main file's folder, the way a glTF's URIs name them.
-    const mainPath = main[0]?.path ?? '';
-    const beside = siblings.map((f) => ({ file: f.file, path: pathRelativeTo(mainPath, f.path) }));
-    const summary = await loader.openFiles(format.id, main.map((f) => f.file), beside, baseUrl);
-    fileSource = where ? { format: format.id, urls: where.urls, ...(where.skill !== undefined ? { skill: where.skill } : {}) } : undefined;
-    fileLabel = summary.description;
-    markFileScene(summary.description);
-    if (summary.parts.length === 0) {
-      mapPicker.hidden = true;
-      await showPart(undefined, view);
-      return;
-    }
-    mapSelect.replaceChildren(
-      ...summary.parts.map((m) => {
-        const option = document.createElement('option');
-        option.value = m.name;
-        option.textContent = m.loadable ? m.name : `${m.name} (${m.note ?? 'not supported'})`;
-        option.disabled = !m.loadable;
-        return option;
-      }),
-    );
-    const playable = summary.parts.filter((m) => m.loadable);
-    const wanted = where?.part && playable.some((m) => m.name === where.part) ? where.part : playable[0]!.name;
-    if (where?.part && wanted !== where.part) showMessage(`${summary.description} has no ${format.part?.noun ?? 'part'} ${where.part}; showing ${wanted}`, 'warning');
-    mapSelect.value = wanted;
-    mapPicker.hidden = false;
-    await showPart(wanted, view);
-  } catch (e) {
-    showMessage(describeError(e), 'error');
-    // The picker goes back to what is still shown.
-    showPicked();
-  }
-}
-
-/** The label of the open file set (the picker's file entry names it). */
-let fileLabel = '';
-
-/** A scene of the open file set: a map of a WAD, or (part undefined) the set's only scene. */
-function showPart(part: string | undefined, view: ViewParams = {}): Promise<void> {
-  const where: SceneLocation | undefined = fileSource ? { kind: 'files', ...fileSource, ...(part ? { part } : {}) } : undefined;
-  const label: PickerLabel = { kind: 'file', label: fileLabel, ...(part !== undefined ? { part } : {}) };
-  return show({ kind: 'part', ...(part ? { part } : {}), ...(fileSource?.skill !== undefined ? { skill: fileSource.skill } : {}) }, where, label, view);
-}
-
-/** Files the server offers (`lantern view` serves the files named on its command line). */
-async function fetchFiles(urls: readonly string[]): Promise<File[]> {
-  return Promise.all(
-    urls.map(async (url) => {
-      let response: Response;
-      try {
-        response = await fetch(url);
-      } catch (e) {
-        throw new LanternError(`cannot fetch '${url}': ${(e as Error).message}`);
-      }
-      if (!response.ok) throw new LanternError(`cannot fetch '${url}': HTTP ${response.status}`, 'Open the file with the Open button instead');
-      return new File([await response.arrayBuffer()], decodeURIComponent(url.split('/').pop() ?? url));
-    }),
-  );
 }
 
 // ---- output ----
@@ -413,7 +126,7 @@ function fileStem(): string {
 }
 
 function viewLink(): string {
-  const params = formatViewParams({ ...viewer.viewParams(), ...(current ? { scene: current } : {}) });
+  const params = formatViewParams({ ...viewer.viewParams(), ...(page.current ? { scene: page.current } : {}) });
   return `${location.origin}${location.pathname}?${params}`;
 }
 
@@ -423,7 +136,7 @@ const actions = {
   copyLink: async () => {
     const link = viewLink();
     history.replaceState(null, '', link);
-    const note = current ? '' : ' (it restores the camera and settings; a file opened from this computer must be opened again)';
+    const note = page.current ? '' : ' (it restores the camera and settings; a file opened from this computer must be opened again)';
     try {
       await navigator.clipboard.writeText(link);
       showMessage(`Link copied${note}.`, 'info');
@@ -440,77 +153,24 @@ const actions = {
 /** Why Play stays disabled without WebGPU (the canvas's overlay says how to get it). */
 const NO_WEBGPU = 'This browser has no WebGPU: see the notes over the image for how to enable it, or render with the lantern command';
 
-/** localStorage keys: whether the controls were shown once; first frames measured per adapter. */
-const HELP_SEEN_KEY = 'lantern.helpSeen';
-const FIRST_FRAME_KEY = 'lantern.firstFrame';
-/** Pipeline compile times per adapter (first-frame-estimate.ts CompileTimesRecord): the next visit's estimate of each compile. */
-const COMPILE_TIMES_KEY = 'lantern.compileTimes';
-
-/** localStorage, or undefined where the browser refuses it (private modes, file: pages). */
-function storage(): Storage | undefined {
-  try {
-    return window.localStorage;
-  } catch {
-    return undefined;
-  }
-}
-
-/** Keeps a value in localStorage where the browser lets it (a full or refused store only loses the memory). */
-function remember(key: string, value: string): void {
-  try {
-    storage()?.setItem(key, value);
-  } catch {
-    // Nothing to do: the page works the same without it.
-  }
-}
-
-/** What the adapter says about itself, asked before Play for the estimate (no device is made: no GPU work). */
-let adapterFacts: AdapterFacts | undefined;
+/** Asks the adapter about itself before Play, for the estimate (no device is made: no GPU work). */
 async function queryAdapter(): Promise<void> {
   try {
     const adapter = await navigator.gpu?.requestAdapter();
     if (!adapter) return;
     const info = adapter.info;
     const fallback = (info as GPUAdapterInfo & { isFallbackAdapter?: boolean }).isFallbackAdapter ?? (adapter as GPUAdapter & { isFallbackAdapter?: boolean }).isFallbackAdapter ?? false;
-    adapterFacts = { vendor: info.vendor, architecture: info.architecture, device: info.device, description: info.description, isFallbackAdapter: fallback };
-    showStart(viewer);
+    page.adapterFacts = { vendor: info.vendor, architecture: info.architecture, device: info.device, description: info.description, isFallbackAdapter: fallback };
+    status.showStart(viewer);
   } catch {
     // No estimate then; Play says what goes wrong.
   }
 }
 
-function firstFrameRecord(): FirstFrameRecord | undefined {
-  try {
-    const raw = storage()?.getItem(FIRST_FRAME_KEY);
-    const r = raw ? (JSON.parse(raw) as Partial<FirstFrameRecord>) : undefined;
-    return r && typeof r.adapter === 'string' && typeof r.ms === 'number' && typeof r.pixels === 'number' ? { adapter: r.adapter, ms: r.ms, pixels: r.pixels } : undefined;
-  } catch {
-    return undefined;
-  }
-}
-
-/** The pixels the first frame will have: the canvas's device pixels times the resolution scale. */
-const expectedPixels = () => Math.max(1, Math.round(canvas.width * viewer.settings.scale) * Math.round(canvas.height * viewer.settings.scale));
-
-/** The overlay before Play: the scene's name, Play, and the expected wait; without WebGPU, how to get it. */
-function showStart(v: Viewer): void {
-  const before = v.state === 'idle';
-  start.hidden = !before;
-  if (!before) return;
-  start.querySelector('.scene-name')!.textContent = loading !== undefined ? `Loading ${v.stats.sceneName || 'the scene'}…` : v.stats.sceneName;
-  const noGpu = !navigator.gpu;
-  start.querySelector<HTMLElement>('.no-webgpu')!.hidden = !noGpu;
-  startPlay.hidden = noGpu;
-  startPlay.disabled = !v.scene || loading !== undefined;
-  const estimate = estimateFirstFrame(adapterFacts, expectedPixels(), firstFrameRecord());
-  start.querySelector('.estimate')!.textContent = noGpu ? '' : estimate ? describeEstimate(estimate) : '';
-}
-
-let played = false;
 /** Once playing: the first time ever, the controls show by themselves; the first frame's wait is kept for the next visit's estimate. */
 function onPlaying(): void {
-  if (!played) {
-    played = true;
+  if (!page.played) {
+    page.played = true;
     const store = storage();
     if (store && !store.getItem(HELP_SEEN_KEY)) {
       remember(HELP_SEEN_KEY, '1');
@@ -518,12 +178,11 @@ function onPlaying(): void {
     }
   }
   const ms = viewer.stats.firstFrameMs;
-  if (ms !== undefined && adapterFacts && !recorded) {
-    recorded = true;
-    remember(FIRST_FRAME_KEY, JSON.stringify({ adapter: adapterKey(adapterFacts), ms, pixels: viewer.stats.width * viewer.stats.height } satisfies FirstFrameRecord));
+  if (ms !== undefined && page.adapterFacts && !page.recorded) {
+    page.recorded = true;
+    remember(FIRST_FRAME_KEY, JSON.stringify({ adapter: adapterKey(page.adapterFacts), ms, pixels: viewer.stats.width * viewer.stats.height } satisfies FirstFrameRecord));
   }
 }
-let recorded = false;
 
 function showHelp(shown: boolean): void {
   help.hidden = !shown;
@@ -604,10 +263,10 @@ startPlay.addEventListener('click', () => playButton.click());
 
 // The status line follows its width (a window resized, the panel shown or hidden) and, while the
 // page waits, the time left; its text never changes its size (style.css), so this cannot loop.
-new ResizeObserver(() => showStatus(viewer)).observe(statusBox);
+new ResizeObserver(() => status.showStatus(viewer)).observe(statusBox);
 setInterval(() => {
   const c = viewer.compiles;
-  if ((c && c.done < c.needed) || viewer.awaitingFirstFrame) showStatus(viewer);
+  if ((c && c.done < c.needed) || viewer.awaitingFirstFrame) status.showStatus(viewer);
 }, 1000);
 
 new ResizeObserver((entries) => {
@@ -627,7 +286,7 @@ viewer.input = new Input(canvas, {
         .then((depth) => {
           if (depth === undefined) return;
           // The Camera folder shows the new focus distance.
-          panel?.readFromViewer();
+          page.panel?.readFromViewer();
           showMessage(`In focus at ${depth.toPrecision(4)} scene units (the lens's focus distance; the aperture radius sets the blur).`, 'info');
         })
         .catch((e) => showMessage(describeError(e), 'error'));
@@ -649,58 +308,39 @@ playButton.addEventListener('click', () => {
 // Each user action starts with a clean message line; what it reports stays until the next.
 sceneSelect.addEventListener('change', () => {
   clearMessage();
-  if (sceneSelect.value !== FILE_OPTION) void showBuiltin(sceneSelect.value);
+  if (sceneSelect.value !== FILE_OPTION) void scenes.showBuiltin(sceneSelect.value);
 });
 mapSelect.addEventListener('change', () => {
   clearMessage();
-  void showPart(mapSelect.value);
+  void scenes.showPart(mapSelect.value);
 });
-/** Files of a file input, with their path inside the folder when a folder was picked. */
-function pickedFiles(input: HTMLInputElement): PathedFile[] {
-  const files = [...(input.files ?? [])].map((file) => ({ file, path: file.webkitRelativePath || file.name }));
-  input.value = '';
-  return files;
-}
 for (const input of [fileInput, folderInput]) {
   input.addEventListener('change', () => {
     const files = pickedFiles(input);
     clearMessage();
-    if (files.length > 0) void openFiles(files);
+    if (files.length > 0) void scenes.openFiles(files);
   });
 }
 
-/**
- * What was dropped: folders are walked (a glTF with its .bin and textures/ dropped as one folder);
- * where the browser offers no entries (a synthetic drop, an old browser), the plain file list.
- */
-async function droppedFiles(data: DataTransfer): Promise<PathedFile[]> {
-  const entries = [...data.items].filter((item) => item.kind === 'file').map((item) => item.webkitGetAsEntry());
-  const files = [...data.files];
-  if (entries.length > 0 && entries.every((e) => e !== null)) {
-    return walkEntries(entries as unknown as WalkEntry[]);
-  }
-  return files.map((file) => ({ file, path: file.name }));
-}
-let dragDepth = 0;
 window.addEventListener('dragenter', (e) => {
   e.preventDefault();
-  dragDepth++;
+  page.dragDepth++;
   dropZone.hidden = false;
 });
 window.addEventListener('dragover', (e) => e.preventDefault());
 window.addEventListener('dragleave', () => {
-  if (--dragDepth <= 0) dropZone.hidden = true;
+  if (--page.dragDepth <= 0) dropZone.hidden = true;
 });
 window.addEventListener('drop', (e) => {
   e.preventDefault();
-  dragDepth = 0;
+  page.dragDepth = 0;
   dropZone.hidden = true;
   const data = e.dataTransfer;
   clearMessage();
   if (!data) return;
   // The entries must be taken now: the DataTransfer is emptied once the event handler returns.
   droppedFiles(data)
-    .then((files) => (files.length > 0 ? openFiles(files) : showMessage('Nothing to open in what was dropped (an empty folder?)', 'warning')))
+    .then((files) => (files.length > 0 ? scenes.openFiles(files) : showMessage('Nothing to open in what was dropped (an empty folder?)', 'warning')))
     .catch((err) => showMessage(describeError(err), 'error'));
 });
 
@@ -717,7 +357,7 @@ await viewer.updateSettings({
   // The torch's other settings are the scene's business: they are applied once it is loaded.
   render: { ...linkedRenderSettings(linked), ...(linked.torch?.enabled !== undefined ? { torch: { enabled: linked.torch.enabled } } : {}) },
 });
-panel = new SettingsPanel($('panel'), viewer, actions);
+page.panel = new SettingsPanel($('panel'), viewer, actions);
 showViewer(viewer);
 
 if (problems.length > 0) showMessage(`Ignored in the link: ${problems.join('; ')}`, 'warning');
@@ -728,16 +368,16 @@ const scene = linked.scene;
 if (scene?.kind === 'files') {
   const urls = scene.urls;
   fetchFiles(urls)
-    .then((files) => openFiles(files.map((file) => ({ file, path: file.name })), { urls, ...(scene.part ? { part: scene.part } : {}), ...(scene.skill !== undefined ? { skill: scene.skill } : {}) }, linked))
+    .then((files) => scenes.openFiles(files.map((file) => ({ file, path: file.name })), { urls, ...(scene.part ? { part: scene.part } : {}), ...(scene.skill !== undefined ? { skill: scene.skill } : {}) }, linked))
     .catch(async (e) => {
       showMessage(describeError(e), 'error');
-      await showBuiltin('cornell');
+      await scenes.showBuiltin('cornell');
     });
 } else if (scene && !isBuiltinScene(scene.name)) {
-  await showBuiltin('cornell');
+  await scenes.showBuiltin('cornell');
   showMessage(describeError(new LanternError(`unknown scene '${scene.name}'`, `Built-in scenes are: ${builtinSceneNames().join(', ')}`)), 'error');
 } else {
-  void showBuiltin(scene?.name ?? 'cornell', linked);
+  void scenes.showBuiltin(scene?.name ?? 'cornell', linked);
 }
 
 // ---- test hook ----
@@ -795,10 +435,10 @@ window.lantern = {
     return viewer.stats.sceneName;
   },
   get loading() {
-    return loading !== undefined;
+    return page.loading !== undefined;
   },
   get sceneLoads() {
-    return sceneLoads;
+    return page.sceneLoads;
   },
   get environment() {
     const e = viewer.scene?.prepared.scene.environment;
@@ -845,3 +485,4 @@ window.lantern = {
     return [...viewer.pipelines];
   },
 };
+

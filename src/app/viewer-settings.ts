@@ -5,7 +5,7 @@
  * Each has one type, default and valid range, its link parameter and its panel binding, in the table
  * VIEWER_SETTINGS below, written with the schema's constructors (renderer/settings-schema.ts). Links
  * (view-params.ts), the panel (panel.ts, through panel-settings.ts), DEFAULT_VIEWER_SETTINGS
- * (viewer.ts) and the Environment folder's defaults (environment-choice.ts) read them from here, so
+ * (viewer-types.ts) and the Environment folder's defaults (environment-choice.ts) read them from here, so
  * that a link and the panel accept the same values. Pure: no DOM.
  *
  * A panel hint's `slider` is the span its slider covers where that is narrower than the valid range;
@@ -41,7 +41,7 @@ const turbidity = number({
 });
 
 /**
- * The viewer's settings. The five at the top are ViewerSettings (viewer.ts); the field of view is the
+ * The viewer's settings. The five at the top are ViewerSettings (viewer-types.ts); the field of view is the
  * camera's (a scene's own camera gives it: no default); the sky and its intensity are the environment
  * that replaces every scene's own (a link's `sky=elevation,azimuth[,turbidity]`, SKY_LINK below,
  * carries the sky's three together), its defaults what the panel's sky shows when first picked.
@@ -50,7 +50,7 @@ export const VIEWER_SETTINGS = {
   samplesPerFrame: integer({
     // The renderer takes any positive whole number, and the frame budget adds up to 4 on a fast GPU
     // (frame-budget.ts MAX_BUDGET_SAMPLES). 64 is as far as a frame needs to go: converge when still
-    // hands over to the progressive estimate at 64 samples per pixel (viewer.ts CONVERGE_HANDOFF_SAMPLES),
+    // hands over to the progressive estimate at 64 samples per pixel (viewer-types.ts CONVERGE_HANDOFF_SAMPLES),
     // and every frame is split into short submissions, so the page answers during one. Links accepted
     // 1–64 and the panel 1–16: the panel now takes typed values up to 64, its slider spanning 1–16.
     name: 'samples per frame', description: 'paths traced per pixel each frame', min: 1, max: 64, default: 1, link: 'spf', restarts: true,
