@@ -14,7 +14,8 @@ import type { PageStatus } from './page-status.ts';
 import type { SceneLoader } from './scene-loader.ts';
 import type { SceneRequest } from './scene-request.ts';
 import type { SceneLocation, ViewParams } from './view-params.ts';
-import { describeError, type Viewer } from './viewer.ts';
+import type { Viewer } from './viewer.ts';
+import { describeError } from './viewer-types.ts';
 
 /** The option of the scene picker that stands for a scene opened from a file. */
 export const FILE_OPTION = '__file__';

@@ -1,5 +1,5 @@
 /**
- * The viewer's public types (viewer.ts re-exports them): its state, its own settings and their
+ * The viewer's public types (imported from here, beside the Viewer class of viewer.ts): its state, its own settings and their
  * defaults, the input it reads, what it reports (stats, the budget, the frame under way), what a
  * link may say about the view, and the words for an error. No Renderer, no DOM.
  */

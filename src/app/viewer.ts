@@ -47,8 +47,6 @@ import { defaultFocus, NO_ENVIRONMENT, sceneController } from './viewer-scene.ts
 import { DEFAULT_VIEWER_SETTINGS, describeError, idleInput, type BudgetState, type FrameProgress, type SceneView, type ViewerInput, type ViewerSettings, type ViewerState, type ViewerStats } from './viewer-types.ts';
 
 // The viewer's types and defaults (viewer-types.ts), for the page's modules that import the Viewer.
-export { CONVERGE_HANDOFF_SAMPLES, DEFAULT_VIEWER_SETTINGS, describeError } from './viewer-types.ts';
-export type { BudgetState, FrameProgress, PassTime, SceneView, ViewerDisplay, ViewerInput, ViewerSettings, ViewerState, ViewerStats } from './viewer-types.ts';
 
 export interface ViewerHooks {
   /** Anything shown changed (state, stats, scene). */
