@@ -80,10 +80,10 @@ export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (o
     const mode = settingMode(entry);
     // A switch such as --temporal turns frame mode on; what else is given must fit the mode.
     if (!mode || entry.spec.cli?.switch || o[settingOption(entry).attributeName()] === undefined) continue;
-    if (mode === 'frame' && !frameMode) throw new LanternError(`${entry.spec.cli!.flag} applies to frame mode only`, 'Add --frames, --path, --denoise, --temporal or --mode hybrid, or leave it out');
+    if (mode === 'frame' && !frameMode) throw new LanternError(`${entry.spec.cli!.flag} applies to frame mode only`, 'Add --frames, --path, --temporal, --denoise, --restir or --mode hybrid, or leave it out');
     if (mode === 'hybrid' && o.mode !== 'hybrid') throw new LanternError(`${entry.spec.cli!.flag} applies to the hybrid recipe only`, 'Add --mode hybrid, or leave it out');
   }
-  if (!frameMode && given('warmup')) throw new LanternError('--warmup applies to frame mode only', 'Add --frames, --path, --denoise, --temporal or --mode hybrid, or leave it out');
+  if (!frameMode && given('warmup')) throw new LanternError('--warmup applies to frame mode only', 'Add --frames, --path, --temporal, --denoise, --restir or --mode hybrid, or leave it out');
   if (given('fps') && (!frameMode || o.path !== undefined)) throw new LanternError(o.path !== undefined ? '--fps does not apply with --path (the path\'s times set the frames)' : '--fps applies to frame mode only', 'Leave it out');
   const argument = parseSceneArgument(sceneArg);
   // A file's format is known once its bytes are read (on the scene thread, which checks again).
