@@ -413,13 +413,9 @@ export class Renderer {
     if (tracesSpectral && this.settingsValue.spectral && !this.recipes.spectral) throw new Error('Renderer: compile() before rendering with settings.spectral');
   }
 
-  /** A SplitFrame driving a recipe's frame; `done` runs after the recipe's own once the last band is submitted. */
+  /** A SplitFrame driving a recipe's frame; `done` runs once the last band is submitted. */
   private split(work: RecipeFrame, samples: number, label: string, done: () => void): SplitFrame {
-    const after = () => {
-      work.done();
-      done();
-    };
-    return new SplitFrame(this, this.ready().targets, samples, work.splittable, { ...work, done: after }, label);
+    return new SplitFrame(this, this.ready().targets, samples, work.splittable, { ...work, done }, label);
   }
 
   /**
@@ -505,7 +501,7 @@ export class Renderer {
     const recipe = this.frameRecipe();
     this.checkSamples(samples, 'frame', recipe === this.recipes.realTime);
     // A debug view that replaces the image is drawn by present() and readImage(): nothing to trace.
-    if (!recipe) return this.split({ splittable: false, band: () => {}, finish: () => {}, done: () => {}, abandon: () => {} }, samples, 'frame', () => {});
+    if (!recipe) return this.split({ splittable: false, band: () => {}, finish: () => {}, abandon: () => {} }, samples, 'frame', () => {});
     this.residency.settleBeforeFrame();
     const frame = this.frame(timer);
     const work = recipe.begin(frame, samples);

@@ -7,8 +7,8 @@ import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
 import type { SplitWork } from '../split-frame.ts';
 import type { FrameContext } from '../frame.ts';
 
-/** One frame of a recipe, as SplitFrame records it. */
-export interface RecipeFrame extends SplitWork {
+/** One frame of a recipe, as SplitFrame records it (what completes it is the Renderer's: SplitWork.done). */
+export interface RecipeFrame extends Omit<SplitWork, 'done'> {
   /** Whether the tracing can be cut into row bands (false: one band, the whole image). */
   readonly splittable: boolean;
 }

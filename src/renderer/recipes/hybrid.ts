@@ -163,7 +163,7 @@ export class HybridRecipe implements FrameRecipe {
 
   /** Begins a frame: one sample per pixel, traced whole (no bands), recorded in the one band's encoder. */
   begin(frame: FrameContext): RecipeFrame {
-    return { splittable: false, band: (encoder) => this.encodeFrame(encoder, frame), finish: () => {}, done: () => {}, abandon: () => {} };
+    return { splittable: false, band: (encoder) => this.encodeFrame(encoder, frame), finish: () => {}, abandon: () => {} };
   }
 
   /** Records one hybrid frame into `encoder` (parameters are written now: submit before the next frame). */

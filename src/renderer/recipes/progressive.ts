@@ -41,7 +41,6 @@ export class ProgressiveRecipe {
       splittable: true,
       band: (encoder, tile) => this.encode(encoder, frame, tile, sampleIndex, samples, timer && timer.room > TIMER_ROOM_AFTER_BANDS ? timer : undefined),
       finish: (encoder) => timer?.resolve(encoder),
-      done: () => {},
       abandon: () => {},
     };
   }

@@ -302,7 +302,6 @@ export class RealTimeRecipe implements FrameRecipe {
       splittable: !whole,
       band: (encoder, tile) => this.encodeBand(encoder, open, timedWhileRoom(frame, frame.timer), whole ? undefined : tile),
       finish: (encoder) => this.finishFrame(encoder, open),
-      done: () => {},
       abandon: () => this.abandonFrame(open),
     };
   }
