@@ -517,7 +517,7 @@ export class Renderer {
 
   /** The recipe a frame runs now (undefined: a debug view alone), compiled. */
   private frameRecipe(): FrameRecipe | undefined {
-    return this.recipes.frameRecipe(recipeFor(this.settingsValue, { frames: true }) as 'real-time' | 'hybrid' | 'debug');
+    return this.recipes.frameRecipe(recipeFor(this.settingsValue, { frames: true }));
   }
 
   /** What SplitFrame checks before each band: the estimate, the history and the scene are those the frame began with. */

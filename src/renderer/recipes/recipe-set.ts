@@ -143,8 +143,9 @@ export class RecipeSet {
   }
 
   /** The compiled recipe a frame of this recipe runs (undefined: a debug view alone, drawn at present). */
-  frameRecipe(recipe: Exclude<Recipe, 'progressive'>): FrameRecipe | undefined {
+  frameRecipe(recipe: Recipe): FrameRecipe | undefined {
     if (recipe === 'debug') return undefined;
+    if (recipe === 'progressive') throw new Error('Renderer: the progressive recipe is accumulated, not rendered as frames');
     const compiled = recipe === 'hybrid' ? this.hybrid : this.realTime;
     if (!compiled) throw new Error(`Renderer: compile() the ${recipe} recipe before renderFrame()`);
     return compiled;
