@@ -1,10 +1,9 @@
 /**
  * The real-time frame's path tracer (entries frame_gbuffer then path_trace_frame of
- * shaders/passes/path-trace-frame.wgsl, which imports passes/path-trace): the G-buffer of the pixel
- * centres and, once their neighbours' are written, the pixels' emission (frame_gbuffer twice), then
- * `samples` paths per pixel written, not added, as demodulated radiance. Compiled with
- * CAPTURE_PRIMARY = 1, so the progressive kernel (PathTracePass, CAPTURE_PRIMARY = 0) is untouched by
- * the G-buffer writes.
+ * shaders/passes/path-trace-frame.wgsl, on integrator/frame and integrator/dispatch): the G-buffer of
+ * the pixel centres and, once their neighbours' are written, the pixels' emission (frame_gbuffer
+ * twice), then `samples` paths per pixel written, not added, as demodulated radiance. The frame
+ * kernel is compiled with RESTIR (kernel-variants.ts); the progressive kernel is not.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
@@ -54,8 +53,8 @@ export class PathTraceFramePass {
   /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
   static async create(device: GPUDevice, first?: SceneFeatures): Promise<PathTraceFramePass> {
     const [kernels, gbufferKernels] = await Promise.all([
-      TracingKernels.create(device, MODULE, 'path_trace_frame', { CAPTURE_PRIMARY: 1, RESTIR: 1 }, first, resolveSampler('auto', 'real-time')),
-      TracingKernels.create(device, MODULE, 'frame_gbuffer', { CAPTURE_PRIMARY: 1 }, first),
+      TracingKernels.create(device, MODULE, 'path_trace_frame', { RESTIR: 1 }, first, resolveSampler('auto', 'real-time')),
+      TracingKernels.create(device, MODULE, 'frame_gbuffer', {}, first),
     ]);
     const params = () => new UniformParams(device, PATH_TRACE_MODULE);
     const frame = () => new UniformParams(device, MODULE, 'frame');

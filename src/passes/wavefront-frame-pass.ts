@@ -84,7 +84,7 @@ export class WavefrontFramePass {
 
   /** Compiles every scene kernel specialised to a frozen scene, asynchronously; they are not used until useSpecialised. */
   async compileSpecialised(s: SceneSpecialisation): Promise<Record<SceneEntry, ComputeKernel>> {
-    const compiled = await Promise.all(SCENE_ENTRIES.map((entryPoint) => compileSpecialised(this.device, { module: MODULE, entryPoint }, s, WAVEFRONT_CONSTANTS)));
+    const compiled = await Promise.all(SCENE_ENTRIES.map((entryPoint) => compileSpecialised(this.device, { module: MODULE, entryPoint }, s)));
     return Object.fromEntries(SCENE_ENTRIES.map((e, i) => [e, compiled[i]!.kernel])) as Record<SceneEntry, ComputeKernel>;
   }
 
@@ -225,11 +225,8 @@ export class WavefrontFramePass {
   }
 }
 
-/** Constants of every scene kernel: the frame's first-hit capture, shadow rays left to the shadow kernels. */
-const WAVEFRONT_CONSTANTS = { CAPTURE_PRIMARY: 1, DEFER_SHADOW_RAYS: 1 };
-
 function kernelSet(device: GPUDevice, extra: Record<string, number>): Record<SceneEntry, SceneKernels> {
-  const constants = { ...WAVEFRONT_CONSTANTS, ...extra };
+  const constants = { ...extra };
   return Object.fromEntries(SCENE_ENTRIES.map((entryPoint) => [entryPoint, new SceneKernels(device, { module: MODULE, entryPoint }, TRACING_FEATURES, constants)])) as Record<SceneEntry, SceneKernels>;
 }
 

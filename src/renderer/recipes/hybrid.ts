@@ -126,7 +126,7 @@ export class HybridRecipe implements FrameRecipe {
 
   /** `first`: the features of the scene to be rendered, where known (its tracing variants compile instead of a plain scene's). */
   static async create(device: GPUDevice, first?: SceneFeatures): Promise<HybridRecipe> {
-    const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, { CAPTURE_PRIMARY: 1 }, first);
+    const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, {}, first);
     const [raster, resolve, shade, reflect, gi, compose, taa, atrous] = await Promise.all([
       HybridRasterPass.create(device, first),
       traced('hybrid_resolve'),

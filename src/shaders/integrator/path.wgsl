@@ -5,8 +5,15 @@
 // throughput are four channels: RGB (and a spare 0) in RGB mode, four wavelengths in spectral mode
 // (lib/spectrum: hero wavelength + three companions; RGB values are lifted where they enter, and a
 // dispersive interface keeps only the hero). The entry points
-// (passes/path-trace, passes/path-trace-frame) call it; a new material kind is a case of the BSDF
-// module, not a change here. Follows Veach 1997, ch. 9, and pbrt-v4's PathIntegrator (§13.4).
+// (passes/path-trace, passes/path-trace-frame, passes/hybrid, wavefront/frame) call it; a new
+// material kind is a case of the BSDF module, not a change here. Follows Veach 1997, ch. 9, and
+// pbrt-v4's PathIntegrator (§13.4).
+//
+// The integrator does not know who calls it. What a caller wants beyond the radiance comes back in
+// a PathRecord, as pbrt-v4's Li fills an optional VisibleSurface: the first hit's albedo and
+// emission (demodulation), and the shadow rays each bounce asks for, which trace_path traces at
+// once and the wavefront queues for a kernel of its own. A caller that reads none of it costs
+// nothing: the writes are dead and compiled away.
 // Expects the scene (group 0); the caller passes the per-dispatch settings.
 
 #import lib/constants
@@ -39,15 +46,11 @@ const SHADOW_RAY_SHORTEN: f32 = 1e-4;
 // before the BSDF module existed; the general path calls bsdf_* for every kind.
 override SCENE_HAS_GENERAL_MATERIALS: bool = true;
 
-// Set only by the real-time frame kernel (passes/path-trace-frame): trace_path then records its first
-// hit's albedo and emission in `primary`, for demodulation. path_trace leaves it false, so the
-// branch is constant-folded away and the progressive kernel is unchanged.
-override CAPTURE_PRIMARY: bool = false;
-
-// Set only by the real-time frame kernel (passes/path-trace-frame): at the first bounce, a path whose
-// hit is on the pixel-centre surface's material takes its direct light from the pixel's ReSTIR
-// reservoir (restir_pixel, filled by the kernel) instead of one light sample (restir_direct). The
-// progressive kernel leaves it false: its estimator is unchanged.
+// Whether the kernel's estimator includes ReSTIR direct light: at the first bounce, a path whose hit
+// is on the pixel-centre surface's material takes its direct light from the pixel's reservoir (the
+// record's `restir`, handed in by the caller) instead of one light sample (restir_direct). A
+// property of the estimator, as SPECTRAL is: kernels without it (the progressive one) do not
+// compile the reservoir's code, and their estimator is unchanged (gpu/kernel-variants.ts sets it).
 override RESTIR: bool = false;
 
 // The pixel's final reservoir and the pixel-centre surface it was made for (restir/restir). valid:
@@ -61,10 +64,8 @@ struct RestirPixel {
   depth: f32,
   id: u32,
 }
-var<private> restir_pixel: RestirPixel;
-// Whether this path's first bounce took its direct light from the reservoir (then BSDF rays that
-// find a light of the table at the next vertex add nothing: the light strategies cover it all).
-var<private> restir_used: bool;
+
+const NO_RESTIR_PIXEL = RestirPixel(false, LightPoint(0u, false, vec2u(0u)), 0.0, vec3f(0.0), vec3f(0.0, 0.0, 1.0), 0.0, 0xffffffffu);
 
 // What a camera ray's first hit contributes, for demodulation: the albedo there (1 for a miss) and the
 // emission seen there (radiance that needs no filtering).
@@ -76,7 +77,6 @@ struct PrimaryHit {
   id: u32,
 }
 const NO_PRIMARY_ID: u32 = 0xffffffffu;
-var<private> primary: PrimaryHit;
 
 // What a path needs to know beyond the scene.
 struct PathSettings {
@@ -99,11 +99,6 @@ struct PathResult {
   extension_rays: u32,
   shadow_rays: u32,
 }
-
-// Set only by the wavefront frame (shaders/wavefront/): path_step then records its shadow rays in
-// `deferred_shadows` for a later kernel to trace, instead of tracing them at once. The megakernel
-// leaves it false, so the branch is constant-folded away.
-override DEFER_SHADOW_RAYS: bool = false;
 
 // A path between bounces: everything trace_path carries from one bounce to the next.
 struct PathState {
@@ -130,16 +125,42 @@ struct ShadowRequest {
   ray: Ray,
   contribution: vec4f,
 }
-// The shadow rays of one path_step with DEFER_SHADOW_RAYS: [SHADOW_LIGHT] and [SHADOW_TORCH], each
-// present where its bit (1 << index) is set in deferred_shadow_mask.
+// The shadow rays one path_step may ask for, by slot: a light sample's, the torch's, and (RESTIR) the
+// pixel reservoir's. Their contributions are added reservoir first, then light, then torch
+// (trace_shadows; the wavefront, which has no reservoir, dispatches its light queue before its torch
+// queue), so a path's sums do not depend on who traces its shadow rays.
 const SHADOW_LIGHT: u32 = 0u;
 const SHADOW_TORCH: u32 = 1u;
-var<private> deferred_shadows: array<ShadowRequest, 2>;
-var<private> deferred_shadow_mask: u32;
+const SHADOW_RESERVOIR: u32 = 2u;
+const SHADOW_SLOTS: u32 = 3u;
+
+// What a path and its caller exchange besides the path's state: what the caller hands in (the pixel's
+// reservoir, RESTIR kernels only) and what path_step hands back (the first hit; the shadow rays of
+// the last bounce, present where bit 1 << slot of shadow_mask is set).
+struct PathRecord {
+  restir: RestirPixel,
+  // Whether this path's first bounce took its direct light from the reservoir (then BSDF rays that
+  // find a light of the table at the next vertex add nothing: the light strategies cover it all).
+  restir_used: bool,
+  // The first hit, written at bounce 0 (albedo 1, no emission and NO_PRIMARY_ID until then).
+  primary: PrimaryHit,
+  shadows: array<ShadowRequest, SHADOW_SLOTS>,
+  shadow_mask: u32,
+}
+
+// A record for a path of the pixel whose reservoir is `restir` (NO_RESTIR_PIXEL: none).
+fn path_record(restir: RestirPixel) -> PathRecord {
+  var r: PathRecord;
+  r.restir = restir;
+  r.restir_used = false;
+  r.primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
+  r.shadow_mask = 0u;
+  return r;
+}
 
 // MIS weight of radiance found by a BSDF-sampled ray whose light-sampling density is light_pdf.
-fn bsdf_hit_weight(bounce: u32, use_nee: bool, after_delta: bool, bsdf_pdf: f32, light_pdf: f32) -> f32 {
-  if (RESTIR && bounce == 1u && restir_used) {
+fn bsdf_hit_weight(record: ptr<function, PathRecord>, bounce: u32, use_nee: bool, after_delta: bool, bsdf_pdf: f32, light_pdf: f32) -> f32 {
+  if (RESTIR && bounce == 1u && (*record).restir_used) {
     return select(1.0, 0.0, light_pdf > 0.0);
   }
   if (bounce == 0u || !use_nee || after_delta) {
@@ -157,7 +178,6 @@ fn channels_max(c: vec4f) -> f32 {
 // A camera path before its first bounce (draws the wavelengths in spectral mode).
 fn path_begin(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathState {
   var u = 0.0;
-  restir_used = false;
   if (SPECTRAL) {
     u = rng_next_f32(rng);
     spectrum_begin_path(u);
@@ -170,22 +190,39 @@ fn path_uses_nee(settings: PathSettings) -> bool {
   return settings.light_sampling == LIGHT_SAMPLING_MIS && scene_light_count() > 0u;
 }
 
-// A shadow ray of path_step: traced now (the megakernel), or deferred (the wavefront).
-fn path_shadow(state: ptr<function, PathState>, which: u32, ray: Ray, contribution: vec4f, result: ptr<function, PathResult>) {
-  if (DEFER_SHADOW_RAYS) {
-    deferred_shadows[which] = ShadowRequest(ray, contribution);
-    deferred_shadow_mask |= 1u << which;
-    return;
-  }
+// A shadow ray path_step asks for in `slot`, handed back in the record.
+fn path_shadow(record: ptr<function, PathRecord>, slot: u32, ray: Ray, contribution: vec4f) {
+  (*record).shadows[slot] = ShadowRequest(ray, contribution);
+  (*record).shadow_mask |= 1u << slot;
+}
+
+// Traces one shadow ray and adds its contribution where nothing blocks it.
+fn trace_shadow_request(state: ptr<function, PathState>, request: ShadowRequest, result: ptr<function, PathResult>) {
   (*result).shadow_rays += 1u;
-  if (!trace_any(ray)) {
-    (*state).radiance += contribution;
+  if (!trace_any(request.ray)) {
+    (*state).radiance += request.contribution;
+  }
+}
+
+// Traces the shadow rays the last path_step asked for: the reservoir's, the light sample's, the
+// torch's. Each is one call site with a constant index, so the requests stay in registers; the
+// reservoir's exists only in RESTIR kernels.
+fn trace_shadows(state: ptr<function, PathState>, record: ptr<function, PathRecord>, result: ptr<function, PathResult>) {
+  let mask = (*record).shadow_mask;
+  if (RESTIR && (mask & (1u << SHADOW_RESERVOIR)) != 0u) {
+    trace_shadow_request(state, (*record).shadows[SHADOW_RESERVOIR], result);
+  }
+  if ((mask & (1u << SHADOW_LIGHT)) != 0u) {
+    trace_shadow_request(state, (*record).shadows[SHADOW_LIGHT], result);
+  }
+  if ((mask & (1u << SHADOW_TORCH)) != 0u) {
+    trace_shadow_request(state, (*record).shadows[SHADOW_TORCH], result);
   }
 }
 
 // Whether this first-bounce hit takes its direct light from the pixel's reservoir.
-fn restir_applies(bounce: u32, use_nee: bool, material_id: u32) -> bool {
-  return RESTIR && !SPECTRAL && bounce == 0u && use_nee && restir_pixel.valid && material_id == restir_pixel.id;
+fn restir_applies(record: ptr<function, PathRecord>, bounce: u32, use_nee: bool, material_id: u32) -> bool {
+  return RESTIR && !SPECTRAL && bounce == 0u && use_nee && (*record).restir.valid && material_id == (*record).restir.id;
 }
 
 // Direct light at a first hit p (Lambertian: f = brdf) from the pixel's reservoir, unbiased for
@@ -193,45 +230,38 @@ fn restir_applies(bounce: u32, use_nee: bool, material_id: u32) -> bool {
 // unbiased contribution weight over S = {y : p̂_c(y) · V_c(y) > 0} (restir/restir); one more light
 // sample, drawn as usual, covers the rest of the light points (those occluded from c, or below its
 // horizon: sub-pixel penumbrae and edges), so the two estimate disjoint parts of the same integral.
-fn restir_direct(state: ptr<function, PathState>, p: vec3f, origin: vec3f, ng: vec3f, ns: vec3f, brdf: vec3f, rng: ptr<function, Rng>, result: ptr<function, PathResult>) {
-  restir_used = true;
-  // The shadow rays are gathered and traced in one loop: one call site of the traversal, which
-  // every GPU compiler inlines.
-  var rays: array<Ray, 2>;
-  var contributions: array<vec4f, 2>;
-  var count = 0u;
-  let v = view_light_point(restir_pixel.point, p);
+fn restir_direct(state: ptr<function, PathState>, record: ptr<function, PathRecord>, p: vec3f, origin: vec3f, ng: vec3f, ns: vec3f, brdf: vec3f, rng: ptr<function, Rng>, result: ptr<function, PathResult>) {
+  (*record).restir_used = true;
+  let pixel = (*record).restir;
+  let v = view_light_point(pixel.point, p);
   let cos_reservoir = dot(ns, v.direction);
-  if (restir_pixel.w > 0.0 && v.pdf > 0.0 && cos_reservoir > 0.0 && dot(ng, v.direction) > 0.0) {
-    rays[0] = Ray(origin, 0.0, v.direction, v.distance * (1.0 - SHADOW_RAY_SHORTEN));
-    contributions[0] = (*state).throughput * lift(brdf) * lift(v.radiance) * (cos_reservoir * v.geometry * restir_pixel.w);
-    count = 1u;
+  if (pixel.w > 0.0 && v.pdf > 0.0 && cos_reservoir > 0.0 && dot(ng, v.direction) > 0.0) {
+    path_shadow(record, SHADOW_RESERVOIR, Ray(origin, 0.0, v.direction, v.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+      (*state).throughput * lift(brdf) * lift(v.radiance) * (cos_reservoir * v.geometry * pixel.w));
   }
   let point = restir_candidate(p, rng);
   let s = view_light_point(point, p);
   let cos_sample = dot(ns, s.direction);
   if (s.pdf > 0.0 && cos_sample > 0.0 && dot(ng, s.direction) > 0.0 && any(s.radiance > vec3f(0.0))) {
-    let c = view_light_point(point, restir_pixel.position);
+    let c = view_light_point(point, pixel.position);
     var in_reservoir = false;
-    if (restir_goal(c, restir_pixel.normal) > 0.0) {
+    if (restir_goal(c, pixel.normal) > 0.0) {
       (*result).shadow_rays += 1u;
-      in_reservoir = restir_visible(restir_pixel.position, restir_pixel.normal, restir_pixel.depth, c);
+      in_reservoir = restir_visible(pixel.position, pixel.normal, pixel.depth, c);
     }
     if (!in_reservoir) {
-      rays[count] = Ray(origin, 0.0, s.direction, s.distance * (1.0 - SHADOW_RAY_SHORTEN));
-      contributions[count] = (*state).throughput * lift(brdf) * lift(s.radiance) * (cos_sample / s.pdf);
-      count += 1u;
+      path_shadow(record, SHADOW_LIGHT, Ray(origin, 0.0, s.direction, s.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+        (*state).throughput * lift(brdf) * lift(s.radiance) * (cos_sample / s.pdf));
     }
-  }
-  for (var i = 0u; i < count; i++) {
-    path_shadow(state, SHADOW_LIGHT, rays[i], contributions[i], result);
   }
 }
 
 // One bounce of a path whose ray (*state).ray has found `hit`: emission met there, light sampling
-// (shadow rays through path_shadow), the BSDF sample that sets the next ray, Russian roulette.
-// Returns whether the path goes on. trace_path's loop body, shared with the wavefront's shade kernel.
-fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<function, Rng>, settings: PathSettings, result: ptr<function, PathResult>) -> bool {
+// (shadow rays asked for in the record, path_shadow), the BSDF sample that sets the next ray, Russian
+// roulette. Returns whether the path goes on; the caller then traces the record's shadow rays
+// whether it does or not. trace_path's loop body, shared with the wavefront's shade kernel.
+fn path_step(state: ptr<function, PathState>, record: ptr<function, PathRecord>, hit: Hit, bounce: u32, rng: ptr<function, Rng>, settings: PathSettings, result: ptr<function, PathResult>) -> bool {
+  (*record).shadow_mask = 0u;
   let ray = (*state).ray;
   let use_nee = path_uses_nee(settings);
   // Punctual lights are not geometry: no BSDF ray finds them, so even BSDF-only sampling samples
@@ -245,10 +275,10 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
   if (hit.triangle == NO_TRIANGLE) {
     if (SCENE_HAS_ENVIRONMENT) {
       var seen = environment_radiance(ray.direction) + sun_radiance(ray.direction);
-      let weight = bsdf_hit_weight(bounce, use_nee, (*state).after_delta, (*state).last_bsdf_pdf, environment_light_pdf(ray.direction));
+      let weight = bsdf_hit_weight(record, bounce, use_nee, (*state).after_delta, (*state).last_bsdf_pdf, environment_light_pdf(ray.direction));
       (*state).radiance += (*state).throughput * lift(seen) * weight;
-      if (CAPTURE_PRIMARY && bounce == 0u) {
-        primary = PrimaryHit(vec3f(1.0), channels_to_rgb((*state).radiance), NO_PRIMARY_ID);
+      if (bounce == 0u) {
+        (*record).primary = PrimaryHit(vec3f(1.0), channels_to_rgb((*state).radiance), NO_PRIMARY_ID);
       }
     }
     return false;
@@ -266,11 +296,11 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
   // Emission, seen only from the side the geometric normal faces (both, for two-sided emitters).
   let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, ray.direction));
   if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
-    let weight = bsdf_hit_weight(bounce, use_nee, (*state).after_delta, (*state).last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
+    let weight = bsdf_hit_weight(record, bounce, use_nee, (*state).after_delta, (*state).last_bsdf_pdf, emitter_pdf(surface, material, ray.origin, hit.t, cos_emitter));
     (*state).radiance += (*state).throughput * lift(material_emission(material, surface.uv, ray.direction)) * weight;
   }
-  if (CAPTURE_PRIMARY && bounce == 0u) {
-    primary = PrimaryHit(material_albedo(material, surface.uv).rgb, channels_to_rgb((*state).radiance), surface.material);
+  if (bounce == 0u) {
+    (*record).primary = PrimaryHit(material_albedo(material, surface.uv).rgb, channels_to_rgb((*state).radiance), surface.material);
   }
   if (bounce == settings.max_bounces || material.kind == MATERIAL_KIND_EMISSIVE) {
     return false;
@@ -285,15 +315,15 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
     let albedo = material_albedo(material, surface.uv).rgb;
     let brdf = albedo * INV_PI;
 
-    if (restir_applies(bounce, use_nee, surface.material)) {
-      restir_direct(state, surface.position, origin, ng, ns, brdf, rng, result);
+    if (restir_applies(record, bounce, use_nee, surface.material)) {
+      restir_direct(state, record, surface.position, origin, ng, ns, brdf, rng, result);
     } else if (sample_lights) {
       let light = sample_light(origin, rng_next_2d(rng), rng_next_2d(rng));
       let cos_surface = dot(ns, light.direction);
       if (light.pdf > 0.0 && (use_nee || light.delta) && cos_surface > 0.0 && dot(ng, light.direction) > 0.0) {
         let weight = select(power_heuristic(light.pdf, cosine_hemisphere_pdf(cos_surface)), 1.0, light.delta);
-        path_shadow(state, SHADOW_LIGHT, Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)),
-          (*state).throughput * lift(brdf) * lift(light.radiance) * (cos_surface * weight / light.pdf), result);
+        path_shadow(record, SHADOW_LIGHT, Ray(origin, 0.0, light.direction, light.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+          (*state).throughput * lift(brdf) * lift(light.radiance) * (cos_surface * weight / light.pdf));
       }
     }
 
@@ -302,8 +332,8 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
     if (torch.pdf > 0.0) {
       let cos_surface = dot(ns, torch.direction);
       if (cos_surface > 0.0 && dot(ng, torch.direction) > 0.0) {
-        path_shadow(state, SHADOW_TORCH, Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)),
-          (*state).throughput * lift(brdf) * lift(torch.radiance) * (cos_surface / torch.pdf), result);
+        path_shadow(record, SHADOW_TORCH, Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+          (*state).throughput * lift(brdf) * lift(torch.radiance) * (cos_surface / torch.pdf));
       }
     }
 
@@ -350,8 +380,8 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
     let wo = vec3f(dot(wo_world, frame[0]), dot(wo_world, frame[1]), dot(wo_world, frame[2]));
 
     if (bsdf_has_non_delta(bsdf)) {
-      if (bsdf.kind == BSDF_DIFFUSE && restir_applies(bounce, use_nee, surface.material)) {
-        restir_direct(state, surface.position, spawn_point(surface, ng), ng, ns, bsdf.base_color * INV_PI, rng, result);
+      if (bsdf.kind == BSDF_DIFFUSE && restir_applies(record, bounce, use_nee, surface.material)) {
+        restir_direct(state, record, surface.position, spawn_point(surface, ng), ng, ns, bsdf.base_color * INV_PI, rng, result);
       } else if (sample_lights) {
         let light = sample_light(surface.position, rng_next_2d(rng), rng_next_2d(rng));
         if (light.pdf > 0.0 && (use_nee || light.delta)) {
@@ -364,8 +394,8 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
             if (any(f > vec3f(0.0))) {
               let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
               let weight = select(power_heuristic(light.pdf, bsdf_pdf(bsdf, wo, wi)), 1.0, light.delta);
-              path_shadow(state, SHADOW_LIGHT, Ray(origin, 0.0, wi_world, light.distance * (1.0 - SHADOW_RAY_SHORTEN)),
-                (*state).throughput * lift(f) * lift(light.radiance) * (abs(wi.z) * weight / light.pdf), result);
+              path_shadow(record, SHADOW_LIGHT, Ray(origin, 0.0, wi_world, light.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+                (*state).throughput * lift(f) * lift(light.radiance) * (abs(wi.z) * weight / light.pdf));
             }
           }
         }
@@ -378,8 +408,8 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
           let f = bsdf_eval(bsdf, wo, wi);
           if (any(f > vec3f(0.0))) {
             let origin = spawn_point(surface, select(-ng, ng, side_g > 0.0));
-            path_shadow(state, SHADOW_TORCH, Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)),
-              (*state).throughput * lift(f) * lift(torch.radiance) * (abs(wi.z) / torch.pdf), result);
+            path_shadow(record, SHADOW_TORCH, Ray(origin, 0.0, torch.direction, torch.distance * (1.0 - SHADOW_RAY_SHORTEN)),
+              (*state).throughput * lift(f) * lift(torch.radiance) * (abs(wi.z) / torch.pdf));
           }
         }
       }
@@ -419,13 +449,17 @@ fn path_step(state: ptr<function, PathState>, hit: Hit, bounce: u32, rng: ptr<fu
   return true;
 }
 
-fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings) -> PathResult {
+// Follows a camera path to its end, tracing each bounce's shadow rays as it goes; `record` hands in
+// the pixel's reservoir and hands back the first hit.
+fn trace_path(first_ray: Ray, rng: ptr<function, Rng>, settings: PathSettings, record: ptr<function, PathRecord>) -> PathResult {
   var result = PathResult(vec3f(0.0), 0u, 0u);
   var state = path_begin(first_ray, rng, settings);
   for (var bounce = 0u; bounce <= settings.max_bounces; bounce++) {
     let hit = trace_closest(state.ray);
     result.extension_rays += 1u;
-    if (!path_step(&state, hit, bounce, rng, settings, &result)) {
+    let goes_on = path_step(&state, record, hit, bounce, rng, settings, &result);
+    trace_shadows(&state, record, &result);
+    if (!goes_on) {
       break;
     }
   }

@@ -23,7 +23,8 @@
 // direct light (NEE + its own BSDF ray, MIS-weighted) already counted it; a mirror's reflection keeps
 // it (neither NEE nor that BSDF ray, which skips delta lobes, can see it). Expects the scene (group 0) and view (group 1); group 2 adds the buffers.
 
-#import passes/path-trace
+#import integrator/path
+#import integrator/dispatch
 #import view/projection
 #import denoise/gbuffer
 #import hybrid/visibility
@@ -316,12 +317,12 @@ fn reflection(s: Shading, split: LobeSplit, ray: Ray, rng: ptr<function, Rng>) -
   let wi_world = frame * wi;
   let below = dot(s.ng, wi_world) < 0.0;
   let origin = spawn_point(s.surface, select(s.ng, -s.ng, below));
-  primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
+  var record = path_record(NO_RESTIR_PIXEL);
   var settings = path_settings();
   settings.max_bounces = hybrid.reflection_bounces;
-  let path = trace_path(Ray(origin, 0.0, normalize(wi_world), T_MISS), rng, settings);
+  let path = trace_path(Ray(origin, 0.0, normalize(wi_world), T_MISS), rng, settings, &record);
   // What the ray sees first: counted by next-event estimation unless the lobe is a delta.
-  let first = select(primary.emission, vec3f(0.0), delta);
+  let first = select(record.primary.emission, vec3f(0.0), delta);
   let radiance = max(path.radiance - first, vec3f(0.0));
   out.radiance = select(vec3f(0.0), weight * radiance, is_finite_vec3(radiance));
   out.extension_rays = path.extension_rays;
@@ -461,9 +462,9 @@ fn hybrid_gi(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation
           if (dot(wi, g) <= 0.0) {
             continue;
           }
-          primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
-          let path = trace_path(Ray(spawn_point(s.surface, g), 0.0, wi, T_MISS), &rng, settings);
-          let indirect = max(path.radiance - primary.emission, vec3f(0.0));
+          var record = path_record(NO_RESTIR_PIXEL);
+          let path = trace_path(Ray(spawn_point(s.surface, g), 0.0, wi, T_MISS), &rng, settings, &record);
+          let indirect = max(path.radiance - record.primary.emission, vec3f(0.0));
           sum += select(vec3f(0.0), indirect, is_finite_vec3(indirect));
           extension_rays += path.extension_rays;
           shadow_rays += path.shadow_rays;

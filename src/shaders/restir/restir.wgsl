@@ -19,10 +19,10 @@
 // Z the M of the inputs that could have produced y, i.e. p̂ᵢ(y) > 0 and y visible from input i's
 // surface (a shadow ray each). Every stored reservoir has W = 0 where its point is occluded from its
 // own surface, so "could have produced" is exactly p̂ᵢ · Vᵢ > 0 and no input is counted wrongly.
-// Expects the scene (group 0), the view (group 1); group 2: passes/path-trace's parameters and ray
+// Expects the scene (group 0), the view (group 1); group 2: integrator/dispatch's parameters and ray
 // counters, and the bindings below.
 
-#import passes/path-trace
+#import integrator/dispatch
 #import denoise/gbuffer
 #import restir/reservoir
 

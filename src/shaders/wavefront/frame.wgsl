@@ -1,12 +1,12 @@
 // The real-time frame traced as a wavefront: the estimator of passes/path-trace-frame (trace_path
-// with CAPTURE_PRIMARY, demodulated radiance, albedo and emission) split into kernels over
+// and its record's first hit, demodulated radiance, albedo and emission) split into kernels over
 // queues of live paths instead of one thread following each path to its end. Per sample:
 //
 //   generate (a camera path per pixel, its camera ray traced at once in 8 × 8 pixel tiles → the queue)
 //   per bounce: queue_args (the queue to extend now, its indirect dispatch) → extend (trace_closest;
 //     from the second bounce on)
-//     → shade (path_step with deferred shadow rays: emission, MIS, a light and a torch sample → the
-//       shadow queues, the BSDF sample → the next extension queue, Russian roulette)
+//     → shade (path_step: emission, MIS, a light and a torch sample whose shadow rays the record
+//       hands back → the shadow queues, the BSDF sample → the next extension queue, Russian roulette)
 //     → shadow_args → shadow_light, shadow_torch (trace_any; the unoccluded add their contribution)
 //   finish (the sample's sums; after the last sample, the frame's radiance, albedo and emission)
 //
@@ -110,6 +110,9 @@ fn wavefront_shade(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups)
   // Lanes this thread pushes onto (bit q: lane q) and its offsets there.
   var lanes = 0u;
   var offsets = vec3u(0u);
+  // The record path_step hands back: the first hit (kept at bounce 0) and the shadow rays, which
+  // go to the shadow queues instead of being traced here. No reservoir: the wavefront has no ReSTIR.
+  var record = path_record(NO_RESTIR_PIXEL);
   if (i < atomicLoad(&queues.counters[QUEUE_CURRENT])) {
     slot = queues.items[current_half() * slot_count() + i];
     let misc = paths[field(F_MISC, slot)];
@@ -118,21 +121,18 @@ fn wavefront_shade(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups)
     let bounce = path_bounce(misc);
     var rng = rng_resume(sample_stream(vec2u(slot % view.image_size.x, slot / view.image_size.x)), misc.x);
     var state = load_path(slot, misc);
-    // What path_trace_frame sets before each path; path_step records the first hit in it.
-    primary = PrimaryHit(vec3f(1.0), vec3f(0.0), NO_PRIMARY_ID);
-    deferred_shadow_mask = 0u;
     var result = PathResult(vec3f(0.0), 0u, 0u);
-    let goes_on = path_step(&state, hit, bounce, &rng, path_settings(), &result);
-    store_path(slot, state, rng, bounce + 1u, misc.w, primary, bounce == 0u);
+    let goes_on = path_step(&state, &record, hit, bounce, &rng, path_settings(), &result);
+    store_path(slot, state, rng, bounce + 1u, misc.w, record.primary, bounce == 0u);
     if (goes_on) {
       offsets.x = push_reserve(0u);
       lanes |= 1u;
     }
-    if ((deferred_shadow_mask & (1u << SHADOW_LIGHT)) != 0u) {
+    if ((record.shadow_mask & (1u << SHADOW_LIGHT)) != 0u) {
       offsets.y = push_reserve(1u + SHADOW_LIGHT);
       lanes |= 2u;
     }
-    if ((deferred_shadow_mask & (1u << SHADOW_TORCH)) != 0u) {
+    if ((record.shadow_mask & (1u << SHADOW_TORCH)) != 0u) {
       offsets.z = push_reserve(1u + SHADOW_TORCH);
       lanes |= 4u;
     }
@@ -142,10 +142,10 @@ fn wavefront_shade(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups)
     queues.items[(1u - current_half()) * slot_count() + push_bases[0] + offsets.x] = slot;
   }
   if ((lanes & 2u) != 0u) {
-    store_shadow(SHADOW_LIGHT, push_bases[1u + SHADOW_LIGHT] + offsets.y, slot, deferred_shadows[SHADOW_LIGHT]);
+    store_shadow(SHADOW_LIGHT, push_bases[1u + SHADOW_LIGHT] + offsets.y, slot, record.shadows[SHADOW_LIGHT]);
   }
   if ((lanes & 4u) != 0u) {
-    store_shadow(SHADOW_TORCH, push_bases[1u + SHADOW_TORCH] + offsets.z, slot, deferred_shadows[SHADOW_TORCH]);
+    store_shadow(SHADOW_TORCH, push_bases[1u + SHADOW_TORCH] + offsets.z, slot, record.shadows[SHADOW_TORCH]);
   }
 }
 

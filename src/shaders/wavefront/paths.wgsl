@@ -1,10 +1,11 @@
 // The wavefront path tracer's state: every live path's PathState (integrator/path) kept between
 // kernels in structure-of-arrays form, its closest hit, the shadow rays its last bounce asked for,
 // and the queues (extension queue ping-pong, two shadow queues) that the kernels fill by atomic
-// compaction. Expects passes/path-trace-frame (scene, view, frame outputs); follows Laine, Karras and
-// Aila 2013, "Megakernels Considered Harmful: Wavefront Path Tracing on GPUs".
+// compaction. Expects the scene (group 0) and view (group 1); the frame's records are integrator/frame's.
+// Follows Laine, Karras and Aila 2013, "Megakernels Considered Harmful: Wavefront Path Tracing on GPUs".
 
-#import passes/path-trace-frame
+#import integrator/frame
+#import view/projection
 
 // One path slot per pixel: slot = pixel index, so a path's state never moves, only its index does.
 // `paths` holds PATH_FIELD_COUNT fields of one vec4u each, field-major (field f of slot s at
