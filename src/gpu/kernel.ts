@@ -5,6 +5,7 @@
  */
 import { LanternError } from '../errors.ts';
 import type { SceneFeatures } from './pack/scene-pack.ts';
+import { featureConstants, featureKey } from './kernel-variants.ts';
 import { compileComputePipeline } from './pipeline-compiles.ts';
 import { reportStage, timedStage } from './stage-log.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
@@ -186,24 +187,6 @@ export class KernelVariants<K extends string> {
 }
 
 /**
- * The scene features (gpu/pack/scene-pack.ts SceneFeatures) that pipelines compile out where a
- * scene lacks them, by the WGSL override constant each sets. A scene without alpha tests, without
- * non-diffuse materials, punctual lights or an environment runs the same code as before they existed.
- */
-export const FEATURE_CONSTANTS: Record<keyof SceneFeatures, string> = {
-  alphaMasks: 'SCENE_HAS_ALPHA_MASKS',
-  generalMaterials: 'SCENE_HAS_GENERAL_MATERIALS',
-  punctualLights: 'SCENE_HAS_PUNCTUAL_LIGHTS',
-  environment: 'SCENE_HAS_ENVIRONMENT',
-  analyticPrimitives: 'SCENE_HAS_ANALYTIC_PRIMITIVES',
-  instances: 'SCENE_HAS_INSTANCES',
-  staticGrid: 'STATIC_ACCEL_GRID',
-  staticBvh4: 'STATIC_ACCEL_BVH4',
-  staticCwbvh: 'STATIC_ACCEL_CWBVH',
-  shallowStack: 'BVH_SHALLOW_STACK',
-};
-
-/**
  * The variants of one entry point for the scenes it meets, compiled when a scene first needs one
  * (prepare, awaited by Renderer.setScene) so that choosing one while encoding stays synchronous.
  * `features` names the scene features the entry point's modules declare overrides for.
@@ -235,7 +218,7 @@ export class SceneKernels {
   }
 
   private key(f: SceneFeatures): string {
-    return this.features.map((name) => (f[name] ? 1 : 0)).join('');
+    return featureKey(this.features, f);
   }
 
   /** Compiles the variant `f` needs, once. */
@@ -245,8 +228,7 @@ export class SceneKernels {
     this.asked.set(key, f);
     let pending = this.pending.get(key);
     if (!pending) {
-      const constants: Record<string, number> = { ...this.extraConstants };
-      for (const name of this.features) constants[FEATURE_CONSTANTS[name]] = f[name] ? 1 : 0;
+      const constants: Record<string, number> = { ...this.extraConstants, ...featureConstants(this.features, f) };
       pending = ComputeKernel.create(this.device, { ...this.base, constants });
       this.pending.set(key, pending);
     }
@@ -270,8 +252,8 @@ export class SceneKernels {
   }
 }
 
-export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticGrid: false, staticBvh4: false, staticCwbvh: false, shallowStack: false });
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticAccel: 'bvh2', shallowStack: false });
 /** The features every path-tracing entry point compiles by. */
-export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];
+export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticAccel', 'shallowStack'];
 /** The features of passes that only trace (debug views, ray buffers). */
-export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticGrid', 'staticBvh4', 'staticCwbvh', 'shallowStack'];
+export const TRAVERSAL_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'analyticPrimitives', 'instances', 'staticAccel', 'shallowStack'];

@@ -17,23 +17,24 @@ describe('SceneSpecialisation', () => {
     const cornell = specialiseScene(prepareScene(builtinScene('cornell')).packed, 'cornell', settings);
     expect(cornell.constants).toEqual({
       SCENE_HAS_ALPHA_MASKS: 0,
-      SCENE_HAS_GENERAL_MATERIALS: 0,
+      // No general path, no metallic-roughness or dielectric kind (MATERIALS_* of scene/bsdf.wgsl).
+      SCENE_MATERIALS: 0,
       SCENE_HAS_PUNCTUAL_LIGHTS: 0,
       SCENE_HAS_ENVIRONMENT: 0,
       SCENE_HAS_ANALYTIC_PRIMITIVES: 0,
       SCENE_HAS_INSTANCES: 0,
-      STATIC_ACCEL_GRID: 0,
-      STATIC_ACCEL_BVH4: 0,
-      STATIC_ACCEL_CWBVH: 0,
+      // ACCEL_BVH2 (scene/accel.wgsl).
+      STATIC_ACCEL: 0,
       BVH_SHALLOW_STACK: 1,
-      SCENE_HAS_METALLIC_ROUGHNESS: 0,
-      SCENE_HAS_DIELECTRIC: 0,
       INLINED_MAX_BOUNCES: 5,
       INLINED_LIGHT_SAMPLING: 1,
       INLINED_LIGHT_COUNT: 2,
     });
     const materials = specialiseScene(prepareScene(builtinScene('materials')).packed, 'materials', { maxBounces: 0, lightSampling: 0 });
-    expect(materials.constants).toMatchObject({ SCENE_HAS_GENERAL_MATERIALS: 1, SCENE_HAS_METALLIC_ROUGHNESS: 1, SCENE_HAS_DIELECTRIC: 1, INLINED_MAX_BOUNCES: 0 });
+    expect(materials.constants).toMatchObject({ SCENE_MATERIALS: 1 | 2 | 4, INLINED_MAX_BOUNCES: 0 });
+    // Without the kinds part the generic kernels' assumption stands: every kind may occur.
+    const unnarrowed = specialiseScene(prepareScene(builtinScene('cornell')).packed, 'cornell', settings, { parts: ['bounces'] });
+    expect(unnarrowed.constants.SCENE_MATERIALS).toBe(2 | 4);
   });
 
   it('unrolls scenes of at most the limit’s primitives, and only those', () => {

@@ -3,8 +3,8 @@
  * The generic kernels read the scene from buffers, like an interpreter; once a scene stops changing
  * the renderer compiles its tracing kernels again with a SceneSpecialisation:
  *
- *   (a) material kinds present: SCENE_HAS_METALLIC_ROUGHNESS / SCENE_HAS_DIELECTRIC (scene/bsdf.wgsl)
- *       and the scene features (gpu/kernel.ts FEATURE_CONSTANTS) fold absent kinds' code away;
+ *   (a) material kinds present: the kind bits of SCENE_MATERIALS (scene/bsdf.wgsl)
+ *       and the scene features (gpu/kernel-variants.ts FEATURE_CONSTANTS) fold absent kinds' code away;
  *   (b) what uniforms hold but a frozen scene fixes: INLINED_MAX_BOUNCES, INLINED_LIGHT_SAMPLING
  *       (passes/path-trace.wgsl) and INLINED_LIGHT_COUNT (scene/lights.wgsl) become constants
  *       (a scene without lights loses light sampling altogether);
@@ -17,7 +17,8 @@
  * equally distant triangles may go either way). Images therefore agree within Monte Carlo error.
  */
 import { LanternError } from '../errors.ts';
-import { ComputeKernel, FEATURE_CONSTANTS, type KernelOptions } from './kernel.ts';
+import { ComputeKernel, type KernelOptions } from './kernel.ts';
+import { FEATURE_CONSTANTS, featureConstants, type MaterialKindsPresent } from './kernel-variants.ts';
 import { PRIMITIVES_MODULE, primitivesModule } from './pack/primitives-module.ts';
 import { sceneLayouts, type PackedScene, type SceneFeatures } from './pack/scene-pack.ts';
 import { linkWgsl } from './wgsl/linker.ts';
@@ -57,10 +58,7 @@ export interface InlinedSettings {
   readonly lightSampling: number;
 }
 
-export interface MaterialKindsPresent {
-  readonly metallicRoughness: boolean;
-  readonly dielectric: boolean;
-}
+export type { MaterialKindsPresent };
 
 export interface SceneSpecialisation {
   readonly sceneName: string;
@@ -112,11 +110,7 @@ export function specialiseScene(packed: PackedScene, sceneName: string, settings
   const primitiveCount = packed.counts.triangles;
   const parts = new Set(options.parts ?? DEFAULT_SPECIALISATION_PARTS);
   const constants: Record<string, number> = {};
-  for (const [name, constant] of Object.entries(FEATURE_CONSTANTS) as [keyof SceneFeatures, string][]) constants[constant] = packed.features[name] ? 1 : 0;
-  if (parts.has('kinds')) {
-    constants.SCENE_HAS_METALLIC_ROUGHNESS = materialKinds.metallicRoughness ? 1 : 0;
-    constants.SCENE_HAS_DIELECTRIC = materialKinds.dielectric ? 1 : 0;
-  }
+  Object.assign(constants, featureConstants(Object.keys(FEATURE_CONSTANTS) as (keyof SceneFeatures)[], packed.features, parts.has('kinds') ? materialKinds : undefined));
   if (parts.has('bounces')) constants.INLINED_MAX_BOUNCES = settings.maxBounces;
   if (parts.has('light-sampling')) constants.INLINED_LIGHT_SAMPLING = settings.lightSampling;
   if (parts.has('light-count')) constants.INLINED_LIGHT_COUNT = packed.counts.lights;

@@ -2,6 +2,7 @@
  * The tracing half of the debug views (shaders/passes/debug-view.wgsl): one pixel-centre primary ray
  * per pixel through the counting variant of the BVH traversal, raw values out.
  */
+import { KERNEL_CONSTANTS } from '../gpu/kernel-variants.ts';
 import { SceneKernels, TRAVERSAL_FEATURES } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -35,7 +36,7 @@ export class DebugViewPass {
   /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
   static async create(device: GPUDevice, first?: SceneFeatures): Promise<DebugViewPass> {
     // The traversal with scene/bvh.wgsl's work counters compiled in; variants by alpha tests only.
-    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, TRAVERSAL_FEATURES, { BVH_COUNT_WORK: 1 }, first);
+    const kernels = await SceneKernels.create(device, { module: MODULE, entryPoint: 'debug_view' }, TRAVERSAL_FEATURES, KERNEL_CONSTANTS.debugView, first);
     return new DebugViewPass(kernels, new UniformParams(device, MODULE));
   }
 

@@ -7,7 +7,8 @@
  * (its mesh's primitives, placed by its instance record). Pipelines are compiled per scene features,
  * as the compute kernels are.
  */
-import { compileShader, createBindGroupLayouts, BindGroupFactory, FEATURE_CONSTANTS } from '../gpu/kernel.ts';
+import { compileShader, createBindGroupLayouts, BindGroupFactory } from '../gpu/kernel.ts';
+import { FEATURE_CONSTANTS, featureConstants, featureKey } from '../gpu/kernel-variants.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -82,7 +83,7 @@ export class HybridRasterPass {
   }
 
   private key(f: SceneFeatures): string {
-    return RASTER_FEATURES.map((name) => (f[name] ? 1 : 0)).join('');
+    return featureKey(RASTER_FEATURES, f);
   }
 
   /** Compiles the pipelines a scene with these features needs, once. */
@@ -91,8 +92,7 @@ export class HybridRasterPass {
     if (this.ready.has(key)) return;
     let pending = this.pending.get(key);
     if (!pending) {
-      const constants: Record<string, number> = {};
-      for (const name of RASTER_FEATURES) if (this.declared.has(FEATURE_CONSTANTS[name])) constants[FEATURE_CONSTANTS[name]] = f[name] ? 1 : 0;
+      const constants = Object.fromEntries(Object.entries(featureConstants(RASTER_FEATURES, f)).filter(([name]) => this.declared.has(name)));
       const make = (vertex: string, fragment: string) =>
         compileRenderPipeline(this.device, {
           label: `${MODULE}:${vertex}`,

@@ -11,6 +11,7 @@ import { cameraUniform, type ViewUniform } from '../gpu/view.ts';
 import type { Camera } from '../scene/types.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
+import { KERNEL_CONSTANTS } from '../gpu/kernel-variants.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 import { resolveSampler } from './variants.ts';
 
@@ -53,7 +54,7 @@ export class PathTraceFramePass {
   /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
   static async create(device: GPUDevice, first?: SceneFeatures): Promise<PathTraceFramePass> {
     const [kernels, gbufferKernels] = await Promise.all([
-      TracingKernels.create(device, MODULE, 'path_trace_frame', { RESTIR: 1 }, first, resolveSampler('auto', 'real-time')),
+      TracingKernels.create(device, MODULE, 'path_trace_frame', KERNEL_CONSTANTS.pathTraceFrame, first, resolveSampler('auto', 'real-time')),
       TracingKernels.create(device, MODULE, 'frame_gbuffer', {}, first),
     ]);
     const params = () => new UniformParams(device, PATH_TRACE_MODULE);

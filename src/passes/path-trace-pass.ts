@@ -1,4 +1,5 @@
 /** The path tracer dispatch (shaders/passes/path-trace.wgsl): adds samples to the accumulation buffer. */
+import { spectralConstants } from '../gpu/kernel-variants.ts';
 import { reflectKernel, SceneKernels, TRACING_FEATURES, type ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -153,7 +154,7 @@ export class TracingKernels {
   private variants(spectral: boolean, sampler = this.samplerValue): SceneKernels {
     const key = setKey(spectral, sampler);
     let set = this.sets.get(key);
-    if (!set) this.sets.set(key, (set = new SceneKernels(this.device, this.base, TRACING_FEATURES, withSampler({ ...this.extraConstants, ...(spectral ? { SPECTRAL: 1 } : {}) }, sampler))));
+    if (!set) this.sets.set(key, (set = new SceneKernels(this.device, this.base, TRACING_FEATURES, withSampler({ ...this.extraConstants, ...spectralConstants(spectral) }, sampler))));
     return set;
   }
 

@@ -8,6 +8,7 @@
  * dispatches are one compute pass ('path trace (wavefront)'), so one timestamp pair times the whole
  * path tracing, as 'frame G-buffer' + 'frame emission' + 'path trace (frame)' time the megakernel's.
  */
+import { spectralConstants } from '../gpu/kernel-variants.ts';
 import { LanternError } from '../errors.ts';
 import { ComputeKernel, PLAIN_SCENE, SceneKernels, TRACING_FEATURES, type NamedResource } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
@@ -78,7 +79,7 @@ export class WavefrontFramePass {
 
   /** Compiles every kernel's variant for a scene with these features, in RGB or spectral mode. */
   async prepare(features: SceneFeatures, spectral = false): Promise<void> {
-    const set = spectral ? (this.spectral ??= kernelSet(this.device, { SPECTRAL: 1 })) : this.rgb;
+    const set = spectral ? (this.spectral ??= kernelSet(this.device, spectralConstants(true))) : this.rgb;
     await Promise.all(SCENE_ENTRIES.map((e) => set[e].prepare(features)));
   }
 

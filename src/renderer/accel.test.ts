@@ -19,7 +19,7 @@ describe('accel grid', () => {
     const prepared = prepareScene(tileMapScene({ n: 16, seed: 2, moving: true }), undefined, { accel: 'grid' });
     const grid = prepared.grid!;
     const { layout, features } = prepared.packed;
-    expect(features.staticGrid).toBe(true);
+    expect(features.staticAccel).toBe('grid');
     expect(layout.gridBase).toBe(layout.tlasBase + layout.tlasCapacity);
     const stride = sceneLayouts().node.strideWords;
     const u32 = new Uint32Array(prepared.packed.bvh_nodes), f32 = new Float32Array(prepared.packed.bvh_nodes);
@@ -47,7 +47,7 @@ describe('accel grid', () => {
     expect(new Uint8Array(toGrid.packed.scene_info)).toEqual(new Uint8Array(grid.packed.scene_info));
     expect(new Uint8Array(back.packed.bvh_nodes)).toEqual(new Uint8Array(bvh.packed.bvh_nodes));
     expect(back.grid).toBeUndefined();
-    expect(back.packed.features.staticGrid).toBe(false);
+    expect(back.packed.features.staticAccel).not.toBe('grid');
     expect(withAccel(grid, 'grid')).toBe(grid);
   });
 
@@ -72,7 +72,7 @@ describe('accel bvh4 / cwbvh', () => {
     expect(wide.layout).toBe(layout);
     expect(prepared.grid).toBeUndefined();
     const { layout: packedLayout, features } = prepared.packed;
-    expect([features.staticGrid, features.staticBvh4, features.staticCwbvh]).toEqual([false, layout === 'bvh4', layout === 'cwbvh']);
+    expect(features.staticAccel).toBe(layout);
     expect(packedLayout.gridBase).toBe(packedLayout.tlasBase + packedLayout.tlasCapacity);
     const stride = sceneLayouts().node.strideWords;
     const u32 = new Uint32Array(prepared.packed.bvh_nodes);
@@ -101,14 +101,14 @@ describe('accel bvh4 / cwbvh', () => {
     const prepared = prepareScene(tileMapScene({ n: 12, seed: 6 }), undefined, { accel: 'cwbvh' });
     const moved = updateGeometry(prepared, new Map([[1, { worldFromObject: translation([0, 3, 0]) }]]), new Map()).prepared;
     expect(moved.wide).not.toBe(prepared.wide);
-    expect(moved.packed.features.staticCwbvh).toBe(true);
+    expect(moved.packed.features.staticAccel).toBe('cwbvh');
     const ball = moved.triangles.count - 1;
     const p = moved.triangles.positions;
     const hit = traceWide(moved.wide!, p, { origin: [p[ball * 9]!, 10, p[ball * 9 + 2]!], direction: [0, -1, 0] }, moved.triangles.kinds).hit;
     expect(hit?.triangle).toBe(ball);
     expect(hit?.t).toBeCloseTo(10 - 3.3 - 0.3, 4);
     const lit = withPreparedEnvironment(moved, { kind: 'constant', radiance: [1, 1, 1] });
-    expect(lit.packed.features.staticCwbvh).toBe(true);
+    expect(lit.packed.features.staticAccel).toBe('cwbvh');
     expect(new Uint8Array(lit.packed.bvh_nodes)).toEqual(new Uint8Array(moved.packed.bvh_nodes));
   });
 });

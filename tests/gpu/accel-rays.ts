@@ -5,7 +5,8 @@
  * renderer compiles them.
  */
 import { makeRandom } from '../../src/bvh/test-scenes.ts';
-import { ComputeKernel, FEATURE_CONSTANTS, TRAVERSAL_FEATURES } from '../../src/gpu/kernel.ts';
+import { ComputeKernel, TRAVERSAL_FEATURES } from '../../src/gpu/kernel.ts';
+import { featureConstants } from '../../src/gpu/kernel-variants.ts';
 import { readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
 import { cameraBasis } from '../../src/gpu/view.ts';
@@ -100,7 +101,7 @@ export function makeRays(prepared: PreparedScene, size: number, spread: RaySprea
 /** Each ray's closest hit (t, source primitive, barycentrics) and whether trace_any finds anything. */
 export async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: readonly TestRay[]) {
   const constants: Record<string, number> = {};
-  for (const name of TRAVERSAL_FEATURES) constants[FEATURE_CONSTANTS[name]] = prepared.packed.features[name] ? 1 : 0;
+  Object.assign(constants, featureConstants(TRAVERSAL_FEATURES, prepared.packed.features));
   const sources = new Map(SHADER_MODULES);
   sources.set('tests/accel-test', KERNEL);
   const kernel = await ComputeKernel.create(device, { module: reflectLinked(linkWgsl('tests/accel-test', sources)), entryPoint: 'accel_test', constants });

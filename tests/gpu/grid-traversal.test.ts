@@ -1,6 +1,6 @@
 /**
  * The grid traversal on the GPU (scene/grid.wgsl inside scene/bvh.wgsl's trace_closest and
- * trace_any, STATIC_ACCEL_GRID) against the CPU oracle (bvh/levels.ts traceScene with the grid,
+ * trace_any, STATIC_ACCEL = ACCEL_GRID) against the CPU oracle (bvh/levels.ts traceScene with the grid,
  * bvh/grid.ts), with and without moving instances; and a tile scene rendered through the grid and
  * through the BVH with the same seed gives the same image. The GPU computes in f32 and the oracle in
  * f64: distances agree to a relative tolerance, and a different primitive is accepted only where it
@@ -34,7 +34,7 @@ describe('GPU grid traversal equals the CPU oracle', () => {
   it.each(SCENES)('%s', async (_, make) => {
     const { device } = await testGpu();
     const prepared = prepareScene(make(), undefined, { accel: 'grid' });
-    expect(prepared.packed.features.staticGrid).toBe(true);
+    expect(prepared.packed.features.staticAccel).toBe('grid');
     const rays = makeRays(prepared, 32, { lo: prepared.grid!.lo, hi: prepared.grid!.hi, random: 768, perInstance: 128 });
     const gpu = await traceOnGpu(device, prepared, rays);
     const { positions, kinds } = prepared.triangles;

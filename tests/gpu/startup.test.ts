@@ -5,7 +5,8 @@
  * The stage log (gpu/stage-log.ts) says what was compiled.
  */
 import { afterEach, describe, expect, it } from 'vitest';
-import { FEATURE_CONSTANTS, TRACING_FEATURES } from '../../src/gpu/kernel.ts';
+import { TRACING_FEATURES } from '../../src/gpu/kernel.ts';
+import { FEATURE_CONSTANTS, featureValue } from '../../src/gpu/kernel-variants.ts';
 import type { SceneFeatures } from '../../src/gpu/pack/scene-pack.ts';
 import { observeStages, type StageSpan } from '../../src/gpu/stage-log.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
@@ -32,7 +33,7 @@ const pipelines = (spans: readonly StageSpan[]) => spans.filter((s) => s.stage.s
  * and the sampler a kernel is compiled for where it has one (progressive: Sobol, SAMPLER=1; the real-time
  * path kernel: PCG, SAMPLER=0; the G-buffer pass draws no random numbers: none).
  */
-const constantsOf = (f: SceneFeatures, sampler: number | null = 1) => [...TRACING_FEATURES.map((k) => `${FEATURE_CONSTANTS[k]}=${f[k] ? 1 : 0}`), ...(sampler === null ? [] : [`SAMPLER=${sampler}`])];
+const constantsOf = (f: SceneFeatures, sampler: number | null = 1) => [...TRACING_FEATURES.map((k) => `${FEATURE_CONSTANTS[k]}=${featureValue(k, f)}`), ...(sampler === null ? [] : [`SAMPLER=${sampler}`])];
 
 describe('start-up compiles', () => {
   it('compile the path tracer for the given scene alone, and the tone mapper; nothing else', async () => {

@@ -1,6 +1,6 @@
 /**
  * The wide traversals on the GPU (scene/bvh4.wgsl and scene/cwbvh.wgsl inside scene/bvh.wgsl's
- * trace_closest and trace_any, STATIC_ACCEL_BVH4 / STATIC_ACCEL_CWBVH) against their CPU oracles
+ * trace_closest and trace_any, STATIC_ACCEL = ACCEL_BVH4 / ACCEL_CWBVH) against their CPU oracles
  * (bvh/levels.ts traceScene with the wide tree, bvh/wide.ts), with and without moving instances; the
  * heat map's counts against the oracle's; and a scene rendered through each layout and through the
  * binary BVH with the same seed gives the same image. The GPU computes in f32 and the oracle in f64:
@@ -34,8 +34,7 @@ describe('GPU wide traversal equals the CPU oracle', () => {
     const { device } = await testGpu();
     const prepared = prepareScene(make(), undefined, { accel: layout });
     expect(prepared.wide?.layout).toBe(layout);
-    expect(prepared.packed.features.staticBvh4).toBe(layout === 'bvh4');
-    expect(prepared.packed.features.staticCwbvh).toBe(layout === 'cwbvh');
+    expect(prepared.packed.features.staticAccel).toBe(layout);
     const rays = makeRays(prepared, 24, { lo: prepared.bvh.bounds.subarray(0, 3), hi: prepared.bvh.bounds.subarray(3, 6), random: 384, perInstance: 96 });
     const gpu = await traceOnGpu(device, prepared, rays);
     const { positions, kinds } = prepared.triangles;

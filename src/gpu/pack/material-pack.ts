@@ -39,7 +39,7 @@ export interface PackedMaterials {
   readonly emissionMean: readonly number[];
   /** Per material: whether its coverage can make holes (alpha mask or blend with something to test). */
   readonly hasHitFilter: readonly boolean[];
-  /** Whether any material needs more than the Lambertian path (see SCENE_HAS_GENERAL_MATERIALS). */
+  /** Whether any material needs more than the Lambertian path (MATERIALS_GENERAL of SCENE_MATERIALS, shaders/scene/bsdf.wgsl). */
   readonly general: boolean;
   /** Whether any material reads per-vertex tangents (a normal map) or the second uv set. */
   readonly needsVertexAttributes: boolean;

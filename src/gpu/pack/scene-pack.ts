@@ -25,6 +25,10 @@ import type { TextureAtlas } from './texture-atlas.ts';
 export { MATERIAL_ALPHA_MASK, MATERIAL_EMISSION_PANORAMA, NO_TEXTURE } from './material-pack.ts';
 
 /** What a scene uses, each compiled out of the tracing pipelines where absent (gpu/kernel.ts). */
+/** The static world's structures, by STATIC_ACCEL's value (ACCEL_* of shaders/scene/accel.wgsl). */
+export const STATIC_ACCELS = ['bvh2', 'bvh4', 'cwbvh', 'grid'] as const;
+export type StaticAccel = (typeof STATIC_ACCELS)[number];
+
 export interface SceneFeatures {
   /** Triangles whose hits are filtered by coverage (alpha mask or blend). */
   readonly alphaMasks: boolean;
@@ -37,12 +41,11 @@ export interface SceneFeatures {
   readonly analyticPrimitives: boolean;
   /** Moving instances: the two-level BVH (bvh/levels.ts). */
   readonly instances: boolean;
-  /** The static world is traced through its uniform grid (bvh/grid.ts) rather than its BVH. */
-  readonly staticGrid: boolean;
-  /** The static world is traced through its BVH4 (bvh/wide.ts) rather than its binary BVH. */
-  readonly staticBvh4: boolean;
-  /** The static world is traced through its compressed 8-wide BVH (bvh/wide.ts). */
-  readonly staticCwbvh: boolean;
+  /**
+   * What the static world is traced through: its binary BVH, its BVH4 or compressed 8-wide BVH
+   * (bvh/wide.ts), or its uniform grid (bvh/grid.ts). STATIC_ACCEL (shaders/scene/accel.wgsl).
+   */
+  readonly staticAccel: StaticAccel;
   /**
    * No traversal can hold more than SHALLOW_STACK_ENTRIES on its stack (no moving instances, and the
    * static tree at most that deep): the kernels use the shorter stack (shaders/scene/bvh.wgsl).
@@ -251,9 +254,7 @@ export function packGeometry(scene: Scene, triangles: TriangleList, bvh: Bvh, pa
       environment: packedLights.environmentSelectPmf > 0 || packedLights.sunSelectPmf > 0,
       analyticPrimitives: triangles.kindCounts.sphere + triangles.kindCounts.capsule > 0,
       instances: levels !== undefined,
-      staticGrid: grid !== undefined,
-      staticBvh4: wide?.layout === 'bvh4',
-      staticCwbvh: wide?.layout === 'cwbvh',
+      staticAccel: grid !== undefined ? 'grid' : (wide?.layout ?? 'bvh2'),
       shallowStack: levels === undefined && bvh.stats.maxDepth <= SHALLOW_STACK_ENTRIES,
     },
     totalLightPower: packedLights.totalPower,

@@ -41,11 +41,6 @@ const ROULETTE_START_BOUNCE: u32 = 3u;
 // Shadow rays stop this fraction short of the light so they do not hit the light itself.
 const SHADOW_RAY_SHORTEN: f32 = 1e-4;
 
-// Whether any material is not diffuse (or has a normal map or absorbs). A pipeline constant: scenes
-// of diffuse surfaces only (the Cornell box, Doom) compile the Lambertian path alone, as fast as
-// before the BSDF module existed; the general path calls bsdf_* for every kind.
-override SCENE_HAS_GENERAL_MATERIALS: bool = true;
-
 // Whether the kernel's estimator includes ReSTIR direct light: at the first bounce, a path whose hit
 // is on the pixel-centre surface's material takes its direct light from the pixel's reservoir (the
 // record's `restir`, handed in by the caller) instead of one light sample (restir_direct). A

@@ -16,11 +16,21 @@ const BSDF_DIFFUSE: u32 = 0u;              // Lambertian, base_color = albedo, t
 const BSDF_METALLIC_ROUGHNESS: u32 = 1u;   // the glTF 2.0 metallic-roughness model (with KHR_materials_specular, _ior, _transmission)
 const BSDF_DIELECTRIC: u32 = 2u;           // glass: Fresnel reflection + refraction, smooth or rough (Walter et al. 2007)
 
-// Whether the scene has materials of these kinds (pipeline constants; gpu/specialisation.ts sets them
-// for a frozen scene). Where a kind is absent its branch of bsdf_lobes folds away, and with it the
-// lobes only that kind weights (a scene without them computes those weights as zero anyway).
-override SCENE_HAS_METALLIC_ROUGHNESS: bool = true;
-override SCENE_HAS_DIELECTRIC: bool = true;
+// What the scene's materials need, one mask of MATERIALS_* bits (a pipeline constant: the host sets
+// it per scene, gpu/kernel-variants.ts). MATERIALS_GENERAL: any material is not diffuse (or has a
+// normal map, or absorbs); without it the integrator compiles the Lambertian path alone, and scenes
+// of diffuse surfaces (the Cornell box, Doom) run as fast as before the BSDF module existed. The kind
+// bits say which BSDF kinds occur: where one is absent its branch of bsdf_lobes folds away, and with it
+// the lobes only that kind weights. Generic kernels keep both kind bits set; kernels specialised to a
+// frozen scene (gpu/specialisation.ts) clear those it lacks.
+const MATERIALS_GENERAL: u32 = 1u;
+const MATERIALS_METALLIC_ROUGHNESS: u32 = 2u;
+const MATERIALS_DIELECTRIC: u32 = 4u;
+override SCENE_MATERIALS: u32 = MATERIALS_GENERAL | MATERIALS_METALLIC_ROUGHNESS | MATERIALS_DIELECTRIC;
+// The mask's bits by name, for the code that folds on them (derived: never set by the host).
+override SCENE_HAS_GENERAL_MATERIALS: bool = (SCENE_MATERIALS & MATERIALS_GENERAL) != 0u;
+override SCENE_HAS_METALLIC_ROUGHNESS: bool = (SCENE_MATERIALS & MATERIALS_METALLIC_ROUGHNESS) != 0u;
+override SCENE_HAS_DIELECTRIC: bool = (SCENE_MATERIALS & MATERIALS_DIELECTRIC) != 0u;
 
 // Below this GGX alpha (roughness ≈ 0.032) a microfacet lobe is treated as a perfect mirror or
 // refraction (a delta lobe): its width (~α radians, < 0.06°) is below any pixel's footprint, and

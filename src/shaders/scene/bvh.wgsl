@@ -10,9 +10,9 @@
 // normalised, so t is the same in both spaces) and its bottom level is traced from its root. The
 // hit then says which instance; the primitive records are read through scene/instances.
 //
-// With STATIC_ACCEL_GRID (scene/grid.wgsl) the static world is walked through its uniform grid
+// With STATIC_ACCEL = ACCEL_GRID (scene/accel; scene/grid.wgsl) the static world is walked through its uniform grid
 // instead of its tree, then the top level runs as above, pruned by the grid's hit; likewise through
-// its wide tree with STATIC_ACCEL_BVH4 or STATIC_ACCEL_CWBVH (scene/wide.wgsl).
+// its wide tree with ACCEL_BVH4 or ACCEL_CWBVH (scene/wide.wgsl).
 
 #import scene/hit-filter
 #import scene/bindings
@@ -85,7 +85,7 @@ fn traversal_ray(ray: Ray, instance: u32) -> TraversalRay {
 // Where a traversal starts (node, instance): the static world's root, or the top level's when the ray
 // misses the static world (or it is empty); node NO_NODE when it misses both before t.
 fn traversal_start(local: TraversalRay, t: f32) -> vec2u {
-  let static_world = !STATIC_ACCEL_GRID && !static_accel_wide() && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
+  let static_world = STATIC_ACCEL != ACCEL_GRID && !static_accel_wide() && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u);
   if (static_world && node_entry(0u, local.origin, local.inv_dir, t) != T_MISS) {
     return vec2u(0u, 0u);
   }
@@ -107,10 +107,10 @@ fn trace_closest(ray: Ray) -> Hit {
   set_alpha_salt(ray);
   if (BVH_COUNT_WORK) {
     // Through the grid, the count is of cells (none when the ray misses the grid) plus top-level nodes.
-    bvh_work = TraversalWork(select(1u, 0u, STATIC_ACCEL_GRID || static_accel_wide()), 0u, NO_NODE);
+    bvh_work = TraversalWork(select(1u, 0u, STATIC_ACCEL == ACCEL_GRID || static_accel_wide()), 0u, NO_NODE);
   }
   var local = traversal_ray(ray, 0u);
-  if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u)) {
+  if (STATIC_ACCEL == ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u)) {
     // The static world through its grid: cells count as nodes. The leaf views (leaf size, BVH
     // depth) have no leaf to show for a grid hit and show the root's.
     let work = grid_closest(local.origin, local.direction, local.inv_dir, ray.t_min, &hit);
@@ -131,7 +131,7 @@ fn trace_closest(ray: Ray) -> Hit {
   var node = start.x;
   var instance = start.y;
   var leave_at = 0u;
-  if (BVH_COUNT_WORK && !STATIC_ACCEL_GRID && !static_accel_wide()) {
+  if (BVH_COUNT_WORK && STATIC_ACCEL != ACCEL_GRID && !static_accel_wide()) {
     bvh_work.nodes_visited = 0u;
   }
   var stack: array<u32, BVH_STACK_SIZE>;
@@ -233,7 +233,7 @@ fn trace_closest(ray: Ray) -> Hit {
 fn trace_any(ray: Ray) -> bool {
   set_alpha_salt(ray);
   var local = traversal_ray(ray, 0u);
-  if (STATIC_ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) && grid_any(local.origin, local.direction, local.inv_dir, ray.t_min, ray.t_max)) {
+  if (STATIC_ACCEL == ACCEL_GRID && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) && grid_any(local.origin, local.direction, local.inv_dir, ray.t_min, ray.t_max)) {
     return true;
   } else if (static_accel_wide() && !(SCENE_HAS_INSTANCES && scene_info.static_world_empty != 0u) && wide_any(local.origin, local.direction, local.inv_dir, ray.t_min, ray.t_max)) {
     return true;

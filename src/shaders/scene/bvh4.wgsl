@@ -8,10 +8,7 @@
 #import scene/bindings
 #import scene/intersect
 #import scene/wide-words
-
-// Whether trace_closest and trace_any walk the static world's BVH4 (scene-pack features.staticBvh4,
-// setting `accel` bvh4).
-override STATIC_ACCEL_BVH4: bool = false;
+#import scene/accel
 
 // A knob for measurements: the closest hit visits a node's hit children nearest first (a sorting
 // network over the four entry distances; the default) or in storage order (bvh/wide.ts sortChildren).

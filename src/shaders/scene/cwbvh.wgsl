@@ -16,10 +16,7 @@
 #import scene/bindings
 #import scene/intersect
 #import scene/wide-words
-
-// Whether trace_closest and trace_any walk the static world's CWBVH (scene-pack features.staticCwbvh,
-// setting `accel` cwbvh).
-override STATIC_ACCEL_CWBVH: bool = false;
+#import scene/accel
 
 const CWBVH_NODE_WORDS: u32 = 20u;
 

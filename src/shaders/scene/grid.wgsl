@@ -8,11 +8,7 @@
 #import scene/hit-filter
 #import scene/bindings
 #import scene/intersect
-
-// Whether trace_closest and trace_any walk the static world's grid instead of its BVH (scene-pack
-// features.staticGrid, setting `accel`). The BVH stays packed, so a pipeline compiled without the
-// constant still traces the same scene correctly.
-override STATIC_ACCEL_GRID: bool = false;
+#import scene/accel
 
 struct GridHeader {
   lo: vec3f,

@@ -9,12 +9,10 @@
 #import scene/intersect
 #import scene/materials
 #import scene/specialised-primitives
+#import scene/accel
 
-// Declared for the scene features' constants (gpu/kernel.ts FEATURE_CONSTANTS): an unrolled scene
-// tests every primitive and has no grid, wide tree or stack.
-override STATIC_ACCEL_GRID: bool = false;
-override STATIC_ACCEL_BVH4: bool = false;
-override STATIC_ACCEL_CWBVH: bool = false;
+// Declared for the scene features' constants (gpu/kernel-variants.ts FEATURE_CONSTANTS; STATIC_ACCEL comes
+// with scene/accel): an unrolled scene tests every primitive and has no grid, wide tree or stack.
 override BVH_SHALLOW_STACK: bool = false;
 
 // The one intersection routine every primitive goes through: scene/intersect's intersect_primitive,

@@ -261,8 +261,8 @@ struct SceneInfo {
   // 1 when the static world has no primitives (everything moves): traversal starts at the top level.
   static_world_empty: u32,
   // The record of bvh_nodes where the static world's grid (gpu/pack/scene-pack.ts packGrid) or wide
-  // tree (bvh/wide.ts packWide) begins, when it is traced through one (STATIC_ACCEL_GRID, _BVH4,
-  // _CWBVH); 0 otherwise.
+  // tree (bvh/wide.ts packWide) begins, when it is traced through one (STATIC_ACCEL of scene/accel not
+  // ACCEL_BVH2); 0 otherwise.
   grid_base: u32,
 }
 
