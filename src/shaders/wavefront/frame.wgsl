@@ -96,7 +96,7 @@ fn store_hit(slot: u32, hit: Hit) {
 
 // Shadow entry k of queue q: the ray, the slot it belongs to, its contribution.
 fn store_shadow(q: u32, k: u32, slot: u32, request: ShadowRequest) {
-  let base = F_SHADOWS + 3u * q;
+  let base = F_SHADOWS + SHADOW_FIELDS * q;
   store_f(base, k, vec4f(request.ray.origin, bitcast<f32>(slot)));
   store_f(base + 1u, k, vec4f(request.ray.direction, request.ray.t_max));
   store_f(base + 2u, k, request.contribution);
@@ -165,7 +165,7 @@ fn trace_shadow(q: u32, i: u32) {
   if (i >= atomicLoad(&queues.counters[QUEUE_SHADOWS + q])) {
     return;
   }
-  let base = F_SHADOWS + 3u * q;
+  let base = F_SHADOWS + SHADOW_FIELDS * q;
   let a = load_f(base, i);
   let b = load_f(base + 1u, i);
   if (!trace_any(Ray(a.xyz, 0.0, b.xyz, b.w))) {

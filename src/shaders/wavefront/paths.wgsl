@@ -10,28 +10,34 @@
 // One path slot per pixel: slot = pixel index, so a path's state never moves, only its index does.
 // `paths` holds PATH_FIELD_COUNT fields of one vec4u each, field-major (field f of slot s at
 // f × slots + s), so the threads of a kernel read each field coalesced. Floats are stored as bits.
-const F_ORIGIN: u32 = 0u;            // xyz: the next ray's origin; w: last_bsdf_pdf
-const F_DIRECTION: u32 = 1u;         // xyz: the next ray's direction; w: cone_width
-const F_THROUGHPUT: u32 = 2u;        // the path's throughput, four channels
-const F_RADIANCE: u32 = 3u;          // radiance gathered so far, four channels
-const F_ABSORPTION: u32 = 4u;        // the medium's absorption coefficient, four channels (general materials only)
-const F_PRIMARY_ALBEDO: u32 = 5u;    // xyz: PrimaryHit.albedo, w: its id (written at the first bounce only)
-const F_PRIMARY_EMISSION: u32 = 6u;  // xyz: PrimaryHit.emission (ditto); w: spectrum_u
-const F_MISC: u32 = 7u;              // x: rng_word of the random stream; y: flags (PATH_*) | bounce << PATH_BOUNCE_SHIFT; z: cone_spread; w: hit.instance
-const F_HIT: u32 = 8u;               // t, triangle, u, v of the closest hit of the ray
-// Shadow queue q's entry k: fields F_SHADOWS + 3q + (0: origin.xyz, slot; 1: direction.xyz, t_max;
-// 2: contribution), at index k (entries are compacted, not per slot).
-const F_SHADOWS: u32 = 9u;
+// The fields are declared here once, each numbered after the one before it: adding one is one line,
+// and the count (and the host's byte count, through PathSlotFields) follows. Untyped (u32 from the
+// literals): the reflection webgpu-utils bundles cannot evaluate `const X: u32 = Y + 1u`.
+const F_ORIGIN = 0u;                              // xyz: the next ray's origin; w: last_bsdf_pdf
+const F_DIRECTION = F_ORIGIN + 1u;                // xyz: the next ray's direction; w: cone_width
+const F_THROUGHPUT = F_DIRECTION + 1u;            // the path's throughput, four channels
+const F_RADIANCE = F_THROUGHPUT + 1u;             // radiance gathered so far, four channels
+const F_ABSORPTION = F_RADIANCE + 1u;             // the medium's absorption coefficient, four channels (general materials only)
+const F_PRIMARY_ALBEDO = F_ABSORPTION + 1u;       // xyz: PrimaryHit.albedo, w: its id (written at the first bounce only)
+const F_PRIMARY_EMISSION = F_PRIMARY_ALBEDO + 1u; // xyz: PrimaryHit.emission (ditto); w: spectrum_u
+const F_MISC = F_PRIMARY_EMISSION + 1u;           // x: rng_word of the random stream; y: flags (PATH_*) | bounce << PATH_BOUNCE_SHIFT; z: cone_spread; w: hit.instance
+const F_HIT = F_MISC + 1u;                        // t, triangle, u, v of the closest hit of the ray
+// Shadow queue q's entry k: fields F_SHADOWS + SHADOW_FIELDS × q + (0: origin.xyz, slot; 1:
+// direction.xyz, t_max; 2: contribution), at index k (entries are compacted, not per slot). One
+// queue per shadow slot the wavefront uses (integrator/path SHADOW_LIGHT, SHADOW_TORCH).
+const F_SHADOWS = F_HIT + 1u;
+const SHADOW_FIELDS = 3u;
+const SHADOW_QUEUES = 2u;
 // The pixel's sums over the frame's samples so far (xyz): demodulated radiance, first-hit albedo,
 // kept first-hit emission (wavefront_finish; the frame's packed outputs are written after the last).
-const F_SUM_ILLUMINATION: u32 = 15u;
-const F_SUM_ALBEDO: u32 = 16u;
-const F_SUM_EMISSION: u32 = 17u;
-const PATH_FIELD_COUNT: u32 = 18u;
+const F_SUM_ILLUMINATION = F_SHADOWS + SHADOW_FIELDS * SHADOW_QUEUES;
+const F_SUM_ALBEDO = F_SUM_ILLUMINATION + 1u;
+const F_SUM_EMISSION = F_SUM_ALBEDO + 1u;
+const PATH_FIELD_COUNT = F_SUM_EMISSION + 1u;
 
 // The fields of one slot as a struct, for the host's byte count (reflection); the kernels index `paths`.
 struct PathSlotFields {
-  fields: array<vec4u, 18>,
+  fields: array<vec4u, PATH_FIELD_COUNT>,
 }
 
 const PATH_AFTER_DELTA: u32 = 1u;
