@@ -110,9 +110,9 @@ fn wavefront_shade(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups)
   // Lanes this thread pushes onto (bit q: lane q) and its offsets there.
   var lanes = 0u;
   var offsets = vec3u(0u);
-  // The record path_step hands back: the first hit (kept at bounce 0) and the shadow rays, which
-  // go to the shadow queues instead of being traced here. No reservoir: the wavefront has no ReSTIR.
-  var record = path_record(NO_RESTIR_PIXEL);
+  // The record path_step hands back: the first hit (kept at bounce 0) and, collected instead of
+  // traced, the shadow rays, which go to the shadow queues.
+  var record = path_record_collecting();
   if (i < atomicLoad(&queues.counters[QUEUE_CURRENT])) {
     slot = queues.items[current_half() * slot_count() + i];
     let misc = paths[field(F_MISC, slot)];
