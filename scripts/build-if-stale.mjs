@@ -19,8 +19,8 @@ import { join } from 'node:path';
 
 /** What each bundle is built from, the file its build writes last-known, and the npm script that builds it. */
 const BUNDLES = {
-  cli: { inputs: ['src', 'vite.cli.config.ts', 'scripts/node-bundle.ts', 'package-lock.json', 'tsconfig.json'], output: 'dist/cli/lantern.mjs', script: 'build:cli' },
-  app: { inputs: ['src', 'index.html', 'vite.config.ts', 'package-lock.json', 'tsconfig.json'], output: 'dist/app/index.html', script: 'build:app' },
+  cli: { inputs: ['src', 'vite.cli.config.ts', 'scripts/node-bundle.ts', 'scripts/shader-reflection.ts', 'package-lock.json', 'tsconfig.json'], output: 'dist/cli/lantern.mjs', script: 'build:cli' },
+  app: { inputs: ['src', 'index.html', 'vite.config.ts', 'scripts/shader-reflection.ts', 'package-lock.json', 'tsconfig.json'], output: 'dist/app/index.html', script: 'build:app' },
 };
 
 /** Every file under `path` (or `path` itself), relative to the root, sorted; a missing input is none. */

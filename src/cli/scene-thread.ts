@@ -1,9 +1,9 @@
 /**
- * Start-up work on worker threads while the main thread starts the GPU (Dawn, the path tracer's
- * reflection, the tone mapper's pipeline): loading and preparing the scene (read, parse, BVH, pack),
- * and the second parse of the path tracer's WGSL that finds each entry point's bindings. Dawn for
- * Node compiles pipelines on the thread that calls it (inside its event processing), and the
- * parses are plain JavaScript, so on one thread none of this overlaps.
+ * Start-up work on a worker thread while the main thread starts the GPU (Dawn, the tone mapper's
+ * pipeline): loading and preparing the scene (read, parse, BVH, pack). Dawn for Node compiles
+ * pipelines on the thread that calls it (inside its event processing), and loading is plain
+ * JavaScript, so on one thread they would not overlap. (The path tracer's WGSL was parsed on a
+ * second thread too, for its bindings, until the build reflected it: gpu/wgsl/precomputed.ts.)
  *
  * A worker runs this same bundle: main.ts hands over to runSceneThread when it is not the main
  * thread. Run from sources (tests), where there is no bundle to start, everything runs in-thread.
@@ -13,8 +13,6 @@ import { statSync } from 'node:fs';
 import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
 import { LanternError } from '../errors.ts';
 import type { StageSpan } from '../gpu/stage-log.ts';
-import { linkWgsl } from '../gpu/wgsl/linker.ts';
-import { entryPointBindings, provideEntryPointBindings, type BindingSlot } from '../gpu/wgsl/reflect.ts';
 import { prepareSceneAsync, type PreparedScene } from '../renderer/prepare.ts';
 import { nodeBvhPool } from './bvh-workers.ts';
 import type { Environment } from '../scene/environment.ts';
@@ -35,21 +33,13 @@ type ThreadRequest = {
   readonly role: 'lantern-scene-thread';
   /** The main thread's performance.timeOrigin: the worker's spans are moved onto its clock. */
   readonly mainTimeOrigin: number;
-} & (
-  | { readonly task: 'scene'; readonly sceneArg: string; readonly sceneOptions: SceneOptionValues; readonly environment?: Environment }
-  | { readonly task: 'bindings'; readonly module: string; readonly entryPoints: readonly string[]; readonly visibility: number }
-);
+} & { readonly task: 'scene'; readonly sceneArg: string; readonly sceneOptions: SceneOptionValues; readonly environment?: Environment };
 
 type ThreadReply =
   | { readonly type: 'note'; readonly message: string }
   | { readonly type: 'spans'; readonly spans: readonly StageSpan[] }
-  | { readonly type: 'done'; readonly result: LoadedPrepared | BindingsResult }
+  | { readonly type: 'done'; readonly result: LoadedPrepared }
   | { readonly type: 'error'; readonly message: string; readonly hint?: string; readonly user: boolean; readonly stack?: string };
-
-interface BindingsResult {
-  readonly codeLength: number;
-  readonly slots: BindingSlot[][];
-}
 
 /** Loads and prepares on the calling thread; `timeline` hears of each stage. */
 export async function loadPrepared(sceneArg: string, note: (message: string) => void, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<LoadedPrepared> {
@@ -106,23 +96,6 @@ export function loadPreparedInThread(sceneArg: string, note: (message: string) =
   return runInThread<LoadedPrepared>(bundle, { task: 'scene', sceneArg, sceneOptions, ...(environment ? { environment } : {}) }, 'scene thread', note, timeline, environment ? [...buffersOf(environment)] : []);
 }
 
-/**
- * Works out the bindings of `entryPoints` of a WGSL module on a worker thread and hands them to
- * entryPointBindings (wgsl/reflect.ts provideEntryPointBindings); resolves when they are there. Run
- * from sources, or should the thread fail, it resolves at once and the bindings are parsed when first
- * needed, on this thread.
- */
-export async function reflectBindingsInThread(module: string, entryPoints: readonly string[], visibility: number, timeline?: Timeline): Promise<void> {
-  const bundle = bundlePath();
-  if (!bundle) return;
-  try {
-    const { codeLength, slots } = await runInThread<BindingsResult>(bundle, { task: 'bindings', module, entryPoints, visibility }, 'bindings thread', () => undefined, timeline);
-    provideEntryPointBindings(module, codeLength, entryPoints, visibility, slots);
-  } catch {
-    // Parsed on this thread instead, when the kernel is made.
-  }
-}
-
 type TaskRequest = ThreadRequest extends infer R ? (R extends ThreadRequest ? Omit<R, 'role' | 'mainTimeOrigin'> : never) : never;
 
 function runInThread<T>(bundle: string, task: TaskRequest, name: string, note: (message: string) => void, timeline?: Timeline, transferList: ArrayBuffer[] = []): Promise<T> {
@@ -154,7 +127,7 @@ function runInThread<T>(bundle: string, task: TaskRequest, name: string, note: (
   });
 }
 
-/** Whether this thread is a worker started here (a scene or bindings task). */
+/** Whether this thread is a worker started here (a scene task). */
 export function isSceneThread(): boolean {
   return !isMainThread && (workerData as Partial<ThreadRequest> | undefined)?.role === 'lantern-scene-thread';
 }
@@ -175,20 +148,12 @@ export async function runSceneThread(): Promise<void> {
   const request = workerData as ThreadRequest;
   // This thread's clock starts with the thread: its spans move onto the main thread's.
   const shift = performance.timeOrigin - request.mainTimeOrigin;
-  const name = request.task === 'scene' ? 'scene thread' : 'bindings thread';
+  const name = 'scene thread';
   const timeline = new Timeline();
   timeline.add({ stage: `${name}: start + bundle`, startMs: 0, endMs: BUNDLE_START_MS });
   const post = (reply: ThreadReply, transfer: ArrayBuffer[] = []) => port.postMessage(reply, transfer);
   try {
-    let result: LoadedPrepared | BindingsResult;
-    if (request.task === 'scene') {
-      result = await loadPrepared(request.sceneArg, (message) => post({ type: 'note', message }), request.sceneOptions, request.environment, undefined, timeline);
-    } else {
-      const t0 = performance.now();
-      const linked = linkWgsl(request.module);
-      result = { codeLength: linked.code.length, slots: entryPointBindings({ linked }, request.entryPoints, request.visibility) };
-      timeline.end(`bindings ${request.module}`, t0);
-    }
+    const result = await loadPrepared(request.sceneArg, (message) => post({ type: 'note', message }), request.sceneOptions, request.environment, undefined, timeline);
     post({ type: 'spans', spans: timeline.spans.map((s) => ({ ...s, startMs: s.startMs + shift, endMs: s.endMs + shift })) });
     post({ type: 'done', result }, [...buffersOf(result)]);
   } catch (e) {

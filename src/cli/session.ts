@@ -1,8 +1,8 @@
 /**
  * What every GPU command starts with: load the scene, acquire a device (noting a SwiftShader
- * fallback), create the renderer and upload the scene. The scene loads on a worker thread, and the
- * path tracer's bindings are parsed on another (scene-thread.ts), while this one starts the GPU and
- * reflects the path tracer; then the path tracer is compiled for that scene alone.
+ * fallback), create the renderer and upload the scene. The scene loads on a worker thread
+ * (scene-thread.ts) while this one starts the GPU and compiles the tone mapper; then the path
+ * tracer is compiled for that scene alone. Its reflection was made when the bundle was built.
  */
 import type { PreparedScene } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
@@ -14,8 +14,7 @@ import type { CliContext } from './context.ts';
 import { acquireNodeGpu } from './dawn.ts';
 import type { SceneOptionValues } from './options.ts';
 import { checkSceneFiles } from './scene-precheck.ts';
-import { loadPreparedInThread, reflectBindingsInThread } from './scene-thread.ts';
-import { PATH_TRACE_ENTRY, PATH_TRACE_MODULE } from '../passes/path-trace-pass.ts';
+import { loadPreparedInThread } from './scene-thread.ts';
 import type { Timeline } from './timeline.ts';
 
 export interface Session {
@@ -35,15 +34,13 @@ export async function openSession(sceneArg: string, output: Pick<CliContext, 'no
   const loading = loadPreparedInThread(sceneArg, output.warn, sceneOptions, environment, adjust, timeline);
   // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
   loading.catch(() => undefined);
-  // The path tracer's second parse (its bindings) on a thread of its own; never fails (see there).
-  const bindings = reflectBindingsInThread(PATH_TRACE_MODULE, [PATH_TRACE_ENTRY], GPUShaderStage.COMPUTE, timeline);
   let renderer: Renderer | undefined;
   try {
     const gpu = await acquireNodeGpu({ onNote: output.note, onDawnOutput: output.dawnOutput, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
     if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
-    // The tone mapper compiles and the path tracer is reflected while the scene loads; then only
-    // the variant this scene needs compiles, and the scene uploads.
-    const features = Promise.all([loading, bindings]).then(([{ prepared }]) => prepared.packed.features);
+    // The tone mapper compiles while the scene loads; then only the variant this scene needs
+    // compiles, and the scene uploads.
+    const features = loading.then(({ prepared }) => prepared.packed.features);
     const creating = Renderer.create(gpu, { features });
     // While the threads work: the BSDF tables every scene upload binds (computed once per process).
     const t0 = performance.now();

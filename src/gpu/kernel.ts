@@ -13,13 +13,15 @@ import { bindingsKnown, entryPointBindings, isReflected, reflectModule, type Bin
 
 /**
  * Does the CPU part of making kernels of `module` ahead of time (linking and reflection, cached),
- * e.g. while the scene whose variant is wanted still loads; reported to the device's stage log.
+ * e.g. while the scene whose variant is wanted still loads; reported to the device's stage log. In a
+ * bundle that is reading the reflection the build made; from sources, parsing the module's layouts.
  */
 export function reflectKernel(device: GPUDevice, module: string): void {
   const t0 = performance.now();
   if (isReflected(module)) return;
-  reflectModule(module);
-  reportStage(device, { stage: `reflect ${module}`, startMs: t0, endMs: performance.now() });
+  const shader = reflectModule(module);
+  void shader.defs; // live: the layouts are parsed now, inside this stage
+  reportStage(device, { stage: `reflect ${module}`, startMs: t0, endMs: performance.now(), detail: shader.source });
 }
 
 export type NamedResource = GPUBuffer | GPUTextureView | GPUSampler | GPUBufferBinding;
@@ -117,9 +119,9 @@ export class ComputeKernel extends BindGroupFactory {
     const reflectStart = performance.now();
     const first = typeof options.module === 'string' && !isReflected(options.module);
     const shader = typeof options.module === 'string' ? reflectModule(options.module) : options.module;
-    if (first) reportStage(device, { stage: `reflect ${shader.linked.entry}`, startMs: reflectStart, endMs: performance.now() });
+    if (first) reportStage(device, { stage: `reflect ${shader.linked.entry}`, startMs: reflectStart, endMs: performance.now(), detail: shader.source });
     const label = `${shader.linked.entry}:${options.entryPoint}`;
-    const parse = !bindingsKnown(shader, [options.entryPoint], GPUShaderStage.COMPUTE);
+    const parse = !bindingsKnown(shader, [options.entryPoint]);
     const bindingsStart = performance.now();
     const slots = entryPointBindings(shader, [options.entryPoint], GPUShaderStage.COMPUTE);
     if (parse) reportStage(device, { stage: `bindings ${label}`, startMs: bindingsStart, endMs: performance.now() });

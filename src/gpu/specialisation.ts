@@ -22,7 +22,7 @@ import { FEATURE_CONSTANTS, featureConstants, type MaterialKindsPresent } from '
 import { PRIMITIVES_MODULE, primitivesModule } from './pack/primitives-module.ts';
 import { sceneLayouts, type PackedScene, type SceneFeatures } from './pack/scene-pack.ts';
 import { linkWgsl } from './wgsl/linker.ts';
-import { reflectLinked, type ReflectedShader } from './wgsl/reflect.ts';
+import { reflectLinked, reflectModule, type ReflectedShader } from './wgsl/reflect.ts';
 import { SHADER_MODULES } from '../shaders/index.ts';
 
 /**
@@ -130,12 +130,28 @@ export function declaredOverrides(code: string): Set<string> {
   return new Set([...code.matchAll(/^\s*override\s+([A-Za-z_][A-Za-z0-9_]*)/gm)].map((m) => m[1]!));
 }
 
-/** `entry` linked for a specialisation: the unrolled traversal and its generated data in place of scene/bvh when the scene is small. */
+/** Unrolled shaders by specialisation and entry module: the kernels of one module compiled for one specialisation share one parse. */
+const unrolledShaders = new WeakMap<SceneSpecialisation, Map<string, ReflectedShader>>();
+
+/**
+ * `entry` linked for a specialisation: the unrolled traversal and its generated data in place of
+ * scene/bvh when the scene is small. Without it the code is the generic module's, so its reflection
+ * is too (reflectModule: precomputed in a bundle). The unrolled code exists only for this scene and
+ * is reflected live, once per module and specialisation: only its entry points' resources are parsed
+ * (a kernel reads no layouts), a fraction of the seconds its pipelines take to compile.
+ */
 export function specialisedShader(entry: string, s: SceneSpecialisation): ReflectedShader {
-  if (!s.unrolled) return reflectLinked(linkWgsl(entry));
-  const sources = new Map(SHADER_MODULES);
-  sources.set(PRIMITIVES_MODULE, s.unrolled);
-  return reflectLinked(linkWgsl(entry, sources, new Map([[TRAVERSAL_MODULE, UNROLLED_TRAVERSAL_MODULE]])));
+  if (!s.unrolled) return reflectModule(entry);
+  let byEntry = unrolledShaders.get(s);
+  if (!byEntry) unrolledShaders.set(s, (byEntry = new Map()));
+  let shader = byEntry.get(entry);
+  if (!shader) {
+    const sources = new Map(SHADER_MODULES);
+    sources.set(PRIMITIVES_MODULE, s.unrolled);
+    shader = reflectLinked(linkWgsl(entry, sources, new Map([[TRAVERSAL_MODULE, UNROLLED_TRAVERSAL_MODULE]])));
+    byEntry.set(entry, shader);
+  }
+  return shader;
 }
 
 export interface SpecialisedKernel {

@@ -429,7 +429,7 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     expect(report).toMatchObject({ scene: 'E1M1', width: 32, height: 20 });
     expect(decodePng(readFileSync(png)).width).toBe(32);
 
-    const { totalMs, spans } = report.timeline as { totalMs: number; spans: { stage: string; startMs: number; endMs: number }[] };
+    const { totalMs, spans } = report.timeline as { totalMs: number; spans: { stage: string; startMs: number; endMs: number; detail?: string }[] };
     const at = (stage: string) => {
       const span = spans.find((s) => s.stage.startsWith(stage));
       expect(span, `the timeline has no '${stage}'`).toBeDefined();
@@ -454,6 +454,11 @@ describe.skipIf(!existsSync(FREEDOOM1))('Doom maps from the command line', () =>
     // path tracer once (for this map's features, not a plain scene's first), and the automatic
     // exposure's two (a Doom map is exposed automatically by default).
     expect(spans.some((s) => s.stage === 'scene thread: result received')).toBe(true);
+    // The bundle carries the WGSL's reflection (scripts/shader-reflection.ts): read, never parsed.
+    const reflected = spans.filter((s) => s.stage.startsWith('reflect '));
+    expect(reflected.map((s) => s.stage)).toContain('reflect passes/path-trace');
+    expect(reflected.map((s) => `${s.stage}: ${s.detail}`)).toEqual(reflected.map((s) => `${s.stage}: precomputed`));
+    expect(spans.filter((s) => s.stage.startsWith('bindings ')).map((s) => s.stage)).toEqual([]);
     expect(spans.filter((s) => s.stage.startsWith('pipeline ')).map((s) => s.stage).sort()).toEqual([
       'pipeline passes/exposure:exposure_adapt', 'pipeline passes/exposure:exposure_reduce', 'pipeline passes/path-trace:path_trace', 'pipeline passes/tonemap:tonemap_image',
     ]);

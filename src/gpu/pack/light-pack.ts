@@ -10,8 +10,7 @@ import { buildAliasTable } from '../../math/alias-table.ts';
 import { normalize, scale } from '../../math/vec3.ts';
 import type { PunctualLight } from '../../scene/types.ts';
 import { punctualPower } from '../../scene/punctual-power.ts';
-import type { StructLayout } from '../wgsl/reflect.ts';
-import type { ShaderDataDefinitions } from 'webgpu-utils';
+import type { ShaderLayouts, StructLayout } from '../wgsl/reflect.ts';
 import { StructArray } from './struct-array.ts';
 
 export const LIGHT_KIND_SHIFT = 30;
@@ -47,7 +46,7 @@ export interface PackedLights {
   readonly warnings: readonly string[];
 }
 
-export function packLights(inputs: LightInputs, layouts: { lightSlot: StructLayout }, defs: ShaderDataDefinitions): PackedLights {
+export function packLights(inputs: LightInputs, layouts: { lightSlot: StructLayout }, defs: ShaderLayouts): PackedLights {
   const warnings: string[] = [];
   let punctual = inputs.punctual.map((light) => ({ light, power: punctualPower(light, inputs.sceneRadius) })).filter((p) => p.power > 0);
   if (punctual.length > MAX_PUNCTUAL_LIGHTS) {
