@@ -5,6 +5,7 @@
  */
 import { ComputeKernel } from '../gpu/kernel.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const PRIMARY_WORKGROUP = 8;
@@ -14,7 +15,16 @@ const RAY_ORDER_CODE = { tiles: 0, scanline: 1 } as const;
 export type RayOrder = keyof typeof RAY_ORDER_CODE;
 export const RAY_ORDERS = Object.keys(RAY_ORDER_CODE) as RayOrder[];
 
-export class BenchmarkRaysPass {
+export interface BenchmarkRaysFrame extends PassFrame {
+  readonly view: ViewUniform;
+  readonly width: number;
+  readonly height: number;
+  /** Where the rays go, one per pixel. */
+  readonly rays: GPUBuffer;
+  readonly order: RayOrder;
+}
+
+export class BenchmarkRaysPass implements Pass<BenchmarkRaysFrame> {
   private constructor(
     private readonly primary: ComputeKernel,
     private readonly params: UniformParams<{ order: number }>,
@@ -26,7 +36,7 @@ export class BenchmarkRaysPass {
   }
 
   /** Writes its parameters now (queue.writeBuffer): submit before encoding again. */
-  encodePrimary(encoder: GPUCommandEncoder, view: ViewUniform, width: number, height: number, rays: GPUBuffer, order: RayOrder): void {
+  encode(encoder: GPUCommandEncoder, { view, width, height, rays, order }: BenchmarkRaysFrame): void {
     this.params.write({ order: RAY_ORDER_CODE[order] });
     const pass = encoder.beginComputePass({ label: 'generate primary rays' });
     this.primary.dispatch(

@@ -8,6 +8,7 @@ import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/bvh-wireframe';
@@ -15,7 +16,18 @@ const MODULE = 'passes/bvh-wireframe';
 const VERTICES_PER_BOX = 24;
 export const WIREFRAME_FORMAT: GPUTextureFormat = 'rgba8unorm';
 
-export class BvhWireframePass {
+export interface BvhWireframeFrame extends PassFrame {
+  readonly scene: SceneResources;
+  readonly view: ViewUniform;
+  /** Indices into the BVH of the boxes to draw. */
+  readonly nodes: GPUBuffer;
+  readonly count: number;
+  /** Points nearer than this along the view direction are clipped. */
+  readonly near: number;
+  readonly target: GPUTexture;
+}
+
+export class BvhWireframePass implements Pass<BvhWireframeFrame> {
   private constructor(
     private readonly bindings: BindGroupFactory,
     private readonly pipeline: GPURenderPipeline,
@@ -41,7 +53,7 @@ export class BvhWireframePass {
    * Clears `target` to transparent and draws the boxes of `nodes` (count indices into the BVH) onto
    * it; points nearer than `near` along the view direction are clipped. Writes the parameters now.
    */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, nodes: GPUBuffer, count: number, near: number, target: GPUTexture): void {
+  encode(encoder: GPUCommandEncoder, { scene, view, nodes, count, near, target }: BvhWireframeFrame): void {
     this.params.write({ near });
     const pass = encoder.beginRenderPass({
       label: 'bvh wireframe',

@@ -6,6 +6,7 @@ import { ComputeKernel } from '../gpu/kernel.ts';
 import { COLOR_SCALE_STOPS, stopRgb } from '../math/color-scale.ts';
 import { DEBUG_LAYOUTS, DEBUG_VIEWS, type DebugLayout, type DebugView } from './variants.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-compose';
@@ -23,7 +24,14 @@ export interface DebugComposeInput {
   readonly wireframe: GPUTexture;
 }
 
-export class DebugComposePass {
+export interface DebugComposeFrame extends PassFrame {
+  readonly view: ViewUniform;
+  readonly input: DebugComposeInput;
+  /** The composed image (written). */
+  readonly output: GPUTexture;
+}
+
+export class DebugComposePass implements Pass<DebugComposeFrame> {
   private constructor(
     private readonly kernel: ComputeKernel,
     private readonly params: UniformParams<UniformValues>,
@@ -35,7 +43,7 @@ export class DebugComposePass {
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
-  encode(encoder: GPUCommandEncoder, view: ViewUniform, input: DebugComposeInput, output: GPUTexture): void {
+  encode(encoder: GPUCommandEncoder, { view, input, output }: DebugComposeFrame): void {
     this.params.write({
       view_kind: DEBUG_VIEWS.indexOf(input.view),
       composition: DEBUG_LAYOUTS.indexOf(input.layout),

@@ -6,9 +6,9 @@ import { KERNEL_CONSTANTS } from '../gpu/kernel-variants.ts';
 import { SceneKernels, TRAVERSAL_FEATURES } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import { DEBUG_VIEWS, type DebugView } from './variants.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-view';
@@ -27,7 +27,14 @@ export interface DebugViewTarget {
   readonly range: GPUBuffer;
 }
 
-export class DebugViewPass {
+export interface DebugViewFrame extends PassFrame {
+  readonly scene: SceneResources;
+  readonly view: ViewUniform;
+  readonly target: DebugViewTarget;
+  readonly debugView: DebugView;
+}
+
+export class DebugViewPass implements Pass<DebugViewFrame> {
   private constructor(
     private readonly kernels: SceneKernels,
     private readonly params: UniformParams<{ view_kind: number }>,
@@ -45,7 +52,7 @@ export class DebugViewPass {
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: DebugViewTarget, debugView: DebugView, timer?: GpuTimer): void {
+  encode(encoder: GPUCommandEncoder, { scene, view, target, debugView, timer }: DebugViewFrame): void {
     this.params.write({ view_kind: DEBUG_VIEWS.indexOf(debugView) });
     const kernel = this.kernels.get(scene.features);
     encoder.clearBuffer(target.range);

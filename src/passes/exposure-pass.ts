@@ -6,8 +6,8 @@
  */
 import { ComputeKernel } from '../gpu/kernel.ts';
 import { readBuffer } from '../gpu/readback.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/exposure';
@@ -31,7 +31,17 @@ export interface ExposureReading {
   readonly stops: number;
 }
 
-export class ExposurePass {
+export interface ExposureFrame extends PassFrame {
+  readonly view: ViewUniform;
+  /** The radiance to reduce (vec4f per pixel, `input.sampleCount` samples summed). */
+  readonly radiance: GPUBuffer;
+  readonly width: number;
+  readonly height: number;
+  readonly input: ExposureInput;
+}
+
+/** Its output is its own: `state`, which the tone map binds (read() brings it to the CPU). */
+export class ExposurePass implements Pass<ExposureFrame> {
   /** The adapted exposure (ExposureState): the tone map binds it. */
   readonly state: GPUBuffer;
   private partials?: GPUBuffer;
@@ -55,7 +65,7 @@ export class ExposurePass {
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
-  encode(encoder: GPUCommandEncoder, view: ViewUniform, radiance: GPUBuffer, width: number, height: number, input: ExposureInput, timer?: GpuTimer): void {
+  encode(encoder: GPUCommandEncoder, { view, radiance, width, height, input, timer }: ExposureFrame): void {
     const groupsX = Math.ceil(width / TILE);
     const groupsY = Math.ceil(height / TILE);
     const count = groupsX * groupsY;

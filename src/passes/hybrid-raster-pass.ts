@@ -12,9 +12,9 @@ import { FEATURE_CONSTANTS, featureConstants, featureKey } from '../gpu/kernel-v
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/hybrid-raster';
@@ -34,7 +34,7 @@ export interface RasterDraw {
   readonly instance: number;
 }
 
-export interface RasterFrame {
+export interface RasterFrame extends PassFrame {
   readonly scene: SceneResources;
   readonly view: ViewUniform;
   readonly visibility: GPUTextureView;
@@ -44,7 +44,6 @@ export interface RasterFrame {
   readonly jitter: readonly [number, number];
   /** Linear depth of the near plane (scene units). */
   readonly near: number;
-  readonly timer?: GpuTimer;
 }
 
 interface Pipelines {
@@ -53,7 +52,7 @@ interface Pipelines {
   readonly analytic: GPURenderPipeline;
 }
 
-export class HybridRasterPass {
+export class HybridRasterPass implements Pass<RasterFrame> {
   private readonly ready = new Map<string, Pipelines>();
   private readonly pending = new Map<string, Promise<Pipelines>>();
   private readonly sceneGroups = new WeakMap<SceneResources, GPUBindGroup>();

@@ -5,14 +5,23 @@
  * that runs several times in one submit (the à-trous iterations) writes each slot once.
  */
 import { ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 /** Must match @workgroup_size of every image pass. */
 const WORKGROUP = 8;
 
-export class ImagePass<T extends UniformValues> {
+export interface ImagePassFrame extends PassFrame {
+  /** Bind groups 1 and 2 (bindGroups()). */
+  readonly groups: Record<number, GPUBindGroup>;
+  readonly width: number;
+  readonly height: number;
+  /** The compute pass's label and timer label; default the pass's own. */
+  readonly label?: string;
+}
+
+export class ImagePass<T extends UniformValues> implements Pass<ImagePassFrame> {
   private constructor(
     private readonly kernel: ComputeKernel,
     private readonly params: readonly UniformParams<T>[],
@@ -37,7 +46,7 @@ export class ImagePass<T extends UniformValues> {
     this.params[slot]!.write(values);
   }
 
-  encode(encoder: GPUCommandEncoder, groups: Record<number, GPUBindGroup>, width: number, height: number, timer?: GpuTimer, label = this.label): void {
+  encode(encoder: GPUCommandEncoder, { groups, width, height, timer, label = this.label }: ImagePassFrame): void {
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     this.kernel.dispatch(pass, groups, Math.ceil(width / WORKGROUP), Math.ceil(height / WORKGROUP));
     pass.end();

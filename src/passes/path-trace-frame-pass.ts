@@ -12,6 +12,7 @@ import type { Camera } from '../scene/types.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
 import { KERNEL_CONSTANTS } from '../gpu/kernel-variants.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 import { resolveSampler } from './variants.ts';
 
@@ -31,7 +32,23 @@ export interface FrameTarget {
   readonly restir: boolean;
 }
 
-export class PathTraceFramePass {
+/** What the frame path tracer is given for one tile (a band, or the whole image). */
+export interface RealTimeTraceFrame extends PassFrame {
+  readonly scene: SceneResources;
+  readonly view: ViewUniform;
+  /** The camera of the previous frame (motion vectors, previous depth). */
+  readonly previousCamera: Camera;
+  readonly target: FrameTarget;
+  readonly dispatch: PathTraceDispatch;
+  /**
+   * Record one half alone: 'gbuffer' the G-buffer of the tile's pixel centres and their emission
+   * (the wavefront traces the samples; with ReSTIR, the whole image's before the reservoirs),
+   * 'paths' the paths over a G-buffer already recorded for the tile. Absent: both, G-buffer first.
+   */
+  readonly only?: 'gbuffer' | 'paths';
+}
+
+export class PathTraceFramePass implements Pass<RealTimeTraceFrame> {
   /** The emission pass's bind-group keys, one per surface-record buffer (the centres pass is keyed by the buffer itself). */
   private readonly emissionKeys = new WeakMap<GPUBuffer, object>();
 
@@ -67,13 +84,13 @@ export class PathTraceFramePass {
   }
 
   /**
-   * The G-buffer then the paths of d.tile. Writes the parameters now (queue.writeBuffer): submit
-   * before encoding again. `gbufferOnly`: the G-buffer pass alone (the wavefront traces the samples).
+   * The G-buffer then the paths of the dispatch's tile (or the half `only` names). Writes the
+   * parameters now (queue.writeBuffer): submit before encoding again.
    */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer, gbufferOnly = false): void {
+  encode(encoder: GPUCommandEncoder, f: RealTimeTraceFrame): void {
     // The G-buffer first: the path kernel then reads the centre's id and filtered emission.
-    this.encodeGbuffer(encoder, scene, view, previousCamera, target, d, timer);
-    if (!gbufferOnly) this.encodePaths(encoder, scene, view, previousCamera, target, d, timer);
+    if (f.only !== 'paths') this.encodeGbuffer(encoder, f.scene, f.view, f.previousCamera, f.target, f.dispatch, f.timer);
+    if (f.only !== 'gbuffer') this.encodePaths(encoder, f.scene, f.view, f.previousCamera, f.target, f.dispatch, f.timer);
   }
 
   /**
@@ -84,7 +101,7 @@ export class PathTraceFramePass {
    * neighbours, which must be this frame's wherever the frame is cut into bands, so that a banded
    * frame equals a whole one.
    */
-  encodeGbuffer(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+  private encodeGbuffer(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
     const t = d.tile;
     const x0 = Math.max(t.x - 1, 0), y0 = Math.max(t.y - 1, 0);
     const ring = { x: x0, y: y0, width: Math.min(t.x + t.width + 1, view.width) - x0, height: Math.min(t.y + t.height + 1, view.height) - y0 };
@@ -101,7 +118,7 @@ export class PathTraceFramePass {
   }
 
   /** The paths of d.tile alone, over a G-buffer already recorded for it. */
-  encodePaths(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+  private encodePaths(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
     this.params.write(pathTraceParams(d));
     this.frame.write(this.frameValues(view, previousCamera, target));
     this.kernels.dispatch(encoder, 'path trace (frame)', scene, view, target.surface, () => this.bindings(target, this.params, this.frame), d.tile, d.spectral ?? false, timer);

@@ -8,6 +8,7 @@ import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import { LIGHT_SAMPLING, resolveSampler, SAMPLERS, type LightSampling, type Sampler } from './variants.ts';
 import type { Torch } from '../scene/types.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 /** shaders/scene/torch.wgsl TorchLight: surface radiance I / (π r²) gives intensity I far away. */
@@ -68,6 +69,14 @@ export interface PathTraceTarget {
   readonly accumulation: GPUBuffer;
   /** Four u32: extension rays (lo, hi), shadow rays (lo, hi). */
   readonly rayCounters: GPUBuffer;
+}
+
+/** What one progressive dispatch is given (one band, or the whole image). */
+export interface PathTracePassFrame extends PassFrame {
+  readonly scene: SceneResources;
+  readonly view: ViewUniform;
+  readonly target: PathTraceTarget;
+  readonly dispatch: PathTraceDispatch;
 }
 
 /**
@@ -191,7 +200,7 @@ function withSampler(constants: Record<string, number>, sampler: Sampler | undef
   return sampler === undefined ? constants : { ...constants, SAMPLER: SAMPLERS.indexOf(sampler) };
 }
 
-export class PathTracePass {
+export class PathTracePass implements Pass<PathTracePassFrame> {
   private constructor(
     /** Its kernels: the generic variants and, once the renderer specialises, the scene's own. */
     readonly kernels: TracingKernels,
@@ -219,7 +228,7 @@ export class PathTracePass {
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding the next dispatch. */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, target: PathTraceTarget, d: PathTraceDispatch, timer?: GpuTimer): void {
+  encode(encoder: GPUCommandEncoder, { scene, view, target, dispatch: d, timer }: PathTracePassFrame): void {
     this.params.write(pathTraceParams(d));
     const targets = () => ({ params: this.params.buffer, accumulation: target.accumulation, ray_counters: target.rayCounters });
     this.kernels.dispatch(encoder, d.spectral ? 'path trace (spectral)' : 'path trace', scene, view, target.accumulation, targets, d.tile, d.spectral ?? false, timer);

@@ -5,12 +5,19 @@
  */
 import { BindGroupFactory, compileShader, createBindGroupLayouts } from '../gpu/kernel.ts';
 import { compileRenderPipeline } from '../gpu/pipeline-compiles.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import { entryPointBindings, reflectModule } from '../gpu/wgsl/reflect.ts';
+import type { Pass, PassFrame } from './pass.ts';
 
 const MODULE = 'passes/present';
 
-export class PresentPass {
+export interface PresentFrame extends PassFrame {
+  /** The tone-mapped (or composed) image to show. */
+  readonly image: GPUTexture;
+  /** The canvas texture drawn into, of the pass's `format`. */
+  readonly target: GPUTexture;
+}
+
+export class PresentPass implements Pass<PresentFrame> {
   private readonly groups = new WeakMap<GPUTexture, GPUBindGroup>();
 
   private constructor(
@@ -37,7 +44,7 @@ export class PresentPass {
     return new PresentPass(new BindGroupFactory(device, MODULE, layouts, slots), sampler, format, pipeline);
   }
 
-  encode(encoder: GPUCommandEncoder, image: GPUTexture, target: GPUTexture, timer?: GpuTimer): void {
+  encode(encoder: GPUCommandEncoder, { image, target, timer }: PresentFrame): void {
     if (target.format !== this.format) throw new Error(`present: the pipeline draws into ${this.format}, not ${target.format} (enablePresentation with the canvas's format)`);
     let group = this.groups.get(image);
     if (!group) {
@@ -54,4 +61,7 @@ export class PresentPass {
     pass.draw(3);
     pass.end();
   }
+
+  /** Nothing of its own to free: the bind groups are dropped with their images. */
+  destroy(): void {}
 }

@@ -12,11 +12,11 @@
  * leaves the history as it was.
  */
 import type { SceneResources } from '../gpu/scene-resources.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import { cameraUniform, type ViewUniform } from '../gpu/view.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { Camera } from '../scene/types.ts';
 import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispatch } from './path-trace-pass.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'restir/restir';
@@ -48,7 +48,16 @@ export interface RestirDispatch {
   readonly useHistory: boolean;
 }
 
-export class RestirPass {
+export interface RestirFrame extends PassFrame {
+  readonly scene: SceneResources;
+  readonly view: ViewUniform;
+  /** The camera of the previous frame (reprojection of its reservoirs). */
+  readonly previousCamera: Camera;
+  readonly target: RestirTarget;
+  readonly dispatch: RestirDispatch;
+}
+
+export class RestirPass implements Pass<RestirFrame> {
   private constructor(
     private readonly initial: TracingKernels,
     private readonly temporal: TracingKernels,
@@ -69,7 +78,7 @@ export class RestirPass {
   }
 
   /** Records the three passes over the whole image, and the final reservoirs' copy into the scratch (restir_lend). Writes the parameters now (queue.writeBuffer): submit before encoding again. */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: RestirTarget, d: RestirDispatch, timer?: GpuTimer): void {
+  encode(encoder: GPUCommandEncoder, { scene, view, previousCamera, target, dispatch: d, timer }: RestirFrame): void {
     this.params.write(pathTraceParams(d.trace));
     this.restir.write({
       previous_camera: cameraUniform(previousCamera, view.width / view.height),

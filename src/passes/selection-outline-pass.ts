@@ -9,6 +9,7 @@ import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import type { Vec3 } from '../math/vec3.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/selection-outline';
@@ -25,7 +26,7 @@ export interface SelectedRange {
   readonly material: number;
 }
 
-export interface SelectionOutlineInput {
+export interface SelectionOutlineFrame extends PassFrame {
   readonly scene: SceneResources;
   readonly view: ViewUniform;
   readonly selection: SelectedRange;
@@ -35,9 +36,10 @@ export interface SelectionOutlineInput {
   readonly traceMask: boolean;
 }
 
-export class SelectionOutlinePass {
+/** Its output is its own, sized to the image: `output`, the image with the outline. */
+export class SelectionOutlinePass implements Pass<SelectionOutlineFrame> {
   private mask?: GPUBuffer;
-  private output?: GPUTexture;
+  private composed?: GPUTexture;
 
   private constructor(
     private readonly device: GPUDevice,
@@ -61,13 +63,13 @@ export class SelectionOutlinePass {
   }
 
   /**
-   * Encodes the mask (when asked) and the outline; returns the composed image to show. Writes its
+   * Encodes the mask (when asked) and the outline into `output`, the image to show. Writes its
    * parameters with queue.writeBuffer: submit before encoding again.
    */
-  encode(encoder: GPUCommandEncoder, input: SelectionOutlineInput): GPUTexture {
+  encode(encoder: GPUCommandEncoder, input: SelectionOutlineFrame): void {
     const { width, height } = input.image;
     const resized = this.ensureTargets(width, height);
-    const mask = this.mask!, output = this.output!;
+    const mask = this.mask!, output = this.composed!;
     const groups = [Math.ceil(width / WORKGROUP), Math.ceil(height / WORKGROUP)] as const;
     this.params.write({ first: input.selection.first, end: input.selection.end, material: input.selection.material, color: SELECTION_COLOR });
     const view = { view: input.view.buffer };
@@ -81,15 +83,20 @@ export class SelectionOutlinePass {
     const pass = encoder.beginComputePass({ label: 'selection outline' });
     k.dispatch(pass, { 1: k.bindGroup(1, view), 2: k.bindGroup(2, { params: this.params.buffer, mask, image: input.image.createView(), output: output.createView() }) }, ...groups);
     pass.end();
-    return output;
+  }
+
+  /** The image with the outline, as the last encode recorded it (its size follows the image's). */
+  get output(): GPUTexture {
+    if (!this.composed) throw new Error('SelectionOutlinePass: no output before encode');
+    return this.composed;
   }
 
   /** (Re)creates the mask and the output for an image size; true when they were made anew. */
   private ensureTargets(width: number, height: number): boolean {
-    if (this.output && this.output.width === width && this.output.height === height) return false;
+    if (this.composed && this.composed.width === width && this.composed.height === height) return false;
     this.destroyTargets();
     this.mask = this.device.createBuffer({ label: 'selection mask', size: width * height * MASK_BYTES_PER_PIXEL, usage: GPUBufferUsage.STORAGE });
-    this.output = this.device.createTexture({
+    this.composed = this.device.createTexture({
       label: 'image with the selection',
       size: [width, height],
       format: 'rgba8unorm',
@@ -101,9 +108,9 @@ export class SelectionOutlinePass {
   /** Frees the mask and the output (while nothing is selected); the pipelines stay. */
   destroyTargets(): void {
     this.mask?.destroy();
-    this.output?.destroy();
+    this.composed?.destroy();
     this.mask = undefined;
-    this.output = undefined;
+    this.composed = undefined;
   }
 
   destroy(): void {

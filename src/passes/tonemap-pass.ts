@@ -1,8 +1,8 @@
 /** Tone mapping (shaders/passes/tonemap.wgsl): accumulation → 8-bit sRGB image texture. */
 import { ComputeKernel } from '../gpu/kernel.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import { TONE_MAPPERS, type ToneMapper } from './variants.ts';
 import type { ViewUniform } from '../gpu/view.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/tonemap';
@@ -20,7 +20,16 @@ export interface TonemapInput {
   readonly sampleCount: number;
 }
 
-export class TonemapPass {
+export interface TonemapFrame extends PassFrame {
+  readonly view: ViewUniform;
+  /** The radiance (vec4f per pixel, `input.sampleCount` samples summed). */
+  readonly accumulation: GPUBuffer;
+  /** The 8-bit sRGB image (written). */
+  readonly output: GPUTexture;
+  readonly input: TonemapInput;
+}
+
+export class TonemapPass implements Pass<TonemapFrame> {
   private readonly groups = new WeakMap<GPUTexture, { view: ViewUniform; accumulation: GPUBuffer; exposure: GPUBuffer; group2: GPUBindGroup; group1: GPUBindGroup }>();
   /** Bound where no adapted exposure is: the shader ignores it then. */
   private readonly noExposure: GPUBuffer;
@@ -39,7 +48,7 @@ export class TonemapPass {
   }
 
   /** Writes the parameters now (queue.writeBuffer): submit before encoding again. */
-  encode(encoder: GPUCommandEncoder, view: ViewUniform, accumulation: GPUBuffer, output: GPUTexture, input: TonemapInput, timer?: GpuTimer): void {
+  encode(encoder: GPUCommandEncoder, { view, accumulation, output, input, timer }: TonemapFrame): void {
     this.params.write({
       exposure_scale: 2 ** input.exposureStops,
       tone_mapper: TONE_MAPPERS.indexOf(input.toneMapper),

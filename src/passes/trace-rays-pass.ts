@@ -5,10 +5,10 @@
 import { SceneKernels, TRAVERSAL_FEATURES, type ComputeKernel } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import { reflectModule, structLayout } from '../gpu/wgsl/reflect.ts';
 import { StructArray } from '../gpu/pack/struct-array.ts';
 import type { Vec3 } from '../math/vec3.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/trace-rays';
@@ -72,7 +72,14 @@ export interface TraceRaysBinding {
   readonly count: number;
 }
 
-export class TraceRaysPass {
+export interface TraceRaysFrame extends PassFrame {
+  /** The buffers to trace (bind()). */
+  readonly binding: TraceRaysBinding;
+  /** The compute pass's label and timer label. */
+  readonly label?: string;
+}
+
+export class TraceRaysPass implements Pass<TraceRaysFrame> {
   private constructor(
     private readonly device: GPUDevice,
     private readonly kernels: SceneKernels,
@@ -93,7 +100,7 @@ export class TraceRaysPass {
     return { kernel, 0: kernel.bindGroup(0, scene.bindings), 2: kernel.bindGroup(2, { params: this.params.buffer, rays, hits }), count };
   }
 
-  encode(encoder: GPUCommandEncoder, binding: TraceRaysBinding, timer?: GpuTimer, label = 'trace rays'): void {
+  encode(encoder: GPUCommandEncoder, { binding, timer, label = 'trace rays' }: TraceRaysFrame): void {
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
     const [x, y] = rayDispatchSize(binding.count, this.device.limits.maxComputeWorkgroupsPerDimension);
     binding.kernel.dispatch(pass, { 0: binding[0], 2: binding[2] }, x, y);

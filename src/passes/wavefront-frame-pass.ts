@@ -14,12 +14,12 @@ import { ComputeKernel, PLAIN_SCENE, SceneKernels, TRACING_FEATURES, type NamedR
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import { compileSpecialised, type SceneSpecialisation } from '../gpu/specialisation.ts';
-import type { GpuTimer } from '../gpu/timestamps.ts';
 import { cameraUniform, type ViewUniform } from '../gpu/view.ts';
 import { reflectModule } from '../gpu/wgsl/reflect.ts';
 import type { Camera } from '../scene/types.ts';
 import type { FrameTarget } from './path-trace-frame-pass.ts';
 import { cached, PATH_TRACE_MODULE, pathTraceParams, type PathTraceDispatch } from './path-trace-pass.ts';
+import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'wavefront/frame';
@@ -49,7 +49,18 @@ interface StateBuffers {
   readonly args: GPUBuffer;
 }
 
-export class WavefrontFramePass {
+/** What the wavefront is given for a frame: the whole image (its path slots are the pixels). */
+export interface WavefrontFrame extends PassFrame {
+  readonly scene: SceneResources;
+  readonly view: ViewUniform;
+  readonly previousCamera: Camera;
+  readonly target: FrameTarget;
+  readonly dispatch: PathTraceDispatch;
+  /** With a timer, time each stage as a pass of its own (encode's comment). */
+  readonly breakdown?: boolean;
+}
+
+export class WavefrontFramePass implements Pass<WavefrontFrame> {
   private spectral?: Record<SceneEntry, SceneKernels>;
   private state?: StateBuffers;
   /** One uniform per sample index of a frame (WavefrontSample), written once. */
@@ -106,7 +117,7 @@ export class WavefrontFramePass {
    * 'wavefront shadows 0', …, 'wavefront finish'; a sample after the first adds ' s<n>'), whose sum
    * is a little more than the single pass (a pass boundary is a full barrier).
    */
-  encode(encoder: GPUCommandEncoder, scene: SceneResources, view: ViewUniform, previousCamera: Camera, target: FrameTarget, d: PathTraceDispatch, timer?: GpuTimer, breakdown = false): void {
+  encode(encoder: GPUCommandEncoder, { scene, view, previousCamera, target, dispatch: d, timer, breakdown = false }: WavefrontFrame): void {
     if (d.tile.x !== 0 || d.tile.y !== 0 || d.tile.width !== view.width || d.tile.height !== view.height) {
       throw new Error('WavefrontFramePass traces the whole image: its path slots are the pixels');
     }

@@ -91,7 +91,7 @@ export class AutoExposure {
     else {
       const pass = this.pass!;
       const keep = this.adapted ? adaptationKeep(seconds, choice.adaptationSeconds) : 0;
-      pass.encode(encoder, image.view, image.radiance, image.width, image.height, { sampleCount: image.sampleCount, keep, compensationStops: choice.compensationStops }, timer);
+      pass.encode(encoder, { view: image.view, radiance: image.radiance, width: image.width, height: image.height, input: { sampleCount: image.sampleCount, keep, compensationStops: choice.compensationStops }, timer });
       this.adapted = true;
       exposure = { exposureStops: 0, autoExposure: pass.state };
     }

@@ -129,10 +129,10 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
     renderer.resetAccumulation();
 
     const encoder = device.createCommandEncoder({ label: 'benchmark rays' });
-    generate.encodePrimary(encoder, view, width, height, primaryRays, rayOrder);
+    generate.encode(encoder, { view, width, height, rays: primaryRays, order: rayOrder });
     device.queue.submit([encoder.finish()]);
     const primaryGroups = await trace.bind(resources, primaryRays, primaryHits, count);
-    const primaryMs = await timePasses(device, timer, warmups, repeats, (e, t) => trace.encode(e, primaryGroups, t, 'primary rays'));
+    const primaryMs = await timePasses(device, timer, warmups, repeats, (e, t) => trace.encode(e, { binding: primaryGroups, timer: t, label: 'primary rays' }));
 
     const [rayBytes, hitBytes] = await Promise.all([readBuffer(device, primaryRays), readBuffer(device, primaryHits)]);
     const made = diffuseRaysFromHits(new Float32Array(rayBytes), hitBytes, count, options.triangles, options.diagonal, words.ray, words.hit);
@@ -143,7 +143,7 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
       const diffuseHits = buffer('diffuse hits', diffuse.count * words.hit.stride * 4);
       owned.push(diffuseRays, diffuseHits);
       const diffuseGroups = await trace.bind(resources, diffuseRays, diffuseHits, diffuse.count);
-      diffuseMs = await timePasses(device, timer, warmups, repeats, (e, t) => trace.encode(e, diffuseGroups, t, 'diffuse rays'));
+      diffuseMs = await timePasses(device, timer, warmups, repeats, (e, t) => trace.encode(e, { binding: diffuseGroups, timer: t, label: 'diffuse rays' }));
       diffuseHitFraction = hitFraction(await readBuffer(device, diffuseHits), diffuse.count, words.hit);
     }
 

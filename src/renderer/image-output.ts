@@ -62,7 +62,7 @@ export class ImageOutput {
     // What is presented is seen in real time: the exposure adapts over the wall-clock time since the last present.
     this.encodeTonemap(encoder, shown, this.exposure.sincePresent(), timer);
     const image = this.selection.encode(encoder, shown.scene.resources, shown.view, this.encodeDebugView(encoder, shown));
-    this.presentPass.encode(encoder, image, target, timer);
+    this.presentPass.encode(encoder, { image, target, timer });
     timer?.resolve(encoder);
     this.device.queue.submit([encoder.finish()]);
   }
@@ -90,7 +90,7 @@ export class ImageOutput {
     const { targets, radiance, sampleCount, raw } = shown;
     const image = { view: shown.view, radiance, width: targets.width, height: targets.height, sampleCount, raw };
     const exposure = this.exposure.encode(encoder, shown.exposure, image, seconds, shown.sceneStops, timer);
-    this.tonemap.encode(encoder, shown.view, radiance, targets.output, { ...exposure, toneMapper: raw ? 'linear' : shown.settings.toneMapper, sampleCount }, timer);
+    this.tonemap.encode(encoder, { view: shown.view, accumulation: radiance, output: targets.output, input: { ...exposure, toneMapper: raw ? 'linear' : shown.settings.toneMapper, sampleCount }, timer });
   }
 
   /** Encodes the debug view when one is set and returns the image to show: the composed one, or the tone-mapped one. */

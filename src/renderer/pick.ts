@@ -39,7 +39,7 @@ export async function pickPixel(frame: FrameContext, pass: TraceRaysPass, x: num
   const hits = device.createBuffer({ label: 'pick hit', size: rayBufferStrides().hit, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
   try {
     const encoder = device.createCommandEncoder({ label: 'pick' });
-    pass.encode(encoder, await pass.bind(resources, rays, hits, 1), undefined, 'pick');
+    pass.encode(encoder, { binding: await pass.bind(resources, rays, hits, 1), label: 'pick' });
     device.queue.submit([encoder.finish()]);
     const hit = unpackHits(await readBuffer(device, hits), 1)[0]!;
     if (hit.triangle === NO_PRIMITIVE || hit.triangle >= prepared.triangles.count) return null;

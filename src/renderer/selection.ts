@@ -60,9 +60,9 @@ export class Selection {
   /** Draws the outline over `image` where something is selected, and returns the image to show. */
   encode(encoder: GPUCommandEncoder, scene: SceneResources | undefined, view: ViewUniform, image: GPUTexture): GPUTexture {
     if (!this.selected || !this.pass || !scene) return image;
-    const shown = this.pass.encode(encoder, { scene, view, selection: this.selected, image, traceMask: this.stale });
+    this.pass.encode(encoder, { scene, view, selection: this.selected, image, traceMask: this.stale });
     this.stale = false;
-    return shown;
+    return this.pass.output;
   }
 
   destroy(): void {

@@ -55,7 +55,7 @@ describe('automatic exposure on the GPU', () => {
     };
     const run = async (radiance: GPUBuffer, sampleCount: number, keep: number, compensationStops = 0) => {
       const encoder = device.createCommandEncoder();
-      pass.encode(encoder, view, radiance, W, H, { sampleCount, keep, compensationStops });
+      pass.encode(encoder, { view, radiance, width: W, height: H, input: { sampleCount, keep, compensationStops } });
       device.queue.submit([encoder.finish()]);
       return pass.read();
     };

@@ -101,7 +101,7 @@ describe('alpha masks', () => {
     const hits = outputBuffer(device, 'hits', hitLayout.stride * rays.length);
     const pass = await TraceRaysPass.create(device);
     const encoder = device.createCommandEncoder();
-    pass.encode(encoder, await pass.bind(scene, rayBuffer, hits, rays.length));
+    pass.encode(encoder, { binding: await pass.bind(scene, rayBuffer, hits, rays.length) });
     device.queue.submit([encoder.finish()]);
     const out = new Float32Array(await readBuffer(device, hits));
     rays.forEach((r, i) => {

@@ -69,7 +69,7 @@ async function trace(device: GPUDevice, prepared: PreparedScene, rays: TestRay[]
     pass.end();
   } else {
     generic = await TraceRaysPass.create(device);
-    generic.encode(encoder, await generic.bind(scene, rayBuffer, hitBuffer, rays.length));
+    generic.encode(encoder, { binding: await generic.bind(scene, rayBuffer, hitBuffer, rays.length) });
   }
   device.queue.submit([encoder.finish()]);
   const hits = unpackHits(await readBuffer(device, hitBuffer), rays.length);

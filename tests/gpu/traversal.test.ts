@@ -130,7 +130,7 @@ async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, rays: Test
   const hitBuffer = device.createBuffer({ size: rayBufferStrides().hit * rays.length, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
   const pass = await TraceRaysPass.create(device);
   const encoder = device.createCommandEncoder();
-  pass.encode(encoder, await pass.bind(scene, rayBuffer, hitBuffer, rays.length));
+  pass.encode(encoder, { binding: await pass.bind(scene, rayBuffer, hitBuffer, rays.length) });
   device.queue.submit([encoder.finish()]);
   const hits = unpackHits(await readBuffer(device, hitBuffer), rays.length);
   const out = { t: Float32Array.from(hits, (h) => h.t), tri: Uint32Array.from(hits, (h) => h.triangle), u: Float32Array.from(hits, (h) => h.u), v: Float32Array.from(hits, (h) => h.v) };

@@ -79,14 +79,14 @@ export class DebugViews {
     const s = frame.settings;
     const size = this.targets(frame.image.width, frame.image.height);
     const scene = this.scene(frame.prepared, frame.resources);
-    this.trace.encode(encoder, frame.resources, frame.view, { ...size, nodeDepths: scene.depthBuffer }, s.debugView);
+    this.trace.encode(encoder, { scene: frame.resources, view: frame.view, target: { ...size, nodeDepths: scene.depthBuffer }, debugView: s.debugView });
     if (s.debugView === 'wireframe') {
       const nodes = s.wireframeLevel === 'top' && frame.prepared.levels ? this.topLevelNodes(frame.prepared, s.wireframeDepth) : this.wireframeNodes(scene, s.wireframeDepth);
-      this.wireframe.encode(encoder, frame.resources, frame.view, nodes.buffer, nodes.count, scene.near, size.wireframe);
+      this.wireframe.encode(encoder, { scene: frame.resources, view: frame.view, nodes: nodes.buffer, count: nodes.count, near: scene.near, target: size.wireframe });
     }
     // 0 asks the shader for the image's own maximum (heatMax 'auto').
     const fixedMax = s.debugView.startsWith('heat-') && s.heatMax === 'auto' ? 0 : (scaleMax(s, this.facts(scene, 0)) ?? 0);
-    this.compose.encode(encoder, frame.view, { view: s.debugView, layout: s.debugLayout, scaleMax: fixedMax, values: size.values, range: size.range, image: frame.image, wireframe: size.wireframe }, size.composed);
+    this.compose.encode(encoder, { view: frame.view, input: { view: s.debugView, layout: s.debugLayout, scaleMax: fixedMax, values: size.values, range: size.range, image: frame.image, wireframe: size.wireframe }, output: size.composed });
     return size.composed;
   }
 

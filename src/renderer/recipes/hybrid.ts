@@ -176,7 +176,7 @@ export class HybridRecipe implements FrameRecipe {
     const jitter = haltonJitter(this.frameIndex);
     const previousCamera = this.previousCamera ?? r.camera;
     const aspect = r.view.width / r.view.height;
-    this.raster.encode(encoder, { scene: r.scene, view: r.view, visibility: b.visibilityView, depth: b.depthView, draws: rasterDraws(r.prepared), jitter, near: Math.max(2 * r.sceneSize * NEAR_FRACTION, 1e-6), ...(r.timer ? { timer: r.timer } : {}) });
+    this.raster.encode(encoder, { scene: r.scene, view: r.view, visibility: b.visibilityView, depth: b.depthView, draws: rasterDraws(r.prepared), jitter, near: Math.max(2 * r.sceneSize * NEAR_FRACTION, 1e-6), timer: r.timer });
 
     const tile = { x: 0, y: 0, width: b.width, height: b.height };
     this.params.write(pathTraceParams(pathDispatch(r, 'real-time', tile, this.frameIndex, 1)));
@@ -212,8 +212,8 @@ export class HybridRecipe implements FrameRecipe {
     this.taa.write(composeValues);
     const previousHistory = b.histories[1 - this.parity]!, history = b.histories[this.parity]!;
     const imageResources = { guide: b.guide, lit: b.lit, diffuse_weight: b.diffuseWeight, gi: b.gi, gi_guide: b.giGuide, composed: b.composed, motion: b.motion, previous_history: previousHistory, history, output: b.output };
-    this.compose.encode(encoder, this.compose.bindGroups(r.view, imageResources), b.width, b.height, r.timer);
-    this.taa.encode(encoder, this.taa.bindGroups(r.view, imageResources), b.width, b.height, r.timer, 'TAA');
+    this.compose.encode(encoder, { groups: this.compose.bindGroups(r.view, imageResources), width: b.width, height: b.height, timer: r.timer });
+    this.taa.encode(encoder, { groups: this.taa.bindGroups(r.view, imageResources), width: b.width, height: b.height, timer: r.timer, label: 'TAA' });
 
     this.frameIndex = (this.frameIndex + 1) >>> 0;
     this.previousCamera = r.camera;
@@ -232,7 +232,7 @@ export class HybridRecipe implements FrameRecipe {
     for (let i = 0; i < GI_FILTER_ITERATIONS; i++) {
       this.atrous.write(atrousParams(i), i);
       const groups = this.atrous.bindGroups(b.giView, { guide: b.giGuide, filter_source: chain[i % 2]!, filter_result: chain[(i + 1) % 2]! }, i);
-      this.atrous.encode(encoder, groups, b.giWidth, b.giHeight, timer, `a-trous GI ${i + 1}`);
+      this.atrous.encode(encoder, { groups, width: b.giWidth, height: b.giHeight, timer, label: `a-trous GI ${i + 1}` });
     }
     // An odd number of iterations ends in the scratch buffer: copy it back where compose reads.
     if (GI_FILTER_ITERATIONS % 2 === 1) encoder.copyBufferToBuffer(b.giScratch, 0, b.gi, 0, b.gi.size);

@@ -31,7 +31,7 @@ export class ProgressiveRecipe {
 
   /** Records `samples` paths per pixel over `tile`, the estimate's samples from `sampleIndex` on; with a timer, timed. */
   encode(encoder: GPUCommandEncoder, frame: FrameContext, tile: Tile, sampleIndex: number, samples: number, timer: GpuTimer | undefined = frame.timer): void {
-    this.pass.encode(encoder, frame.scene, frame.view, frame.targets, pathDispatch(frame, 'progressive', tile, sampleIndex, samples), timer);
+    this.pass.encode(encoder, { scene: frame.scene, view: frame.view, target: frame.targets, dispatch: pathDispatch(frame, 'progressive', tile, sampleIndex, samples), timer });
   }
 
   /** `samples` paths per pixel in row bands, each band timed while the timer has room for the passes after them. */

@@ -346,25 +346,25 @@ export class RealTimeRecipe implements FrameRecipe {
       clampK: converging ? 0 : s.clampK,
       useHistory: s.temporal && this.historyValid,
     }));
-    this.passes.temporal.encode(encoder, groups.temporal, b.width, b.height, r.timer);
+    this.passes.temporal.encode(encoder, { groups: groups.temporal, width: b.width, height: b.height, timer: r.timer });
     // Debug views show the unfiltered records: the filter is skipped for them.
     if (s.denoise && s.denoiseView === 'output') {
       const atrous = this.passes.atrous;
       atrous.write(denoiseSlopesParams(), ATROUS_SLOPES_SLOT);
-      atrous.encode(encoder, groups.slopes, b.width, b.height, r.timer, ATROUS_SLOPES_LABEL);
+      atrous.encode(encoder, { groups: groups.slopes, width: b.width, height: b.height, timer: r.timer, label: ATROUS_SLOPES_LABEL });
       atrousSchedule(feedback).forEach((it, i) => {
         const iteration = groups.atrous[feedback ? 1 : 0]![i]!;
         if (iteration.weights) {
           atrous.write(denoiseWeightsParams(i, it), atrousWeightsSlot(i));
-          atrous.encode(encoder, iteration.weights, b.width, b.height, r.timer, atrousWeightsLabel(i));
+          atrous.encode(encoder, { groups: iteration.weights, width: b.width, height: b.height, timer: r.timer, label: atrousWeightsLabel(i) });
         }
         atrous.write(denoiseAtrousParams(i, it), i);
-        atrous.encode(encoder, iteration.filter, b.width, b.height, r.timer, atrousLabel(i));
+        atrous.encode(encoder, { groups: iteration.filter, width: b.width, height: b.height, timer: r.timer, label: atrousLabel(i) });
       });
     } else {
       const fullHistory = unlimited ? 256 : (s.historyCap as number);
       this.passes.output.write(denoiseOutputParams(s.denoiseView, fullHistory, r.sceneSize));
-      this.passes.output.encode(encoder, groups.output, b.width, b.height, r.timer);
+      this.passes.output.encode(encoder, { groups: groups.output, width: b.width, height: b.height, timer: r.timer });
     }
 
     this.sampleIndex = (this.sampleIndex + f.samples) >>> 0;
@@ -443,17 +443,18 @@ export class RealTimeRecipe implements FrameRecipe {
       // The whole image's G-buffer and reservoirs before the first band's paths (encodeBand).
       if (o.prelude) {
         const whole = { ...dispatch, tile: image };
-        this.frame.encodeGbuffer(encoder, r.scene, r.view, previousCamera, target, whole, r.timer);
-        this.restir!.encode(encoder, r.scene, r.view, previousCamera, restir, { trace: whole, candidates: s.restirCandidates, useHistory: this.restirHistoryValid }, r.timer);
+        this.frame.encode(encoder, { scene: r.scene, view: r.view, previousCamera, target, dispatch: whole, timer: r.timer, only: 'gbuffer' });
+        this.restir!.encode(encoder, { scene: r.scene, view: r.view, previousCamera, target: restir, dispatch: { trace: whole, candidates: s.restirCandidates, useHistory: this.restirHistoryValid }, timer: r.timer });
       }
-      this.frame.encodePaths(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer);
+      this.frame.encode(encoder, { scene: r.scene, view: r.view, previousCamera, target, dispatch, timer: r.timer, only: 'paths' });
       this.lastIntegrator = 'megakernel';
       return this.lastIntegrator;
     }
     const wavefront = this.tracesWavefront(r.scene, s) ? this.wavefront : undefined;
     // The pixel-centre G-buffer is the frame kernel's own pass for both integrators.
-    this.frame.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, wavefront !== undefined);
-    if (wavefront) wavefront.encode(encoder, r.scene, r.view, previousCamera, target, dispatch, r.timer, o.breakdown ?? false);
+    const traced = { scene: r.scene, view: r.view, previousCamera, target, dispatch, timer: r.timer };
+    this.frame.encode(encoder, wavefront ? { ...traced, only: 'gbuffer' } : traced);
+    if (wavefront) wavefront.encode(encoder, { ...traced, breakdown: o.breakdown ?? false });
     this.lastIntegrator = wavefront ? 'wavefront' : 'megakernel';
     return this.lastIntegrator;
   }
