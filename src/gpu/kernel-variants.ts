@@ -20,8 +20,31 @@
  *     (integrator/dispatch), INLINED_LIGHT_COUNT (scene/lights)
  *   decided by the BVH builder's options (gpu/build/gpu-bvh-builder.ts): SEARCH_RADIUS,
  *     MAX_LEAF_SIZE, TRAVERSAL_COST, INTERSECTION_COST (build/ploc)
+ *   workgroup sizes (WORKGROUP below; lib/workgroup declares them without a value): PIXEL_TILE_X,
+ *     PIXEL_TILE_Y (the per-pixel passes), RAY_GROUP (trace-rays, the wavefront's queue kernels),
+ *     given to every pipeline whose module declares them (gpu/kernel.ts); the passes size their
+ *     dispatch grids from the same numbers. The exposure reduction and the BVH builder keep sizes of
+ *     their own in WGSL: their workgroup arrays are sized by them.
  */
 import { STATIC_ACCELS, type SceneFeatures } from './pack/scene-pack.ts';
+
+/** The workgroup sizes of lib/workgroup: the only place they are set. */
+export const WORKGROUP = {
+  /** A per-pixel pass's tile: PIXEL_TILE_X × PIXEL_TILE_Y invocations, one a pixel. */
+  pixelX: 8,
+  pixelY: 8,
+  /** A 1D pass over rays or queue entries; the benchmark's primary rays fill it with one pixel tile. */
+  rays: 64,
+} as const;
+
+/** The overrides WORKGROUP sets, by their WGSL names. */
+export const WORKGROUP_CONSTANTS: Readonly<Record<string, number>> = { PIXEL_TILE_X: WORKGROUP.pixelX, PIXEL_TILE_Y: WORKGROUP.pixelY, RAY_GROUP: WORKGROUP.rays };
+
+/** Workgroups of a per-pixel pass over `width` × `height` pixels. */
+export const pixelGroups = (width: number, height: number): [number, number] => [Math.ceil(width / WORKGROUP.pixelX), Math.ceil(height / WORKGROUP.pixelY)];
+
+/** The workgroup overrides for a shader linked from `modules`: all of them if it imports lib/workgroup, else none (WebGPU refuses a constant the module does not declare). */
+export const workgroupConstants = (modules: readonly string[]): Readonly<Record<string, number>> => (modules.includes('lib/workgroup') ? WORKGROUP_CONSTANTS : {});
 
 /** MATERIALS_* of shaders/scene/bsdf.wgsl: SCENE_MATERIALS's bits. */
 export const MATERIALS_GENERAL = 1;

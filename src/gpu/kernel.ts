@@ -5,7 +5,7 @@
  */
 import { LanternError } from '../errors.ts';
 import type { SceneFeatures } from './pack/scene-pack.ts';
-import { featureConstants, featureKey } from './kernel-variants.ts';
+import { featureConstants, featureKey, workgroupConstants } from './kernel-variants.ts';
 import { compileComputePipeline } from './pipeline-compiles.ts';
 import { reportStage, timedStage } from './stage-log.ts';
 import { sourceLocation, type LinkedShader } from './wgsl/linker.ts';
@@ -96,7 +96,7 @@ export interface KernelOptions {
   /** A module of src/shaders ("passes/path-trace") or an already reflected shader (tests). */
   readonly module: string | ReflectedShader;
   readonly entryPoint: string;
-  /** Values of WGSL `override` constants. */
+  /** Values of WGSL `override` constants (the workgroup sizes of lib/workgroup are added: gpu/kernel-variants.ts WORKGROUP). */
   readonly constants?: Record<string, number>;
   /** Keep the shader module for later kernels of the same code (default); specialised kernels, made once per scene, do not. */
   readonly cacheModule?: boolean;
@@ -130,7 +130,7 @@ export class ComputeKernel extends BindGroupFactory {
     const layout = device.createPipelineLayout({ label, bindGroupLayouts: layouts });
     let pipeline: GPUComputePipeline;
     try {
-      pipeline = await compileComputePipeline(device, { label, layout, compute: { module, entryPoint: options.entryPoint, constants: options.constants ?? {} } });
+      pipeline = await compileComputePipeline(device, { label, layout, compute: { module, entryPoint: options.entryPoint, constants: { ...workgroupConstants(shader.linked.modules), ...options.constants } } });
     } catch (e) {
       throw new LanternError(`could not create the compute pipeline ${label}: ${(e as Error).message}`, undefined, { cause: e });
     }

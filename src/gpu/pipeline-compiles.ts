@@ -15,6 +15,7 @@
  * recipe waits for the batch under way.
  */
 import { reportStage } from './stage-log.ts';
+import { WORKGROUP_CONSTANTS } from './kernel-variants.ts';
 
 /** One pipeline of a batch. Times are performance.now() milliseconds. */
 export interface PipelineCompile {
@@ -124,7 +125,12 @@ async function compile<T>(device: GPUDevice, label: string, detail: string, crea
   }
 }
 
-const constantsDetail = (constants: Record<string, GPUPipelineConstantValue> | undefined) => Object.entries(constants ?? {}).map(([k, v]) => `${k}=${v}`).join(' ');
+/** A pipeline's variant in words: its override constants, less the workgroup sizes every such kernel has. */
+const constantsDetail = (constants: Record<string, GPUPipelineConstantValue> | undefined) =>
+  Object.entries(constants ?? {})
+    .filter(([k]) => !(k in WORKGROUP_CONSTANTS))
+    .map(([k, v]) => `${k}=${v}`)
+    .join(' ');
 
 /** createComputePipelineAsync through the device's queue (see the module's comment). */
 export function compileComputePipeline(device: GPUDevice, descriptor: GPUComputePipelineDescriptor & { readonly label: string }): Promise<GPUComputePipeline> {

@@ -162,7 +162,7 @@ export interface SpecialisedKernel {
 
 /**
  * Compiles `base` specialised to `s`, asynchronously. `extraConstants` are the entry point's own
- * (CAPTURE_PRIMARY). Only constants the linked module declares are passed (WebGPU refuses others).
+ * (RESTIR, SAMPLER, SPECTRAL: gpu/kernel-variants.ts). Only constants the linked module declares are passed (WebGPU refuses others).
  */
 export async function compileSpecialised(device: GPUDevice, base: { readonly module: string; readonly entryPoint: string }, s: SceneSpecialisation, extraConstants: Record<string, number> = {}): Promise<SpecialisedKernel> {
   const t0 = performance.now();

@@ -3,12 +3,11 @@
  * pixel centres, stored by 8 × 8-pixel tiles or by rows. The diffuse rays are made on the CPU from
  * the traced hits (renderer/benchmark-rays.ts).
  */
+import { pixelGroups } from '../gpu/kernel-variants.ts';
 import { ComputeKernel } from '../gpu/kernel.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
-
-const PRIMARY_WORKGROUP = 8;
 
 /** The WGSL's RAY_ORDER_* values. */
 const RAY_ORDER_CODE = { tiles: 0, scanline: 1 } as const;
@@ -42,8 +41,7 @@ export class BenchmarkRaysPass implements Pass<BenchmarkRaysFrame> {
     this.primary.dispatch(
       pass,
       { 1: this.primary.bindGroup(1, { view: view.buffer }), 2: this.primary.bindGroup(2, { rays, params: this.params.buffer }) },
-      Math.ceil(width / PRIMARY_WORKGROUP),
-      Math.ceil(height / PRIMARY_WORKGROUP),
+      ...pixelGroups(width, height),
     );
     pass.end();
   }

@@ -2,6 +2,7 @@
  * The composing half of the debug views (shaders/passes/debug-compose.wgsl): colours the raw values
  * and wireframe lines and composes them with the tone-mapped image into the image that is shown.
  */
+import { pixelGroups } from '../gpu/kernel-variants.ts';
 import { ComputeKernel } from '../gpu/kernel.ts';
 import { COLOR_SCALE_STOPS, stopRgb } from '../math/color-scale.ts';
 import { DEBUG_LAYOUTS, DEBUG_VIEWS, type DebugLayout, type DebugView } from './variants.ts';
@@ -10,7 +11,6 @@ import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-compose';
-const WORKGROUP = 8;
 
 export interface DebugComposeInput {
   readonly view: DebugView;
@@ -64,8 +64,7 @@ export class DebugComposePass implements Pass<DebugComposeFrame> {
           output: output.createView(),
         }),
       },
-      Math.ceil(output.width / WORKGROUP),
-      Math.ceil(output.height / WORKGROUP),
+      ...pixelGroups(output.width, output.height),
     );
     pass.end();
   }

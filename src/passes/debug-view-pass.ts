@@ -2,7 +2,7 @@
  * The tracing half of the debug views (shaders/passes/debug-view.wgsl): one pixel-centre primary ray
  * per pixel through the counting variant of the BVH traversal, raw values out.
  */
-import { KERNEL_CONSTANTS } from '../gpu/kernel-variants.ts';
+import { KERNEL_CONSTANTS, pixelGroups } from '../gpu/kernel-variants.ts';
 import { SceneKernels, TRAVERSAL_FEATURES } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -12,9 +12,6 @@ import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/debug-view';
-/** Must match @workgroup_size of debug_view. */
-const WORKGROUP = 8;
-
 
 export interface DebugViewTarget {
   readonly width: number;
@@ -64,8 +61,7 @@ export class DebugViewPass implements Pass<DebugViewFrame> {
         1: kernel.bindGroup(1, { view: view.buffer }),
         2: kernel.bindGroup(2, { params: this.params.buffer, node_depths: target.nodeDepths, debug_values: target.values, debug_range: target.range }),
       },
-      Math.ceil(target.width / WORKGROUP),
-      Math.ceil(target.height / WORKGROUP),
+      ...pixelGroups(target.width, target.height),
     );
     pass.end();
   }

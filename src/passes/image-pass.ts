@@ -1,16 +1,14 @@
 /**
- * A per-pixel pass over the whole image with one workgroup of 8×8 per tile: the view (group 1) for
+ * A per-pixel pass over the whole image with one workgroup per tile of WORKGROUP.pixelX × pixelY (gpu/kernel-variants.ts): the view (group 1) for
  * the image size, and its own parameters, inputs and outputs (group 2). The denoiser's temporal,
  * à-trous and output passes are image passes. Parameters live in `slots` uniform buffers, so a pass
  * that runs several times in one submit (the à-trous iterations) writes each slot once.
  */
+import { pixelGroups } from '../gpu/kernel-variants.ts';
 import { ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
 import type { ViewUniform } from '../gpu/view.ts';
 import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
-
-/** Must match @workgroup_size of every image pass. */
-const WORKGROUP = 8;
 
 export interface ImagePassFrame extends PassFrame {
   /** Bind groups 1 and 2 (bindGroups()). */
@@ -48,7 +46,7 @@ export class ImagePass<T extends UniformValues> implements Pass<ImagePassFrame> 
 
   encode(encoder: GPUCommandEncoder, { groups, width, height, timer, label = this.label }: ImagePassFrame): void {
     const pass = encoder.beginComputePass({ label, ...(timer ? { timestampWrites: timer.timestampWrites(label) } : {}) });
-    this.kernel.dispatch(pass, groups, Math.ceil(width / WORKGROUP), Math.ceil(height / WORKGROUP));
+    this.kernel.dispatch(pass, groups, ...pixelGroups(width, height));
     pass.end();
   }
 

@@ -1,5 +1,5 @@
 /** The path tracer dispatch (shaders/passes/path-trace.wgsl): adds samples to the accumulation buffer. */
-import { spectralConstants } from '../gpu/kernel-variants.ts';
+import { pixelGroups, spectralConstants } from '../gpu/kernel-variants.ts';
 import { reflectKernel, SceneKernels, TRACING_FEATURES, type ComputeKernel, type NamedResource } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -37,8 +37,6 @@ export const PATH_TRACE_MODULE = 'passes/path-trace';
 /** The progressive path tracer's entry point in PATH_TRACE_MODULE. */
 export const PATH_TRACE_ENTRY = 'path_trace';
 const MODULE = PATH_TRACE_MODULE;
-/** Must match @workgroup_size of path_trace (and path_trace_frame). */
-const WORKGROUP = 8;
 
 export interface Tile {
   readonly x: number;
@@ -186,8 +184,7 @@ export class TracingKernels {
         1: cached(this.viewGroups, kernel, view, () => kernel.bindGroup(1, { view: view.buffer })),
         2: cached(this.targetGroups, kernel, targetKey, () => kernel.bindGroup(2, targets())),
       },
-      Math.ceil(tile.width / WORKGROUP),
-      Math.ceil(tile.height / WORKGROUP),
+      ...pixelGroups(tile.width, tile.height),
     );
     pass.end();
   }

@@ -4,6 +4,7 @@
  * changed, and an outline composed over the shown image into a texture of its own. The estimate and
  * what readImage() returns are never touched.
  */
+import { pixelGroups } from '../gpu/kernel-variants.ts';
 import { ComputeKernel, SceneKernels, TRAVERSAL_FEATURES } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -13,7 +14,6 @@ import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/selection-outline';
-const WORKGROUP = 8;
 /** Bytes per pixel of the mask (one u32). */
 const MASK_BYTES_PER_PIXEL = 4;
 /** The outline's colour (sRGB-encoded): an orange that stands out of most renders. */
@@ -70,7 +70,7 @@ export class SelectionOutlinePass implements Pass<SelectionOutlineFrame> {
     const { width, height } = input.image;
     const resized = this.ensureTargets(width, height);
     const mask = this.mask!, output = this.composed!;
-    const groups = [Math.ceil(width / WORKGROUP), Math.ceil(height / WORKGROUP)] as const;
+    const groups = pixelGroups(width, height);
     this.params.write({ first: input.selection.first, end: input.selection.end, material: input.selection.material, color: SELECTION_COLOR });
     const view = { view: input.view.buffer };
     if (input.traceMask || resized) {

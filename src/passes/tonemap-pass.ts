@@ -1,4 +1,5 @@
 /** Tone mapping (shaders/passes/tonemap.wgsl): accumulation → 8-bit sRGB image texture. */
+import { pixelGroups } from '../gpu/kernel-variants.ts';
 import { ComputeKernel } from '../gpu/kernel.ts';
 import { TONE_MAPPERS, type ToneMapper } from './variants.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -6,7 +7,6 @@ import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/tonemap';
-const WORKGROUP = 8;
 
 export interface TonemapInput {
   /** Stops of exposure; with `autoExposure`, stops over the adapted exposure. */
@@ -68,7 +68,7 @@ export class TonemapPass implements Pass<TonemapFrame> {
       this.groups.set(output, g);
     }
     const pass = encoder.beginComputePass({ label: 'tone map', ...(timer ? { timestampWrites: timer.timestampWrites('tone map') } : {}) });
-    this.kernel.dispatch(pass, { 1: g.group1, 2: g.group2 }, Math.ceil(output.width / WORKGROUP), Math.ceil(output.height / WORKGROUP));
+    this.kernel.dispatch(pass, { 1: g.group1, 2: g.group2 }, ...pixelGroups(output.width, output.height));
     pass.end();
   }
 

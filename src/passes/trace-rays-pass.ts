@@ -2,6 +2,7 @@
  * Closest-hit tracing of a ray buffer (shaders/passes/trace-rays.wgsl): the traversal benchmark and
  * the GPU side of the traversal-versus-oracle test.
  */
+import { WORKGROUP } from '../gpu/kernel-variants.ts';
 import { SceneKernels, TRAVERSAL_FEATURES, type ComputeKernel } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
@@ -12,7 +13,6 @@ import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams } from './uniform-params.ts';
 
 const MODULE = 'passes/trace-rays';
-const WORKGROUP = 64;
 
 /** Bytes per ray and per hit record, from the WGSL structs. */
 export function rayBufferStrides(): { ray: number; hit: number } {
@@ -57,9 +57,9 @@ export function unpackHits(raw: ArrayBuffer, count: number): TraceHit[] {
   return Array.from({ length: count }, (_, i) => ({ t: f32[i * s + t]!, triangle: u32[i * s + tri]!, u: f32[i * s + u]!, v: f32[i * s + v]! }));
 }
 
-/** Workgroup grid for `count` invocations of WORKGROUP threads, as rows within the dispatch limit. */
+/** Workgroup grid for `count` invocations of WORKGROUP.rays threads, as rows within the dispatch limit. */
 export function rayDispatchSize(count: number, maxPerDimension: number): [number, number] {
-  const groups = Math.ceil(count / WORKGROUP);
+  const groups = Math.ceil(count / WORKGROUP.rays);
   const x = Math.min(groups, maxPerDimension);
   return [x, Math.ceil(groups / x)];
 }

@@ -8,7 +8,7 @@
  * dispatches are one compute pass ('path trace (wavefront)'), so one timestamp pair times the whole
  * path tracing, as 'frame G-buffer' + 'frame emission' + 'path trace (frame)' time the megakernel's.
  */
-import { spectralConstants } from '../gpu/kernel-variants.ts';
+import { pixelGroups, spectralConstants } from '../gpu/kernel-variants.ts';
 import { LanternError } from '../errors.ts';
 import { ComputeKernel, PLAIN_SCENE, SceneKernels, TRACING_FEATURES, type NamedResource } from '../gpu/kernel.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
@@ -23,8 +23,6 @@ import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
 
 const MODULE = 'wavefront/frame';
-/** Must match @workgroup_size of wavefront_generate and wavefront_finish. */
-const PIXEL_WORKGROUP = 8;
 /** Bytes of the queue counters before the items (Queues.counters in shaders/wavefront/paths.wgsl). */
 const QUEUE_HEADER_BYTES = 32;
 /** Byte offsets of the indirect arguments (ARGS_* of frame.wgsl): extension queue, light shadows, torch shadows. */
@@ -151,7 +149,7 @@ export class WavefrontFramePass implements Pass<WavefrontFrame> {
       pass.end();
       pass = begin(s > 0 ? `${label} s${s}` : label);
     };
-    const gx = Math.ceil(view.width / PIXEL_WORKGROUP), gy = Math.ceil(view.height / PIXEL_WORKGROUP);
+    const [gx, gy] = pixelGroups(view.width, view.height);
     const [generate, extend, shade, shadowLight, shadowTorch, finish] = SCENE_ENTRIES.map(kernel) as [ComputeKernel, ComputeKernel, ComputeKernel, ComputeKernel, ComputeKernel, ComputeKernel];
     const { wavefront_queue_args: queueArgs, wavefront_shadow_args: shadowArgs } = this.argsKernels;
     for (let s = 0; s < d.samples; s++) {

@@ -5,6 +5,7 @@
 // illumination (rgb) and carries its variance (a) through with squared weights. Expects the view
 // (group 1).
 
+#import lib/workgroup
 #import lib/color
 #import view/bindings
 
@@ -68,7 +69,7 @@ fn depth_slope(p: vec2i, axis: vec2i, z: f32) -> f32 {
   return select(slope, 0.0, slope == 1e30);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn atrous_step(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -4,6 +4,7 @@
 // (two panes, each the whole frame at half size) or over it. Colours are sRGB-encoded throughout,
 // as the image is. Expects the view (group 1) for the image size; its own inputs and outputs are group 2.
 
+#import lib/workgroup
 #import lib/debug-views
 #import lib/color
 #import lib/random
@@ -105,7 +106,7 @@ fn pane_color(local: vec2i, debug: bool) -> vec3f {
   return 0.25 * sum;
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn debug_compose(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -18,6 +18,7 @@
 //   triangle-id     (source triangle index or -1, 0, 0, hit)
 //   wireframe       (|cos| between the normal and the ray, 0, 0, hit): the shaded backdrop of the lines
 
+#import lib/workgroup
 #import lib/debug-views
 #import scene/bvh
 #import scene/surface
@@ -77,7 +78,7 @@ fn debug_value(kind: u32, ray: Ray, hit: Hit) -> vec4f {
   }
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn debug_view(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

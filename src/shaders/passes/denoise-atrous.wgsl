@@ -37,6 +37,7 @@
 // and the weight sums live in the previous frame's surface records, which the temporal pass has
 // finished with and the next frame's G-buffer overwrites. Expects the view (group 1) and denoise/gbuffer.
 
+#import lib/workgroup
 #import lib/color
 #import view/bindings
 #import denoise/gbuffer
@@ -211,7 +212,7 @@ fn tap(c: FilterCentre, p: vec2i, dx: i32, dy: i32) -> Tap {
   return Tap(s, b3(abs(dx)) * b3(abs(dy)) * exp2(exponent), record_q.z);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn denoise_atrous_step(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -6,6 +6,7 @@
 // mirrored by position in renderer/settings.ts.
 // Expects the view (group 1) and denoise/gbuffer.
 
+#import lib/workgroup
 #import view/bindings
 #import denoise/gbuffer
 
@@ -47,7 +48,7 @@ fn id_colour(id: u32) -> vec3f {
   return vec3f(f32(h & 255u), f32((h >> 8u) & 255u), f32((h >> 16u) & 255u)) / 255.0;
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn denoise_output(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -8,6 +8,7 @@
 //   this frame by 1 / (frames in the history), no less than `min_blend`.
 // Expects the view (group 1) for the image size.
 
+#import lib/workgroup
 #import lib/color
 #import view/bindings
 #import denoise/gbuffer
@@ -77,7 +78,7 @@ fn upsampled_gi(pixel: vec2u, c: vec4f) -> vec3f {
   return select(fallback, sum / weights, weights > 1e-4);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn hybrid_compose(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (any(pixel >= view.image_size)) {
@@ -112,7 +113,7 @@ fn history_at(point: vec2f) -> vec4f {
   return select(vec4f(0.0), sum / weights, weights > 1e-4);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn hybrid_taa(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (any(pixel >= view.image_size)) {

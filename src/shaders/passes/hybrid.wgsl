@@ -23,6 +23,7 @@
 // direct light (NEE + its own BSDF ray, MIS-weighted) already counted it; a mirror's reflection keeps
 // it (neither NEE nor that BSDF ray, which skips delta lobes, can see it). Expects the scene (group 0) and view (group 1); group 2 adds the buffers.
 
+#import lib/workgroup
 #import integrator/path
 #import integrator/dispatch
 #import view/projection
@@ -330,7 +331,7 @@ fn reflection(s: Shading, split: LobeSplit, ray: Ray, rng: ptr<function, Rng>) -
   return out;
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn hybrid_resolve(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (any(pixel >= view.image_size)) {
@@ -355,7 +356,7 @@ fn hybrid_resolve(@builtin(global_invocation_id) id: vec3u) {
   motion[index] = vec4f(select(vec2f(OFF_SCREEN), previous.xy - hybrid.jitter, previous.z > 0.0), previous.z, 1.0);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn hybrid_shade(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let pixel = id.xy;
@@ -395,7 +396,7 @@ fn hybrid_shade(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocat
 // Reflections, a pass of their own after hybrid_shade (scenes with glossy, mirror or glass
 // materials, reflections on): kept apart so that neither kernel grows too large for the shader
 // compilers of software adapters.
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn hybrid_reflect(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let pixel = id.xy;
@@ -432,7 +433,7 @@ fn gi_source_pixel(texel: vec2u) -> vec2u {
   return min(p, view.image_size - 1u);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn hybrid_gi(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let texel = id.xy;

@@ -19,6 +19,7 @@
 // integrator/frame's, which the wavefront shares.
 // Expects the scene (group 0) and view (group 1); group 2 adds the previous camera and the outputs.
 
+#import lib/workgroup
 #import integrator/frame
 #import view/projection
 
@@ -157,7 +158,7 @@ fn write_centre(pixel_index: u32, c: CentreTexel) {
 // not compiled into the path kernel a second time: measured on the H200 (E1M1, 1080p), the frame
 // took 10.9 ms with them inside and 7.7 ms without (docs/perf.md). One entry point for both passes:
 // one pipeline to compile.
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let pixel = params.tile_origin + id.xy;
@@ -176,7 +177,7 @@ fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoca
   end_ray_count(local);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
 

@@ -3,6 +3,7 @@
 // ray counts (integrator/dispatch). Expects the scene (group 0) and view (group 1); its own inputs
 // and outputs are group 2.
 
+#import lib/workgroup
 #import lib/constants
 #import lib/random
 #import lib/color
@@ -13,7 +14,7 @@
 // Per pixel: rgb = Σ radiance samples, a = Σ luminance² (for the per-pixel variance).
 @group(2) @binding(1) var<storage, read_write> accumulation: array<vec4f>;
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
 

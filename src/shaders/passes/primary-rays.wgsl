@@ -1,9 +1,11 @@
 // Coherent primary rays through pixel centres, for the traversal benchmark; with a thin lens each
 // pixel's ray leaves its own random point of the aperture (as the path tracer's do), so they are
-// less coherent. The rays are stored in the order the benchmark traces them, 64 to a workgroup:
-// by 8 × 8-pixel tiles (tinybvh's speed test: one workgroup per tile) or by image rows.
+// less coherent. The rays are stored in the order the benchmark traces them, a workgroup of
+// trace-rays at a time: by the per-pixel passes' tiles (tinybvh's speed test: one workgroup per 8 × 8
+// tile; gpu/kernel-variants.ts keeps RAY_GROUP = PIXEL_TILE_X × PIXEL_TILE_Y) or by image rows.
 // Expects the view (group 1); its parameters and output are group 2.
 
+#import lib/workgroup
 #import view/bindings
 
 // Ray orders: the host's names live in renderer/benchmark.ts.
@@ -24,13 +26,14 @@ fn ray_slot(p: vec2u, size: vec2u) -> u32 {
   if (params.order == RAY_ORDER_SCANLINE) {
     return p.y * size.x + p.x;
   }
-  let tile = p / 8u;
-  let tile_size = min(vec2u(8u), size - tile * 8u);
-  let local = p % 8u;
-  return tile.y * 8u * size.x + tile.x * 8u * tile_size.y + local.y * tile_size.x + local.x;
+  let t = vec2u(PIXEL_TILE_X, PIXEL_TILE_Y);
+  let tile = p / t;
+  let tile_size = min(t, size - tile * t);
+  let local = p % t;
+  return tile.y * t.y * size.x + tile.x * t.x * tile_size.y + local.y * tile_size.x + local.x;
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn generate_primary_rays(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

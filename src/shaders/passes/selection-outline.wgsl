@@ -5,6 +5,7 @@
 // around it. Expects the scene (group 0, the mask only) and the view (group 1); its own inputs and
 // outputs are group 2.
 
+#import lib/workgroup
 #import scene/bvh
 #import view/bindings
 
@@ -30,7 +31,7 @@ struct SelectionParams {
 @group(2) @binding(2) var image: texture_2d<f32>;
 @group(2) @binding(3) var output: texture_storage_2d<rgba8unorm, write>;
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn selection_mask(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;
@@ -53,7 +54,7 @@ fn masked(p: vec2i) -> bool {
   return mask[u32(p.y) * view.image_size.x + u32(p.x)] != 0u;
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn selection_outline(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

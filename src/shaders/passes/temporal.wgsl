@@ -14,6 +14,7 @@
 // this pixel reads here: the neighbours read FRAME_RADIANCE. Expects the view (group 1) and
 // denoise/gbuffer.
 
+#import lib/workgroup
 #import lib/color
 #import view/bindings
 #import denoise/gbuffer
@@ -111,7 +112,7 @@ fn frame_radiance(i: u32) -> vec3f {
   return unpack_rgb9e5(frame_scratch[FRAME_WORDS * i + FRAME_RADIANCE]);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn temporal_accumulate(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -1,6 +1,7 @@
 // Tone mapping: accumulated radiance → mean → exposure → tone curve → sRGB → 8-bit image.
 // Expects the view (group 1) for the image size; its own inputs and outputs are group 2.
 
+#import lib/workgroup
 #import lib/color
 #import lib/exposure
 #import view/bindings
@@ -21,7 +22,7 @@ struct TonemapParams {
 @group(2) @binding(2) var output: texture_storage_2d<rgba8unorm, write>;
 @group(2) @binding(3) var<storage, read> exposure: ExposureState;
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn tonemap_image(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -22,6 +22,7 @@
 // Expects the scene (group 0), the view (group 1); group 2: integrator/dispatch's parameters and ray
 // counters, and the bindings below.
 
+#import lib/workgroup
 #import integrator/dispatch
 #import denoise/gbuffer
 #import restir/reservoir
@@ -97,7 +98,7 @@ fn restir_rng(pixel_index: u32, pass_salt: u32) -> Rng {
   return rng_seed(pixel_index, params.sample_index, params.seed ^ pass_salt);
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn restir_initial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let pixel = id.xy;
@@ -147,7 +148,7 @@ fn temporal_rays(pixel_index: u32) -> u32 {
   return frame_scratch[FRAME_WORDS * pixel_index + FRAME_PREVIOUS_DEPTH] >> 16u;
 }
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn restir_temporal(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (restir.use_history != 0u && all(pixel < view.image_size)) {
@@ -206,7 +207,7 @@ fn restir_temporal(@builtin(global_invocation_id) id: vec3u) {
 // The largest number of neighbours restir_spatial takes (its arrays are this long).
 const RESTIR_MAX_NEIGHBOURS: u32 = 8u;
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
   let pixel = id.xy;
@@ -291,7 +292,7 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
 // once restir_spatial has read its neighbours' there; the path tracer then writes its radiance over
 // word A after reading them): path_trace_frame binds no buffer of its own for them, since a browser
 // gives a compute stage 10 storage buffers and the path tracer's scene and records take them all.
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn restir_lend(@builtin(global_invocation_id) id: vec3u) {
   if (all(id.xy < view.image_size)) {
     let pixel_index = id.y * view.image_size.x + id.x;

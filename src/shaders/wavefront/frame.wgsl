@@ -16,6 +16,7 @@
 // so the frame equals the megakernel's up to float rounding (tests/gpu/wavefront.test.ts).
 // Expects the scene (group 0) and view (group 1); group 2 adds wavefront/paths' state to the frame's.
 
+#import lib/workgroup
 #import wavefront/paths
 
 // The indirect dispatch arguments (x, y, z workgroups): [0, 3) the extension queue (extend, shade),
@@ -26,7 +27,7 @@ const ARGS_SHADOWS: u32 = 3u;
 @group(2) @binding(10) var<storage, read_write> indirect_args: array<u32, 9>;
 
 fn write_args(at: u32, n: u32) {
-  let groups = (n + QUEUE_WORKGROUP - 1u) / QUEUE_WORKGROUP;
+  let groups = (n + RAY_GROUP - 1u) / RAY_GROUP;
   let x = min(groups, MAX_GROUPS_X);
   indirect_args[at] = x;
   indirect_args[at + 1u] = select(0u, (groups + x - 1u) / max(x, 1u), x > 0u);
@@ -41,7 +42,7 @@ fn sample_stream(pixel: vec2u) -> Rng {
 
 // A camera path per pixel, with the random stream of its sample (as the megakernel seeds it). The camera ray is traced here, in pixel tiles as
 // coherent as the megakernel's (one extend dispatch less per sample).
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn wavefront_generate(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   push_begin(local);
   var offset = 0u;
@@ -76,7 +77,7 @@ fn wavefront_queue_args() {
   add_to_counter(COUNTER_EXTENSION_RAYS, n);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(RAY_GROUP)
 fn wavefront_extend(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u, @builtin(local_invocation_index) local: u32) {
   let i = queue_index(group, groups, local);
   if (i >= atomicLoad(&queues.counters[QUEUE_CURRENT])) {
@@ -102,7 +103,7 @@ fn store_shadow(q: u32, k: u32, slot: u32, request: ShadowRequest) {
   store_f(base + 2u, k, request.contribution);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(RAY_GROUP)
 fn wavefront_shade(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u, @builtin(local_invocation_index) local: u32) {
   push_begin(local);
   let i = queue_index(group, groups, local);
@@ -174,12 +175,12 @@ fn trace_shadow(q: u32, i: u32) {
   }
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(RAY_GROUP)
 fn wavefront_shadow_light(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u, @builtin(local_invocation_index) local: u32) {
   trace_shadow(SHADOW_LIGHT, queue_index(group, groups, local));
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(RAY_GROUP)
 fn wavefront_shadow_torch(@builtin(workgroup_id) group: vec3u, @builtin(num_workgroups) groups: vec3u, @builtin(local_invocation_index) local: u32) {
   trace_shadow(SHADOW_TORCH, queue_index(group, groups, local));
 }
@@ -188,7 +189,7 @@ fn wavefront_shadow_torch(@builtin(workgroup_id) group: vec3u, @builtin(num_work
 // pixel's sums (path fields F_SUM_*); after the last sample the means are packed into the frame's
 // records exactly as path_trace_frame packs them. The pixel-centre surface and its filtered emission
 // were written before the samples by path-trace-frame's frame_gbuffer (the same kernel as the megakernel's).
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn wavefront_finish(@builtin(global_invocation_id) id: vec3u) {
   if (any(id.xy >= view.image_size)) {
     return;

@@ -4,6 +4,7 @@
 // compaction. Expects the scene (group 0) and view (group 1); the frame's records are integrator/frame's.
 // Follows Laine, Karras and Aila 2013, "Megakernels Considered Harmful: Wavefront Path Tracing on GPUs".
 
+#import lib/workgroup
 #import integrator/frame
 #import view/projection
 
@@ -67,8 +68,8 @@ struct WavefrontSample {
 @group(2) @binding(8) var<storage, read_write> queues: Queues;
 @group(2) @binding(9) var<uniform> wavefront: WavefrontSample;
 
-// Threads per workgroup of the queue kernels, and the most workgroups put along x (the rest go along y).
-const QUEUE_WORKGROUP: u32 = 64u;
+// The most workgroups of a queue kernel put along x (the rest go along y); its threads per workgroup
+// are lib/workgroup RAY_GROUP.
 const MAX_GROUPS_X: u32 = 32768u;
 
 fn slot_count() -> u32 {
@@ -89,7 +90,7 @@ fn store_f(f: u32, slot: u32, v: vec4f) {
 
 // The index into a queue of a thread of a 1D queue dispatch (groups spread over x and y).
 fn queue_index(group: vec3u, groups: vec3u, local: u32) -> u32 {
-  return (group.y * groups.x + group.x) * QUEUE_WORKGROUP + local;
+  return (group.y * groups.x + group.x) * RAY_GROUP + local;
 }
 
 fn current_half() -> u32 {
