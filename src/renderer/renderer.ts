@@ -35,7 +35,6 @@ import type { DebugViews } from './recipes/debug.ts';
 import type { DenoiserBufferSize, FrameTrace } from './recipes/real-time.ts';
 import { ProgressiveRecipe } from './recipes/progressive.ts';
 import { RecipeSet } from './recipes/recipe-set.ts';
-import type { FrameRecipe, RecipeFrame } from './recipes/frame-recipe.ts';
 import { wholeImage, type FrameContext } from './frame.ts';
 import { ImageEstimate, type ImageTargets } from './image.ts';
 import { pickPixel, type PickResult } from './pick.ts';
@@ -48,8 +47,9 @@ import type { SpecialiseOptions } from '../gpu/specialisation.ts';
 import { SpecialisationSchedule, type KernelKind, type SpecialisationReport } from './specialisation-schedule.ts';
 import { SceneResidency } from './scene-residency.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
-import { SplitFrame } from './split-frame.ts';
-import { recipeCompiles, recipeFor, type RecipeIntent } from './recipes/recipe.ts';
+import type { SplitFrame } from './split-frame.ts';
+import { FrameRequests } from './frame-requests.ts';
+import { recipeCompiles, type RecipeIntent } from './recipes/recipe.ts';
 
 export type { Accumulation, LinearImage, RayCounts } from './image-readback.ts';
 export type { PickResult } from './pick.ts';
@@ -65,10 +65,8 @@ export class Renderer {
   private historyResets = 0;
   /** The recipes compiled so far (renderer/recipes/recipe-set.ts). */
   private readonly recipes: RecipeSet;
-  /** The recipe of the last frame (whose output present and readFrame show). */
-  private lastFrame?: FrameRecipe;
-  /** What present() and readImage() show: the progressive estimate or the last real-time frame. */
-  private shown: 'accumulation' | 'frame' = 'accumulation';
+  /** What is rendered on request, and what was rendered last (renderer/frame-requests.ts). */
+  private readonly requests: FrameRequests;
   /** When the tracing kernels are specialised to the scene (requestSpecialisation, the idle policy). */
   private readonly specialising = new SpecialisationSchedule({
     current: () => (this.prepared && this.resources ? { prepared: this.prepared, resources: this.resources, settings: this.settingsValue } : undefined),
@@ -107,6 +105,11 @@ export class Renderer {
         this.resetAccumulation();
       },
       restarted: () => this.resetAccumulation(),
+    });
+    this.requests = new FrameRequests(this, this.image, this.recipes, this.residency, {
+      settings: () => this.settingsValue,
+      frame: (timer) => this.frame(timer),
+      targets: () => this.ready().targets,
     });
   }
 
@@ -380,16 +383,7 @@ export class Renderer {
    * timer, each tile's pass is timed and the timestamps are resolved with the last tile.
    */
   accumulate(samples: number, tiles: readonly Tile[] = [wholeImage(this)], timer?: GpuTimer): void {
-    this.checkSamples(samples, 'dispatch');
-    const frame = this.frame(timer);
-    tiles.forEach((tile, i) => {
-      const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      this.recipes.progressive.encode(encoder, frame, tile, this.image.samples, samples);
-      if (timer && i === tiles.length - 1) timer.resolve(encoder);
-      this.device.queue.submit([encoder.finish()]);
-    });
-    this.image.add(samples);
-    this.shown = 'accumulation';
+    this.requests.accumulate(samples, tiles, timer);
   }
 
   /**
@@ -398,24 +392,7 @@ export class Renderer {
    * an estimate reset meanwhile gives the frame up.
    */
   beginAccumulate(samples: number, timer?: GpuTimer): SplitFrame {
-    this.checkSamples(samples, 'dispatch');
-    const work = this.recipes.progressive.begin(this.frame(timer), samples, this.image.samples);
-    return this.split(work, samples, 'path trace', () => {
-      this.image.add(samples);
-      this.shown = 'accumulation';
-    });
-  }
-
-  /** Samples must be a positive whole number, and spectral paths (where they are traced: not by the hybrid recipe) compiled. */
-  private checkSamples(samples: number, per: 'dispatch' | 'frame', tracesSpectral = true): void {
-    this.ready();
-    if (!Number.isInteger(samples) || samples < 1) throw new LanternError(`samples per ${per} must be a positive whole number, not ${samples}`);
-    if (tracesSpectral && this.settingsValue.spectral && !this.recipes.spectral) throw new Error('Renderer: compile() before rendering with settings.spectral');
-  }
-
-  /** A SplitFrame driving a recipe's frame; `done` runs once the last band is submitted. */
-  private split(work: RecipeFrame, samples: number, label: string, done: () => void): SplitFrame {
-    return new SplitFrame(this, this.ready().targets, samples, work.splittable, { ...work, done }, label);
+    return this.requests.beginAccumulate(samples, timer);
   }
 
   /**
@@ -459,15 +436,7 @@ export class Renderer {
    * integrators (bench, readFrameTrace). Returns which traced.
    */
   traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
-    const realTime = this.recipes.realTime;
-    if (!realTime) throw new Error('Renderer: compile() the real-time chain before traceFrame()');
-    this.checkSamples(samples, 'frame');
-    this.residency.settleBeforeFrame();
-    const encoder = this.device.createCommandEncoder({ label: 'real-time frame path tracing' });
-    const integrator = realTime.encodeTraceOnly(encoder, this.frame(options.timer), samples, options.sampleIndex ?? 0, options.breakdown ?? false);
-    options.timer?.resolve(encoder);
-    this.device.queue.submit([encoder.finish()]);
-    return integrator;
+    return this.requests.traceFrame(samples, options);
   }
 
   /**
@@ -498,26 +467,7 @@ export class Renderer {
    * The wavefront integrator and the hybrid recipe trace whole frames (one band).
    */
   beginFrame(samples: number, timer?: GpuTimer): SplitFrame {
-    const recipe = this.frameRecipe();
-    this.checkSamples(samples, 'frame', recipe === this.recipes.realTime);
-    // A debug view that replaces the image is drawn by present() and readImage(): nothing to trace.
-    if (!recipe) return this.split({ splittable: false, band: () => {}, finish: () => {}, abandon: () => {} }, samples, 'frame', () => {});
-    this.residency.settleBeforeFrame();
-    const frame = this.frame(timer);
-    const work = recipe.begin(frame, samples);
-    return this.split({ ...work, finish: (encoder) => {
-      work.finish(encoder);
-      timer?.resolve(encoder);
-    } }, samples, recipe === this.recipes.hybrid ? 'hybrid frame' : 'real-time frame', () => {
-      this.lastFrame = recipe;
-      this.shown = 'frame';
-      this.residency.frameDone();
-    });
-  }
-
-  /** The recipe a frame runs now (undefined: a debug view alone), compiled. */
-  private frameRecipe(): FrameRecipe | undefined {
-    return this.recipes.frameRecipe(recipeFor(this.settingsValue, { frames: true }));
+    return this.requests.beginFrame(samples, timer);
   }
 
   /** What SplitFrame checks before each band: the estimate, the history and the scene are those the frame began with. */
@@ -540,8 +490,7 @@ export class Renderer {
    * (by default, whichever was rendered last). The viewer renders both while a still view converges.
    */
   show(image: 'accumulation' | 'frame'): void {
-    if (image === 'frame' && !this.lastFrame?.output) throw new Error('Renderer: renderFrame() before show(\'frame\')');
-    this.shown = image;
+    this.requests.show(image);
   }
 
   /** Drops the real-time history: the next frame starts from its own samples. */
@@ -553,7 +502,7 @@ export class Renderer {
   /** The linear radiance of the last real-time frame (before tone mapping; a debug view if one is chosen). */
   async readFrame(): Promise<LinearImage> {
     const { targets } = this.ready();
-    const output = this.lastFrame?.output;
+    const output = this.requests.lastFrame?.output;
     if (!output) throw new Error('Renderer: renderFrame() before readFrame()');
     return readLinear(this.device, output, targets);
   }
@@ -650,12 +599,13 @@ export class Renderer {
   /** What present() and readImage() show now: the estimate or the last frame, as the settings expose it. */
   private shownImage(): ShownImage {
     const { resources, targets } = this.ready();
-    const frame = this.shown === 'frame' ? this.lastFrame?.output : undefined;
+    const { shown, lastFrame } = this.requests;
+    const frame = shown === 'frame' ? lastFrame?.output : undefined;
     return {
       targets, view: this.view, settings: this.settingsValue,
       radiance: frame ?? targets.accumulation,
       sampleCount: frame ? 1 : this.image.samples,
-      raw: frame !== undefined && this.lastFrame!.showsRawValues({ settings: this.settingsValue }),
+      raw: frame !== undefined && lastFrame!.showsRawValues({ settings: this.settingsValue }),
       exposure: this.exposureChoice,
       sceneStops: this.cameraValue?.exposureStops ?? 0,
       scene: { prepared: this.prepared!, resources },
