@@ -32,9 +32,7 @@ import { lensProblem } from '../scene/lens.ts';
 import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import type { DebugViews } from './recipes/debug.ts';
-import type { DenoiserBufferSize, FrameTrace } from './recipes/real-time.ts';
 import { ProgressiveRecipe } from './recipes/progressive.ts';
-import { RecipeSet } from './recipes/recipe-set.ts';
 import { wholeImage, type FrameContext } from './frame.ts';
 import { ImageEstimate, type ImageTargets } from './image.ts';
 import { pickPixel, type PickResult } from './pick.ts';
@@ -43,18 +41,16 @@ import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
 import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
 import { ViewUniform } from '../gpu/view.ts';
-import type { SpecialiseOptions } from '../gpu/specialisation.ts';
-import { SpecialisationSchedule, type KernelKind, type SpecialisationReport } from './specialisation-schedule.ts';
 import { SceneResidency } from './scene-residency.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
 import type { SplitFrame } from './split-frame.ts';
 import { FrameRequests } from './frame-requests.ts';
-import { recipeCompiles, type RecipeIntent } from './recipes/recipe.ts';
+import { RendererKernels } from './renderer-kernels.ts';
 
 export type { Accumulation, LinearImage, RayCounts } from './image-readback.ts';
 export type { PickResult } from './pick.ts';
 
-export class Renderer {
+export class Renderer extends RendererKernels {
   /** The scene on the GPU, kept in step with the world (renderer/scene-residency.ts). */
   private readonly residency: SceneResidency;
   /** The image's targets and the progressive estimate in them. */
@@ -63,15 +59,8 @@ export class Renderer {
   private settingsValue: RenderSettings = DEFAULT_SETTINGS;
   /** Counts resetHistory() calls: a split frame begun before one is given up (SplitFrame.valid). */
   private historyResets = 0;
-  /** The recipes compiled so far (renderer/recipes/recipe-set.ts). */
-  private readonly recipes: RecipeSet;
   /** What is rendered on request, and what was rendered last (renderer/frame-requests.ts). */
   private readonly requests: FrameRequests;
-  /** When the tracing kernels are specialised to the scene (requestSpecialisation, the idle policy). */
-  private readonly specialising = new SpecialisationSchedule({
-    current: () => (this.prepared && this.resources ? { prepared: this.prepared, resources: this.resources, settings: this.settingsValue } : undefined),
-    kernels: () => this.recipes.tracingKernels(),
-  });
   private tracePass?: Promise<TraceRaysPass>;
   /** What a traced image becomes: exposure, tone map, debug view, selection outline, present. */
   private readonly output: ImageOutput;
@@ -83,17 +72,9 @@ export class Renderer {
     tonemap: TonemapPass,
     present?: PresentPass,
   ) {
+    super(gpu.device, progressive);
     this.image = new ImageEstimate(gpu.device);
     this.output = new ImageOutput(gpu.device, tonemap, present);
-    this.recipes = new RecipeSet(gpu.device, progressive, {
-      firstFeatures: () => this.sceneFeatures,
-      sceneFeatures: () => this.prepared?.packed.features,
-      sampler: () => this.settingsValue.sampler,
-      tracingAdded: async () => {
-        // Specialised kernels are compiled for every tracing pass at once (a compile under way lacks the new one's): specialise again with it.
-        this.invalidateSpecialisation();
-      },
-    });
     this.residency = new SceneResidency(gpu.device, {
       compile: (features) => Promise.all([this.recipes.prepare(features), this.output.selection.prepare(features)]),
       tileCulling: () => this.settingsValue.tileCulling,
@@ -116,7 +97,7 @@ export class Renderer {
   private get prepared(): PreparedScene | undefined {
     return this.residency.prepared;
   }
-  private get resources(): SceneResources | undefined {
+  protected get resources(): SceneResources | undefined {
     return this.residency.resources;
   }
 
@@ -138,14 +119,6 @@ export class Renderer {
     const renderer = new Renderer(gpu, new ViewUniform(device), progressive, tonemap, present);
     renderer.expectedFeatures = features;
     return renderer;
-  }
-
-  /** The features of the scene setScene will get, as Renderer.create was told, until one is set. */
-  private expectedFeatures?: SceneFeatures;
-
-  /** The features of the scene (or of the one about to be set): what a recipe enabled now compiles for first. */
-  private get sceneFeatures(): SceneFeatures | undefined {
-    return this.prepared?.packed.features ?? this.expectedFeatures;
   }
 
   get device(): GPUDevice {
@@ -305,47 +278,6 @@ export class Renderer {
     }
   }
 
-  // Specialisation (renderer/specialisation-schedule.ts): kernels compiled for the frozen scene, used once ready.
-
-  /** Which kernels accumulate() and renderFrame() run now (camera moves, resizes and display settings keep them). */
-  get kernel(): KernelKind {
-    return this.specialising.kernel;
-  }
-
-  /** Which kernels the wavefront frame path tracer runs now. */
-  get wavefrontKernel(): KernelKind {
-    return this.specialising.wavefrontKernel;
-  }
-
-  /** What the specialised kernels in use were compiled for, and how long that took. */
-  get specialisation(): SpecialisationReport | undefined {
-    return this.specialising.report;
-  }
-
-  /** The error of the last automatic (idle) specialisation, if it failed; rendering stays generic. */
-  get specialisationError(): unknown {
-    return this.specialising.error;
-  }
-
-  /**
-   * Compiles the kernels specialised to the scene and settings as they are now: resolves with the
-   * report once switched, undefined when an edit came first, and at once with undefined in spectral
-   * mode and for scenes with moving instances. Accumulation continues (the same estimator).
-   */
-  requestSpecialisation(options: SpecialiseOptions = {}): Promise<SpecialisationReport | undefined> {
-    return this.specialising.request(options);
-  }
-
-  /** Back to the generic kernels, any compile under way dropped; every method that edits the scene or an estimate setting calls it. */
-  invalidateSpecialisation(): void {
-    this.specialising.invalidate();
-  }
-
-  /** The front ends' idle policy: specialise once the scene has gone `idleMs` without an edit (the viewer: 1000); undefined turns it off. */
-  setIdleSpecialisation(idleMs: number | undefined): void {
-    this.specialising.setIdle(idleMs);
-  }
-
   /** Sets the image size, checked against the GPU's limits. */
   async resize(width: number, height: number): Promise<void> {
     if (await this.image.resize(width, height)) this.updateView();
@@ -396,40 +328,6 @@ export class Renderer {
   }
 
   /**
-   * Compiles what the recipe of the settings (with `changes`) runs (recipeCompiles), for this and
-   * every later scene, before its first frame; nothing is compiled twice. `intent.frames`: frames are
-   * asked for even with every filter of the real-time chain off (the CLI's --frames).
-   */
-  async compile(changes: Partial<RenderSettings> = {}, intent: RecipeIntent = {}): Promise<void> {
-    await this.recipes.compile(recipeCompiles({ ...this.settingsValue, ...changes }, intent));
-  }
-
-  /** The error of the last background compile of the wavefront path tracer, if it failed (frames stay on the megakernel). */
-  get wavefrontError(): unknown {
-    return this.recipes.wavefrontError;
-  }
-
-  /** The error of the last background compile of the ReSTIR passes, if it failed (frames keep one light sample per bounce). */
-  get restirError(): unknown {
-    return this.recipes.restirError;
-  }
-
-  /** Which path tracer traced the last real-time frame (settings.integrator, or the megakernel while the wavefront compiles). */
-  get frameIntegrator(): Integrator {
-    return this.recipes.realTime?.frameIntegrator ?? 'megakernel';
-  }
-
-  /** Bytes per pixel of the real-time denoising chain's buffers, each and in all (RealTimeRecipe.bufferSizes; empty until a frame). */
-  get denoiserMemory(): { readonly bytesPerPixel: number; readonly buffers: readonly DenoiserBufferSize[] } {
-    return { bytesPerPixel: this.recipes.realTime?.bytesPerPixel() ?? 0, buffers: this.recipes.realTime?.bufferSizes() ?? [] };
-  }
-
-  /** Bytes the wavefront path tracer's own buffers hold (path state and queues; 0 until it traced a frame). */
-  get wavefrontBytes(): number {
-    return this.recipes.realTime?.wavefrontAllocatedBytes ?? 0;
-  }
-
-  /**
    * The path tracing of one real-time frame alone (RealTimeRecipe.encodeTraceOnly: no filter, no
    * ReSTIR, the history kept), `samples` paths per pixel with the random streams of frame
    * `sampleIndex`; `breakdown` times the wavefront's stages apart. For timing and comparing the two
@@ -437,17 +335,6 @@ export class Renderer {
    */
   traceFrame(samples: number, options: { readonly sampleIndex?: number; readonly timer?: GpuTimer; readonly breakdown?: boolean } = {}): Integrator {
     return this.requests.traceFrame(samples, options);
-  }
-
-  /**
-   * The raw output of the last traceFrame: demodulated radiance, G-buffer, guide, albedo, emission
-   * (after renderFrame the radiance words hold the frame's output instead: the chain reuses them).
-   * traceFrame overwrites the shown frame's output likewise.
-   */
-  readFrameTrace(): Promise<FrameTrace> {
-    const realTime = this.recipes.realTime;
-    if (!realTime) throw new Error('Renderer: compile() the real-time chain before readFrameTrace()');
-    return realTime.readTrace();
   }
 
   /**
