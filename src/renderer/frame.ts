@@ -7,6 +7,7 @@
  * The path tracers' dispatch record (tile, sample index, bounces, seed, light sampling, sampler,
  * torch, spectral) is built here, and only here, from the context: pathDispatch.
  */
+import { boundsDiagonal } from '../bvh/stats.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { ViewUniform } from '../gpu/view.ts';
@@ -14,7 +15,7 @@ import type { PathTraceDispatch, Tile } from '../passes/path-trace-pass.ts';
 import type { Camera, Torch } from '../scene/types.ts';
 import type { ImageTargets } from './image.ts';
 import type { PreparedScene } from './prepare.ts';
-import { resolveSampler, type RenderSettings } from './settings.ts';
+import { effectiveTorch, resolveSampler, type RenderSettings } from './settings.ts';
 
 export interface FrameContext {
   readonly device: GPUDevice;
@@ -29,6 +30,12 @@ export interface FrameContext {
   /** Half the diagonal of the scene's bounds (the depth view's scale; the hybrid's near plane is set from it). */
   readonly sceneSize: number;
   readonly timer?: GpuTimer;
+}
+
+/** A frame's context from what the Renderer holds (Renderer.frame): the torch the settings leave and the scene's size are derived here. */
+export function frameContext(base: Omit<FrameContext, 'torch' | 'sceneSize' | 'timer'>, timer?: GpuTimer): FrameContext {
+  const torch = effectiveTorch(base.prepared.scene, base.settings.torch);
+  return { ...base, sceneSize: 0.5 * boundsDiagonal(base.prepared.bvh) || 1, ...(torch ? { torch } : {}), ...(timer ? { timer } : {}) };
 }
 
 /**

@@ -11,7 +11,6 @@
  * the estimate (scene, camera, size, an estimate setting) restarts accumulation; the frame recipes'
  * histories survive camera moves (reprojected). Live editing: pick, setSelection, updateMaterials.
  */
-import { boundsDiagonal } from '../bvh/stats.ts';
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
 import { readAccumulation, readLinear, readRayCounts, type Accumulation, type LinearImage, type RayCounts } from './image-readback.ts';
@@ -33,13 +32,13 @@ import type { Camera, Scene } from '../scene/types.ts';
 import { debugLegend, type DebugLegend } from './debug-legend.ts';
 import type { DebugViews } from './recipes/debug.ts';
 import { ProgressiveRecipe } from './recipes/progressive.ts';
-import { wholeImage, type FrameContext } from './frame.ts';
+import { frameContext, wholeImage, type FrameContext } from './frame.ts';
 import { ImageEstimate, type ImageTargets } from './image.ts';
 import { pickPixel, type PickResult } from './pick.ts';
 import { type GeometryUpdate, prepareScene, withAccel, withPreparedEnvironment, type PreparedScene } from './prepare.ts';
 import type { Environment } from '../scene/environment.ts';
 import type { Mat4 } from '../math/mat4.ts';
-import { DEFAULT_SETTINGS, effectiveTorch, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
+import { DEFAULT_SETTINGS, ESTIMATE_SETTINGS, validateSettings, type Integrator, type RenderSettings } from './settings.ts';
 import { ViewUniform } from '../gpu/view.ts';
 import { SceneResidency } from './scene-residency.ts';
 import type { SceneFeatures } from '../gpu/pack/scene-pack.ts';
@@ -302,11 +301,7 @@ export class Renderer extends RendererKernels {
     const { resources, targets } = this.ready();
     const camera = this.cameraValue;
     if (!camera) throw new Error('Renderer: setCamera() before rendering');
-    const torch = effectiveTorch(this.prepared!.scene, this.settingsValue.torch);
-    return {
-      device: this.device, scene: resources, prepared: this.prepared!, view: this.view, camera, settings: this.settingsValue, targets, sceneSize: this.sceneSize(),
-      ...(torch ? { torch } : {}), ...(timer ? { timer } : {}),
-    };
+    return frameContext({ device: this.device, scene: resources, prepared: this.prepared!, view: this.view, camera, settings: this.settingsValue, targets }, timer);
   }
 
   /**
@@ -506,11 +501,6 @@ export class Renderer extends RendererKernels {
     const views = await this.recipes.compileDebugViews();
     await this.output.renderDebugView(this.shownImage());
     return views;
-  }
-
-  /** Half the diagonal of the scene's bounds (the depth view's scale). */
-  private sceneSize(): number {
-    return this.prepared ? 0.5 * boundsDiagonal(this.prepared.bvh) || 1 : 1;
   }
 
   private ready(): { resources: SceneResources; targets: ImageTargets } {
