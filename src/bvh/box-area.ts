@@ -28,3 +28,19 @@ export function halfAreaAt(boxes: ArrayLike<number>, i: number): number {
  */
 export const sweepMin = (a: number, b: number): number => 0.5 * (a + b - Math.abs(a - b));
 export const sweepMax = (a: number, b: number): number => 0.5 * (a + b + Math.abs(a - b));
+
+/** Grows box `m` of a flat min-xyz/max-xyz array (its 6 numbers from index m) to hold the box (x0, y0, z0)–(x1, y1, z1). */
+export function growBoxAt(boxes: Float64Array, m: number, x0: number, y0: number, z0: number, x1: number, y1: number, z1: number): void {
+  if (x0 < boxes[m]!) boxes[m] = x0;
+  if (y0 < boxes[m + 1]!) boxes[m + 1] = y0;
+  if (z0 < boxes[m + 2]!) boxes[m + 2] = z0;
+  if (x1 > boxes[m + 3]!) boxes[m + 3] = x1;
+  if (y1 > boxes[m + 4]!) boxes[m + 4] = y1;
+  if (z1 > boxes[m + 5]!) boxes[m + 5] = z1;
+}
+
+/** Empties `out` (a min-xyz/max-xyz box: +∞ minima, −∞ maxima) for growBoxAt to grow. */
+export function emptyBox(out: Float64Array): void {
+  out[0] = Infinity; out[1] = Infinity; out[2] = Infinity;
+  out[3] = -Infinity; out[4] = -Infinity; out[5] = -Infinity;
+}

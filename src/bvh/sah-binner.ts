@@ -16,7 +16,7 @@
  * Bin boxes are exact unions of float32 triangle boxes (float64 holds them exactly), so the child
  * boxes reported for the chosen plane are exact and need no extra pass over the triangles.
  */
-import { halfArea, sweepMax, sweepMin } from './box-area.ts';
+import { emptyBox, growBoxAt, halfArea, sweepMax, sweepMin } from './box-area.ts';
 import type { BinPlane } from './partition.ts';
 
 export class SahBinner {
@@ -95,27 +95,9 @@ export class SahBinner {
       ky += B;
       kz += 2 * B;
       counts[kx] = counts[kx]! + 1; counts[ky] = counts[ky]! + 1; counts[kz] = counts[kz]! + 1;
-      let m = kx * 6;
-      if (x0 < box[m]!) box[m] = x0;
-      if (y0 < box[m + 1]!) box[m + 1] = y0;
-      if (z0 < box[m + 2]!) box[m + 2] = z0;
-      if (x1 > box[m + 3]!) box[m + 3] = x1;
-      if (y1 > box[m + 4]!) box[m + 4] = y1;
-      if (z1 > box[m + 5]!) box[m + 5] = z1;
-      m = ky * 6;
-      if (x0 < box[m]!) box[m] = x0;
-      if (y0 < box[m + 1]!) box[m + 1] = y0;
-      if (z0 < box[m + 2]!) box[m + 2] = z0;
-      if (x1 > box[m + 3]!) box[m + 3] = x1;
-      if (y1 > box[m + 4]!) box[m + 4] = y1;
-      if (z1 > box[m + 5]!) box[m + 5] = z1;
-      m = kz * 6;
-      if (x0 < box[m]!) box[m] = x0;
-      if (y0 < box[m + 1]!) box[m + 1] = y0;
-      if (z0 < box[m + 2]!) box[m + 2] = z0;
-      if (x1 > box[m + 3]!) box[m + 3] = x1;
-      if (y1 > box[m + 4]!) box[m + 4] = y1;
-      if (z1 > box[m + 5]!) box[m + 5] = z1;
+      growBoxAt(box, kx * 6, x0, y0, z0, x1, y1, z1);
+      growBoxAt(box, ky * 6, x0, y0, z0, x1, y1, z1);
+      growBoxAt(box, kz * 6, x0, y0, z0, x1, y1, z1);
     }
     for (let a = 0; a < 3; a++) if (this.scale[a]! > 0) this.sweep(a);
     if (this.axis < 0) return false;
@@ -179,18 +161,11 @@ export class SahBinner {
   /** Exact union of the boxes of the non-empty bins first..last on `axis`, into out (min xyz, max xyz). */
   private sideBox(axis: number, first: number, last: number, out: Float64Array): void {
     const box = this.binBox;
-    let x0 = Infinity, y0 = Infinity, z0 = Infinity, x1 = -Infinity, y1 = -Infinity, z1 = -Infinity;
+    emptyBox(out);
     for (let s = axis * this.bins + first, sEnd = axis * this.bins + last; s <= sEnd; s++) {
       if (this.counts[s] === 0) continue;
       const m = s * 6;
-      if (box[m]! < x0) x0 = box[m]!;
-      if (box[m + 1]! < y0) y0 = box[m + 1]!;
-      if (box[m + 2]! < z0) z0 = box[m + 2]!;
-      if (box[m + 3]! > x1) x1 = box[m + 3]!;
-      if (box[m + 4]! > y1) y1 = box[m + 4]!;
-      if (box[m + 5]! > z1) z1 = box[m + 5]!;
+      growBoxAt(out, 0, box[m]!, box[m + 1]!, box[m + 2]!, box[m + 3]!, box[m + 4]!, box[m + 5]!);
     }
-    out[0] = x0; out[1] = y0; out[2] = z0;
-    out[3] = x1; out[4] = y1; out[5] = z1;
   }
 }

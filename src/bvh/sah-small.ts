@@ -8,7 +8,7 @@
  * A_L·N_L + A_R·N_R (half areas), and two triangles with equal centroids on the axis are never
  * separated (no plane between them), so a node whose centroids all coincide reports no split.
  */
-import { halfArea, sweepMax, sweepMin } from './box-area.ts';
+import { emptyBox, growBoxAt, halfArea, sweepMax, sweepMin } from './box-area.ts';
 
 /** Nodes with at most this many triangles use the exact sweep. */
 export const SMALL_NODE_MAX = 12;
@@ -131,17 +131,10 @@ export class SmallSahSplitter {
 
   private sideBox(from: number, to: number, out: Float64Array): void {
     const box = this.box;
-    let x0 = Infinity, y0 = Infinity, z0 = Infinity, x1 = -Infinity, y1 = -Infinity, z1 = -Infinity;
+    emptyBox(out);
     for (let j = from; j < to; j++) {
       const m = this.orders[this.bestBase + j]! * 6;
-      if (box[m]! < x0) x0 = box[m]!;
-      if (box[m + 1]! < y0) y0 = box[m + 1]!;
-      if (box[m + 2]! < z0) z0 = box[m + 2]!;
-      if (box[m + 3]! > x1) x1 = box[m + 3]!;
-      if (box[m + 4]! > y1) y1 = box[m + 4]!;
-      if (box[m + 5]! > z1) z1 = box[m + 5]!;
+      growBoxAt(out, 0, box[m]!, box[m + 1]!, box[m + 2]!, box[m + 3]!, box[m + 4]!, box[m + 5]!);
     }
-    out[0] = x0; out[1] = y0; out[2] = z0;
-    out[3] = x1; out[4] = y1; out[5] = z1;
   }
 }
