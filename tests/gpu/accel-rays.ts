@@ -4,7 +4,11 @@
  * each moving instance) and their closest and any hits traced through the scene's kernels as the
  * renderer compiles them.
  */
+import type { Grid } from '../../src/bvh/grid.ts';
+import { traceScene } from '../../src/bvh/levels.ts';
+import { intersectPrimitive, prepareRay } from '../../src/bvh/ray.ts';
 import { makeRandom } from '../../src/bvh/test-scenes.ts';
+import type { WideBvh } from '../../src/bvh/wide.ts';
 import { ComputeKernel, TRAVERSAL_FEATURES } from '../../src/gpu/kernel.ts';
 import { featureConstants } from '../../src/gpu/kernel-variants.ts';
 import { readBuffer } from '../../src/gpu/readback.ts';
@@ -119,6 +123,52 @@ export async function traceOnGpu(device: GPUDevice, prepared: PreparedScene, ray
   scene.destroy();
   const f = new Float32Array(raw), u = new Uint32Array(raw);
   return rays.map((_, i) => ({ t: f[i * 5]!, tri: u[i * 5 + 1]!, u: f[i * 5 + 2]!, v: f[i * 5 + 3]!, any: u[i * 5 + 4] === 1 }));
+}
+
+const NO_TRIANGLE = 0xffffffff;
+/** Barycentric distance from an edge under which a ray is taken to graze it. */
+const EDGE = 1e-3;
+
+/**
+ * Holds the GPU's hits (traceOnGpu) to the CPU oracle's (bvh/levels.ts traceScene through `accel`):
+ * distances to a relative tolerance, a different primitive only where it is a genuine tie or the ray
+ * grazes an edge; with moving instances, enough rays hit them. `label` starts the log line.
+ */
+export function expectHitsMatchOracle(prepared: PreparedScene, rays: readonly TestRay[], gpu: Awaited<ReturnType<typeof traceOnGpu>>, accel: Grid | WideBvh | undefined, label = ''): void {
+  const { positions, kinds } = prepared.triangles;
+  let exact = 0, ties = 0, grazing = 0, hits = 0;
+  const failures: string[] = [];
+  rays.forEach((ray, i) => {
+    const cpu = traceScene(prepared.scene, prepared.triangles, prepared.bvh, prepared.levels, ray, accel);
+    const g = gpu[i]!;
+    const onEdge = (u: number, v: number, prim: number) => kinds[prim] !== 0 || Math.min(u, v, 1 - u - v) < EDGE;
+    // Any hit is whether the closest hit exists.
+    if (g.any !== (g.tri !== NO_TRIANGLE) && !(cpu && onEdge(cpu.u, cpu.v, cpu.triangle))) failures.push(`ray ${i}: any ${g.any}, closest ${g.tri === NO_TRIANGLE ? 'miss' : g.tri}`);
+    if (cpu) hits++;
+    if (!cpu || g.tri === NO_TRIANGLE) {
+      if (!cpu && g.tri === NO_TRIANGLE) exact++;
+      else if (cpu && onEdge(cpu.u, cpu.v, cpu.triangle)) grazing++;
+      else if (!cpu && onEdge(g.u, g.v, g.tri)) grazing++;
+      else failures.push(`ray ${i}: cpu ${cpu ? `hit ${cpu.triangle} at ${cpu.t}` : 'miss'}, gpu ${g.tri === NO_TRIANGLE ? 'miss' : `hit ${g.tri} at ${g.t}`}`);
+      return;
+    }
+    const relative = Math.abs(g.t - cpu.t) / Math.max(cpu.t, 1e-3);
+    if (g.tri === cpu.triangle && relative < 1e-4) {
+      exact++;
+      return;
+    }
+    const tAlt = intersectPrimitive(positions, kinds, g.tri, prepareRay(ray), 0, 3e38, { u: 0, v: 0 });
+    if (Math.abs(tAlt - cpu.t) / Math.max(cpu.t, 1e-3) < 1e-4 || (onEdge(cpu.u, cpu.v, cpu.triangle) && relative < 1e-3)) ties++;
+    else failures.push(`ray ${i}: cpu ${cpu.triangle} at ${cpu.t}, gpu ${g.tri} at ${g.t} (oracle has it at ${tAlt})`);
+  });
+  console.log(`${label}${rays.length} rays: ${hits} hits, ${exact} exact, ${ties} ties, ${grazing} grazing`);
+  expect(failures.slice(0, 10)).toEqual([]);
+  expect(hits).toBeGreaterThan(rays.length / 6);
+  expect(ties + grazing).toBeLessThan(0.01 * rays.length);
+  if (prepared.levels) {
+    const moving = new Set(prepared.levels.dynamic);
+    expect(gpu.filter((g) => g.tri !== NO_TRIANGLE && moving.has(prepared.triangles.instanceIds[g.tri]!)).length).toBeGreaterThan(30);
+  }
 }
 
 /** What an oracle counts along one ray: nodes (or cells) visited and primitives tested. */

@@ -8,20 +8,16 @@
  * genuine tie (the oracle hits it at the same distance) or the ray grazes an edge.
  */
 import { describe, expect, it } from 'vitest';
-import { traceScene } from '../../src/bvh/levels.ts';
-import { intersectPrimitive, prepareRay } from '../../src/bvh/ray.ts';
 import { tileMapScene } from '../../src/bvh/grid-test-scenes.ts';
 import { movingTestScene } from '../../src/bvh/test-scenes.ts';
 import { traceWide, WIDE_LAYOUTS } from '../../src/bvh/wide.ts';
 import { prepareScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
 import type { Scene } from '../../src/scene/types.ts';
-import { expectHeatMatchesOracle, makeRays, traceOnGpu } from './accel-rays.ts';
+import { expectHeatMatchesOracle, expectHitsMatchOracle, makeRays, traceOnGpu } from './accel-rays.ts';
 import { testGpu } from './gpu-context.ts';
 import { renderScene } from './scene-render.ts';
 
-const NO_TRIANGLE = 0xffffffff;
-const EDGE = 1e-3;
 
 
 // One scene each (compiling the kernels is what takes the time): a static world of 460 triangles under moving instances.
@@ -37,40 +33,7 @@ describe('GPU wide traversal equals the CPU oracle', () => {
     expect(prepared.packed.features.staticAccel).toBe(layout);
     const rays = makeRays(prepared, 24, { lo: prepared.bvh.bounds.subarray(0, 3), hi: prepared.bvh.bounds.subarray(3, 6), random: 384, perInstance: 96 });
     const gpu = await traceOnGpu(device, prepared, rays);
-    const { positions, kinds } = prepared.triangles;
-    let exact = 0, ties = 0, grazing = 0, hits = 0;
-    const failures: string[] = [];
-    rays.forEach((ray, i) => {
-      const cpu = traceScene(prepared.scene, prepared.triangles, prepared.bvh, prepared.levels, ray, prepared.wide);
-      const g = gpu[i]!;
-      const onEdge = (u: number, v: number, prim: number) => kinds[prim] !== 0 || Math.min(u, v, 1 - u - v) < EDGE;
-      // Any hit is whether the closest hit exists.
-      if (g.any !== (g.tri !== NO_TRIANGLE) && !(cpu && onEdge(cpu.u, cpu.v, cpu.triangle))) failures.push(`ray ${i}: any ${g.any}, closest ${g.tri === NO_TRIANGLE ? 'miss' : g.tri}`);
-      if (cpu) hits++;
-      if (!cpu || g.tri === NO_TRIANGLE) {
-        if (!cpu && g.tri === NO_TRIANGLE) exact++;
-        else if (cpu && onEdge(cpu.u, cpu.v, cpu.triangle)) grazing++;
-        else if (!cpu && onEdge(g.u, g.v, g.tri)) grazing++;
-        else failures.push(`ray ${i}: cpu ${cpu ? `hit ${cpu.triangle} at ${cpu.t}` : 'miss'}, gpu ${g.tri === NO_TRIANGLE ? 'miss' : `hit ${g.tri} at ${g.t}`}`);
-        return;
-      }
-      const relative = Math.abs(g.t - cpu.t) / Math.max(cpu.t, 1e-3);
-      if (g.tri === cpu.triangle && relative < 1e-4) {
-        exact++;
-        return;
-      }
-      const tAlt = intersectPrimitive(positions, kinds, g.tri, prepareRay(ray), 0, 3e38, { u: 0, v: 0 });
-      if (Math.abs(tAlt - cpu.t) / Math.max(cpu.t, 1e-3) < 1e-4 || (onEdge(cpu.u, cpu.v, cpu.triangle) && relative < 1e-3)) ties++;
-      else failures.push(`ray ${i}: cpu ${cpu.triangle} at ${cpu.t}, gpu ${g.tri} at ${g.t} (oracle has it at ${tAlt})`);
-    });
-    console.log(`${layout}: ${rays.length} rays: ${hits} hits, ${exact} exact, ${ties} ties, ${grazing} grazing`);
-    expect(failures.slice(0, 10)).toEqual([]);
-    expect(hits).toBeGreaterThan(rays.length / 6);
-    expect(ties + grazing).toBeLessThan(0.01 * rays.length);
-    if (prepared.levels) {
-      const moving = new Set(prepared.levels.dynamic);
-      expect(gpu.filter((g) => g.tri !== NO_TRIANGLE && moving.has(prepared.triangles.instanceIds[g.tri]!)).length).toBeGreaterThan(30);
-    }
+    expectHitsMatchOracle(prepared, rays, gpu, prepared.wide, `${layout}: `);
   });
 });
 
