@@ -1,10 +1,10 @@
 /**
  * Headless Chromium with WebGPU on SwiftShader (Debian's `chromium` package), driven by
  * playwright-core, and the production page (built once per run: global-setup.ts) served by
- * `lantern view`'s server.
+ * `lantern view`'s server; pageTestbed starts both for a test file, openWatchedPage opens a watched page.
  */
 import { chromium, type Browser, type Page } from 'playwright-core';
-import { inject } from 'vitest';
+import { afterAll, beforeAll, inject } from 'vitest';
 import { startViewServer } from '../../src/cli/view-server.ts';
 
 export const CHROMIUM = process.env.LANTERN_CHROMIUM ?? '/usr/bin/chromium';
@@ -48,6 +48,50 @@ export async function servePage(files: readonly string[] = []): Promise<ServedPa
       await server.close();
     },
   };
+}
+
+/** The served page and the browser of one test file (pageTestbed): set once its beforeAll has run. */
+export interface PageTestbed {
+  readonly browser: Browser;
+  readonly served: ServedPage;
+}
+
+/** Serves the page (with `files`) and launches the browser before the file's tests, and closes both after them. */
+export function pageTestbed(files: readonly string[] = []): PageTestbed {
+  const bed: { browser?: Browser; served?: ServedPage } = {};
+  beforeAll(async () => {
+    bed.served = await servePage(files);
+    bed.browser = await launchBrowser();
+  });
+  afterAll(async () => {
+    await bed.browser?.close();
+    await bed.served?.close();
+  });
+  return {
+    get browser() {
+      if (!bed.browser) throw new Error('pageTestbed: the browser is launched in beforeAll');
+      return bed.browser;
+    },
+    get served() {
+      if (!bed.served) throw new Error('pageTestbed: the page is served in beforeAll');
+      return bed.served;
+    },
+  };
+}
+
+/** Opens `url` in a new page of `viewport`, watched (watchPage), collecting its uncaught errors. */
+export async function openWatchedPage(browser: Browser, url: string, viewport: { readonly width: number; readonly height: number }): Promise<{ page: Page; errors: string[] }> {
+  const page = await browser.newPage({ viewport });
+  const errors: string[] = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  watchPage(page);
+  await page.goto(url);
+  return { page, errors };
+}
+
+/** Waits until the page has loaded a scene (window.lantern set, nothing loading, a scene named). */
+export async function waitForScene(page: Page, what: string): Promise<void> {
+  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, what);
 }
 
 /** Drops files on the page as the browser delivers a drop: a DataTransfer of File objects on dragenter and drop events. */

@@ -5,31 +5,16 @@
  * frame: a deterministic 0.5 fps), and so does the world (Lantern issue #27). The budget keeps its
  * resolution floor, and the panel's resolution shows the scale that renders.
  */
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser, Page } from 'playwright-core';
-import { launchBrowser, servePage, waitForPage, waitForSamples, watchPage, withPageReport, type ServedPage } from './browser.ts';
+import { describe, expect, it } from 'vitest';
+import type { Page } from 'playwright-core';
+import { openWatchedPage, pageTestbed, waitForPage, waitForSamples, waitForScene, withPageReport } from './browser.ts';
 
-let browser: Browser;
-let served: ServedPage;
-
-beforeAll(async () => {
-  served = await servePage();
-  browser = await launchBrowser();
-});
-
-afterAll(async () => {
-  await browser?.close();
-  await served?.close();
-});
+const bed = pageTestbed();
 
 async function open(query: string, viewport: { width: number; height: number }): Promise<{ page: Page; errors: string[] }> {
-  const page = await browser.newPage({ viewport });
-  const errors: string[] = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  watchPage(page);
-  await page.goto(`${served.url}?${query}`);
-  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, 'the scene');
-  return { page, errors };
+  const opened = await openWatchedPage(bed.browser, `${bed.served.url}?${query}`, viewport);
+  await waitForScene(opened.page, 'the scene');
+  return opened;
 }
 
 const frame = (page: Page) => page.evaluate(() => window.lantern.frame);

@@ -5,25 +5,14 @@
  * link then carries the edit, and opening it shows the blue wall again. Alt-click focuses the lens
  * on the back wall without touching the selection; Esc deselects. Renders are tiny (1/8 of the canvas).
  */
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser, Page } from 'playwright-core';
+import { describe, expect, it } from 'vitest';
+import type { Page } from 'playwright-core';
 import { parseViewParams } from '../../src/app/view-params.ts';
 import { decodePng } from '../../src/image/png.ts';
-import { launchBrowser, pageReport, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
+import { openWatchedPage, pageReport, pageTestbed, waitForSamples, waitForScene } from './browser.ts';
 
-let browser: Browser;
-let served: ServedPage;
+const bed = pageTestbed();
 const VIEWPORT = { width: 640, height: 400 };
-
-beforeAll(async () => {
-  served = await servePage();
-  browser = await launchBrowser();
-});
-
-afterAll(async () => {
-  await browser?.close();
-  await served?.close();
-});
 
 interface Image {
   readonly samples: number;
@@ -50,13 +39,9 @@ const RED_WALL = [0.03, 0.12, 0.3, 0.7] as const;
 const GREEN_WALL = [0.88, 0.97, 0.3, 0.7] as const;
 
 async function openPage(query: string): Promise<{ page: Page; errors: string[] }> {
-  const page = await browser.newPage({ viewport: VIEWPORT });
-  const errors: string[] = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  watchPage(page);
-  await page.goto(`${served.url}?${query}`);
-  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, 'the first scene');
-  return { page, errors };
+  const opened = await openWatchedPage(bed.browser, `${bed.served.url}?${query}`, VIEWPORT);
+  await waitForScene(opened.page, 'the first scene');
+  return opened;
 }
 
 async function playUntil(page: Page, samples: number): Promise<void> {
@@ -159,7 +144,7 @@ describe('live material editing', () => {
     await page.waitForFunction(() => window.lantern.selection === undefined, undefined, { timeout: 10_000 });
 
     // The link restores the edit in a new page.
-    const second = await browser.newPage({ viewport: VIEWPORT });
+    const second = await bed.browser.newPage({ viewport: VIEWPORT });
     const secondErrors: string[] = [];
     second.on('pageerror', (e) => secondErrors.push(e.message));
     await second.goto(link);

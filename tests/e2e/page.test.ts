@@ -10,7 +10,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Browser, Page } from 'playwright-core';
 import { decodePng } from '../../src/image/png.ts';
 import { squareRoomsWad } from '../../src/loaders/doom/test-wad.ts';
-import { dropFiles, launchBrowser, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
+import { dropFiles, launchBrowser, openWatchedPage, servePage, waitForPage, waitForSamples, type ServedPage } from './browser.ts';
 
 let browser: Browser;
 let served: ServedPage;
@@ -57,13 +57,9 @@ const PROGRESSIVE = 'temporal=0&denoise=0';
 
 /** Opens the page, collecting page errors; `query` without the leading '?'. */
 async function open(query: string): Promise<{ page: Page; errors: string[] }> {
-  const page = await browser.newPage({ viewport: VIEWPORT });
-  const errors: string[] = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  watchPage(page);
-  await page.goto(`${served.url}?${query}`);
-  await waitLoaded(page);
-  return { page, errors };
+  const opened = await openWatchedPage(browser, `${served.url}?${query}`, VIEWPORT);
+  await waitLoaded(opened.page);
+  return opened;
 }
 
 /** Pixels of the rendered image, from the status line ("… · 17×14 · adapter"). */

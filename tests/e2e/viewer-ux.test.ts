@@ -7,35 +7,20 @@
  * says while it waits (compiling shaders, k of n) and that its status line fits at 420, 640 and
  * 1280 pixels (issue #27).
  */
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser, Page } from 'playwright-core';
-import { launchBrowser, servePage, waitForPage, watchPage, withPageReport, type ServedPage } from './browser.ts';
+import { describe, expect, it } from 'vitest';
+import type { Page } from 'playwright-core';
+import { openWatchedPage, pageTestbed, waitForPage, waitForScene, watchPage, withPageReport } from './browser.ts';
 
-let browser: Browser;
-let served: ServedPage;
-
-beforeAll(async () => {
-  served = await servePage();
-  browser = await launchBrowser();
-});
-
-afterAll(async () => {
-  await browser?.close();
-  await served?.close();
-});
+const bed = pageTestbed();
 
 async function open(query: string, viewport = { width: 640, height: 400 }): Promise<{ page: Page; errors: string[] }> {
-  const page = await browser.newPage({ viewport });
-  const errors: string[] = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  watchPage(page);
-  await page.goto(`${served.url}?${query}`);
-  await waitLoaded(page);
-  return { page, errors };
+  const opened = await openWatchedPage(bed.browser, `${bed.served.url}?${query}`, viewport);
+  await waitLoaded(opened.page);
+  return opened;
 }
 
 async function waitLoaded(page: Page): Promise<void> {
-  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, 'the scene loaded');
+  await waitForScene(page, 'the scene loaded');
 }
 
 /** The panel row (Tweakpane label and value) whose label matches. */
@@ -253,14 +238,14 @@ describe('the page for a new user', () => {
   });
 
   it('without WebGPU says which browsers have it and how to enable it, points to the CLI, and keeps Play disabled', async () => {
-    const page = await browser.newPage({ viewport: { width: 640, height: 400 } });
+    const page = await bed.browser.newPage({ viewport: { width: 640, height: 400 } });
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
     watchPage(page);
     await page.addInitScript(() => {
       delete (Navigator.prototype as { gpu?: unknown }).gpu;
     });
-    await page.goto(`${served.url}?scene=cornell`);
+    await page.goto(`${bed.served.url}?scene=cornell`);
     await waitLoaded(page);
     const notes = page.locator('#start .no-webgpu');
     expect(await notes.isVisible()).toBe(true);

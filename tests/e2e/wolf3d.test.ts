@@ -9,10 +9,10 @@
  */
 import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { Browser, Page } from 'playwright-core';
+import { describe, expect, it } from 'vitest';
+import type { Page } from 'playwright-core';
 import { testGameFiles } from '../../src/loaders/wolf3d/test-files.ts';
-import { dropFiles, lagAnimationFrames, launchBrowser, servePage, waitForPage, waitForSamples, watchPage, type ServedPage } from './browser.ts';
+import { dropFiles, lagAnimationFrames, pageTestbed, waitForPage, waitForSamples, waitForScene, watchPage } from './browser.ts';
 
 // LANTERN_WOLF3D_SHAREWARE=none runs with the written files even where the shareware is present (as CI does).
 const SHAREWARE = process.env.LANTERN_WOLF3D_SHAREWARE === 'none' ? undefined : ['../shared/assets/wolf3d-shareware', '/work/shared/assets/wolf3d-shareware'].map((d) => join(import.meta.dirname, '../..', d)).concat('/work/shared/assets/wolf3d-shareware').find((d) => existsSync(join(d, 'GAMEMAPS.WL1')));
@@ -25,21 +25,10 @@ function gameFiles(): { name: string; bytes: number[] }[] {
   return [t.maphead, t.gamemaps, t.vswap].map((f) => ({ name: f.name, bytes: [...f.bytes] }));
 }
 
-let browser: Browser;
-let served: ServedPage;
-
-beforeAll(async () => {
-  served = await servePage([]);
-  browser = await launchBrowser();
-});
-
-afterAll(async () => {
-  await browser?.close();
-  await served?.close();
-});
+const bed = pageTestbed();
 
 async function open(query: string): Promise<{ page: Page; errors: string[] }> {
-  const page = await browser.newPage({ viewport: { width: 480, height: 300 } });
+  const page = await bed.browser.newPage({ viewport: { width: 480, height: 300 } });
   const errors: string[] = [];
   page.on('pageerror', (e) => errors.push(e.message));
   watchPage(page);
@@ -56,8 +45,8 @@ async function open(query: string): Promise<{ page: Page; errors: string[] }> {
     };
     requestAnimationFrame(tick);
   });
-  await page.goto(`${served.url}?${query}`);
-  await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '', undefined, 60_000, 'the first scene');
+  await page.goto(`${bed.served.url}?${query}`);
+  await waitForScene(page, 'the first scene');
   return { page, errors };
 }
 
