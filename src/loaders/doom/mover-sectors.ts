@@ -8,7 +8,7 @@ import { toWorld } from './coordinates.ts';
 import { NO_SIDEDEF, type DoomMap } from './map-types.ts';
 import { DOOR_TOP_GAP, MOVER_SPECIALS, TICS_PER_SECOND } from './specials.ts';
 import type { SectorMotionRange } from './walls.ts';
-import { moverKindOf, type MoverAction } from '../../scene/dynamics-types.ts';
+import { moverKindOf, type MoverAction, type MoverTrigger } from '../../scene/dynamics-types.ts';
 
 export interface MovingSector {
   readonly sector: number;
@@ -20,18 +20,10 @@ export interface MovingSector {
   readonly outline: Float32Array;
 }
 
-export interface MoverTriggerLine {
+/** A MoverTrigger as the map has it: its linedef, and the sectors it moves (sector indices) in place of movers. */
+export interface MoverTriggerLine extends Omit<MoverTrigger, 'movers'> {
   readonly linedef: number;
-  readonly line: readonly [number, number, number, number];
-  readonly activation: 'use' | 'walk';
-  readonly repeatable: boolean;
-  /** Sector indices. */
   readonly sectors: readonly number[];
-  readonly action: MoverAction;
-  /** World units per second, seconds. */
-  readonly speed: number;
-  readonly wait: number;
-  readonly reverses: boolean;
 }
 
 export interface MapMovers {
