@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { atrousSchedule, denoiseAtrousParams, denoiseSlopesParams, denoiseWeightsParams, EXACT_WEIGHT_ITERATIONS, isDenoiseChainPass, type PairRegion } from './denoise-passes.ts';
+import { atrousSchedule, denoiseAtrousParams, denoiseSlopesParams, denoiseWeightsParams, EXACT_WEIGHT_ITERATIONS, isDenoiseChainPass, PING_PONG, type PairRegion } from './denoise-passes.ts';
 
 /** The words a region's pairs occupy for the first pixels. */
 const words = (r: PairRegion, pixels = 8) => new Set(Array.from({ length: pixels }, (_, i) => [r.stride * i + r.offset, r.stride * i + r.offset + 1]).flat().map((w) => `${r.array}${w}`));
@@ -60,6 +60,21 @@ describe('the weight sums of the à-trous iterations', () => {
         if (i + 1 < schedule.length && i + 1 >= EXACT_WEIGHT_ITERATIONS) expect(p.weights_write).not.toBe(0);
       });
     }
+  });
+});
+
+describe("the hybrid recipe's GI filter (PING_PONG, three iterations)", () => {
+  it('reads one buffer and writes the other, steps 1, 2, 4, the last writing no sums for an iteration that does not run', () => {
+    const params = [0, 1, 2].map((i) => denoiseAtrousParams(i, PING_PONG, 3));
+    expect(params.map((p) => p.step)).toEqual([1, 2, 4]);
+    for (const p of params) expect(p).toMatchObject({ source_stride: 2, source_offset: 0, result_array: 1, result_stride: 2, result_offset: 0, mode: 0 });
+    expect(params.map((p) => p.capped)).toEqual([0, 0, 1]);
+    // Iteration 2 (the second) leaves its sums for the third, which reads them; the third leaves none.
+    expect(params[1]!.weights_write).toBe(params[2]!.weights_read);
+    expect(params[2]!.weights_write).toBe(0);
+    expect(denoiseWeightsParams(1, PING_PONG, 3).weights_write).toBe(params[1]!.weights_read);
+    expect(() => denoiseAtrousParams(3, PING_PONG, 3)).toThrow();
+    expect(() => denoiseAtrousParams(0, PING_PONG, 6)).toThrow();
   });
 });
 

@@ -1,15 +1,28 @@
 /**
  * The denoiser's image passes, each the TypeScript twin of its WGSL module: temporal accumulation
  * (shaders/passes/temporal.wgsl), the à-trous iterations over packed records
- * (shaders/passes/denoise-atrous.wgsl; `atrousParams` also serves the hybrid recipe's vec4f twin,
- * shaders/passes/atrous.wgsl) and the output (shaders/passes/denoise-output.wgsl). Each is an
- * ImagePass; what differs is its parameters. The à-trous entry point runs 8 times a frame: once for
+ * (shaders/passes/denoise-atrous.wgsl) and the output (shaders/passes/denoise-output.wgsl). Each is
+ * an ImagePass; what differs is its parameters. The à-trous entry point runs 8 times a frame: once for
  * the depth slopes, then per iteration once to filter, the first two iterations after a dispatch
- * that writes their weight sums.
+ * that writes their weight sums. The same à-trous pass filters the hybrid recipe's GI target
+ * (createAtrousPass, PING_PONG): one filter for both recipes.
  */
 import { DENOISE_VIEWS, type DenoiseView } from './variants.ts';
 import { ImagePass } from './image-pass.ts';
 import type { UniformValues } from './uniform-params.ts';
+import { reflectModule } from '../gpu/wgsl/reflect.ts';
+
+/** Bytes of an illumination pair (f16 rgb, f16 σ; denoise/gbuffer pack_illumination): what the à-trous filters. */
+export const PAIR_BYTES = 8;
+/** Bytes per pixel of the à-trous filter's own scratch (filter_scratch): its depth slopes and two regions of weight sums. */
+export const ATROUS_SCRATCH_BYTES = 12;
+
+/** The size of a struct of a WGSL module (default denoise/gbuffer, the packed records), by reflection. */
+export function structSize(name: string, module = 'denoise/gbuffer'): number {
+  const def = reflectModule(module).defs.structs[name];
+  if (!def) throw new Error(`${module} has no struct ${name}`);
+  return def.size;
+}
 
 /** Steps of the five à-trous iterations (SVGF). */
 export const ATROUS_STEPS = [1, 2, 4, 8, 16] as const;
@@ -52,10 +65,14 @@ const ATROUS_SLOTS = ATROUS_STEPS.length + 1 + EXACT_WEIGHT_ITERATIONS;
 export const isDenoiseChainPass = (label: string): boolean =>
   label === TEMPORAL_LABEL || label === OUTPUT_LABEL || label === ATROUS_SLOPES_LABEL || ATROUS_STEPS.some((_, i) => atrousLabel(i) === label || atrousWeightsLabel(i) === label);
 
+/** The à-trous pass (passes/denoise-atrous) with its parameter slots (ATROUS_SLOTS): the real-time chain's, and the hybrid recipe's GI filter. */
+export const createAtrousPass = (device: GPUDevice, label: string): Promise<ImagePass<UniformValues>> =>
+  ImagePass.create(device, 'passes/denoise-atrous', 'denoise_atrous_step', label, ATROUS_SLOTS);
+
 export async function createDenoisePasses(device: GPUDevice): Promise<DenoisePasses> {
   const [temporal, atrous, output] = await Promise.all([
     ImagePass.create(device, 'passes/temporal', 'temporal_accumulate', TEMPORAL_LABEL),
-    ImagePass.create(device, 'passes/denoise-atrous', 'denoise_atrous_step', 'a-trous', ATROUS_SLOTS),
+    createAtrousPass(device, 'a-trous'),
     ImagePass.create(device, 'passes/denoise-output', 'denoise_output', OUTPUT_LABEL),
   ]);
   return { temporal, atrous, output };
@@ -84,15 +101,25 @@ export interface PairRegion {
   readonly offset: number;
 }
 
-/** One à-trous iteration of the real-time chain: what `b` is bound to, its source, its result. */
-export interface AtrousIteration {
-  readonly b: 'history' | 'previous-moments';
+/** One à-trous iteration: its source, its result, whether it copies its source to `b`. */
+export interface AtrousStep {
   readonly source: PairRegion;
   /** 'output': remodulate and write the frame's linear output over the frame scratch (`a`). */
   readonly result: PairRegion | 'output';
   /** Also copy the source's own pairs into the colour history (`b`): the history without feedback. */
   readonly copyHistory: boolean;
 }
+
+/** One à-trous iteration of the real-time chain: also what `b` is bound to. */
+export interface AtrousIteration extends AtrousStep {
+  readonly b: 'history' | 'previous-moments';
+}
+
+/**
+ * An iteration from the pairs of one buffer (`a`) into another (`b`), a pair per pixel: the hybrid
+ * recipe's GI filter, whose two GI buffers swap roles every iteration.
+ */
+export const PING_PONG: AtrousStep = { source: { array: 'a', stride: 2, offset: 0 }, result: { array: 'b', stride: 2, offset: 0 }, copyHistory: false };
 
 const SCRATCH_LOW: PairRegion = { array: 'a', stride: 4, offset: 0 };
 /** Words 2–3 of the frame scratch: where the temporal pass leaves its output (FRAME_TEMPORAL). */
@@ -126,13 +153,15 @@ export function atrousSchedule(feedback: boolean): readonly AtrousIteration[] {
 }
 
 /**
- * Parameters of the real-time chain's iteration i (shaders/passes/denoise-atrous.wgsl), whose bind
- * group has the buffer of `it.source` as source_words and the other as other_words (renderer/recipes/real-time.ts).
+ * Parameters of iteration i of `iterations` (shaders/passes/denoise-atrous.wgsl), whose bind group
+ * has the buffer of `it.source` as source_words and the other as other_words (renderer/recipes/
+ * real-time.ts: the chain's five; renderer/recipes/hybrid.ts: the GI filter's three, PING_PONG).
  */
-export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): UniformValues => {
+export const denoiseAtrousParams = (iteration: number, it: AtrousStep | AtrousIteration, iterations: number = ATROUS_STEPS.length): UniformValues => {
   const result = it.result === 'output' ? SCRATCH_LOW : it.result;
   // The copy goes to other_words, which must then be the colour history.
-  if (it.copyHistory && !(it.source.array === 'a' && it.b === 'history')) throw new Error('atrous: the history copy needs the source in the frame scratch');
+  if (it.copyHistory && !(it.source.array === 'a' && 'b' in it && it.b === 'history')) throw new Error('atrous: the history copy needs the source in the frame scratch');
+  if (iteration >= iterations || iterations > ATROUS_STEPS.length) throw new Error(`atrous: iteration ${iteration + 1} of ${iterations} (at most ${ATROUS_STEPS.length})`);
   return {
     ...atrousParams(iteration),
     source_stride: it.source.stride,
@@ -146,7 +175,7 @@ export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): Uni
     // Iteration i reads the weight sums in region 1 + i % 2: its weights dispatch's (the first
     // EXACT_WEIGHT_ITERATIONS), else those its predecessor wrote there, capping its coefficients.
     weights_read: weightsRegion(iteration),
-    weights_write: iteration + 1 >= EXACT_WEIGHT_ITERATIONS && iteration + 1 < ATROUS_STEPS.length ? weightsRegion(iteration + 1) : 0,
+    weights_write: iteration + 1 >= EXACT_WEIGHT_ITERATIONS && iteration + 1 < iterations ? weightsRegion(iteration + 1) : 0,
     capped: iteration >= EXACT_WEIGHT_ITERATIONS ? 1 : 0,
   };
 };
@@ -154,9 +183,9 @@ export const denoiseAtrousParams = (iteration: number, it: AtrousIteration): Uni
 const weightsRegion = (iteration: number): number => 1 + (iteration % 2);
 
 /** The dispatch before iteration i (its step, its source) that writes the weight sums: ATROUS_WEIGHTS. */
-export const denoiseWeightsParams = (iteration: number, it: AtrousIteration): UniformValues => {
+export const denoiseWeightsParams = (iteration: number, it: AtrousStep | AtrousIteration, iterations: number = ATROUS_STEPS.length): UniformValues => {
   if (iteration >= EXACT_WEIGHT_ITERATIONS) throw new Error(`atrous: iteration ${iteration + 1} has no weights dispatch`);
-  return { ...denoiseAtrousParams(iteration, it), mode: 4, weights_read: 0, weights_write: weightsRegion(iteration) };
+  return { ...denoiseAtrousParams(iteration, it, iterations), mode: 4, weights_read: 0, weights_write: weightsRegion(iteration) };
 };
 
 /** The dispatch before the iterations that writes the depth slopes (ATROUS_SLOPES); it reads no pairs. */

@@ -15,10 +15,13 @@ import { LanternError } from '../../errors.ts';
 import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
 import type { GpuTimer } from '../../gpu/timestamps.ts';
 import { cameraUniform, ViewUniform } from '../../gpu/view.ts';
-import { atrousParams } from '../../passes/denoise-passes.ts';
+import {
+  ATROUS_SCRATCH_BYTES, ATROUS_SLOPES_SLOT, EXACT_WEIGHT_ITERATIONS, PAIR_BYTES, PING_PONG, atrousWeightsSlot, createAtrousPass, denoiseAtrousParams, denoiseSlopesParams, denoiseWeightsParams, structSize,
+} from '../../passes/denoise-passes.ts';
 import { HybridRasterPass, DEPTH_FORMAT, VISIBILITY_FORMAT, type RasterDraw } from '../../passes/hybrid-raster-pass.ts';
 import { ImagePass } from '../../passes/image-pass.ts';
-import { pathTraceParams, TracingKernels } from '../../passes/path-trace-pass.ts';
+import { HybridTracePass, type HybridTraced } from '../../passes/hybrid-trace-pass.ts';
+import { pathTraceParams } from '../../passes/path-trace-pass.ts';
 import { UniformParams, type UniformValues } from '../../passes/uniform-params.ts';
 import type { Camera } from '../../scene/types.ts';
 import type { PreparedScene } from '../prepare.ts';
@@ -35,6 +38,8 @@ const TAA_MIN_BLEND = 0.1;
 const NEAR_FRACTION = 1e-5;
 /** À-trous iterations on the GI target (steps 1, 2, 4: the GI texels are already a block apart). */
 const GI_FILTER_ITERATIONS = 3;
+/** The GI filter's timer labels: its slopes, its weight sums before iteration i, iteration i (0-based). */
+const giFilterLabel = (iteration: number | 'slopes'): string => (iteration === 'slopes' ? 'a-trous GI slopes' : `a-trous GI ${iteration + 1}`);
 
 /** The radical inverse of i in `base` (Halton's sequence), in [0, 1). */
 export function radicalInverse(i: number, base: number): number {
@@ -95,9 +100,15 @@ interface Buffers {
   readonly motion: GPUBuffer;
   readonly lit: GPUBuffer;
   readonly diffuseWeight: GPUBuffer;
+  /** The GI target and the à-trous filter's other half of it (illumination pairs, passes/hybrid). */
   readonly gi: GPUBuffer;
+  readonly giPairs: GPUBuffer;
+  /** The surface records the GI texels were traced from (SurfaceTexel). */
   readonly giGuide: GPUBuffer;
-  readonly giScratch: GPUBuffer;
+  /** The à-trous filter's depth slopes and weight sums for the GI target. */
+  readonly giFilterScratch: GPUBuffer;
+  /** The GI filter's bind groups, made as first used (giFilterGroups). */
+  readonly giFilterGroups: Map<string, Record<number, GPUBindGroup>>;
   readonly composed: GPUBuffer;
   readonly histories: readonly [GPUBuffer, GPUBuffer];
   readonly output: GPUBuffer;
@@ -116,7 +127,7 @@ export class HybridRecipe implements FrameRecipe {
   private constructor(
     private readonly device: GPUDevice,
     private readonly raster: HybridRasterPass,
-    private readonly kernels: { readonly resolve: TracingKernels; readonly shade: TracingKernels; readonly reflect: TracingKernels; readonly gi: TracingKernels },
+    private readonly traced: Readonly<Record<HybridTraced, HybridTracePass>>,
     private readonly compose: ImagePass<UniformValues>,
     private readonly taa: ImagePass<UniformValues>,
     private readonly atrous: ImagePass<UniformValues>,
@@ -126,23 +137,22 @@ export class HybridRecipe implements FrameRecipe {
 
   /** `first`: the features of the scene to be rendered, where known (its tracing variants compile instead of a plain scene's). */
   static async create(device: GPUDevice, first?: SceneFeatures): Promise<HybridRecipe> {
-    const traced = (entry: string) => TracingKernels.create(device, MODULE, entry, {}, first);
     const [raster, resolve, shade, reflect, gi, compose, taa, atrous] = await Promise.all([
       HybridRasterPass.create(device, first),
-      traced('hybrid_resolve'),
-      traced('hybrid_shade'),
-      traced('hybrid_reflect'),
-      traced('hybrid_gi'),
+      HybridTracePass.create(device, 'resolve', first),
+      HybridTracePass.create(device, 'shade', first),
+      HybridTracePass.create(device, 'reflect', first),
+      HybridTracePass.create(device, 'gi', first),
       ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_compose', 'compose'),
       ImagePass.create(device, 'passes/hybrid-compose', 'hybrid_taa', 'taa'),
-      ImagePass.create(device, 'passes/atrous', 'atrous_step', 'a-trous (GI)', GI_FILTER_ITERATIONS),
+      createAtrousPass(device, 'a-trous (GI)'),
     ]);
     return new HybridRecipe(device, raster, { resolve, shade, reflect, gi }, compose, taa, atrous, new UniformParams(device, 'passes/path-trace'), new UniformParams(device, MODULE, 'hybrid'));
   }
 
   /** Compiles the variants a scene with these features needs (RGB always: spectral mode is the path tracers'). */
   async prepare(features: SceneFeatures): Promise<void> {
-    await Promise.all([this.raster.prepare(features), ...Object.values(this.kernels).map((k) => k.prepare(features))]);
+    await Promise.all([this.raster.prepare(features), ...Object.values(this.traced).map((k) => k.prepare(features))]);
   }
 
   /** The recipe's linear output of the last frame (vec4f per pixel), if a frame was rendered. */
@@ -192,18 +202,21 @@ export class HybridRecipe implements FrameRecipe {
       reflections: h.reflections ? 1 : 0,
       reflection_bounces: h.reflectionBounces,
     });
-    const targets = () => ({
-      params: this.params.buffer, hybrid: this.hybridParams.buffer, ray_counters: r.targets.rayCounters, visibility: b.visibilityView,
-      guide: b.guide, motion: b.motion, lit: b.lit, diffuse_weight: b.diffuseWeight, gi: b.gi, gi_guide: b.giGuide,
-    });
-    // The kernels cache group 2 by this buffer: made anew with the buffers, which are made anew when the counters change.
-    const key = b.guide;
-    this.kernels.resolve.dispatch(encoder, 'resolve', r.scene, r.view, key, targets, tile, false, r.timer);
-    this.kernels.shade.dispatch(encoder, 'shade', r.scene, r.view, key, targets, tile, false, r.timer);
-    if (h.reflections && r.scene.features.generalMaterials && s.maxBounces > 0) this.kernels.reflect.dispatch(encoder, 'reflect', r.scene, r.view, key, targets, tile, false, r.timer);
+    // The kernels cache group 2 by `key`: made anew with the buffers, which are made anew when the counters change.
+    const targets = {
+      key: b.guide,
+      resources: () => ({
+        params: this.params.buffer, hybrid: this.hybridParams.buffer, ray_counters: r.targets.rayCounters, visibility: b.visibilityView,
+        guide: b.guide, motion: b.motion, lit: b.lit, diffuse_weight: b.diffuseWeight, gi: b.gi, gi_guide: b.giGuide,
+      }),
+    };
+    const traced = { scene: r.scene, view: r.view, targets, tile, timer: r.timer };
+    this.traced.resolve.encode(encoder, traced);
+    this.traced.shade.encode(encoder, traced);
+    if (h.reflections && r.scene.features.generalMaterials && s.maxBounces > 0) this.traced.reflect.encode(encoder, traced);
     const useGi = s.maxBounces > 0 && h.giBounces > 0;
     if (useGi) {
-      this.kernels.gi.dispatch(encoder, 'GI', r.scene, r.view, key, targets, { x: 0, y: 0, width: b.giWidth, height: b.giHeight }, false, r.timer);
+      this.traced.gi.encode(encoder, { ...traced, tile: { x: 0, y: 0, width: b.giWidth, height: b.giHeight } });
       if (h.giFilter) this.encodeGiFilter(encoder, b, r.timer);
     }
 
@@ -223,19 +236,43 @@ export class HybridRecipe implements FrameRecipe {
   destroy(): void {
     this.destroyBuffers();
     this.raster.destroy();
-    for (const p of [this.compose, this.taa, this.atrous, this.params, this.hybridParams]) p.destroy();
+    for (const p of [...Object.values(this.traced), this.compose, this.taa, this.atrous, this.params, this.hybridParams]) p.destroy();
   }
 
-  /** The à-trous filter (the denoiser's) on the GI target, guided by the normals and depths the GI texels were traced from; the result ends in `gi`. */
+  /**
+   * The real-time chain's à-trous filter (passes/denoise-atrous) on the GI target, guided by the
+   * surfaces the GI texels were traced from: the depth slopes, then GI_FILTER_ITERATIONS iterations
+   * between the two GI buffers (the first EXACT_WEIGHT_ITERATIONS after their weight sums), as the
+   * chain runs it; the result ends in `gi`.
+   */
   private encodeGiFilter(encoder: GPUCommandEncoder, b: Buffers, timer?: GpuTimer): void {
-    const chain = [b.gi, b.giScratch];
+    const filter = this.atrous;
+    const run = (i: number, slot: number, label: string) => filter.encode(encoder, { groups: this.giFilterGroups(b, i, slot), width: b.giWidth, height: b.giHeight, timer, label });
+    filter.write(denoiseSlopesParams(), ATROUS_SLOPES_SLOT);
+    run(0, ATROUS_SLOPES_SLOT, giFilterLabel('slopes'));
     for (let i = 0; i < GI_FILTER_ITERATIONS; i++) {
-      this.atrous.write(atrousParams(i), i);
-      const groups = this.atrous.bindGroups(b.giView, { guide: b.giGuide, filter_source: chain[i % 2]!, filter_result: chain[(i + 1) % 2]! }, i);
-      this.atrous.encode(encoder, { groups, width: b.giWidth, height: b.giHeight, timer, label: `a-trous GI ${i + 1}` });
+      if (i < EXACT_WEIGHT_ITERATIONS) {
+        filter.write(denoiseWeightsParams(i, PING_PONG, GI_FILTER_ITERATIONS), atrousWeightsSlot(i));
+        run(i, atrousWeightsSlot(i), `${giFilterLabel(i)} weights`);
+      }
+      filter.write(denoiseAtrousParams(i, PING_PONG, GI_FILTER_ITERATIONS), i);
+      run(i, i, giFilterLabel(i));
     }
-    // An odd number of iterations ends in the scratch buffer: copy it back where compose reads.
-    if (GI_FILTER_ITERATIONS % 2 === 1) encoder.copyBufferToBuffer(b.giScratch, 0, b.gi, 0, b.gi.size);
+    // An odd number of iterations ends in the other buffer: copy it back where compose reads.
+    if (GI_FILTER_ITERATIONS % 2 === 1) encoder.copyBufferToBuffer(b.giPairs, 0, b.gi, 0, b.gi.size);
+  }
+
+  /** The GI filter's bind groups for iteration i's direction (the two GI buffers swap every iteration) and a parameter slot, made once per buffers. */
+  private giFilterGroups(b: Buffers, i: number, slot: number): Record<number, GPUBindGroup> {
+    const key = `${i % 2}/${slot}`;
+    let groups = b.giFilterGroups.get(key);
+    if (!groups) {
+      const pairs = [b.gi, b.giPairs] as const;
+      // frame_records is read by the chain's output mode alone, which the GI filter never runs: bound to the guide (both read-only).
+      const resources = { surface_records: b.giGuide, frame_records: b.giGuide, source_words: pairs[i % 2]!, other_words: pairs[(i + 1) % 2]!, filter_scratch: b.giFilterScratch };
+      b.giFilterGroups.set(key, (groups = this.atrous.bindGroups(b.giView, resources, slot)));
+    }
+    return groups;
   }
 
   private ensureBuffers(view: ViewUniform, camera: Camera, scale: number, rayCounters: GPUBuffer): Buffers {
@@ -245,7 +282,7 @@ export class HybridRecipe implements FrameRecipe {
     if (b0 && b0.width === width && b0.height === height && b0.giWidth === giWidth && b0.giHeight === giHeight && b0.rayCounters === rayCounters) return b0;
     this.destroyBuffers();
     this.resetHistory();
-    const pixels = width * height;
+    const pixels = width * height, giTexels = giWidth * giHeight;
     const limits = this.device.limits;
     if (pixels * VEC4_BYTES > limits.maxStorageBufferBindingSize || width > limits.maxTextureDimension2D || height > limits.maxTextureDimension2D) {
       throw new LanternError(`image ${width}×${height} is too large for the hybrid recipe on this GPU`);
@@ -264,9 +301,11 @@ export class HybridRecipe implements FrameRecipe {
       motion: make('hybrid motion', pixels * VEC4_BYTES),
       lit: make('hybrid lit', pixels * VEC4_BYTES),
       diffuseWeight: make('hybrid diffuse weight', pixels * VEC4_BYTES),
-      gi: make('hybrid GI', giWidth * giHeight * VEC4_BYTES),
-      giGuide: make('hybrid GI guide', giWidth * giHeight * VEC4_BYTES),
-      giScratch: make('hybrid GI scratch', giWidth * giHeight * VEC4_BYTES),
+      gi: make('hybrid GI', giTexels * PAIR_BYTES),
+      giPairs: make('hybrid GI (filter)', giTexels * PAIR_BYTES),
+      giGuide: make('hybrid GI guide', giTexels * structSize('SurfaceTexel')),
+      giFilterScratch: make('hybrid GI filter scratch', giTexels * ATROUS_SCRATCH_BYTES),
+      giFilterGroups: new Map(),
       composed: make('hybrid composed', pixels * VEC4_BYTES),
       histories: [make('TAA history 0', pixels * VEC4_BYTES), make('TAA history 1', pixels * VEC4_BYTES)],
       output: make('hybrid output', pixels * VEC4_BYTES),
@@ -280,7 +319,7 @@ export class HybridRecipe implements FrameRecipe {
     b.visibility.destroy();
     b.depth.destroy();
     b.giView.destroy();
-    for (const buffer of [b.guide, b.motion, b.lit, b.diffuseWeight, b.gi, b.giGuide, b.giScratch, b.composed, ...b.histories, b.output]) buffer.destroy();
+    for (const buffer of [b.guide, b.motion, b.lit, b.diffuseWeight, b.gi, b.giPairs, b.giGuide, b.giFilterScratch, b.composed, ...b.histories, b.output]) buffer.destroy();
     this.buffers = undefined;
   }
 }
@@ -288,6 +327,7 @@ export class HybridRecipe implements FrameRecipe {
 /** Bytes per pixel the hybrid recipe holds at a GI scale (docs/hybrid.md's memory line). */
 export function hybridBytesPerPixel(scale: number): number {
   const block = giBlock(scale);
-  // guide, motion, lit, diffuse weight, composed, two histories, output; visibility (8) and depth (4); three GI buffers per block.
-  return 8 * VEC4_BYTES + 8 + 4 + (3 * VEC4_BYTES) / (block * block);
+  // guide, motion, lit, diffuse weight, composed, two histories, output; visibility (8) and depth (4);
+  // per GI texel (a block): two illumination pairs, the surface record, the à-trous filter's scratch.
+  return 8 * VEC4_BYTES + 8 + 4 + (2 * PAIR_BYTES + structSize('SurfaceTexel') + ATROUS_SCRATCH_BYTES) / (block * block);
 }

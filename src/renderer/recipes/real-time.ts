@@ -21,9 +21,8 @@ import type { SceneResources } from '../../gpu/scene-resources.ts';
 import type { GpuTimer } from '../../gpu/timestamps.ts';
 import { pathDispatch, wholeImage, type FrameContext } from '../frame.ts';
 import type { FrameRecipe, RecipeFrame } from './frame-recipe.ts';
-import { reflectModule } from '../../gpu/wgsl/reflect.ts';
 import {
-  ATROUS_SLOPES_LABEL, ATROUS_SLOPES_SLOT, EXACT_WEIGHT_ITERATIONS, atrousLabel, atrousSchedule, atrousWeightsLabel, atrousWeightsSlot, createDenoisePasses, denoiseAtrousParams,
+  ATROUS_SCRATCH_BYTES, ATROUS_SLOPES_LABEL, ATROUS_SLOPES_SLOT, EXACT_WEIGHT_ITERATIONS, PAIR_BYTES, structSize, atrousLabel, atrousSchedule, atrousWeightsLabel, atrousWeightsSlot, createDenoisePasses, denoiseAtrousParams,
   denoiseOutputParams, denoiseSlopesParams, denoiseWeightsParams, temporalParams, type DenoisePasses,
 } from '../../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
@@ -38,14 +37,6 @@ import type { ViewUniform } from '../../gpu/view.ts';
 
 /** Bytes of the frame scratch per pixel: four words (FRAME_* of shaders/denoise/gbuffer.wgsl), at the end the output vec4f. */
 const SCRATCH_BYTES = 16;
-/** Bytes of an illumination pair (f16 rgb, f16 σ): the colour history's texel. */
-const PAIR_BYTES = 8;
-
-function structSize(name: string, module = 'denoise/gbuffer'): number {
-  const def = reflectModule(module).defs.structs[name];
-  if (!def) throw new Error(`${module} has no struct ${name}`);
-  return def.size;
-}
 
 /** One buffer of the real-time chain and its bytes per pixel. */
 export interface DenoiserBufferSize {
@@ -481,7 +472,7 @@ export class RealTimeRecipe implements FrameRecipe {
     const make = (label: string, size: number) => this.device.createBuffer({ label, size: pixels * size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
     const surfaceBytes = structSize('SurfaceTexel'), momentBytes = structSize('MomentsTexel');
     // The à-trous dispatches borrow three words a pixel of the previous surface records (passes/denoise-atrous).
-    if (surfaceBytes < 12) throw new Error(`a surface record (${surfaceBytes} B) cannot lend the à-trous filter its 12 bytes`);
+    if (surfaceBytes < ATROUS_SCRATCH_BYTES) throw new Error(`a surface record (${surfaceBytes} B) cannot lend the à-trous filter its ${ATROUS_SCRATCH_BYTES} bytes`);
     const scratch = make('frame scratch and output', SCRATCH_BYTES);
     const surfaces = [make('surface records 0', surfaceBytes), make('surface records 1', surfaceBytes)] as const;
     const frameRecords = make('frame records', structSize('FrameTexel'));

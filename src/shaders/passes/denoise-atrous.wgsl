@@ -27,13 +27,14 @@
 // iterations, for two weights dispatches instead of five; exact sums in the first iteration only, or
 // the cap with exact sums, raised it 7–10 %.
 //
-// The packed twin of passes/atrous (which the hybrid recipe keeps for its vec4f buffers): the guide is
-// the pixel-centre surface record, and source and result are illumination pairs (two words: f16 rgb,
-// f16 σ, denoise/gbuffer) that live in one of two bound word arrays at a stride and offset the host
-// chooses per iteration. So the iterations ping-pong inside the frame scratch (words 0–1 and 2–3 of
-// each pixel), the colour history and the moments the temporal pass has finished with (renderer/
-// denoiser.ts has the schedule), and the last iteration remodulates and writes the frame's linear
-// output (vec4f) over the frame scratch. The depth slopes (ATROUS_SLOPES, once before the iterations)
+// Both frame recipes filter with it. The guide is the pixel-centre surface record, and source and
+// result are illumination pairs (two words: f16 rgb, f16 σ, denoise/gbuffer) that live in one of two
+// bound word arrays at a stride and offset the host chooses per iteration. So the real-time chain's
+// iterations ping-pong inside the frame scratch (words 0–1 and 2–3 of each pixel), the colour history
+// and the moments the temporal pass has finished with (passes/denoise-passes.ts atrousSchedule), and
+// the last iteration remodulates and writes the frame's linear output (vec4f) over the frame scratch;
+// the hybrid recipe's GI filter ping-pongs between its two GI buffers (PING_PONG), on a view of the GI
+// target's size, with its own slopes and sums. The depth slopes (ATROUS_SLOPES, once before the iterations)
 // and the weight sums live in the previous frame's surface records, which the temporal pass has
 // finished with and the next frame's G-buffer overwrites. Expects the view (group 1) and denoise/gbuffer.
 

@@ -28,8 +28,9 @@ struct ComposeParams {
 @group(2) @binding(1) var<storage, read> guide: array<vec4f>;
 @group(2) @binding(2) var<storage, read> lit: array<vec4f>;
 @group(2) @binding(3) var<storage, read> diffuse_weight: array<vec4f>;
-@group(2) @binding(4) var<storage, read> gi: array<vec4f>;
-@group(2) @binding(5) var<storage, read> gi_guide: array<vec4f>;
+// The GI target (illumination pairs) and the surfaces its texels were traced from (passes/hybrid).
+@group(2) @binding(4) var<storage, read> gi: array<vec2u>;
+@group(2) @binding(5) var<storage, read> gi_guide: array<SurfaceTexel>;
 @group(2) @binding(6) var<storage, read_write> composed: array<vec4f>;
 @group(2) @binding(7) var<storage, read> motion: array<vec4f>;
 @group(2) @binding(8) var<storage, read> previous_history: array<vec4f>;
@@ -40,13 +41,13 @@ fn pixel_index(p: vec2u) -> u32 {
   return p.y * view.image_size.x + p.x;
 }
 
-// How much a GI texel traced from a surface with guide g speaks for a pixel with guide c.
-fn bilateral_weight(c: vec4f, g: vec4f) -> f32 {
-  if (g.w < 0.0) {
+// How much a GI texel traced from surface g speaks for a pixel with guide c (normal, linear depth).
+fn bilateral_weight(c: vec4f, g: SurfaceTexel) -> f32 {
+  if (is_miss_depth(g.linear_depth)) {
     return 0.0;
   }
-  let normal = pow(max(dot(c.xyz, g.xyz), 0.0), 32.0);
-  let depth = exp(-abs(c.w - g.w) / (0.05 * c.w + 1e-6));
+  let normal = pow(max(dot(c.xyz, unpack_normal(g.normal)), 0.0), 32.0);
+  let depth = exp(-abs(c.w - g.linear_depth) / (0.05 * c.w + 1e-6));
   return normal * depth;
 }
 
@@ -64,14 +65,16 @@ fn upsampled_gi(pixel: vec2u, c: vec4f) -> vec3f {
       let t = clamp(base + vec2i(dx, dy), vec2i(0), last);
       let k = u32(t.y) * params.gi_size.x + u32(t.x);
       let bilinear = select(1.0 - f.x, f.x, dx == 1) * select(1.0 - f.y, f.y, dy == 1);
-      let w = bilinear * bilateral_weight(c, gi_guide[k]);
-      sum += w * gi[k].rgb;
+      let agrees = bilateral_weight(c, gi_guide[k]);
+      let texel = unpack_illumination(gi[k]).rgb;
+      let w = bilinear * agrees;
+      sum += w * texel;
       weights += w;
       // No neighbour agrees (a thin object, an edge): the one that agrees most.
-      let agreement = bilateral_weight(c, gi_guide[k]) + 1e-6 * bilinear;
+      let agreement = agrees + 1e-6 * bilinear;
       if (agreement > fallback_weight) {
         fallback_weight = agreement;
-        fallback = gi[k].rgb;
+        fallback = texel;
       }
     }
   }

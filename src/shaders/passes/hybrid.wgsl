@@ -60,11 +60,13 @@ struct HybridParams {
 @group(2) @binding(7) var<storage, read_write> lit: array<vec4f>;
 // Per pixel: the diffuse lobe's weight (rgb) the upsampled GI is multiplied by.
 @group(2) @binding(8) var<storage, read_write> diffuse_weight: array<vec4f>;
-// Per GI texel: rgb = indirect radiance (cosine-weighted mean), a = its luminance² (the à-trous
-// filter's variance guess for a one-sample estimate).
-@group(2) @binding(9) var<storage, read_write> gi: array<vec4f>;
-// Per GI texel: normal and linear depth of the pixel it was traced from (the upsampling's guide).
-@group(2) @binding(10) var<storage, read_write> gi_guide: array<vec4f>;
+// Per GI texel, an illumination pair (denoise/gbuffer pack_illumination): the indirect radiance
+// (cosine-weighted mean) and, as its variance, its luminance² (the à-trous filter's guess for a
+// one-sample estimate).
+@group(2) @binding(9) var<storage, read_write> gi: array<vec2u>;
+// Per GI texel: the surface of the pixel it was traced from (normal, linear depth, material), the
+// guide of the à-trous filter and of the upsampling.
+@group(2) @binding(10) var<storage, read_write> gi_guide: array<SurfaceTexel>;
 
 fn pixel_ray(pixel: vec2u) -> Ray {
   return camera_ray(vec2f(pixel) + 0.5 + hybrid.jitter);
@@ -445,12 +447,12 @@ fn hybrid_gi(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation
     var sum = vec3f(0.0);
     var extension_rays = 0u;
     var shadow_rays = 0u;
-    var guide_value = vec4f(-ray.direction, MISS_DEPTH);
+    var guide_value = pack_surface(-ray.direction, MISS_DEPTH, NO_ID);
     if (hit.triangle != NO_TRIANGLE) {
       let s = shading_at(hit, ray);
       let depth = dot(s.surface.position - view.camera.position, view.camera.forward);
       let facing = select(1.0, -1.0, dot(s.ns, ray.direction) > 0.0);
-      guide_value = vec4f(facing * s.ns, depth);
+      guide_value = pack_surface(facing * s.ns, depth, s.surface.material);
       if (s.material.kind != MATERIAL_KIND_EMISSIVE && params.max_bounces > 0u) {
         var rng = rng_seed(pixel.y * view.image_size.x + pixel.x, params.sample_index, params.seed ^ 0x6a09e667u);
         let n = facing * s.ns;
@@ -474,7 +476,7 @@ fn hybrid_gi(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation
       }
     }
     let l = luminance(sum);
-    gi[index] = vec4f(sum, l * l);
+    gi[index] = pack_illumination(sum, l * l);
     gi_guide[index] = guide_value;
     count_rays(extension_rays, shadow_rays);
   }
