@@ -18,8 +18,8 @@
 import { LanternError } from '../errors.ts';
 import type { Vec3 } from '../math/vec3.ts';
 import type { Scene } from '../scene/types.ts';
-import { intersectPrimitive, prepareRay, type Barycentrics, type Ray } from './ray.ts';
-import type { AnyTrace, ClosestTrace } from './traverse.ts';
+import { prepareRay, type Ray } from './ray.ts';
+import { Closest, type AnyTrace, type ClosestTrace } from './traverse.ts';
 import { computeTriangleBoxes } from './triangle-boxes.ts';
 import { PRIMITIVE_KIND } from '../scene/triangles.ts';
 
@@ -383,49 +383,36 @@ class Mailbox {
  * on until it reaches the cell of that hit).
  */
 export function traceGrid(grid: Grid, positions: Float32Array, ray: Ray, kinds?: Uint8Array): ClosestTrace {
-  const r = prepareRay(ray);
-  const box = new Mailbox();
-  const bary: Barycentrics = { u: 0, v: 0 };
-  let tBest = r.tMax, bestLeaf = -1, bestU = 0, bestV = 0, tested = 0;
   const { cellStart, cellCount, items, leafToSource } = grid;
-  const cells = walk(grid, r, tBest, (cell, tExit) => {
+  const state = new Closest(positions, kinds, leafToSource, prepareRay(ray));
+  const box = new Mailbox();
+  state.nodesVisited = walk(grid, state.r, state.tBest, (cell, tExit) => {
     const first = cellStart[cell]!, end = first + cellCount[cell]!;
     for (let i = first; i < end; i++) {
       const leaf = items[i]!;
-      if (box.seen(leaf)) continue;
-      tested++;
-      const t = intersectPrimitive(positions, kinds, leafToSource[leaf]!, r, r.tMin, tBest, bary);
-      if (t < tBest) {
-        tBest = t;
-        bestLeaf = leaf;
-        bestU = bary.u;
-        bestV = bary.v;
-      }
+      if (!box.seen(leaf)) state.test(leaf);
     }
-    return tBest <= tExit;
+    return state.tBest <= tExit;
   });
-  const hit = bestLeaf < 0 ? null : { t: tBest, u: bestU, v: bestV, triangle: leafToSource[bestLeaf]!, leafIndex: bestLeaf, nodesVisited: cells, trianglesTested: tested };
-  return { hit, nodesVisited: cells, trianglesTested: tested };
+  return state.result();
 }
 
 /** Any hit at tMin < t < tMax through the grid (shadow rays): the first accepted test ends the walk. */
 export function traceGridAny(grid: Grid, positions: Float32Array, ray: Ray, kinds?: Uint8Array): AnyTrace {
-  const r = prepareRay(ray);
-  const box = new Mailbox();
-  const bary: Barycentrics = { u: 0, v: 0 };
-  let found = false, tested = 0;
   const { cellStart, cellCount, items, leafToSource } = grid;
-  const cells = walk(grid, r, r.tMax, (cell, tExit) => {
+  const state = new Closest(positions, kinds, leafToSource, prepareRay(ray));
+  const box = new Mailbox();
+  let found = false;
+  state.nodesVisited = walk(grid, state.r, state.r.tMax, (cell, tExit) => {
     const first = cellStart[cell]!, end = first + cellCount[cell]!;
     for (let i = first; i < end; i++) {
-      if (box.seen(items[i]!)) continue;
-      tested++;
-      if (intersectPrimitive(positions, kinds, leafToSource[items[i]!]!, r, r.tMin, r.tMax, bary) < r.tMax) {
+      const leaf = items[i]!;
+      if (!box.seen(leaf) && state.testAny(leaf)) {
         found = true;
         return true;
       }
     }
-    return r.tMax <= tExit;
+    return state.r.tMax <= tExit;
   });
-  return { hit: found, nodesVisited: cells, trianglesTested: tested };
+  return state.anyResult(found);
 }

@@ -11,7 +11,7 @@
  *   missed and the loop never starts;
  * - trianglesTested: ray/triangle tests run.
  */
-import { intersectAabb, intersectPrimitive, prepareRay, T_MISS, type Barycentrics, type Ray } from './ray.ts';
+import { intersectAabb, intersectPrimitive, prepareRay, T_MISS, type Barycentrics, type PreparedRay, type Ray } from './ray.ts';
 import type { Bvh } from './types.ts';
 
 /** A closest hit found without a BVH. */
@@ -46,42 +46,86 @@ export interface AnyTrace {
 }
 
 /**
- * Closest hit with an ordered stack: at an interior node both children are slab-tested against the
- * closest hit so far, the nearer is visited next and the farther is pushed if it was hit (ties go
- * left). Popped nodes are not re-tested against a closer hit found meanwhile (the GPU does the same).
+ * Closest-hit state shared by the CPU traversals (binary, wide, grid): the best hit so far and the
+ * counts. `triIndices` maps a leaf position to its source primitive.
  */
-export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?: Uint8Array): ClosestTrace {
-  const r = prepareRay(ray);
-  const { bounds, leftFirst, triCount, triIndices } = bvh;
-  const bary: Barycentrics = { u: 0, v: 0 };
-  let tBest = r.tMax, bestLeaf = -1, bestU = 0, bestV = 0;
-  let nodesVisited = 1, trianglesTested = 0;
-  if (intersectAabb(bounds, 0, r, tBest) === T_MISS) return { hit: null, nodesVisited, trianglesTested };
+export class Closest {
+  tBest: number;
+  bestLeaf = -1;
+  u = 0;
+  v = 0;
   nodesVisited = 0;
+  trianglesTested = 0;
+  private readonly bary: Barycentrics = { u: 0, v: 0 };
+  constructor(
+    private readonly positions: Float32Array,
+    private readonly kinds: Uint8Array | undefined,
+    private readonly triIndices: Uint32Array,
+    readonly r: PreparedRay,
+  ) {
+    this.tBest = r.tMax;
+  }
+  /** Tests the primitive at leaf position `leaf` against the best hit so far. */
+  test(leaf: number): void {
+    this.trianglesTested++;
+    const t = intersectPrimitive(this.positions, this.kinds, this.triIndices[leaf]!, this.r, this.r.tMin, this.tBest, this.bary);
+    if (t < this.tBest) {
+      this.tBest = t;
+      this.bestLeaf = leaf;
+      this.u = this.bary.u;
+      this.v = this.bary.v;
+    }
+  }
+  /** Whether the primitive at leaf position `leaf` is hit at tMin < t < tMax (any-hit traversal: tBest stays tMax). */
+  testAny(leaf: number): boolean {
+    this.trianglesTested++;
+    return intersectPrimitive(this.positions, this.kinds, this.triIndices[leaf]!, this.r, this.r.tMin, this.r.tMax, this.bary) < this.r.tMax;
+  }
+  leaf(first: number, count: number): void {
+    for (let i = first; i < first + count; i++) this.test(i);
+  }
+  /** Any hit in the leaf. */
+  leafAny(first: number, count: number): boolean {
+    for (let i = first; i < first + count; i++) if (this.testAny(i)) return true;
+    return false;
+  }
+  result(): ClosestTrace {
+    const { nodesVisited, trianglesTested } = this;
+    const hit: Hit | null =
+      this.bestLeaf < 0 ? null : { t: this.tBest, u: this.u, v: this.v, triangle: this.triIndices[this.bestLeaf]!, leafIndex: this.bestLeaf, nodesVisited, trianglesTested };
+    return { hit, nodesVisited, trianglesTested };
+  }
+  anyResult(hit: boolean): AnyTrace {
+    return { hit, nodesVisited: this.nodesVisited, trianglesTested: this.trianglesTested };
+  }
+}
+
+/**
+ * The walk of both traversals, as trace_closest and trace_any in bvh.wgsl: a leaf's range goes to
+ * `onLeaf`, which ends the walk by returning true. At an interior node both children are
+ * slab-tested against state.tBest; the one visited next is the nearer hit child (`ordered`; ties go
+ * left) or else the left child if it was hit, and the other is pushed if it was hit. Popped nodes
+ * are not re-tested against a closer hit found meanwhile (the GPU does the same).
+ */
+function walkBvh(bvh: Bvh, state: Closest, ordered: boolean, onLeaf: (first: number, count: number) => boolean): void {
+  const { bounds, leftFirst, triCount } = bvh;
+  const r = state.r;
+  state.nodesVisited = 1;
+  if (intersectAabb(bounds, 0, r, state.tBest) === T_MISS) return;
+  state.nodesVisited = 0;
   const stack: number[] = [];
   let node = 0;
   for (;;) {
-    nodesVisited++;
+    state.nodesVisited++;
     const count = triCount[node]!;
     if (count > 0) {
-      const first = leftFirst[node]!;
-      for (let i = first; i < first + count; i++) {
-        trianglesTested++;
-        const t = intersectPrimitive(positions, kinds, triIndices[i]!, r, r.tMin, tBest, bary);
-        if (t < tBest) {
-          tBest = t;
-          bestLeaf = i;
-          bestU = bary.u;
-          bestV = bary.v;
-        }
-      }
-      if (stack.length === 0) break;
+      if (onLeaf(leftFirst[node]!, count) || stack.length === 0) return;
       node = stack.pop()!;
       continue;
     }
     let near = leftFirst[node]!, far = near + 1;
-    let tNear = intersectAabb(bounds, near, r, tBest), tFar = intersectAabb(bounds, far, r, tBest);
-    if (tFar < tNear) {
+    let tNear = intersectAabb(bounds, near, r, state.tBest), tFar = intersectAabb(bounds, far, r, state.tBest);
+    if (ordered ? tFar < tNear : tNear === T_MISS) {
       const n = near, t = tNear;
       near = far;
       far = n;
@@ -89,18 +133,23 @@ export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?
       tFar = t;
     }
     if (tNear === T_MISS) {
-      if (stack.length === 0) break;
+      if (stack.length === 0) return;
       node = stack.pop()!;
       continue;
     }
     if (tFar !== T_MISS) stack.push(far);
     node = near;
   }
-  const hit =
-    bestLeaf < 0
-      ? null
-      : { t: tBest, u: bestU, v: bestV, triangle: triIndices[bestLeaf]!, leafIndex: bestLeaf, nodesVisited, trianglesTested };
-  return { hit, nodesVisited, trianglesTested };
+}
+
+/** Closest hit with an ordered stack: the nearer hit child is visited next, the farther pushed (see walkBvh). */
+export function traceClosest(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?: Uint8Array): ClosestTrace {
+  const state = new Closest(positions, kinds, bvh.triIndices, prepareRay(ray));
+  walkBvh(bvh, state, true, (first, count) => {
+    state.leaf(first, count);
+    return false;
+  });
+  return state.result();
 }
 
 /** The closest hit at tMin < t < tMax, or null. See traceClosest for counts on misses. */
@@ -111,39 +160,14 @@ export function traverseClosest(bvh: Bvh, positions: Float32Array, ray: Ray, kin
 /**
  * Any hit at tMin < t < tMax (shadow rays), stopping at the first found. Children are visited in
  * storage order, left first, without ordering by distance: any hit ends the search, so ordering
- * buys little (as trace_any in bvh.wgsl).
+ * buys little (as trace_any in bvh.wgsl). The boxes are tested against tMax throughout (state.tBest
+ * stays tMax when only leafAny tests).
  */
 export function traverseAny(bvh: Bvh, positions: Float32Array, ray: Ray, kinds?: Uint8Array): AnyTrace {
-  const r = prepareRay(ray);
-  const { bounds, leftFirst, triCount, triIndices } = bvh;
-  const bary: Barycentrics = { u: 0, v: 0 };
-  let nodesVisited = 1, trianglesTested = 0;
-  if (intersectAabb(bounds, 0, r, r.tMax) === T_MISS) return { hit: false, nodesVisited, trianglesTested };
-  nodesVisited = 0;
-  const stack: number[] = [];
-  let node = 0;
-  for (;;) {
-    nodesVisited++;
-    const count = triCount[node]!;
-    if (count > 0) {
-      const first = leftFirst[node]!;
-      for (let i = first; i < first + count; i++) {
-        trianglesTested++;
-        if (intersectPrimitive(positions, kinds, triIndices[i]!, r, r.tMin, r.tMax, bary) < r.tMax) return { hit: true, nodesVisited, trianglesTested };
-      }
-    } else {
-      const left = leftFirst[node]!;
-      const hitLeft = intersectAabb(bounds, left, r, r.tMax) !== T_MISS;
-      const hitRight = intersectAabb(bounds, left + 1, r, r.tMax) !== T_MISS;
-      if (hitLeft && hitRight) stack.push(left + 1);
-      if (hitLeft || hitRight) {
-        node = hitLeft ? left : left + 1;
-        continue;
-      }
-    }
-    if (stack.length === 0) return { hit: false, nodesVisited, trianglesTested };
-    node = stack.pop()!;
-  }
+  const state = new Closest(positions, kinds, bvh.triIndices, prepareRay(ray));
+  let hit = false;
+  walkBvh(bvh, state, false, (first, count) => (hit = state.leafAny(first, count)));
+  return state.anyResult(hit);
 }
 
 /**

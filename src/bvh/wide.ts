@@ -24,9 +24,9 @@
  */
 import { LanternError } from '../errors.ts';
 import { halfAreaAt } from './box-area.ts';
-import { intersectPrimitive, prepareRay, T_MISS, type Barycentrics, type PreparedRay, type Ray } from './ray.ts';
+import { prepareRay, T_MISS, type PreparedRay, type Ray } from './ray.ts';
 import type { BvhStats } from './stats.ts';
-import type { AnyTrace, ClosestTrace, Hit } from './traverse.ts';
+import { Closest, type AnyTrace, type ClosestTrace } from './traverse.ts';
 import type { Bvh } from './types.ts';
 
 export const WIDE_LAYOUTS = ['bvh4', 'cwbvh'] as const;
@@ -517,51 +517,6 @@ function slab(x0: number, y0: number, z0: number, x1: number, y1: number, z1: nu
   return tNear <= tFar && tFar >= 0 && tNear < tBest ? tNear : T_MISS;
 }
 
-/** Closest-hit state shared by the traversals: the best hit so far and the counts. */
-class Closest {
-  tBest: number;
-  bestLeaf = -1;
-  u = 0;
-  v = 0;
-  nodesVisited = 0;
-  trianglesTested = 0;
-  private readonly bary: Barycentrics = { u: 0, v: 0 };
-  constructor(
-    private readonly positions: Float32Array,
-    private readonly kinds: Uint8Array | undefined,
-    private readonly triIndices: Uint32Array,
-    readonly r: PreparedRay,
-  ) {
-    this.tBest = r.tMax;
-  }
-  leaf(first: number, count: number): void {
-    for (let i = first; i < first + count; i++) {
-      this.trianglesTested++;
-      const t = intersectPrimitive(this.positions, this.kinds, this.triIndices[i]!, this.r, this.r.tMin, this.tBest, this.bary);
-      if (t < this.tBest) {
-        this.tBest = t;
-        this.bestLeaf = i;
-        this.u = this.bary.u;
-        this.v = this.bary.v;
-      }
-    }
-  }
-  /** Any hit in the leaf (any-hit traversal: tBest stays tMax). */
-  leafAny(first: number, count: number): boolean {
-    for (let i = first; i < first + count; i++) {
-      this.trianglesTested++;
-      if (intersectPrimitive(this.positions, this.kinds, this.triIndices[i]!, this.r, this.r.tMin, this.r.tMax, this.bary) < this.r.tMax) return true;
-    }
-    return false;
-  }
-  result(): ClosestTrace {
-    const { nodesVisited, trianglesTested } = this;
-    const hit: Hit | null =
-      this.bestLeaf < 0 ? null : { t: this.tBest, u: this.u, v: this.v, triangle: this.triIndices[this.bestLeaf]!, leafIndex: this.bestLeaf, nodesVisited, trianglesTested };
-    return { hit, nodesVisited, trianglesTested };
-  }
-}
-
 /** Child order of a BVH4 node: the four (t, ref) pairs through scene/bvh4.wgsl's sorting network (nearest first, misses last). */
 function sortNetwork(t: number[], ref: number[]): void {
   const cx = (a: number, b: number) => {
@@ -701,5 +656,5 @@ export function traceWideAny(wide: WideBvh, positions: Float32Array, ray: Ray, k
   const onLeaf = (first: number, count: number) => (hit = state.leafAny(first, count));
   if (wide.layout === 'bvh4') bvh4Walk(wide, state, () => state.r.tMax, false, onLeaf);
   else cwbvhWalk(wide, state, () => state.r.tMax, onLeaf);
-  return { hit, nodesVisited: state.nodesVisited, trianglesTested: state.trianglesTested };
+  return state.anyResult(hit);
 }
