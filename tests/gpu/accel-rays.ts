@@ -13,7 +13,7 @@ import { ComputeKernel, TRAVERSAL_FEATURES } from '../../src/gpu/kernel.ts';
 import { featureConstants } from '../../src/gpu/kernel-variants.ts';
 import { readBuffer } from '../../src/gpu/readback.ts';
 import { SceneResources } from '../../src/gpu/scene-resources.ts';
-import { cameraBasis } from '../../src/gpu/view.ts';
+import { cameraBasis, type CameraBasis } from '../../src/gpu/view.ts';
 import { linkWgsl } from '../../src/gpu/wgsl/linker.ts';
 import { reflectLinked } from '../../src/gpu/wgsl/reflect.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
@@ -177,11 +177,61 @@ export interface TraversalCounts {
   readonly trianglesTested: number;
 }
 
+/** The view's basis for an image of the given aspect as the GPU holds it (f32). */
+export function f32Basis(prepared: PreparedScene, aspect: number): CameraBasis {
+  const b = cameraBasis(prepared.scene.camera, aspect);
+  const r = (v: Vec3): Vec3 => v.map(Math.fround) as unknown as Vec3;
+  return { position: r(b.position), right: r(b.right), up: r(b.up), forward: r(b.forward) };
+}
+
+/** view/bindings.wgsl camera_ray through a point (pixels) of a width × height image, in f64, turned by (dx, dy) in ndc. */
+export function cameraRay(b: CameraBasis, width: number, height: number, px: number, py: number, dx = 0, dy = 0): { origin: Vec3; direction: Vec3 } {
+  const nx = (2 * px) / width - 1 + dx, ny = (2 * py) / height - 1 + dy;
+  const d = [0, 1, 2].map((k) => b.forward[k]! + nx * b.right[k]! - ny * b.up[k]!);
+  const len = Math.hypot(...d);
+  return { origin: b.position, direction: d.map((v) => Math.fround(v / len)) as unknown as Vec3 };
+}
+
+/**
+ * Checks each pixel's GPU counts (`gpu(i)`: "nodes,triangles" of pixel i) against `oracle`'s for
+ * the pixel-centre ray, turned a little in ndc: where the turns change the oracle's counts the ray
+ * grazes a box face, a cell boundary or an edge and either count is right, in fewer than
+ * `unstableShare` of the pixels.
+ */
+export function expectCountsMatchOracle(
+  width: number,
+  height: number,
+  gpu: (i: number) => string,
+  oracle: (px: number, py: number, dx: number, dy: number) => TraversalCounts,
+  unstableShare: number,
+): void {
+  let exact = 0, unstable = 0;
+  const failures: string[] = [];
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const key = gpu(y * width + x);
+      const counts = [0, 1e-6, -1e-6, 1e-5, -1e-5, 3e-4, -3e-4].flatMap((t) => [[t, 0], [0, t]]).map(([dx, dy]) => {
+        const c = oracle(x + 0.5, y + 0.5, dx!, dy!);
+        return `${c.nodesVisited},${c.trianglesTested}`;
+      });
+      if (counts.every((c) => c === counts[0])) {
+        if (key === counts[0]) exact++;
+        else failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts[0]}`);
+      } else {
+        unstable++;
+        if (!counts.includes(key)) failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts.join(' | ')}`);
+      }
+    }
+  }
+  expect(failures.slice(0, 10)).toEqual([]);
+  expect(unstable).toBeLessThan(unstableShare * width * height);
+  expect(exact + unstable).toBe(width * height);
+}
+
 /**
  * Renders the bvh-teaching scene's heat-nodes view through `accel` at width × height and checks every
- * pixel's counts against `oracle` tracing the same pixel-centre ray on the CPU. Where turning the ray a
- * little changes the oracle's counts it grazes a box face, a cell boundary or an edge: either count is
- * right there (fewer than 5 % of the pixels). The heat map must show more than `distinct` levels.
+ * pixel's counts against `oracle` tracing the same pixel-centre ray on the CPU (expectCountsMatchOracle,
+ * fewer than 5 % of the pixels grazing). The heat map must show more than `distinct` levels.
  */
 export async function expectHeatMatchesOracle(
   renderer: Renderer,
@@ -196,38 +246,14 @@ export async function expectHeatMatchesOracle(
   await renderer.resize(width, height);
   renderer.updateSettings({ debugLayout: 'replace', debugView: 'heat-nodes' });
   const heat = await renderer.readDebugValues();
-  const b = cameraBasis(prepared.scene.camera, width / height);
-  const r = (v: Vec3): Vec3 => v.map(Math.fround) as unknown as Vec3;
-  const basis = { position: r(b.position), right: r(b.right), up: r(b.up), forward: r(b.forward) };
-  // view/bindings.wgsl camera_ray through a point of the image, turned by (dx, dy) in ndc.
-  const ray = (px: number, py: number, dx: number, dy: number) => {
-    const nx = (2 * px) / width - 1 + dx, ny = (2 * py) / height - 1 + dy;
-    const d = [0, 1, 2].map((k) => basis.forward[k]! + nx * basis.right[k]! - ny * basis.up[k]!);
-    const len = Math.hypot(...d);
-    return { origin: basis.position, direction: d.map((v) => Math.fround(v / len)) as unknown as Vec3 };
-  };
-  let exact = 0, unstable = 0;
-  const failures: string[] = [];
-  for (let y = 0; y < height; y++) {
-    for (let x = 0; x < width; x++) {
-      const i = y * width + x;
-      const key = `${heat[i * 4]},${heat[i * 4 + 1]}`;
-      const counts = [0, 1e-6, -1e-6, 1e-5, -1e-5, 3e-4, -3e-4].flatMap((t) => [[t, 0], [0, t]]).map(([dx, dy]) => {
-        const c = oracle(prepared, ray(x + 0.5, y + 0.5, dx!, dy!));
-        return `${c.nodesVisited},${c.trianglesTested}`;
-      });
-      if (counts.every((c) => c === counts[0])) {
-        if (key === counts[0]) exact++;
-        else failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts[0]}`);
-      } else {
-        unstable++;
-        if (!counts.includes(key)) failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts.join(' | ')}`);
-      }
-    }
-  }
-  expect(failures.slice(0, 10)).toEqual([]);
-  expect(unstable).toBeLessThan(0.05 * width * height);
-  expect(exact + unstable).toBe(width * height);
+  const b = f32Basis(prepared, width / height);
+  expectCountsMatchOracle(
+    width,
+    height,
+    (i) => `${heat[i * 4]},${heat[i * 4 + 1]}`,
+    (px, py, dx, dy) => oracle(prepared, cameraRay(b, width, height, px, py, dx, dy)),
+    0.05,
+  );
   expect(new Set(Array.from({ length: width * height }, (_, i) => heat[i * 4]!)).size).toBeGreaterThan(distinct);
   return prepared;
 }

@@ -6,13 +6,14 @@
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { nodeDepths, nodesAtDepth } from '../../src/bvh/depths.ts';
-import { traceClosest, type ClosestTrace } from '../../src/bvh/traverse.ts';
+import { traceClosest } from '../../src/bvh/traverse.ts';
 import type { Bvh } from '../../src/bvh/types.ts';
 import { builtinScene } from '../../src/loaders/builtin/index.ts';
 import type { Vec3 } from '../../src/math/vec3.ts';
 import { prepareScene, type PreparedScene } from '../../src/renderer/prepare.ts';
 import { Renderer } from '../../src/renderer/renderer.ts';
-import { cameraBasis, type CameraBasis } from '../../src/gpu/view.ts';
+import type { CameraBasis } from '../../src/gpu/view.ts';
+import { cameraRay, expectCountsMatchOracle, f32Basis } from './accel-rays.ts';
 import { testGpu } from './gpu-context.ts';
 
 const W = 64, H = 48;
@@ -28,21 +29,6 @@ beforeAll(async () => {
 });
 
 afterAll(() => renderer.destroy());
-
-/** The view's basis as the GPU holds it (f32). */
-function f32Basis(prepared: PreparedScene): CameraBasis {
-  const b = cameraBasis(prepared.scene.camera, W / H);
-  const r = (v: Vec3): Vec3 => v.map(Math.fround) as unknown as Vec3;
-  return { position: r(b.position), right: r(b.right), up: r(b.up), forward: r(b.forward) };
-}
-
-/** view/bindings.wgsl camera_ray through a point of the image (pixels), in f64, turned by (dx, dy) in ndc. */
-function cameraRay(b: CameraBasis, px: number, py: number, dx = 0, dy = 0): { origin: Vec3; direction: Vec3 } {
-  const nx = (2 * px) / W - 1 + dx, ny = (2 * py) / H - 1 + dy;
-  const d = [0, 1, 2].map((k) => b.forward[k]! + nx * b.right[k]! - ny * b.up[k]!);
-  const len = Math.hypot(...d);
-  return { origin: b.position, direction: d.map((v) => Math.fround(v / len)) as unknown as Vec3 };
-}
 
 /** The leaf holding leaf-order triangle `leafIndex`. */
 function leafOf(bvh: Bvh, leafIndex: number): number {
@@ -62,34 +48,19 @@ describe('heat map', () => {
   it('counts exactly the nodes and triangles the CPU oracle counts for each pixel-centre ray', async () => {
     const nodes = await debugValues({ debugView: 'heat-nodes' });
     const triangles = await debugValues({ debugView: 'heat-triangles' });
-    const b = f32Basis(teaching);
+    const b = f32Basis(teaching, W / H);
     const { bvh, triangles: list } = teaching;
-    let exact = 0, unstable = 0;
-    const failures: string[] = [];
-    for (let y = 0; y < H; y++) {
-      for (let x = 0; x < W; x++) {
-        const i = y * W + x;
-        const gpu = [nodes[i * 4]!, triangles[i * 4]!];
-        expect([nodes[i * 4 + 1], triangles[i * 4 + 1]]).toEqual([gpu[1], gpu[0]]);
-        // The GPU builds the ray and runs the slab tests in f32 (and may fuse operations), the oracle
-        // in f64: where turning the ray by a hundredth of a pixel changes the CPU's count, the ray
-        // grazes a box or a triangle edge and either count is right.
-        const turns = [0, 1e-6, -1e-6, 1e-5, -1e-5, 3e-4, -3e-4].flatMap((t) => [[t, 0], [0, t]]);
-        const traces: ClosestTrace[] = turns.map(([dx, dy]) => traceClosest(bvh, list.positions, cameraRay(b, x + 0.5, y + 0.5, dx, dy)));
-        const counts = traces.map((t) => `${t.nodesVisited},${t.trianglesTested}`);
-        const key = `${gpu[0]},${gpu[1]}`;
-        if (counts.every((c) => c === counts[0])) {
-          if (key === counts[0]) exact++;
-          else failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts[0]}`);
-        } else {
-          unstable++;
-          if (!counts.includes(key)) failures.push(`pixel (${x}, ${y}): gpu ${key}, cpu ${counts.join(' | ')}`);
-        }
-      }
-    }
-    expect(failures.slice(0, 10)).toEqual([]);
-    expect(unstable).toBeLessThan(0.02 * W * H);
-    expect(exact + unstable).toBe(W * H);
+    for (let i = 0; i < W * H; i++) expect([nodes[i * 4 + 1], triangles[i * 4 + 1]]).toEqual([triangles[i * 4], nodes[i * 4]]);
+    // The GPU builds the ray and runs the slab tests in f32 (and may fuse operations), the oracle
+    // in f64: where turning the ray by a hundredth of a pixel changes the CPU's count, the ray
+    // grazes a box or a triangle edge and either count is right.
+    expectCountsMatchOracle(
+      W,
+      H,
+      (i) => `${nodes[i * 4]},${triangles[i * 4]}`,
+      (px, py, dx, dy) => traceClosest(bvh, list.positions, cameraRay(b, W, H, px, py, dx, dy)),
+      0.02,
+    );
     // Not a trivially uniform image: the counts spread.
     const distinct = new Set(Array.from({ length: W * H }, (_, i) => nodes[i * 4]!));
     expect(distinct.size).toBeGreaterThan(10);
@@ -99,13 +70,13 @@ describe('heat map', () => {
     const size = await debugValues({ debugView: 'leaf-size' });
     const depth = await debugValues({ debugView: 'bvh-depth' });
     const id = await debugValues({ debugView: 'triangle-id' });
-    const b = f32Basis(teaching);
+    const b = f32Basis(teaching, W / H);
     const { bvh } = teaching;
     const depths = nodeDepths(bvh);
     let compared = 0;
     const failures: string[] = [];
     for (let i = 0; i < W * H; i++) {
-      const hit = traceClosest(bvh, teaching.triangles.positions, cameraRay(b, (i % W) + 0.5, Math.floor(i / W) + 0.5)).hit;
+      const hit = traceClosest(bvh, teaching.triangles.positions, cameraRay(b, W, H, (i % W) + 0.5, Math.floor(i / W) + 0.5)).hit;
       if (!hit) {
         if (id[i * 4] !== -1 || size[i * 4 + 3] !== 0) failures.push(`pixel ${i}: the oracle misses, the gpu hits`);
         continue;
@@ -230,7 +201,7 @@ describe('wireframe', () => {
       min[i % 3] = Math.min(min[i % 3]!, p[i]!);
       max[i % 3] = Math.max(max[i % 3]!, p[i]!);
     }
-    const edges = projectedEdges(f32Basis(teaching), [{ min: min as unknown as Vec3, max: max as unknown as Vec3, leaf: false }]);
+    const edges = projectedEdges(f32Basis(teaching, W / H), [{ min: min as unknown as Vec3, max: max as unknown as Vec3, leaf: false }]);
     const drawn = await wireframePixels(0);
     expect(drawn.line.filter(Boolean).length).toBeGreaterThan(W);
     expectDrawnExactly(drawn, edges);
@@ -250,7 +221,7 @@ describe('wireframe', () => {
     }));
     const drawn = await wireframePixels(d);
     expect(drawn.leaf.some(Boolean)).toBe(true);
-    expectDrawnExactly(drawn, projectedEdges(f32Basis(teaching), boxes));
+    expectDrawnExactly(drawn, projectedEdges(f32Basis(teaching, W / H), boxes));
     // A different depth draws a different picture.
     const other = await wireframePixels(d + 1);
     expect(other.line.filter((l, i) => l !== drawn.line[i]).length).toBeGreaterThan(W);
