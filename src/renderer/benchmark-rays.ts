@@ -6,6 +6,7 @@
  * a deterministic, compacted ray set (the same rays in the same order every run), and it is set-up,
  * not what is timed.
  */
+import { T_MISS } from '../bvh/ray.ts';
 import { seededRandom } from '../math/seeded-random.ts';
 import { PRIMITIVE_KIND, type TriangleList } from '../scene/triangles.ts';
 
@@ -25,7 +26,6 @@ export interface HitWords {
 
 /** Source index of a miss (shaders' NO_TRIANGLE). */
 const NO_TRIANGLE = 0xffffffff;
-const T_MISS = 3.0e38;
 /** The origin's offset along the normal, in units of the scene's bounding-box diagonal. */
 export const DIFFUSE_OFFSET = 1e-4;
 
