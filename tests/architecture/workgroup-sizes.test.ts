@@ -33,8 +33,8 @@ describe('workgroup sizes', () => {
       }
     }
     expect(literal).toEqual([]);
-    // The path tracers, the chain, the hybrid, the debug views, ReSTIR, the wavefront, trace-rays.
-    expect(overridden).toBeGreaterThanOrEqual(30);
+    // The path tracers, the chain (whose à-trous the hybrid shares), the hybrid, the debug views, ReSTIR, the wavefront, trace-rays: 29 entry points.
+    expect(overridden).toBeGreaterThanOrEqual(29);
   });
 
   it('have no value in WGSL: TypeScript sets every one', () => {
