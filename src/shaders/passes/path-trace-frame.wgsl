@@ -30,11 +30,8 @@ fn restir_pixel_at(pixel: vec2u, pixel_index: u32) -> RestirPixel {
     return NO_RESTIR_PIXEL;
   }
   let r = unpack_reservoir(ReservoirTexel(frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_A], frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_B]));
-  // restir/restir's surface_point: the camera ray through the pixel centre at the stored depth.
-  let c = view.camera;
-  let ndc = 2.0 * (vec2f(pixel) + 0.5) / vec2f(view.image_size) - vec2f(1.0);
-  let direction = normalize(c.forward + ndc.x * c.right - ndc.y * c.up);
-  let position = c.position + direction * (s.linear_depth / dot(direction, c.forward));
+  // Placed as restir/restir's surface_point places it: through the pixel centre at the stored depth.
+  let position = pixel_centre_point(view.camera, pixel, s.linear_depth);
   return RestirPixel(true, r.point, r.w, position, s.normal, s.linear_depth, s.id);
 }
 

@@ -65,16 +65,13 @@ struct ShadingPoint {
   valid: bool,
 }
 
-// The point a camera sees through the centre of `pixel` at linear depth `depth` (camera_ray's direction).
+// The surface `record` holds for `pixel`, seen by camera c (its point: view/bindings pixel_centre_point).
 fn surface_point(c: Camera, pixel: vec2u, record: SurfaceTexel) -> ShadingPoint {
   let s = unpack_surface(record);
   if (is_miss_depth(s.linear_depth)) {
     return ShadingPoint(vec3f(0.0), vec3f(0.0, 0.0, 1.0), MISS_DEPTH, NO_ID, false);
   }
-  let ndc = 2.0 * (vec2f(pixel) + 0.5) / vec2f(view.image_size) - vec2f(1.0);
-  let direction = normalize(c.forward + ndc.x * c.right - ndc.y * c.up);
-  let position = c.position + direction * (s.linear_depth / dot(direction, c.forward));
-  return ShadingPoint(position, s.normal, s.linear_depth, s.id, true);
+  return ShadingPoint(pixel_centre_point(c, pixel, s.linear_depth), s.normal, s.linear_depth, s.id, true);
 }
 
 // Whether a reservoir made at `other` may be reused at `here`.

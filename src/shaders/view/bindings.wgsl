@@ -44,6 +44,14 @@ fn camera_ray(image_point: vec2f) -> Ray {
   return Ray(c.position, 0.0, direction, T_MISS);
 }
 
+// The point camera `c` sees through the centre of `pixel` at linear depth `depth` (along camera_ray's
+// direction, made with c instead of view.camera): a G-buffer texel's surface point.
+fn pixel_centre_point(c: Camera, pixel: vec2u, depth: f32) -> vec3f {
+  let ndc = 2.0 * (vec2f(pixel) + 0.5) / vec2f(view.image_size) - vec2f(1.0);
+  let direction = normalize(c.forward + ndc.x * c.right - ndc.y * c.up);
+  return c.position + direction * (depth / dot(direction, c.forward));
+}
+
 // The thin-lens ray through an image point for a lens sample u in [0, 1)² (pbrt-v4 §5.2.3,
 // PerspectiveCamera::GenerateRay): a point on the aperture disk (Shirley & Chiu's concentric map)
 // aimed at the point where the chief ray meets the plane of focus, so that everything on that
