@@ -47,6 +47,16 @@ const INLINED_FROM_PARAMS: i32 = -1;
 override INLINED_MAX_BOUNCES: i32 = INLINED_FROM_PARAMS;
 override INLINED_LIGHT_SAMPLING: i32 = INLINED_FROM_PARAMS;
 
+// The pixel that invocation `id` of a tile dispatch shades, and whether it shades one (inside both the
+// tile and the image).
+fn tile_pixel(id: vec3u) -> vec2u {
+  return params.tile_origin + id.xy;
+}
+
+fn shades_tile_pixel(id: vec3u) -> bool {
+  return all(id.xy < params.tile_size) && all(tile_pixel(id) < view.image_size);
+}
+
 // The integrator's settings for this dispatch.
 fn path_settings() -> PathSettings {
   let max_bounces = select(params.max_bounces, u32(INLINED_MAX_BOUNCES), INLINED_MAX_BOUNCES != INLINED_FROM_PARAMS);

@@ -62,7 +62,7 @@ fn emission_point(k: u32, shift: vec2f) -> vec2f {
 
 // The frame's shift of the pixel's net: a hash of the pixel, the frame's first sample and the seed.
 fn emission_shift(pixel: vec2u) -> vec2f {
-  let h = pcg_hash((pixel.y * view.image_size.x + pixel.x) ^ pcg_hash(params.sample_index ^ pcg_hash(params.seed ^ 0x9e3779b9u)));
+  let h = pcg_hash(image_index(pixel) ^ pcg_hash(params.sample_index ^ pcg_hash(params.seed ^ 0x9e3779b9u)));
   return vec2f(f32(h & 0xffffu), f32(h >> 16u)) / 65536.0;
 }
 
@@ -158,9 +158,9 @@ fn write_centre(pixel_index: u32, c: CentreTexel) {
 @compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
-  let pixel = params.tile_origin + id.xy;
-  if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
-    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+  let pixel = tile_pixel(id);
+  if (shades_tile_pixel(id)) {
+    let pixel_index = image_index(pixel);
     if (frame.emission_pass == 0u) {
       write_centre(pixel_index, centre_texel(pixel));
       // The pixel-centre ray counts as an extension ray.
@@ -178,9 +178,9 @@ fn frame_gbuffer(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoca
 fn path_trace_frame(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
 
-  let pixel = params.tile_origin + id.xy;
-  if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
-    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+  let pixel = tile_pixel(id);
+  if (shades_tile_pixel(id)) {
+    let pixel_index = image_index(pixel);
     let centre_id = surface_records[pixel_index].id;
     // pixel_emission, left in the frame record by the G-buffer's emission pass.
     let grid = unpack_grid_emission(frame_records[pixel_index].emission);

@@ -18,9 +18,9 @@
 fn path_trace(@builtin(global_invocation_id) id: vec3u, @builtin(local_invocation_index) local: u32) {
   begin_ray_count(local);
 
-  let pixel = params.tile_origin + id.xy;
-  if (all(id.xy < params.tile_size) && all(pixel < view.image_size)) {
-    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+  let pixel = tile_pixel(id);
+  if (shades_tile_pixel(id)) {
+    let pixel_index = image_index(pixel);
     var sum = vec4f(0.0);
     var extension_rays = 0u;
     var shadow_rays = 0u;

@@ -100,7 +100,7 @@ fn restir_initial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
   begin_ray_count(local);
   let pixel = id.xy;
   if (all(pixel < view.image_size)) {
-    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+    let pixel_index = image_index(pixel);
     let here = surface_point(view.camera, pixel, surface_records[pixel_index]);
     var out = empty_reservoir();
     var shadow_rays = 0u;
@@ -149,7 +149,7 @@ fn temporal_rays(pixel_index: u32) -> u32 {
 fn restir_temporal(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (restir.use_history != 0u && all(pixel < view.image_size)) {
-    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+    let pixel_index = image_index(pixel);
     let here = surface_point(view.camera, pixel, surface_records[pixel_index]);
     var shadow_rays = 0u;
     // Temporal reuse through the motion vector.
@@ -157,7 +157,7 @@ fn restir_temporal(@builtin(global_invocation_id) id: vec3u) {
     let previous_pixel = vec2i(floor(vec2f(pixel) + 0.5 + motion));
     if (here.valid && scene_light_count() > 0u && !is_off_screen_motion(motion) && all(previous_pixel >= vec2i(0)) && all(previous_pixel < vec2i(view.image_size))) {
       let pp = vec2u(previous_pixel);
-      let previous_index = pp.y * view.image_size.x + pp.x;
+      let previous_index = image_index(pp);
       let there = surface_point(restir.previous_camera, pp, previous_surface_records[previous_index]);
       let depth_seen = unpack2x16float(frame_scratch[FRAME_WORDS * pixel_index + FRAME_PREVIOUS_DEPTH]).x;
       if (similar(here, there, depth_seen)) {
@@ -209,7 +209,7 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
   begin_ray_count(local);
   let pixel = id.xy;
   if (all(pixel < view.image_size)) {
-    let pixel_index = pixel.y * view.image_size.x + pixel.x;
+    let pixel_index = image_index(pixel);
     let here = surface_point(view.camera, pixel, surface_records[pixel_index]);
     var out = empty_reservoir();
     var shadow_rays = 0u;
@@ -233,7 +233,7 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
         if (all(offset == vec2i(0)) || any(q < vec2i(0)) || any(q >= vec2i(view.image_size))) {
           continue;
         }
-        let qi = u32(q.y) * view.image_size.x + u32(q.x);
+        let qi = image_index(vec2u(q));
         let there = surface_point(view.camera, vec2u(q), surface_records[qi]);
         if (!similar(here, there, here.depth)) {
           continue;
@@ -292,7 +292,7 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
 @compute @workgroup_size(PIXEL_TILE_X, PIXEL_TILE_Y)
 fn restir_lend(@builtin(global_invocation_id) id: vec3u) {
   if (all(id.xy < view.image_size)) {
-    let pixel_index = id.y * view.image_size.x + id.x;
+    let pixel_index = image_index(id.xy);
     let t = reservoirs[pixel_index];
     frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_A] = t.a;
     frame_scratch[FRAME_WORDS * pixel_index + RESTIR_SCRATCH_B] = t.b;

@@ -33,6 +33,11 @@ struct View {
 
 @group(1) @binding(0) var<uniform> view: View;
 
+// Where `pixel`'s value lies in a per-pixel buffer of the image (row-major).
+fn image_index(pixel: vec2u) -> u32 {
+  return pixel.y * view.image_size.x + pixel.x;
+}
+
 // The ray through a point of the image given in pixels, (0, 0) the top-left corner of the image,
 // from the camera position (the lens centre). Unit direction; the valid interval starts at the
 // camera. With a lens this is the chief ray: the G-buffer, the debug views and the projections
