@@ -74,6 +74,16 @@ fn surface_point(c: Camera, pixel: vec2u, record: SurfaceTexel) -> ShadingPoint 
   return ShadingPoint(pixel_centre_point(c, pixel, s.linear_depth), s.normal, s.linear_depth, s.id, true);
 }
 
+// This frame's surface at `pixel`, seen by the current camera.
+fn pixel_surface(pixel: vec2u) -> ShadingPoint {
+  return surface_point(view.camera, pixel, surface_records[image_index(pixel)]);
+}
+
+// Whether reservoirs are made and reused at `here`: a surface, and lights to draw from.
+fn takes_reservoirs(here: ShadingPoint) -> bool {
+  return here.valid && scene_light_count() > 0u;
+}
+
 // Whether a reservoir made at `other` may be reused at `here`.
 fn similar(here: ShadingPoint, other: ShadingPoint, other_depth_seen: f32) -> bool {
   return other.valid && other.id == here.id && dot(here.normal, other.normal) > RESTIR_NORMAL_COS &&
@@ -101,10 +111,10 @@ fn restir_initial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
   let pixel = id.xy;
   if (all(pixel < view.image_size)) {
     let pixel_index = image_index(pixel);
-    let here = surface_point(view.camera, pixel, surface_records[pixel_index]);
+    let here = pixel_surface(pixel);
     var out = empty_reservoir();
     var shadow_rays = 0u;
-    if (here.valid && scene_light_count() > 0u) {
+    if (takes_reservoirs(here)) {
       var rng = restir_rng(pixel_index, 0x7e3a1c55u);
       // Initial RIS: candidates weighed lum(L) cos θ / pdf (= p̂ / source density in any measure).
       var initial = empty_stream();
@@ -150,12 +160,12 @@ fn restir_temporal(@builtin(global_invocation_id) id: vec3u) {
   let pixel = id.xy;
   if (restir.use_history != 0u && all(pixel < view.image_size)) {
     let pixel_index = image_index(pixel);
-    let here = surface_point(view.camera, pixel, surface_records[pixel_index]);
+    let here = pixel_surface(pixel);
     var shadow_rays = 0u;
     // Temporal reuse through the motion vector.
     let motion = unpack_motion(frame_scratch[FRAME_WORDS * pixel_index + FRAME_MOTION]);
     let previous_pixel = vec2i(floor(vec2f(pixel) + 0.5 + motion));
-    if (here.valid && scene_light_count() > 0u && !is_off_screen_motion(motion) && all(previous_pixel >= vec2i(0)) && all(previous_pixel < vec2i(view.image_size))) {
+    if (takes_reservoirs(here) && !is_off_screen_motion(motion) && all(previous_pixel >= vec2i(0)) && all(previous_pixel < vec2i(view.image_size))) {
       let pp = vec2u(previous_pixel);
       let previous_index = image_index(pp);
       let there = surface_point(restir.previous_camera, pp, previous_surface_records[previous_index]);
@@ -210,10 +220,10 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
   let pixel = id.xy;
   if (all(pixel < view.image_size)) {
     let pixel_index = image_index(pixel);
-    let here = surface_point(view.camera, pixel, surface_records[pixel_index]);
+    let here = pixel_surface(pixel);
     var out = empty_reservoir();
     var shadow_rays = 0u;
-    if (here.valid && scene_light_count() > 0u) {
+    if (takes_reservoirs(here)) {
       var rng = restir_rng(pixel_index, 0x2c9b04e7u);
       let own = read_scratch_reservoir(pixel_index);
       var s = empty_stream();
@@ -234,7 +244,7 @@ fn restir_spatial(@builtin(global_invocation_id) id: vec3u, @builtin(local_invoc
           continue;
         }
         let qi = image_index(vec2u(q));
-        let there = surface_point(view.camera, vec2u(q), surface_records[qi]);
+        let there = pixel_surface(vec2u(q));
         if (!similar(here, there, here.depth)) {
           continue;
         }
