@@ -52,6 +52,22 @@ fn bvh4_order(v: ptr<function, Bvh4Visit>, a: u32, b: u32) {
   }
 }
 
+// Pushes the children of `v` that were hit, farthest first, so that the nearest is popped next.
+fn bvh4_push(v: Bvh4Visit, stack: ptr<function, array<u32, WIDE_STACK_SIZE>>, sp: ptr<function, u32>) {
+  for (var i = 4u; i > 0u; i--) {
+    if (v.t[i - 1u] != T_MISS) {
+      (*stack)[*sp] = v.refs[i - 1u];
+      *sp += 1u;
+    }
+  }
+}
+
+// A leaf reference's leaf positions: (first, end).
+fn bvh4_leaf_range(child_ref: u32) -> vec2u {
+  let first = child_ref & BVH4_FIRST_MASK;
+  return vec2u(first, first + ((child_ref >> 27u) & 15u) + 1u);
+}
+
 // The closest hit of the static world before (*hit).t, written to `hit` (instance 0). Returns the
 // nodes fetched and the primitives tested (the heat map's counts).
 fn bvh4_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit: ptr<function, Hit>) -> vec2u {
@@ -70,13 +86,7 @@ fn bvh4_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
       bvh4_order(&v, 1u, 3u);
       bvh4_order(&v, 1u, 2u);
     }
-    // Farthest first, so the nearest is popped next.
-    for (var i = 4u; i > 0u; i--) {
-      if (v.t[i - 1u] != T_MISS) {
-        stack[sp] = v.refs[i - 1u];
-        sp += 1u;
-      }
-    }
+    bvh4_push(v, &stack, &sp);
     // Pop: leaves are tested as they come, until an interior node turns up.
     var next = WIDE_EMPTY;
     loop {
@@ -89,9 +99,8 @@ fn bvh4_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
         next = child_ref;
         break;
       }
-      let first = child_ref & BVH4_FIRST_MASK;
-      let end = first + ((child_ref >> 27u) & 15u) + 1u;
-      for (var i = first; i < end; i++) {
+      let leaf = bvh4_leaf_range(child_ref);
+      for (var i = leaf.x; i < leaf.y; i++) {
         let tri = triangles_hot[i];
         let r = intersect_primitive(origin, direction, tri, t_min, (*hit).t);
         work.y += 1u;
@@ -117,12 +126,7 @@ fn bvh4_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
   var node = 0u;
   loop {
     let v = bvh4_visit(nodes_record, node, origin, inv_dir, t_max);
-    for (var i = 4u; i > 0u; i--) {
-      if (v.t[i - 1u] != T_MISS) {
-        stack[sp] = v.refs[i - 1u];
-        sp += 1u;
-      }
-    }
+    bvh4_push(v, &stack, &sp);
     var next = WIDE_EMPTY;
     loop {
       if (sp == 0u) {
@@ -134,9 +138,8 @@ fn bvh4_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
         next = child_ref;
         break;
       }
-      let first = child_ref & BVH4_FIRST_MASK;
-      let end = first + ((child_ref >> 27u) & 15u) + 1u;
-      for (var i = first; i < end; i++) {
+      let leaf = bvh4_leaf_range(child_ref);
+      for (var i = leaf.x; i < leaf.y; i++) {
         let tri = triangles_hot[i];
         let r = intersect_primitive(origin, direction, tri, t_min, t_max);
         if (r.x < t_max && accept_hit(tri, i, r.yz)) {
