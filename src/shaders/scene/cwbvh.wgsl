@@ -107,6 +107,30 @@ fn cwbvh_leaf(v: CwbvhVisit, b: u32, octant: u32, table_word: u32) -> vec2u {
   return vec2u(wide_word(table_word + v.leaf_base + (slot_meta >> 5u)), slot_meta & 31u);
 }
 
+// A node group: the node of its first internal child, its hits not yet taken (bit b: slot b ^ octant)
+// and its internal-child mask. On the stack as (base, hits | imask << 8).
+struct CwbvhGroup {
+  base: u32,
+  hits: u32,
+  imask: u32,
+}
+
+fn cwbvh_group_entry(g: CwbvhGroup) -> vec2u {
+  return vec2u(g.base, g.hits | (g.imask << 8u));
+}
+
+fn cwbvh_entry_group(e: vec2u) -> CwbvhGroup {
+  return CwbvhGroup(e.x, e.y & 0xffu, e.y >> 8u);
+}
+
+// Takes the group's next hit in visiting order and returns its node (the internal children follow
+// base in slot order).
+fn cwbvh_take(g: ptr<function, CwbvhGroup>, octant: u32) -> u32 {
+  let slot = firstTrailingBit((*g).hits) ^ octant;
+  (*g).hits &= (*g).hits - 1u;
+  return (*g).base + countOneBits((*g).imask & ((1u << slot) - 1u));
+}
+
 // The closest hit of the static world before (*hit).t, written to `hit` (instance 0). Returns the
 // nodes fetched and the primitives tested (the heat map's counts).
 fn cwbvh_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit: ptr<function, Hit>) -> vec2u {
@@ -115,25 +139,19 @@ fn cwbvh_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hi
   var stack: array<vec2u, WIDE_STACK_SIZE>;
   var sp = 0u;
   // The current group: the root alone (slot 0 of a group based at node 0).
-  var base = 0u;
-  var hits = 1u << octant;
-  var imask = 1u;
+  var group = CwbvhGroup(0u, 1u << octant, 1u);
   var work = vec2u(0u);
   loop {
-    if (hits == 0u) {
+    if (group.hits == 0u) {
       if (sp == 0u) {
         break;
       }
       sp -= 1u;
-      base = stack[sp].x;
-      hits = stack[sp].y & 0xffu;
-      imask = stack[sp].y >> 8u;
+      group = cwbvh_entry_group(stack[sp]);
     }
-    let slot = firstTrailingBit(hits) ^ octant;
-    hits &= hits - 1u;
-    let child = base + countOneBits(imask & ((1u << slot) - 1u));
-    if (hits != 0u) {
-      stack[sp] = vec2u(base, hits | (imask << 8u));
+    let child = cwbvh_take(&group, octant);
+    if (group.hits != 0u) {
+      stack[sp] = cwbvh_group_entry(group);
       sp += 1u;
     }
     work.x += 1u;
@@ -154,9 +172,7 @@ fn cwbvh_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hi
         }
       }
     }
-    base = v.child_base;
-    hits = v.internal_hits;
-    imask = v.imask;
+    group = CwbvhGroup(v.child_base, v.internal_hits, v.imask);
   }
   return work;
 }
@@ -167,24 +183,18 @@ fn cwbvh_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max:
   let octant = cwbvh_octant(direction);
   var stack: array<vec2u, WIDE_STACK_SIZE>;
   var sp = 0u;
-  var base = 0u;
-  var hits = 1u << octant;
-  var imask = 1u;
+  var group = CwbvhGroup(0u, 1u << octant, 1u);
   loop {
-    if (hits == 0u) {
+    if (group.hits == 0u) {
       if (sp == 0u) {
         return false;
       }
       sp -= 1u;
-      base = stack[sp].x;
-      hits = stack[sp].y & 0xffu;
-      imask = stack[sp].y >> 8u;
+      group = cwbvh_entry_group(stack[sp]);
     }
-    let slot = firstTrailingBit(hits) ^ octant;
-    hits &= hits - 1u;
-    let child = base + countOneBits(imask & ((1u << slot) - 1u));
-    if (hits != 0u) {
-      stack[sp] = vec2u(base, hits | (imask << 8u));
+    let child = cwbvh_take(&group, octant);
+    if (group.hits != 0u) {
+      stack[sp] = cwbvh_group_entry(group);
       sp += 1u;
     }
     let v = cwbvh_visit(header.x + child * CWBVH_NODE_WORDS, octant, origin, inv_dir, t_max);
@@ -203,8 +213,6 @@ fn cwbvh_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max:
         }
       }
     }
-    base = v.child_base;
-    hits = v.internal_hits;
-    imask = v.imask;
+    group = CwbvhGroup(v.child_base, v.internal_hits, v.imask);
   }
 }
