@@ -95,6 +95,32 @@ fn traversal_start(local: TraversalRay, t: f32) -> vec2u {
   return vec2u(NO_NODE, 0u);
 }
 
+// The traversal stack's entry at depth sp, written and read in the stack the scene uses
+// (BVH_SHALLOW_STACK): the loops declare both, and the unused one folds away.
+fn bvh_stack_push(stack: ptr<function, array<u32, BVH_STACK_SIZE>>, shallow_stack: ptr<function, array<u32, BVH_SHALLOW_STACK_SIZE>>, sp: u32, node: u32) {
+  if (BVH_SHALLOW_STACK) {
+    (*shallow_stack)[sp] = node;
+  } else {
+    (*stack)[sp] = node;
+  }
+}
+
+fn bvh_stack_entry(stack: ptr<function, array<u32, BVH_STACK_SIZE>>, shallow_stack: ptr<function, array<u32, BVH_SHALLOW_STACK_SIZE>>, sp: u32) -> u32 {
+  if (BVH_SHALLOW_STACK) {
+    return (*shallow_stack)[sp];
+  }
+  return (*stack)[sp];
+}
+
+// A top-level leaf entered: the traversal goes into `entered`'s bottom level, the ray in that
+// instance's space, until the stack is back at depth sp. Returns the bottom level's root.
+fn enter_instance(ray: Ray, entered: u32, sp: u32, instance: ptr<function, u32>, local: ptr<function, TraversalRay>, leave_at: ptr<function, u32>) -> u32 {
+  *instance = entered;
+  *local = traversal_ray(ray, entered);
+  *leave_at = sp;
+  return instance_record(entered).blas_root;
+}
+
 // One loop walks both levels with one stack, so that a scene with moving instances compiles to about
 // the code (and the registers) of the single-level loop. It starts in the static world's tree (root
 // 0, world space: exactly the single-level traversal), then walks the top level over the moving
@@ -145,11 +171,7 @@ fn trace_closest(ray: Ray) -> Hit {
     var descend = false;
     if (n.tri_count > 0u) {
       if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
-        // A top-level leaf: into its instance's bottom level, the ray in the instance's space.
-        instance = n.left_first;
-        local = traversal_ray(ray, instance);
-        leave_at = sp;
-        node = instance_record(instance).blas_root;
+        node = enter_instance(ray, n.left_first, sp, &instance, &local, &leave_at);
         continue;
       }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
@@ -180,11 +202,7 @@ fn trace_closest(ray: Ray) -> Hit {
       }
       if (t_near != T_MISS) {
         if (t_far != T_MISS) {
-          if (BVH_SHALLOW_STACK) {
-            shallow_stack[sp] = far;
-          } else {
-            stack[sp] = far;
-          }
+          bvh_stack_push(&stack, &shallow_stack, sp, far);
           sp += 1u;
         }
         node = near;
@@ -212,11 +230,7 @@ fn trace_closest(ray: Ray) -> Hit {
       break;
     }
     sp -= 1u;
-    if (BVH_SHALLOW_STACK) {
-      node = shallow_stack[sp];
-    } else {
-      node = stack[sp];
-    }
+    node = bvh_stack_entry(&stack, &shallow_stack, sp);
   }
   // A mirroring instance's world triangle has v1 and v2 swapped (scene/instances world_primitive): so do the barycentrics.
   if (SCENE_HAS_INSTANCES && hit.triangle != NO_TRIANGLE && instance_mirrored(hit.instance) && (triangles_hot[hit.triangle].flags & PRIMITIVE_ANALYTIC) == 0u) {
@@ -252,11 +266,7 @@ fn trace_any(ray: Ray) -> bool {
     let n = bvh_nodes[node];
     if (n.tri_count > 0u) {
       if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
-        // A top-level leaf: into its instance's bottom level, the ray in the instance's space.
-        instance = n.left_first;
-        local = traversal_ray(ray, instance);
-        leave_at = sp;
-        node = instance_record(instance).blas_root;
+        node = enter_instance(ray, n.left_first, sp, &instance, &local, &leave_at);
         continue;
       }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
@@ -271,11 +281,7 @@ fn trace_any(ray: Ray) -> bool {
       let hit_left = node_entry(left, local.origin, local.inv_dir, ray.t_max) != T_MISS;
       let hit_right = node_entry(left + 1u, local.origin, local.inv_dir, ray.t_max) != T_MISS;
       if (hit_left && hit_right) {
-        if (BVH_SHALLOW_STACK) {
-          shallow_stack[sp] = left + 1u;
-        } else {
-          stack[sp] = left + 1u;
-        }
+        bvh_stack_push(&stack, &shallow_stack, sp, left + 1u);
         sp += 1u;
         node = left;
         continue;
@@ -302,10 +308,6 @@ fn trace_any(ray: Ray) -> bool {
       return false;
     }
     sp -= 1u;
-    if (BVH_SHALLOW_STACK) {
-      node = shallow_stack[sp];
-    } else {
-      node = stack[sp];
-    }
+    node = bvh_stack_entry(&stack, &shallow_stack, sp);
   }
 }
