@@ -32,9 +32,10 @@ fn grid_quad(w: u32) -> vec4u {
   return select(vec4u(bitcast<vec3u>(n.aabb_min), n.left_first), vec4u(bitcast<vec3u>(n.aabb_max), n.tri_count), (w & 4u) != 0u);
 }
 
-// Cell c's range of items: (first item, count).
-fn grid_cell(h: GridHeader, c: u32) -> vec2u {
-  let w = h.cells_word + 2u * c;
+// The range of items of the cell at `cell`: (first item, count).
+fn grid_cell(h: GridHeader, cell: vec3i) -> vec2u {
+  let c = vec3u(cell);
+  let w = h.cells_word + 2u * (c.x + h.dims.x * (c.y + h.dims.y * c.z));
   let q = grid_quad(w);
   return select(q.xy, q.zw, (w & 2u) != 0u);
 }
@@ -126,11 +127,6 @@ fn mailbox_seen(box: ptr<function, Mailbox>, leaf: u32) -> bool {
   return false;
 }
 
-fn grid_cell_index(h: GridHeader, cell: vec3i) -> u32 {
-  let c = vec3u(cell);
-  return c.x + h.dims.x * (c.y + h.dims.y * c.z);
-}
-
 // The closest hit of the static world before (*hit).t, written to `hit` (instance 0). Returns the
 // cells visited and the primitives tested (the heat map's counts).
 fn grid_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit: ptr<function, Hit>) -> vec2u {
@@ -145,7 +141,7 @@ fn grid_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
     walk.visited += 1u;
     let axis = grid_axis(walk.next);
     let t_exit = walk.next[axis];
-    let range = grid_cell(h, grid_cell_index(h, walk.cell));
+    let range = grid_cell(h, walk.cell);
     for (var i = range.x; i < range.x + range.y; i++) {
       let leaf = grid_item(h, i);
       if (mailbox_seen(&seen, leaf)) {
@@ -176,7 +172,7 @@ fn grid_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
   loop {
     let axis = grid_axis(walk.next);
     let t_exit = walk.next[axis];
-    let range = grid_cell(h, grid_cell_index(h, walk.cell));
+    let range = grid_cell(h, walk.cell);
     for (var i = range.x; i < range.x + range.y; i++) {
       let leaf = grid_item(h, i);
       if (mailbox_seen(&seen, leaf)) {
