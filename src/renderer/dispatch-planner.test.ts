@@ -44,3 +44,16 @@ describe('DispatchPlanner', () => {
     expect(p.state).toEqual({ samplesPerDispatch: 2, bands: 1 });
   });
 });
+
+describe('DispatchPlanner with fixed samples per dispatch (render --chunk)', () => {
+  it('keeps the samples per dispatch whatever the timing and adapts only the bands', () => {
+    const planner = new DispatchPlanner(64, 64, { targetMs: 60, maxSamplesPerDispatch: 64, maxBands: 64, fixedSamples: 8 });
+    expect(planner.next(100).samples).toBe(8);
+    planner.observe(1);
+    expect(planner.next(100).samples).toBe(8);
+    planner.observe(1000);
+    expect(planner.next(100)).toMatchObject({ samples: 8 });
+    expect(planner.next(100).tiles.length).toBe(2);
+    expect(planner.next(5).samples).toBe(5);
+  });
+});

@@ -13,6 +13,12 @@ export interface DispatchPlannerOptions {
   readonly maxSamplesPerDispatch: number;
   /** Never split the image into more bands than this. */
   readonly maxBands: number;
+  /**
+   * Samples per dispatch held at this (the last dispatch takes what remains), only the bands
+   * adapting: the image then does not depend on timing (float sums are added in a fixed grouping),
+   * so a render equals a farm's chunks of this size merged, bit for bit (`render --chunk`).
+   */
+  readonly fixedSamples?: number;
 }
 
 export const DEFAULT_PLANNER_OPTIONS: DispatchPlannerOptions = { targetMs: 60, maxSamplesPerDispatch: 64, maxBands: 64 };
@@ -25,7 +31,9 @@ export class DispatchPlanner {
     readonly width: number,
     readonly height: number,
     private readonly options: DispatchPlannerOptions = DEFAULT_PLANNER_OPTIONS,
-  ) {}
+  ) {
+    if (options.fixedSamples !== undefined) this.samplesPerDispatch = options.fixedSamples;
+  }
 
   /** The next batch: samples per pixel (at most `remaining`) and the tiles covering the image. */
   next(remaining: number): { samples: number; tiles: Tile[] } {
@@ -35,6 +43,11 @@ export class DispatchPlanner {
   /** Reports how long the last batch took, per submit (ms), and adapts the next one. */
   observe(msPerSubmit: number): void {
     const { targetMs } = this.options;
+    if (this.options.fixedSamples !== undefined) {
+      if (msPerSubmit > 2 * targetMs) this.bands = Math.min(this.options.maxBands, this.height, this.bands * 2);
+      else if (msPerSubmit < targetMs / 2 && this.bands > 1) this.bands = Math.max(1, Math.floor(this.bands / 2));
+      return;
+    }
     if (msPerSubmit > 2 * targetMs) {
       if (this.samplesPerDispatch > 1) this.samplesPerDispatch = Math.max(1, Math.floor(this.samplesPerDispatch / 2));
       else this.bands = Math.min(this.options.maxBands, this.height, this.bands * 2);

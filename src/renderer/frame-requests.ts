@@ -50,7 +50,7 @@ export class FrameRequests {
     const frame = this.state.frame(timer);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      this.recipes.progressive.encode(encoder, frame, tile, this.image.samples, samples);
+      this.recipes.progressive.encode(encoder, frame, tile, this.image.nextSampleIndex, samples);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
     });
@@ -61,7 +61,7 @@ export class FrameRequests {
   /** Renderer.beginAccumulate: the samples count once the last band is submitted. */
   beginAccumulate(samples: number, timer?: GpuTimer): SplitFrame {
     this.checkSamples(samples, 'dispatch');
-    const work = this.recipes.progressive.begin(this.state.frame(timer), samples, this.image.samples);
+    const work = this.recipes.progressive.begin(this.state.frame(timer), samples, this.image.nextSampleIndex);
     return this.split(work, samples, 'path trace', () => {
       this.image.add(samples);
       this.shown = 'accumulation';

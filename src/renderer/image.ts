@@ -65,6 +65,7 @@ export function checkImageSize(width: number, height: number, limits: GPUSupport
 export class ImageEstimate {
   private value?: ImageTargets;
   private sampleCount = 0;
+  private offset = 0;
   private epochValue = 0;
 
   constructor(private readonly device: GPUDevice) {}
@@ -76,6 +77,13 @@ export class ImageEstimate {
   /** Samples per pixel in the estimate. */
   get samples(): number {
     return this.sampleCount;
+  }
+  /**
+   * The global index of the estimate's next sample: its first sample's index (0 unless the restart
+   * named one: a farm's shard renders samples [s0, s1) of one sequence) plus the samples so far.
+   */
+  get nextSampleIndex(): number {
+    return this.offset + this.sampleCount;
   }
   /** Counts restarts (the ray counters restart with each). */
   get epoch(): number {
@@ -92,15 +100,25 @@ export class ImageEstimate {
     return true;
   }
 
-  /** Discards every sample and the ray counts. */
-  restart(): void {
+  /** Discards every sample and the ray counts; the next sample is the sequence's `firstSample`-th. */
+  restart(firstSample = 0): void {
     this.sampleCount = 0;
+    this.offset = firstSample;
     this.epochValue++;
     if (!this.value) return;
     const encoder = this.device.createCommandEncoder({ label: 'reset accumulation' });
     encoder.clearBuffer(this.value.accumulation);
     encoder.clearBuffer(this.value.rayCounters);
     this.device.queue.submit([encoder.finish()]);
+  }
+
+  /** Replaces the estimate by `sums` (a vec4f per pixel: Σ radiance, Σ luminance², as the path tracer adds them) of `samples` samples. */
+  load(sums: Float32Array, samples: number): void {
+    if (!this.value) throw new Error('ImageEstimate: resize() before load()');
+    if (sums.length !== this.value.width * this.value.height * 4) throw new Error(`ImageEstimate: ${sums.length} floats for a ${this.value.width}×${this.value.height} image`);
+    this.restart();
+    this.device.queue.writeBuffer(this.value.accumulation, 0, sums.buffer, sums.byteOffset, sums.byteLength);
+    this.sampleCount = samples;
   }
 
   /** Counts samples once they are submitted. */

@@ -10,12 +10,18 @@ export interface ProgressiveOptions {
   readonly spp: number;
   readonly onProgress?: (samplesDone: number, samplesTotal: number) => void;
   readonly planner?: DispatchPlannerOptions;
+  /**
+   * Samples per dispatch, fixed (only the bands adapt to timing): the accumulation's float sums then
+   * group the same way on every run and machine, and equal a farm's chunks of this size merged.
+   */
+  readonly samplesPerDispatch?: number;
 }
 
 export async function renderProgressive(renderer: Renderer, options: ProgressiveOptions): Promise<{ seconds: number }> {
   // The kernels the settings ask for (another sampler compiles after a change): every sample theirs.
   await renderer.accelSettled();
-  const planner = new DispatchPlanner(renderer.width, renderer.height, options.planner ?? DEFAULT_PLANNER_OPTIONS);
+  const plan = options.planner ?? DEFAULT_PLANNER_OPTIONS;
+  const planner = new DispatchPlanner(renderer.width, renderer.height, options.samplesPerDispatch !== undefined ? { ...plan, fixedSamples: options.samplesPerDispatch } : plan);
   const start = performance.now();
   let done = 0;
   while (done < options.spp) {

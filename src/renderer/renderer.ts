@@ -13,6 +13,7 @@
  */
 import { LanternError } from '../errors.ts';
 import type { GpuContext } from '../gpu/device.ts';
+import { readBuffer } from '../gpu/readback.ts';
 import { readAccumulation, readLinear, readRayCounts, type Accumulation, type LinearImage, type RayCounts } from './image-readback.ts';
 import type { SceneResources } from '../gpu/scene-resources.ts';
 import type { GpuTimer } from '../gpu/timestamps.ts';
@@ -287,9 +288,24 @@ export class Renderer extends RendererKernels {
     return this.image.epoch;
   }
 
-  /** Discards every accumulated sample and the ray counts (the next frame starts a new estimate). */
-  resetAccumulation(): void {
-    this.image.restart();
+  /**
+   * Discards every accumulated sample and the ray counts (the next frame starts a new estimate).
+   * `firstSample`: the global index of the new estimate's first sample (default 0), so that an
+   * estimate of samples [s0, s1) of the one sequence can be rendered alone (a farm's shard).
+   */
+  resetAccumulation(firstSample = 0): void {
+    this.image.restart(firstSample);
+  }
+
+  /**
+   * Replaces the estimate by per-pixel sums (a vec4f per pixel, Σ radiance and Σ luminance², top row
+   * first: what readAccumulationSums gives) of `samples` samples, e.g. shards merged on the CPU;
+   * readImage and readAccumulation then show it as if traced here.
+   */
+  loadAccumulation(sums: Float32Array, samples: number): void {
+    this.ready();
+    this.image.load(sums, samples);
+    this.requests.shown = 'accumulation';
   }
 
   /**
@@ -432,6 +448,11 @@ export class Renderer extends RendererKernels {
   /** The linear radiance estimate and its per-pixel luminance variance. */
   async readAccumulation(): Promise<Accumulation> {
     return readAccumulation(this.device, this.ready().targets, this.image.samples);
+  }
+
+  /** The accumulation buffer as it is: a vec4f per pixel (Σ radiance, Σ luminance²) over sampleCount samples, not divided. */
+  async readAccumulationSums(): Promise<Float32Array> {
+    return new Float32Array(await readBuffer(this.device, this.ready().targets.accumulation));
   }
 
   /** Rays traced since accumulation last restarted: extension (closest hit) and shadow (any hit). */
