@@ -20,6 +20,7 @@ import { isFrameRecipe, recipeFor, type Recipe, type RecipeIntent } from '../../
 import { DEFAULT_SETTINGS } from '../../renderer/settings.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { settingsFromOptions } from '../setting-options.ts';
+import { LanternError } from '../../errors.ts';
 
 export interface FrameModeOptions {
   readonly denoise?: boolean;
@@ -29,7 +30,10 @@ export interface FrameModeOptions {
   readonly path?: string;
   /** The --path file, read and checked before the GPU started (render.ts checkRenderOptions). */
   readonly cameraPath?: CameraPath;
-  readonly frames?: number;
+  /** --frames: a count (frames 0 to n − 1, the option's first meaning) or a list of frames (FrameList: `0-29`, `1-30,47`). */
+  readonly frames?: number | FrameList;
+  /** --path-frames: with a list of frames and --path, how many frames the whole path is cut into (default 30). */
+  readonly pathFrames?: number;
   /** --mode: the hybrid recipe is a real-time recipe, always rendered in frame mode. */
   readonly mode?: string;
   /** Seconds of frames rendered and thrown away first, so that the GPU's clocks are up when timing starts. */
@@ -63,6 +67,33 @@ export const DEFAULT_FRAME_SPP = 1;
 /** --spp, or its default for the mode: a frame-mode render is the real-time chain, whose frames are 1 spp unless asked otherwise. */
 export const samplesPerPixel = (o: FrameModeOptions & { spp?: number }): number => o.spp ?? (isFrameMode(o) ? DEFAULT_FRAME_SPP : DEFAULT_SPP);
 
+/** `--frames 1-30,47`: frames of the whole sequence, numbered from 0 (frame-0000 is the first), sorted. */
+export interface FrameList {
+  readonly list: readonly number[];
+}
+
+/** Frames a path is cut into when no count says otherwise. */
+export const DEFAULT_PATH_FRAMES = 30;
+
+/**
+ * Which frames to write and of how long a sequence: `frames` (sorted), `total` (the path is cut into
+ * that many; undefined without a path: the world's clock runs at --fps), and `sequence` (outputs are
+ * folders of frame-NNNN files: more than one frame, a path, or a list).
+ */
+export function frameSelection(o: Pick<FrameModeOptions, 'frames' | 'path' | 'cameraPath' | 'pathFrames'>): { frames: readonly number[]; total: number | undefined; sequence: boolean } {
+  const path = o.path !== undefined || o.cameraPath !== undefined;
+  if (o.frames === undefined || typeof o.frames === 'number') {
+    if (o.pathFrames !== undefined) throw new LanternError('--path-frames goes with a list of --frames (such as 0-29); a count of --frames is already the path\'s length');
+    const n = o.frames ?? (path ? DEFAULT_PATH_FRAMES : 1);
+    return { frames: Array.from({ length: n }, (_, i) => i), total: path ? n : undefined, sequence: n > 1 || path };
+  }
+  if (o.pathFrames !== undefined && !path) throw new LanternError('--path-frames applies with --path only', 'Leave it out: without a path frame f is at --time + f / --fps');
+  const total = path ? (o.pathFrames ?? DEFAULT_PATH_FRAMES) : undefined;
+  const last = o.frames.list[o.frames.list.length - 1]!;
+  if (total !== undefined && last >= total) throw new LanternError(`--frames names frame ${last}, but the path has ${total} frames (0-${total - 1})`, 'Give --path-frames the length of the whole path');
+  return { frames: o.frames.list, total, sequence: true };
+}
+
 export interface FrameModeResult {
   readonly frames: number;
   readonly seconds: number;
@@ -86,15 +117,21 @@ export interface FrameWorld {
 
 export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }, moving?: FrameWorld): Promise<FrameModeResult> {
   const path = o.cameraPath ?? (o.path !== undefined ? parseCameraPath(readJsonFile(o.path, '--path'), o.path) : undefined);
-  const frames = o.frames ?? (path ? 30 : 1);
-  const sequence = frames > 1 || path !== undefined;
+  const selection = frameSelection({ ...o, ...(path ? { cameraPath: path } : {}) });
+  // A frame depends on those before it (the temporal history, the sample index, the adapting
+  // exposure): every frame up to the last one asked for is rendered, those not asked for are not
+  // read back or written, so each written frame is the whole sequence's, bit for bit.
+  const wanted = new Set(selection.frames);
+  const frames = selection.frames[selection.frames.length - 1]! + 1;
+  const total = selection.total ?? frames;
+  const sequence = selection.sequence;
   // The denoiser's settings (--temporal, --denoise, --history-cap, ...) and the hybrid recipe's are the caller's, applied with the others.
   await renderer.compile({}, { frames: true });
   const debugOnly = recipeFor(renderer.settings, { frames: true }) === 'debug';
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(renderer.device) : undefined;
   if (o.warmup) {
     // A GPU idle a moment ago runs its first frames at low clocks: light recipes would be timed there.
-    renderer.setCamera(path ? cameraAt(path, frameTime(path, 0, frames), base) : base);
+    renderer.setCamera(path ? cameraAt(path, frameTime(path, 0, total), base) : base);
     for (const until = performance.now() + o.warmup * 1000; performance.now() < until; ) {
       renderer.renderFrame(spp);
       await renderer.finish();
@@ -106,18 +143,23 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   let previous: Float32Array | undefined;
   const start = performance.now();
   for (let f = 0; f < frames; f++) {
-    const camera = path ? cameraAt(path, frameTime(path, f, frames), base) : base;
+    const camera = path ? cameraAt(path, frameTime(path, f, total), base) : base;
     renderer.setCamera(camera);
     if (moving) {
       // Scene time follows the path's clock, or the frame rate; the first frame is at `start`.
-      const t = moving.start + (path ? frameTime(path, f, frames) - frameTime(path, 0, frames) : f / moving.fps);
+      const t = moving.start + (path ? frameTime(path, f, total) - frameTime(path, 0, total) : f / moving.fps);
       const update = moving.world.advanceTo(Math.max(t, moving.world.seconds), camera);
       if (!isEmptyUpdate(update)) renderer.applySceneUpdate(update);
     }
     renderer.renderFrame(spp, timer);
     const name = `frame-${String(f).padStart(4, '0')}`;
     // The automatic exposure adapts over the sequence's own clock (the first frame takes its target).
-    if (f > 0) renderer.advanceExposure(path ? frameTime(path, f, frames) - frameTime(path, f - 1, frames) : 1 / (o.fps ?? 30));
+    if (f > 0) renderer.advanceExposure(path ? frameTime(path, f, total) - frameTime(path, f - 1, total) : 1 / (o.fps ?? 30));
+    if (!wanted.has(f)) {
+      // Not asked for: rendered for what the next frames inherit, not read back. Its timestamps are dropped.
+      if (timer) await timer.read();
+      continue;
+    }
     // The tone map (and automatic exposure) are timed with the frame's passes.
     const image = out.png ? await renderer.readImage(timer) : undefined;
     if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
@@ -135,5 +177,5 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   timer?.destroy();
   const gpuMs = timer ? Object.fromEntries([...samples].map(([name, ms]) => [name, median(ms)])) : undefined;
   const frameChangeRmse = changes.length > 0 ? changes.reduce((a, b) => a + b, 0) / changes.length : undefined;
-  return { frames, seconds, ...(gpuMs ? { gpuMs } : {}), ...(frameChangeRmse !== undefined ? { frameChangeRmse } : {}), outputs: out };
+  return { frames: selection.frames.length, seconds, ...(gpuMs ? { gpuMs } : {}), ...(frameChangeRmse !== undefined ? { frameChangeRmse } : {}), outputs: out };
 }
