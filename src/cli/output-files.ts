@@ -1,6 +1,6 @@
 /** Writing rendered images: PNG (tone-mapped sRGB) and EXR (linear radiance, float32 RGB). */
-import { accessSync, constants, mkdirSync, realpathSync, statfsSync, statSync, writeFileSync, type Stats } from 'node:fs';
-import { dirname, resolve, sep } from 'node:path';
+import { accessSync, constants, mkdirSync, realpathSync, renameSync, rmSync, statfsSync, statSync, writeFileSync, type Stats } from 'node:fs';
+import { basename, dirname, join, resolve, sep } from 'node:path';
 import { deflateSync } from 'node:zlib';
 import { LanternError } from '../errors.ts';
 import { encodeExr } from '../image/exr.ts';
@@ -62,14 +62,21 @@ export function checkOutputPath(option: string, path: string, kind: 'file' | 'fo
   if (problem) throw new LanternError(`${option}: cannot write '${path}': ${problem}`);
 }
 
-/** Writes a file, creating its folder; a failure is a LanternError naming the path. */
+/**
+ * Writes a file, creating its folder; a failure is a LanternError naming the path. The bytes go to a
+ * temporary name beside it first and are renamed into place, so a reader (a farm's merge, a worker
+ * doing the same chunk again) sees the whole file or none, and the same file written twice is one.
+ */
 export function writeFile(path: string, bytes: Uint8Array): void {
   const problem = outputPathProblem(path, 'file');
   if (problem) throw new LanternError(`cannot write '${path}': ${problem}`);
+  const temporary = join(dirname(path), `.${basename(path)}.${process.pid}.tmp`);
   try {
     mkdirSync(dirname(path), { recursive: true });
-    writeFileSync(path, bytes);
+    writeFileSync(temporary, bytes);
+    renameSync(temporary, path);
   } catch (e) {
+    rmSync(temporary, { force: true });
     throw new LanternError(`cannot write '${path}': ${(e as NodeJS.ErrnoException).code ?? (e as Error).message}`);
   }
 }

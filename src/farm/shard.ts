@@ -1,0 +1,118 @@
+/**
+ * A shard: the per-pixel sums of samples [start, end) of one progressive estimate (a vec4f per pixel:
+ * Σ radiance rgb, Σ luminance², as the path tracer accumulates them; not means), with what made them
+ * (the render's command line) so that `lantern merge` can check that shards belong together and show
+ * the merged estimate as `render` would. Shards merge exactly: each holds one dispatch's float32 sums
+ * (the chunk's samples in one dispatch), and mergeShards adds them in sample order with float32
+ * rounding after each addition, which is what the GPU's `accumulation += sum` does in a one-process
+ * render whose dispatches are those chunks (`render --chunk C`): the same additions in the same
+ * order, so the same bits.
+ *
+ * File: 'LANTERN-SHARD\n' (14 bytes), a u32 little-endian header length, the header (UTF-8 JSON),
+ * zero padding to a multiple of 4, then width × height × 4 float32 little-endian.
+ */
+import { LanternError } from '../errors.ts';
+
+const MAGIC = 'LANTERN-SHARD\n';
+export const SHARD_VERSION = 1;
+
+export interface ShardHeader {
+  readonly version: number;
+  /** `render`'s arguments after `render` (scene first), without the options that say where outputs go or which samples. */
+  readonly render: readonly string[];
+  readonly width: number;
+  readonly height: number;
+  /** Samples [start, end) of the sequence. */
+  readonly start: number;
+  readonly end: number;
+}
+
+export interface Shard {
+  readonly header: ShardHeader;
+  /** A vec4f per pixel, row-major, top row first. */
+  readonly sums: Float32Array;
+}
+
+export function encodeShard(shard: Shard): Uint8Array {
+  const { header, sums } = shard;
+  if (sums.length !== header.width * header.height * 4) throw new Error(`encodeShard: ${sums.length} floats for ${header.width}×${header.height}`);
+  const json = new TextEncoder().encode(JSON.stringify(header));
+  const headStart = MAGIC.length + 4;
+  const dataStart = Math.ceil((headStart + json.length) / 4) * 4;
+  const out = new Uint8Array(dataStart + sums.byteLength);
+  out.set(new TextEncoder().encode(MAGIC), 0);
+  new DataView(out.buffer).setUint32(MAGIC.length, json.length, true);
+  out.set(json, headStart);
+  const view = new DataView(out.buffer, dataStart);
+  for (let i = 0; i < sums.length; i++) view.setFloat32(i * 4, sums[i]!, true);
+  return out;
+}
+
+/** Reads a shard; `name` (the file) is named in errors. */
+export function decodeShard(bytes: Uint8Array, name: string): Shard {
+  const fail = (why: string): never => {
+    throw new LanternError(`${name} is not a Lantern shard: ${why}`, 'Give the .shard files that `render --shard` or a farm worker wrote');
+  };
+  if (bytes.length < MAGIC.length + 4 || new TextDecoder().decode(bytes.subarray(0, MAGIC.length)) !== MAGIC) fail('no LANTERN-SHARD header');
+  const dv = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const length = dv.getUint32(MAGIC.length, true);
+  const headStart = MAGIC.length + 4;
+  if (headStart + length > bytes.length) fail('its header is cut short');
+  let header: ShardHeader;
+  try {
+    header = JSON.parse(new TextDecoder().decode(bytes.subarray(headStart, headStart + length))) as ShardHeader;
+  } catch {
+    return fail('its header is not JSON');
+  }
+  if (header.version !== SHARD_VERSION) fail(`version ${String(header.version)}, this Lantern reads ${SHARD_VERSION}`);
+  const { width, height, start, end } = header;
+  if (![width, height, start, end].every((v) => Number.isInteger(v) && v >= 0) || width < 1 || height < 1 || end <= start) fail('its size or sample range is not valid');
+  if (!Array.isArray(header.render) || !header.render.every((a) => typeof a === 'string') || header.render.length < 1) fail('it does not say what was rendered');
+  const dataStart = Math.ceil((headStart + length) / 4) * 4;
+  const floats = width * height * 4;
+  if (bytes.length !== dataStart + floats * 4) fail(`${bytes.length - dataStart} bytes of sums where ${width}×${height} needs ${floats * 4}`);
+  const sums = new Float32Array(floats);
+  const data = new DataView(bytes.buffer, bytes.byteOffset + dataStart, floats * 4);
+  for (let i = 0; i < floats; i++) sums[i] = data.getFloat32(i * 4, true);
+  return { header, sums };
+}
+
+export interface Merged {
+  readonly render: readonly string[];
+  readonly width: number;
+  readonly height: number;
+  readonly start: number;
+  readonly end: number;
+  /** Σ over the shards in sample order, float32 after each addition. */
+  readonly sums: Float32Array;
+}
+
+/**
+ * Adds shards of one render in sample order (whatever order they are given in), float32 after each
+ * addition, as a one-process render's accumulation adds its dispatches. They must be of the same
+ * render and size and cover one contiguous range of samples without overlap.
+ */
+export function mergeShards(shards: readonly { readonly shard: Shard; readonly name: string }[]): Merged {
+  if (shards.length === 0) throw new LanternError('merge needs at least one shard');
+  const sorted = [...shards].sort((a, b) => a.shard.header.start - b.shard.header.start);
+  const first = sorted[0]!;
+  const key = JSON.stringify(first.shard.header.render);
+  const { width, height } = first.shard.header;
+  for (const { shard, name } of sorted) {
+    if (JSON.stringify(shard.header.render) !== key) throw new LanternError(`${name} is of another render than ${first.name} (render ${shard.header.render.join(' ')} against ${first.shard.header.render.join(' ')})`);
+    if (shard.header.width !== width || shard.header.height !== height) throw new LanternError(`${name} is ${shard.header.width}×${shard.header.height}, ${first.name} ${width}×${height}`);
+  }
+  for (let i = 1; i < sorted.length; i++) {
+    const prev = sorted[i - 1]!;
+    const cur = sorted[i]!;
+    if (cur.shard.header.start < prev.shard.header.end) throw new LanternError(`${cur.name} (samples ${cur.shard.header.start}-${cur.shard.header.end - 1}) overlaps ${prev.name} (samples ${prev.shard.header.start}-${prev.shard.header.end - 1})`);
+    if (cur.shard.header.start > prev.shard.header.end) throw new LanternError(`samples ${prev.shard.header.end}-${cur.shard.header.start - 1} are missing between ${prev.name} and ${cur.name}`, 'Merge every shard of the range');
+  }
+  const sums = new Float32Array(width * height * 4);
+  for (const { shard } of sorted) {
+    const s = shard.sums;
+    // Float32Array stores round each addition to float32, as the GPU's does.
+    for (let i = 0; i < sums.length; i++) sums[i] = sums[i]! + s[i]!;
+  }
+  return { render: first.shard.header.render, width, height, start: first.shard.header.start, end: sorted[sorted.length - 1]!.shard.header.end, sums };
+}
