@@ -12,6 +12,7 @@ import { registerBvhStats } from './commands/bvh-stats.ts';
 import { registerConvert } from './commands/convert.ts';
 import { registerDiff } from './commands/diff.ts';
 import { registerInfo } from './commands/info.ts';
+import { registerFarm } from './commands/farm.ts';
 import { registerMerge } from './commands/merge.ts';
 import { registerRender } from './commands/render.ts';
 import { registerTextures } from './commands/textures.ts';
@@ -54,6 +55,7 @@ async function runCommand(): Promise<void> {
   registerView(program, context);
   registerDiff(program, context);
   registerMerge(program, context);
+  registerFarm(program, context);
 
   // A reader that goes away early (`lantern info x.wad | head`) is not an error of the command.
   for (const stream of [process.stdout, process.stderr]) stream.on('error', (e: NodeJS.ErrnoException) => { if (e.code !== 'EPIPE') throw e; });
