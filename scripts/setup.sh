@@ -4,6 +4,8 @@
 #                 Dawn falls back to on a machine without a GPU;
 #   - libvulkan1: the Vulkan loader Dawn (the `webgpu` npm package) opens;
 #   - freedoom:   the Freedoom IWADs (BSD licence), the Doom maps the tests load and render;
+#   - redis-server: the queue the farm's fault test (tests/cli/farm.test.ts) runs BullMQ on; the
+#                 test starts its own server on a free port (the package's service is not used);
 #   - npm packages, reinstalled only when package-lock.json changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +19,7 @@ packages=()
 [ -x /usr/bin/chromium ] && [ -f /usr/lib/chromium/vk_swiftshader_icd.json ] || packages+=(chromium)
 /sbin/ldconfig -p 2>/dev/null | grep -q 'libvulkan\.so\.1' || packages+=(libvulkan1)
 [ -f /usr/share/games/doom/freedoom1.wad ] && [ -f /usr/share/games/doom/freedoom2.wad ] || packages+=(freedoom)
+command -v redis-server >/dev/null || packages+=(redis-server)
 if [ ${#packages[@]} -gt 0 ]; then
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
