@@ -3,7 +3,7 @@
  * processes on SwiftShader, one killed (with its render child) in the middle of a chunk. The job
  * still completes (the dead worker's chunk goes back to the queue when its lock runs out), and its
  * merged PNG and EXR equal a one-process render of the same samples in dispatches of the chunk
- * size, byte for byte. Also `farm run --local`, and the job file's one-line refusals.
+ * size, byte for byte. Also the job file's one-line refusals.
  */
 import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
