@@ -21,6 +21,7 @@ import type { FlowProducer as FlowProducerType, Job, Queue as QueueType, Worker 
 import { LanternError } from '../../errors.ts';
 import { jobChunks, type Chunk, type FarmJob } from '../../farm/job.ts';
 import { mergeJob, runChunk, children } from './run-lantern.ts';
+import { acquireNodeGpu } from '../dawn.ts';
 
 export const CHUNK_QUEUE = 'lantern-chunks';
 export const MERGE_QUEUE = 'lantern-merge';
@@ -138,6 +139,11 @@ export async function runWorker(url: string, o: WorkerOptions): Promise<void> {
     }, 1000);
     return () => clearInterval(timer);
   };
+  // The adapter this process's environment gives (its chunks' render children inherit it): logged,
+  // so that two workers on one GPU show (docs/farm.md, GPU selection).
+  const gpu = await acquireNodeGpu({ onNote: () => {} });
+  o.log(`${o.name}: adapter ${gpu.adapterName}${process.env.LANTERN_DAWN_OPTIONS ? ` (LANTERN_DAWN_OPTIONS=${process.env.LANTERN_DAWN_OPTIONS})` : ''}`);
+  gpu.device.destroy();
   const lockDuration = o.lockSeconds * 1000;
   const settings = { connection, concurrency: 1, lockDuration, stalledInterval: lockDuration, maxStalledCount: 3, name: o.name };
   let done = 0;
@@ -181,7 +187,12 @@ export async function runWorker(url: string, o: WorkerOptions): Promise<void> {
     },
     settings,
   );
-  for (const w of [chunks, merges]) w.on('failed', (bj, e) => bj && o.log(`${o.name}: ${bj.id} failed: ${e.message}${bj.attemptsMade < (bj.opts.attempts ?? 1) ? ' (will be retried)' : ''}`));
+  for (const w of [chunks, merges]) {
+    w.on('failed', (bj, e) => {
+      if (!bj) return;
+      bj.getState().then((state) => o.log(`${o.name}: ${bj.id} failed: ${e.message}${state === 'failed' ? '' : ' (will be retried)'}`), () => undefined);
+    });
+  }
   o.log(`${o.name}: waiting for chunks on ${url} (${CHUNK_QUEUE}, lock ${o.lockSeconds} s)`);
   await Promise.race([stopped, enough]);
   for (const child of children) child.kill('SIGTERM');
