@@ -68,7 +68,8 @@ export function registerFarm(program: Command, context: CliContext): void {
         if (o.json) return context.print(JSON.stringify(jobs, null, 2));
         if (jobs.length === 0) return context.print(`no farm jobs on ${o.redis}`);
         for (const j of jobs) {
-          const rate = j.rate !== undefined ? `, ${j.rate.toFixed(3)} chunks/s, ${j.etaSeconds! > 0 ? `${j.etaSeconds!.toFixed(0)} s left` : 'all rendered'}` : '';
+          const per = j.frameRate !== undefined ? ` (${j.frameRate.toPrecision(3)} frames/s)` : j.sampleRate !== undefined ? ` (${j.sampleRate.toPrecision(3)} spp/s)` : '';
+          const rate = j.rate !== undefined ? `, ${j.rate.toFixed(3)} chunks/s${per}, ${j.etaSeconds! > 0 ? `${j.etaSeconds!.toFixed(0)} s left` : 'all rendered'}` : '';
           context.print(`${j.key} ${progressBar(j.done, j.chunks)}${j.failed ? `, ${j.failed} failed` : ''}${rate}; merge ${j.merge}${j.cancelled ? ' (cancelled)' : ''}${j.outputs.length ? ` -> ${j.outputs.join(' and ')}` : ''}`);
           for (const a of j.active) context.print(`  ${a.chunk} on ${a.worker} for ${a.seconds.toFixed(0)} s`);
         }

@@ -208,6 +208,9 @@ export interface JobStatus {
   readonly active: readonly { readonly chunk: string; readonly worker: string; readonly seconds: number }[];
   /** Chunks a second since the first started, and the seconds left at that rate. */
   readonly rate?: number;
+  /** Frames a second (a Frame job) or samples a second (a Sample job) at that rate. */
+  readonly frameRate?: number;
+  readonly sampleRate?: number;
   readonly etaSeconds?: number;
   readonly merge: string;
   readonly cancelled: boolean;
@@ -251,7 +254,7 @@ export async function status(url: string, only?: string): Promise<JobStatus[]> {
         done,
         failed,
         active,
-        ...(rate !== undefined ? { rate, etaSeconds: (chunks.length - done) / rate } : {}),
+        ...(rate !== undefined ? { rate, [job.kind === 'frames' ? 'frameRate' : 'sampleRate']: (rate * job.values.length) / chunks.length, etaSeconds: (chunks.length - done) / rate } : {}),
         merge: mergeState,
         cancelled: (await client.get(cancelKey(key))) !== null,
         outputs,
