@@ -14,6 +14,8 @@
 import { LanternError } from '../errors.ts';
 
 const MAGIC = 'LANTERN-SHARD\n';
+/** Float32Arrays are in the machine's byte order; the file's is little-endian. */
+const LITTLE_ENDIAN = new Uint8Array(new Float32Array([1]).buffer)[3] === 0x3f;
 export const SHARD_VERSION = 1;
 
 export interface ShardHeader {
@@ -43,8 +45,12 @@ export function encodeShard(shard: Shard): Uint8Array {
   out.set(new TextEncoder().encode(MAGIC), 0);
   new DataView(out.buffer).setUint32(MAGIC.length, json.length, true);
   out.set(json, headStart);
-  const view = new DataView(out.buffer, dataStart);
-  for (let i = 0; i < sums.length; i++) view.setFloat32(i * 4, sums[i]!, true);
+  if (LITTLE_ENDIAN) {
+    out.set(new Uint8Array(sums.buffer, sums.byteOffset, sums.byteLength), dataStart);
+  } else {
+    const view = new DataView(out.buffer, dataStart);
+    for (let i = 0; i < sums.length; i++) view.setFloat32(i * 4, sums[i]!, true);
+  }
   return out;
 }
 
@@ -72,8 +78,12 @@ export function decodeShard(bytes: Uint8Array, name: string): Shard {
   const floats = width * height * 4;
   if (bytes.length !== dataStart + floats * 4) fail(`${bytes.length - dataStart} bytes of sums where ${width}×${height} needs ${floats * 4}`);
   const sums = new Float32Array(floats);
-  const data = new DataView(bytes.buffer, bytes.byteOffset + dataStart, floats * 4);
-  for (let i = 0; i < floats; i++) sums[i] = data.getFloat32(i * 4, true);
+  if (LITTLE_ENDIAN) {
+    new Uint8Array(sums.buffer).set(bytes.subarray(dataStart, dataStart + floats * 4));
+  } else {
+    const data = new DataView(bytes.buffer, bytes.byteOffset + dataStart, floats * 4);
+    for (let i = 0; i < floats; i++) sums[i] = data.getFloat32(i * 4, true);
+  }
   return { header, sums };
 }
 
@@ -87,32 +97,42 @@ export interface Merged {
   readonly sums: Float32Array;
 }
 
+/** A shard to merge: its header, and its sums when asked for (so that only one shard's sums need be in memory at a time). */
+export interface ShardSource {
+  readonly name: string;
+  readonly header: ShardHeader;
+  readonly sums: () => Float32Array;
+}
+
 /**
  * Adds shards of one render in sample order (whatever order they are given in), float32 after each
  * addition, as a one-process render's accumulation adds its dispatches. They must be of the same
- * render and size and cover one contiguous range of samples without overlap.
+ * render and size and cover one contiguous range of samples without overlap (checked from the
+ * headers before any sums are read).
  */
-export function mergeShards(shards: readonly { readonly shard: Shard; readonly name: string }[]): Merged {
+export function mergeShards(shards: readonly (ShardSource | { readonly shard: Shard; readonly name: string })[]): Merged {
   if (shards.length === 0) throw new LanternError('merge needs at least one shard');
-  const sorted = [...shards].sort((a, b) => a.shard.header.start - b.shard.header.start);
+  const sources: ShardSource[] = shards.map((s) => ('shard' in s ? { name: s.name, header: s.shard.header, sums: () => s.shard.sums } : s));
+  const sorted = sources.sort((a, b) => a.header.start - b.header.start);
   const first = sorted[0]!;
-  const key = JSON.stringify(first.shard.header.render);
-  const { width, height } = first.shard.header;
-  for (const { shard, name } of sorted) {
-    if (JSON.stringify(shard.header.render) !== key) throw new LanternError(`${name} is of another render than ${first.name} (render ${shard.header.render.join(' ')} against ${first.shard.header.render.join(' ')})`);
-    if (shard.header.width !== width || shard.header.height !== height) throw new LanternError(`${name} is ${shard.header.width}×${shard.header.height}, ${first.name} ${width}×${height}`);
+  const key = JSON.stringify(first.header.render);
+  const { width, height } = first.header;
+  for (const { header, name } of sorted) {
+    if (JSON.stringify(header.render) !== key) throw new LanternError(`${name} is of another render than ${first.name} (render ${header.render.join(' ')} against ${first.header.render.join(' ')})`);
+    if (header.width !== width || header.height !== height) throw new LanternError(`${name} is ${header.width}×${header.height}, ${first.name} ${width}×${height}`);
   }
   for (let i = 1; i < sorted.length; i++) {
     const prev = sorted[i - 1]!;
     const cur = sorted[i]!;
-    if (cur.shard.header.start < prev.shard.header.end) throw new LanternError(`${cur.name} (samples ${cur.shard.header.start}-${cur.shard.header.end - 1}) overlaps ${prev.name} (samples ${prev.shard.header.start}-${prev.shard.header.end - 1})`);
-    if (cur.shard.header.start > prev.shard.header.end) throw new LanternError(`samples ${prev.shard.header.end}-${cur.shard.header.start - 1} are missing between ${prev.name} and ${cur.name}`, 'Merge every shard of the range');
+    if (cur.header.start < prev.header.end) throw new LanternError(`${cur.name} (samples ${cur.header.start}-${cur.header.end - 1}) overlaps ${prev.name} (samples ${prev.header.start}-${prev.header.end - 1})`);
+    if (cur.header.start > prev.header.end) throw new LanternError(`samples ${prev.header.end}-${cur.header.start - 1} are missing between ${prev.name} and ${cur.name}`, 'Merge every shard of the range');
   }
   const sums = new Float32Array(width * height * 4);
-  for (const { shard } of sorted) {
-    const s = shard.sums;
+  for (const source of sorted) {
+    const s = source.sums();
+    if (s.length !== sums.length) throw new LanternError(`${source.name} changed while it was merged`);
     // Float32Array stores round each addition to float32, as the GPU's does.
     for (let i = 0; i < sums.length; i++) sums[i] = sums[i]! + s[i]!;
   }
-  return { render: first.shard.header.render, width, height, start: first.shard.header.start, end: sorted[sorted.length - 1]!.shard.header.end, sums };
+  return { render: first.header.render, width, height, start: first.header.start, end: sorted[sorted.length - 1]!.header.end, sums };
 }

@@ -31,9 +31,14 @@ export function registerMerge(program: Command, context: CliContext): void {
     .action((shards: string[], o: MergeOptions) => context.run(() => merge(shards, o, context)));
 }
 
-/** Reads and adds the shards (pure past the reads): the merged sums and what made them. */
+/**
+ * Reads and adds the shards: each file is read once for its header (all checked before any adding),
+ * then again in sample order for its sums, so one shard's sums are in memory at a time (a 4K shard
+ * is 127 MiB).
+ */
 export function readAndMerge(files: readonly string[]): Merged {
-  return mergeShards(files.map((name) => ({ name, shard: decodeShard(readUserFile(name, { what: 'shard' }), name) })));
+  const read = (name: string) => decodeShard(readUserFile(name, { what: 'shard' }), name);
+  return mergeShards(files.map((name) => ({ name, header: read(name).header, sums: () => read(name).sums })));
 }
 
 /** Writes the merged estimate as `render` of its command line would; resolves with the adapter that tone-mapped it. */
