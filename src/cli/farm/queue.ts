@@ -15,12 +15,11 @@
  * - Cancellation: a key in Redis that workers check before a chunk and every second during one (the
  *   render child is ended), and the flow's waiting jobs are removed.
  */
-import { createHash } from 'node:crypto';
 import { hostname } from 'node:os';
 import type { FlowProducer as FlowProducerType, Job, Queue as QueueType, Worker as WorkerType } from 'bullmq';
 import { LanternError } from '../../errors.ts';
 import { jobChunks, type Chunk, type FarmJob } from '../../farm/job.ts';
-import { mergeJob, runChunk, children } from './run-lantern.ts';
+import { children, jobKey, mergeJob, runChunk } from './run-lantern.ts';
 import { acquireNodeGpu } from '../dawn.ts';
 
 export const CHUNK_QUEUE = 'lantern-chunks';
@@ -41,10 +40,7 @@ interface MergeData {
   readonly job: FarmJob;
 }
 
-/** The job's key: its name and the first 12 hex digits of the SHA-256 of its JSON (same job, same key). */
-export function jobKey(job: FarmJob): string {
-  return `${job.name}-${createHash('sha256').update(JSON.stringify(job)).digest('hex').slice(0, 12)}`;
-}
+export { jobKey };
 
 /** A Redis URL as BullMQ's connection options (redis://host:port/db; rediss:// for TLS). */
 export function connectionOf(url: string): { host: string; port: number; db: number; password?: string; username?: string; tls?: object; maxRetriesPerRequest: null } {

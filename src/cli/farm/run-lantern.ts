@@ -4,10 +4,12 @@
  * adapter chosen for the worker (docs/farm.md, GPU selection) is the chunk's.
  */
 import { spawn, type ChildProcess } from 'node:child_process';
-import { existsSync } from 'node:fs';
+import { createHash } from 'node:crypto';
+import { existsSync, mkdirSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { writeFile } from '../output-files.ts';
 import { LanternError } from '../../errors.ts';
 import { chunkFiles, chunkOutputs, mergedOutputs } from './job-file.ts';
-import { chunkRenderArgs, type Chunk, type FarmJob } from '../../farm/job.ts';
+import { chunkRenderArgs, renderOptionArgs, type Chunk, type FarmJob } from '../../farm/job.ts';
 import { decodeShard } from '../../farm/shard.ts';
 import { readUserFile } from '../user-files.ts';
 import { resolve } from 'node:path';
@@ -51,15 +53,30 @@ export function runLantern(args: readonly string[], signal?: AbortSignal): Promi
   });
 }
 
-/** Whether a chunk's outputs are all there (and a shard whole and of this chunk). */
+/** The job's key: its name and the first 12 hex digits of the SHA-256 of its JSON (same job, same key). */
+export function jobKey(job: FarmJob): string {
+  return `${job.name}-${createHash('sha256').update(JSON.stringify(job)).digest('hex').slice(0, 12)}`;
+}
+
+/**
+ * The file that says a chunk of this job (this key: its name and content) is done. Outputs left in
+ * the folder by another job of the same name (another seed, another size) have no such file here,
+ * so they are rendered again rather than taken.
+ */
+const doneMarker = (job: FarmJob, chunk: Chunk): string => resolve(job.output.folder, 'chunks', `${jobKey(job)}-${chunk.id}.done`);
+
+/** Whether a chunk of this job is done: its marker there, its outputs all there, a shard whole and of this chunk. */
 export function chunkDone(job: FarmJob, chunk: Chunk): boolean {
   const files = chunkOutputs(job, chunk);
+  const marker = doneMarker(job, chunk);
+  if (!existsSync(marker) || readFileSync(marker, 'utf8') !== jobKey(job)) return false;
   if (!files.every((f) => existsSync(f))) return false;
   const shard = chunkFiles(job, chunk).shard;
   if (!shard) return true;
   try {
     const h = decodeShard(readUserFile(shard), shard).header;
-    return h.start === chunk.values[0] && h.end === chunk.values[chunk.values.length - 1]! + 1;
+    // Of this chunk's samples, and of this job's render (not one another job of the same name left).
+    return h.start === chunk.values[0] && h.end === chunk.values[chunk.values.length - 1]! + 1 && JSON.stringify(h.render) === JSON.stringify([job.scene, ...renderOptionArgs(job)]);
   } catch {
     return false;
   }
@@ -74,6 +91,13 @@ export async function runChunk(job: FarmJob, chunk: Chunk, signal?: AbortSignal)
   if (chunkDone(job, chunk)) return { adapter: '', seconds: 0, reused: true };
   const t0 = performance.now();
   const report = await runLantern(['render', ...chunkRenderArgs(job, chunk, chunkFiles(job, chunk))], signal);
+  // The chunk's files are this job's now: another job of the same name that wrote them before is no
+  // longer done there.
+  const markers = resolve(job.output.folder, 'chunks');
+  mkdirSync(markers, { recursive: true });
+  const mine = `${jobKey(job)}-${chunk.id}.done`;
+  for (const name of readdirSync(markers)) if (name !== mine && name.startsWith(`${job.name}-`) && name.endsWith(`-${chunk.id}.done`)) rmSync(resolve(markers, name), { force: true });
+  writeFile(doneMarker(job, chunk), new TextEncoder().encode(jobKey(job)));
   return { adapter: String(report.adapter ?? ''), seconds: (performance.now() - t0) / 1000, reused: false };
 }
 
