@@ -391,6 +391,18 @@ export class Renderer extends RendererKernels {
     this.requests.show(image);
   }
 
+  /**
+   * The real-time chain's next frame draws the random streams of samples `sampleIndex` on, as frame
+   * f of a sequence at spp samples a frame does (f·spp) when every frame before it was rendered.
+   * Exact only for frames that keep no history (no temporal pass, filter or ReSTIR, a manual
+   * exposure): `render --frames` then renders the listed frames alone. `previousCamera`: the
+   * camera of the sequence's frame before (undefined before its first), as that frame would have left it.
+   */
+  seekFrameSamples(sampleIndex: number, previousCamera: Camera | undefined): void {
+    if (!this.recipes.realTime) throw new Error('Renderer: compile() the real-time chain before seekFrameSamples()');
+    this.recipes.realTime.seek(sampleIndex, previousCamera);
+  }
+
   /** Drops the real-time history: the next frame starts from its own samples. */
   resetHistory(): void {
     this.historyResets++;

@@ -118,10 +118,15 @@ export interface FrameWorld {
 export async function renderFrames(renderer: Renderer, base: Camera, spp: number, o: FrameModeOptions, out: { png?: string; exr?: string }, moving?: FrameWorld): Promise<FrameModeResult> {
   const path = o.cameraPath ?? (o.path !== undefined ? parseCameraPath(readJsonFile(o.path, '--path'), o.path) : undefined);
   const selection = frameSelection({ ...o, ...(path ? { cameraPath: path } : {}) });
-  // A frame depends on those before it (the temporal history, the sample index, the adapting
-  // exposure): every frame up to the last one asked for is rendered, those not asked for are not
-  // read back or written, so each written frame is the whole sequence's, bit for bit.
+  // A frame depends on those before it (the temporal history, ReSTIR's reservoirs, the hybrid's TAA,
+  // the adapting exposure, the sample index): with any of those but the sample index, every frame
+  // up to the last one asked for is rendered and those not asked for are not read back or written;
+  // without them, frames not asked for are not traced at all, the sample index set to what they
+  // would have left (the world and camera still step through them: doors open as the camera
+  // passes). Either way each written frame is the whole sequence's, bit for bit.
   const wanted = new Set(selection.frames);
+  const st = renderer.settings;
+  const historyFree = recipeFor(st, { frames: true }) === 'real-time' && !st.temporal && !st.denoise && !st.restir && renderer.exposureChoice.kind !== 'auto';
   const frames = selection.frames[selection.frames.length - 1]! + 1;
   const total = selection.total ?? frames;
   const sequence = selection.sequence;
@@ -151,6 +156,11 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
       const update = moving.world.advanceTo(Math.max(t, moving.world.seconds), camera);
       if (!isEmptyUpdate(update)) renderer.applySceneUpdate(update);
     }
+    // Without history a frame still inherits state of the frame before it (found: the first frame
+    // traced after a start differs from the sequence's in the EXR's last bits), so the frame before
+    // each listed one is traced too, not read back.
+    if (historyFree && !wanted.has(f) && !wanted.has(f + 1)) continue;
+    if (historyFree) renderer.seekFrameSamples(f * spp, f === 0 ? undefined : path ? cameraAt(path, frameTime(path, f - 1, total), base) : base);
     renderer.renderFrame(spp, timer);
     const name = `frame-${String(f).padStart(4, '0')}`;
     // The automatic exposure adapts over the sequence's own clock (the first frame takes its target).

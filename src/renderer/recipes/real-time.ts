@@ -268,6 +268,18 @@ export class RealTimeRecipe implements FrameRecipe {
   }
 
   /** Forgets the history: the next frame starts from its own samples alone. */
+  /**
+   * The next frame draws the random streams of samples `sampleIndex` on, as if the frames before it
+   * had been rendered (frame f of a sequence of `spp` samples a frame: f·spp). For frames without
+   * history (no temporal pass, filter or ReSTIR), the only thing a frame inherits: a farm's chunk of
+   * frames renders its own frames alone. `previousCamera`: the camera of the frame before (none
+   * before a sequence's first), which a frame compares its own with (a still camera converges).
+   */
+  seek(sampleIndex: number, previousCamera: Camera | undefined): void {
+    this.sampleIndex = sampleIndex >>> 0;
+    this.previousCamera = previousCamera;
+  }
+
   resetHistory(): void {
     this.historyValid = false;
     this.restirHistoryValid = false;
