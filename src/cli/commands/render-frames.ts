@@ -126,6 +126,7 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   // passes). Either way each written frame is the whole sequence's, bit for bit.
   const wanted = new Set(selection.frames);
   const st = renderer.settings;
+  let lastTraced = -1;
   const historyFree = recipeFor(st, { frames: true }) === 'real-time' && !st.temporal && !st.denoise && !st.restir && renderer.exposureChoice.kind !== 'auto';
   const frames = selection.frames[selection.frames.length - 1]! + 1;
   const total = selection.total ?? frames;
@@ -160,8 +161,10 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
     // traced after a start differs from the sequence's in the EXR's last bits), so the frame before
     // each listed one is traced too, not read back.
     if (historyFree && !wanted.has(f) && !wanted.has(f + 1)) continue;
-    if (historyFree) renderer.seekFrameSamples(f * spp, f === 0 ? undefined : path ? cameraAt(path, frameTime(path, f - 1, total), base) : base);
+    // After skipped frames only: a sequence traced whole never seeks, and stays what it was.
+    if (historyFree && lastTraced !== f - 1) renderer.seekFrameSamples(f * spp, f === 0 ? undefined : path ? cameraAt(path, frameTime(path, f - 1, total), base) : base);
     renderer.renderFrame(spp, timer);
+    lastTraced = f;
     const name = `frame-${String(f).padStart(4, '0')}`;
     // The automatic exposure adapts over the sequence's own clock (the first frame takes its target).
     if (f > 0) renderer.advanceExposure(path ? frameTime(path, f, total) - frameTime(path, f - 1, total) : 1 / (o.fps ?? 30));
