@@ -155,6 +155,7 @@ export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (o
     if (o.spp !== undefined) throw new LanternError('--spp does not go with --samples (the range says how many)', 'Leave out --spp');
     if (o.chunk !== undefined) throw new LanternError('--chunk does not go with --samples (a shard is one dispatch of its samples)', 'Leave out --chunk');
   }
+  if ((o.chunk !== undefined || o.samples !== undefined) && o.kernel === 'specialised') throw new LanternError(`--kernel specialised does not go with ${o.chunk !== undefined ? '--chunk' : '--samples'}: the render switches kernels when the compile is ready, at a moment that depends on timing, and an exact split needs every chunk traced by the same kernel`, 'Leave out --kernel specialised');
   if (o.chunk !== undefined && frameMode) throw new LanternError('--chunk applies to progressive renders (frame mode renders --spp samples a frame)', 'Leave it out');
   const argument = parseSceneArgument(sceneArg);
   // A file's format is known once its bytes are read (on the scene thread, which checks again).
