@@ -31,8 +31,12 @@ export interface LinearImage {
 
 /** The estimate of `samples` samples in the accumulation buffer (radiance sums and luminance square sums). */
 export async function readAccumulation(device: GPUDevice, targets: ImageTargets, samples: number): Promise<Accumulation> {
-  const raw = new Float32Array(await readBuffer(device, targets.accumulation));
-  const n = targets.width * targets.height;
+  return accumulationEstimate(new Float32Array(await readBuffer(device, targets.accumulation)), targets.width, targets.height, samples);
+}
+
+/** The estimate of `samples` samples from raw accumulation sums (a vec4f per pixel): what readAccumulation gives, computed on the CPU (lantern merge's EXR). */
+export function accumulationEstimate(raw: Float32Array, width: number, height: number, samples: number): Accumulation {
+  const n = width * height;
   const radiance = new Float32Array(n * 3);
   const luminanceVariance = new Float32Array(n);
   const inv = samples > 0 ? 1 / samples : 0;
@@ -46,7 +50,7 @@ export async function readAccumulation(device: GPUDevice, targets: ImageTargets,
       luminanceVariance[i] = Math.max(0, (raw[i * 4 + 3]! - samples * mean * mean) / (samples - 1));
     }
   }
-  return { width: targets.width, height: targets.height, samples, radiance, luminanceVariance };
+  return { width, height, samples, radiance, luminanceVariance };
 }
 
 /** A frame's linear output (a vec4f per pixel) as rgb. */

@@ -9,7 +9,9 @@ import { Command } from 'commander';
 import { LanternError } from '../../errors.ts';
 import { decodeShard, mergeShards, type Merged } from '../../farm/shard.ts';
 import type { CliContext } from '../context.ts';
-import { checkOutputPath } from '../output-files.ts';
+import { checkOutputPath, writeFile } from '../output-files.ts';
+import { accumulationEstimate } from '../../renderer/image-readback.ts';
+import { encodeExr } from '../../image/exr.ts';
 import { pathOption } from '../options.ts';
 import { readUserFile } from '../user-files.ts';
 import { registerRender } from './render.ts';
@@ -64,7 +66,13 @@ async function merge(files: string[], o: MergeOptions, context: CliContext): Pro
   const t0 = performance.now();
   const merged = readAndMerge(files);
   const addMs = performance.now() - t0;
-  const adapter = await writeMerged(merged, { ...(o.out ? { png: o.out } : {}), ...(o.exr ? { exr: o.exr } : {}) }, context);
+  // The EXR is the sums divided once, on the CPU by the function the GPU read-back uses: no GPU needed.
+  // The PNG's tone map (and its exposure) is render's own GPU pass.
+  if (o.exr) {
+    const estimate = accumulationEstimate(merged.sums, merged.width, merged.height, merged.end - merged.start);
+    writeFile(o.exr, encodeExr(merged.width, merged.height, estimate.radiance));
+  }
+  const adapter = o.out ? await writeMerged(merged, { png: o.out }, context) : 'the CPU';
   const seconds = (performance.now() - t0) / 1000;
   const outputs = { ...(o.out ? { png: o.out } : {}), ...(o.exr ? { exr: o.exr } : {}) };
   if (o.json) {
