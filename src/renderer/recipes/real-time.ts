@@ -267,7 +267,6 @@ export class RealTimeRecipe implements FrameRecipe {
     return frame.settings.denoiseView !== 'output';
   }
 
-  /** Forgets the history: the next frame starts from its own samples alone. */
   /**
    * The next frame draws the random streams of samples `sampleIndex` on, as if the frames before it
    * had been rendered (frame f of a sequence of `spp` samples a frame: f·spp). For frames without
@@ -280,6 +279,7 @@ export class RealTimeRecipe implements FrameRecipe {
     this.previousCamera = previousCamera;
   }
 
+  /** Forgets the history: the next frame starts from its own samples alone. */
   resetHistory(): void {
     this.historyValid = false;
     this.restirHistoryValid = false;
