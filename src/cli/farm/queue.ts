@@ -78,6 +78,21 @@ async function reachable(queue: QueueType, url: string): Promise<void> {
   }
 }
 
+/** Opens the chunk and merge queues on Redis at `url`, checks it answers, runs `use`, and closes both. */
+async function withQueues<T>(url: string, use: (chunkQueue: QueueType, mergeQueue: QueueType) => Promise<T>): Promise<T> {
+  const { Queue } = await bullmq();
+  const connection = connectionOf(url);
+  const chunkQueue = new Queue(CHUNK_QUEUE, { connection });
+  const mergeQueue = new Queue(MERGE_QUEUE, { connection });
+  try {
+    await reachable(chunkQueue, url);
+    return await use(chunkQueue, mergeQueue);
+  } finally {
+    await chunkQueue.close();
+    await mergeQueue.close();
+  }
+}
+
 export async function submit(job: FarmJob, url: string): Promise<{ key: string; chunks: number; added: boolean }> {
   const { FlowProducer, Queue } = await bullmq();
   const connection = connectionOf(url);
@@ -214,12 +229,7 @@ export interface JobStatus {
 }
 
 export async function status(url: string, only?: string): Promise<JobStatus[]> {
-  const { Queue } = await bullmq();
-  const connection = connectionOf(url);
-  const chunkQueue = new Queue(CHUNK_QUEUE, { connection });
-  const mergeQueue = new Queue(MERGE_QUEUE, { connection });
-  try {
-    await reachable(chunkQueue, url);
+  return withQueues(url, async (chunkQueue, mergeQueue) => {
     const client = await chunkQueue.client;
     const keys = Object.keys(await client.hgetall(JOBS_KEY)).filter((k) => !only || k === only || k.startsWith(`${only}-`)).sort();
     const out: JobStatus[] = [];
@@ -257,20 +267,12 @@ export async function status(url: string, only?: string): Promise<JobStatus[]> {
       });
     }
     return out;
-  } finally {
-    await chunkQueue.close();
-    await mergeQueue.close();
-  }
+  });
 }
 
 /** Marks a job cancelled (workers end its running chunks) and removes its waiting jobs. */
 export async function cancel(url: string, key: string): Promise<number> {
-  const { Queue } = await bullmq();
-  const connection = connectionOf(url);
-  const chunkQueue = new Queue(CHUNK_QUEUE, { connection });
-  const mergeQueue = new Queue(MERGE_QUEUE, { connection });
-  try {
-    await reachable(chunkQueue, url);
+  return withQueues(url, async (chunkQueue, mergeQueue) => {
     const client = await chunkQueue.client;
     const parent = await mergeQueue.getJob(`${key}-merge`);
     if (!parent) throw new LanternError(`no farm job ${key} on this Redis`, 'See `lantern farm status --redis URL` for the jobs it holds');
@@ -283,10 +285,7 @@ export async function cancel(url: string, key: string): Promise<number> {
       }
     }
     return removed;
-  } finally {
-    await chunkQueue.close();
-    await mergeQueue.close();
-  }
+  });
 }
 
 /** A text progress bar: [##########..........] 8/16. */
