@@ -43,17 +43,14 @@ export class DispatchPlanner {
   /** Reports how long the last batch took, per submit (ms), and adapts the next one. */
   observe(msPerSubmit: number): void {
     const { targetMs } = this.options;
-    if (this.options.fixedSamples !== undefined) {
-      if (msPerSubmit > 2 * targetMs) this.bands = Math.min(this.options.maxBands, this.height, this.bands * 2);
-      else if (msPerSubmit < targetMs / 2 && this.bands > 1) this.bands = Math.max(1, Math.floor(this.bands / 2));
-      return;
-    }
+    // With fixedSamples only the bands adapt.
+    const adaptSamples = this.options.fixedSamples === undefined;
     if (msPerSubmit > 2 * targetMs) {
-      if (this.samplesPerDispatch > 1) this.samplesPerDispatch = Math.max(1, Math.floor(this.samplesPerDispatch / 2));
+      if (adaptSamples && this.samplesPerDispatch > 1) this.samplesPerDispatch = Math.max(1, Math.floor(this.samplesPerDispatch / 2));
       else this.bands = Math.min(this.options.maxBands, this.height, this.bands * 2);
     } else if (msPerSubmit < targetMs / 2) {
       if (this.bands > 1) this.bands = Math.max(1, Math.floor(this.bands / 2));
-      else this.samplesPerDispatch = Math.min(this.options.maxSamplesPerDispatch, this.samplesPerDispatch * 2);
+      else if (adaptSamples) this.samplesPerDispatch = Math.min(this.options.maxSamplesPerDispatch, this.samplesPerDispatch * 2);
     }
   }
 

@@ -163,7 +163,7 @@ export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (o
   else for (const file of argument.paths) checkUserFile(file);
   if (o.lightTable !== undefined) readLightTable(o.lightTable);
   const path = o.path !== undefined ? parseCameraPath(readJsonFile(o.path, '--path'), o.path) : undefined;
-  const sequence = frameMode && frameSelection({ ...o, ...(path ? { cameraPath: path } : {}) }).sequence;
+  const sequence = frameMode && frameSelection(o).sequence;
   if (png !== undefined) checkOutputPath('--out', png, sequence ? 'folder' : 'file');
   if (o.shard !== undefined) checkOutputPath('--shard', o.shard, 'file');
   if (o.exr !== undefined) checkOutputPath('--exr', o.exr, sequence ? 'folder' : 'file');
@@ -172,7 +172,7 @@ export function checkRenderOptions(sceneArg: string, o: RenderOptions, given: (o
 
 async function render(sceneArg: string, o: RenderOptions, context: CliContext, given: (option: string) => boolean, estimate?: GivenEstimate): Promise<void> {
   // A sequence of frames, or a shard, writes only what was asked for.
-  const sequence = isFrameMode(o) && (o.frames !== undefined && typeof o.frames !== 'number' ? true : (o.frames ?? 1) > 1 || o.path !== undefined);
+  const sequence = isFrameMode(o) && frameSelection(o).sequence;
   const png = o.out ?? (o.exr || sequence || o.shard ? undefined : `${sceneArg.replace(/[^A-Za-z0-9_-]+/g, '_')}.png`);
   checkLensOptions(o);
   const cameraPath = checkRenderOptions(sceneArg, o, given, png);
