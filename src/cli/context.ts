@@ -4,6 +4,7 @@
  */
 import { LanternError } from '../errors.ts';
 import { escapeControls } from './terminal-text.ts';
+import type { SessionCache } from './session-cache.ts';
 
 export interface CliContext {
   readonly verbose: () => boolean;
@@ -14,6 +15,10 @@ export interface CliContext {
   warn(line: string): void;
   /** Dawn's and the Vulkan loader's own output (their look for a GPU): on stderr with --verbose only. */
   dawnOutput(text: string): void;
+  /** The command line the command runs (process.argv, or a chunk's in the farm's chunk server). */
+  readonly argv: readonly string[];
+  /** What a long-lived process keeps between commands (session-cache.ts); none in a one-command process. */
+  readonly sessions?: SessionCache;
   /** Runs a command body; reports failures as one line (a stack trace with --verbose) and sets the exit code. */
   run(body: () => Promise<void>): Promise<void>;
 }
@@ -24,6 +29,7 @@ export const EXIT_INTERNAL_ERROR = 70;
 export function createCliContext(verbose: () => boolean): CliContext {
   return {
     verbose,
+    argv: process.argv,
     print: (line) => process.stdout.write(`${escapeControls(line, { keepLines: true })}\n`),
     note: (line) => process.stderr.write(`lantern: ${escapeControls(line, { keepLines: true })}\n`),
     warn: (line) => process.stderr.write(`lantern: warning: ${escapeControls(line, { keepLines: true })}\n`),

@@ -28,15 +28,30 @@ export interface Session {
  * how the scene is lit) and of Dawn's own lines (dawnOutput, shown with --verbose); `adjust` changes
  * the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step.
  */
-export async function openSession(sceneArg: string, output: Pick<CliContext, 'note' | 'warn' | 'dawnOutput'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline): Promise<Session> {
+export async function openSession(sceneArg: string, output: Pick<CliContext, 'note' | 'warn' | 'dawnOutput' | 'sessions'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline, sceneKey?: string): Promise<Session> {
   // A damaged file is refused before the GPU starts (and before Dawn has printed anything).
   checkSceneFiles(sceneArg);
-  const loading = loadPreparedInThread(sceneArg, output.warn, sceneOptions, environment, adjust, timeline);
+  // A process that keeps its scene (session-cache.ts) loads it once for the commands that share a key.
+  const cache = output.sessions;
+  const keep = cache !== undefined && sceneKey !== undefined && !adjust;
+  const kept = keep && cache.scene?.key === sceneKey ? cache.scene.loading : undefined;
+  const loaded = kept ?? loadPreparedInThread(sceneArg, output.warn, sceneOptions, environment, adjust, timeline);
+  if (keep) {
+    cache.scene = { key: sceneKey, loading: loaded };
+    loaded.catch(() => {
+      if (cache.scene?.loading === loaded) cache.scene = undefined;
+    });
+  }
+  // A kept scene is copied for each command: rendering moves its instances and doors, and the next
+  // command starts from the scene as loaded (a structured clone: what crossed from the scene thread
+  // is plain data).
+  const loading = keep ? loaded.then((l) => ({ prepared: structuredClone(l.prepared), loadMs: kept ? 0 : l.loadMs })) : loaded;
   // Reported by the await below; the GPU's own errors wait for it (a missing file says so first).
   loading.catch(() => undefined);
   let renderer: Renderer | undefined;
   try {
-    const gpu = await acquireNodeGpu({ onNote: output.note, onDawnOutput: output.dawnOutput, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
+    const acquire = () => acquireNodeGpu({ onNote: output.note, onDawnOutput: output.dawnOutput, ...(timeline ? { onStage: timeline.add.bind(timeline) } : {}) });
+    const gpu = await (cache ? (cache.gpu ??= acquire()) : acquire());
     if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
     // The tone mapper compiles while the scene loads; then only the variant this scene needs
     // compiles, and the scene uploads.

@@ -3,7 +3,9 @@
  * processes on SwiftShader, one killed (with its render child) in the middle of a chunk. The job
  * still completes (the dead worker's chunk goes back to the queue when its lock runs out), and its
  * merged PNG and EXR equal a one-process render of the same samples in dispatches of the chunk
- * size, byte for byte. Also the job file's one-line refusals.
+ * size, byte for byte. A second worker on one GPU is refused (the lease in Redis, gpu-lease.ts). A
+ * Frame job's chunks rendered one after another in one chunk server equal a one-process render. Also
+ * the job file's one-line refusals.
  */
 import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -86,7 +88,8 @@ describe('lantern farm', () => {
     const cli = inject('lanternCli');
     for (let k = 0; k < 3; k++) {
       // Its own process group, so that killing it kills its render child too, as a machine going down would.
-      const w = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', url, '--name', `w${k}`, '--lock-seconds', '3'], { env: { ...process.env, ...SWIFTSHADER }, detached: true, stdio: ['ignore', 'ignore', 'pipe'] });
+      // Three workers on one adapter (SwiftShader's CPU) on purpose: --share-gpu.
+      const w = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', url, '--name', `w${k}`, '--lock-seconds', '3', '--share-gpu'], { env: { ...process.env, ...SWIFTSHADER }, detached: true, stdio: ['ignore', 'ignore', 'pipe'] });
       w.stderr!.on('data', (d: Buffer) => {
         logs[k] += d.toString();
         // Worker 0 dies a second into its first chunk: after the lock was taken, before the shard.
@@ -112,5 +115,43 @@ describe('lantern farm', () => {
     expect(logs[1]! + logs[2]!).toMatch(new RegExp(`${killedChunk} done in`));
     expect(readFileSync(join(folder, 'merged.png')).equals(readFileSync(join(dir, 'ref.png')))).toBe(true);
     expect(readFileSync(join(folder, 'merged.exr')).equals(readFileSync(join(dir, 'ref.exr')))).toBe(true);
+
+    // One worker a GPU: sharers keep out a worker that would be alone on it, and one alone keeps out the next.
+    const alone = runLantern(['farm', 'worker', '--redis', url, '--name', 'w3'], SWIFTSHADER);
+    expect(alone.code).toBe(1);
+    expect(alone.stderr).toMatch(/^lantern: error: worker w[012] already renders on this GPU \(.*SwiftShader.*\)/m);
+    for (const w of workers.slice(1)) process.kill(-w.pid!, 'SIGTERM');
+    await Promise.all(workers.slice(1).map((w) => new Promise((r) => (w.exitCode !== null || w.signalCode !== null ? r(undefined) : w.once('exit', r)))));
+    const first = spawn(process.execPath, [cli, 'farm', 'worker', '--redis', url, '--name', 'w4'], { env: { ...process.env, ...SWIFTSHADER }, detached: true, stdio: ['ignore', 'ignore', 'pipe'] });
+    workers.push(first);
+    let firstLog = '';
+    first.stderr!.on('data', (d: Buffer) => (firstLog += d.toString()));
+    for (const until = Date.now() + 60_000; Date.now() < until && !/waiting for chunks/.test(firstLog); ) await new Promise((r) => setTimeout(r, 200));
+    expect(firstLog).toMatch(/w4: adapter .*, GPU known as /);
+    const second = runLantern(['farm', 'worker', '--redis', url, '--name', 'w5'], SWIFTSHADER);
+    expect(second.code).toBe(1);
+    expect(second.stderr).toMatch(/^lantern: error: worker w4 already renders on this GPU/m);
+  });
+
+  it('renders a Frame job\'s chunks one after another in one chunk server, each frame the one-process render\'s byte for byte', () => {
+    // --temporal: the second chunk renders frames 0-1 again for their history, in the process that rendered them first.
+    const folder = join(dir, 'frames');
+    writeFileSync(join(dir, 'frames.json'), JSON.stringify({
+      name: 'frames',
+      scene: 'cornell',
+      render: { ...RENDER, temporal: true },
+      parameterSpace: { taskParameterDefinitions: [{ name: 'Frame', type: 'CHUNK[INT]', range: '0-3', chunks: { defaultTaskCount: 2, rangeConstraint: 'CONTIGUOUS' } }] },
+      output: { folder, png: 'png', exr: 'exr' },
+    }));
+    const farm = runLantern(['farm', 'run', join(dir, 'frames.json'), '--local', '1']);
+    expect(farm.code, farm.stderr).toBe(0);
+    expect(farm.stderr).toMatch(/worker 0: chunk-0001 \(2-3\) in/);
+    const ref = runLantern(['render', 'cornell', '--width', '16', '--height', '12', '--bounces', '3', '--seed', '5', '--temporal', '--frames', '4', '--out', join(dir, 'fref-png'), '--exr', join(dir, 'fref-exr')]);
+    expect(ref.code, ref.stderr).toBe(0);
+    for (let f = 0; f < 4; f++) {
+      const name = `frame-${String(f).padStart(4, '0')}`;
+      expect(readFileSync(join(folder, 'png', `${name}.png`)).equals(readFileSync(join(dir, 'fref-png', `${name}.png`))), name).toBe(true);
+      expect(readFileSync(join(folder, 'exr', `${name}.exr`)).equals(readFileSync(join(dir, 'fref-exr', `${name}.exr`))), name).toBe(true);
+    }
   });
 });

@@ -53,8 +53,9 @@ export function registerFarm(program: Command, context: CliContext): void {
     .option('--name <name>', 'how status names this worker (default host:pid)')
     .option('--lock-seconds <s>', "a chunk's lock without renewal: a dead worker's chunk is handed out again after about this long", integerOption('--lock-seconds', 1, 3600), 30)
     .option('--max-chunks <n>', 'leave after this many chunks', integerOption('--max-chunks', 1, 1_000_000))
-    .action((o: { redis: string; name?: string; lockSeconds: number; maxChunks?: number }) =>
-      context.run(() => runWorker(o.redis, { name: o.name ?? defaultWorkerName(), lockSeconds: o.lockSeconds, log: (line) => context.note(line), ...(o.maxChunks ? { maxChunks: o.maxChunks } : {}) })),
+    .option('--share-gpu', 'render on a GPU that other workers started with --share-gpu render on too (by default a second worker on one GPU is refused)')
+    .action((o: { redis: string; name?: string; lockSeconds: number; maxChunks?: number; shareGpu?: boolean }) =>
+      context.run(() => runWorker(o.redis, { name: o.name ?? defaultWorkerName(), lockSeconds: o.lockSeconds, log: (line) => context.note(line), ...(o.maxChunks ? { maxChunks: o.maxChunks } : {}), ...(o.shareGpu ? { shareGpu: true } : {}) })),
     );
   farm
     .command('status')

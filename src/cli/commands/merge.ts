@@ -48,8 +48,9 @@ export async function writeMerged(merged: Merged, outputs: { png?: string; exr?:
   let adapter = '';
   const inner = new Command().exitOverride();
   inner.configureOutput({ writeErr: () => {}, writeOut: () => {} });
-  registerRender(inner, context, { sums: merged.sums, samples: merged.end - merged.start, done: (_files, name) => (adapter = name) });
   const args = [...merged.render, ...(outputs.png ? ['--out', outputs.png] : []), ...(outputs.exr ? ['--exr', outputs.exr] : [])];
+  // The render runs as its own command line (in a chunk server, it finds the chunks' scene kept).
+  registerRender(inner, { ...context, argv: [...context.argv.slice(0, 2), 'render', ...args] }, { sums: merged.sums, samples: merged.end - merged.start, done: (_files, name) => (adapter = name) });
   try {
     await inner.parseAsync(['render', ...args], { from: 'user' });
   } catch (e) {

@@ -104,6 +104,20 @@ export function shardRenderArgs(argv: readonly string[]): string[] {
   return out;
 }
 
+/**
+ * What a kept scene is kept by (session-cache.ts): the render's arguments but those that say
+ * which samples or frames a chunk renders and where they go. Two chunks of one job have the same key.
+ */
+export function sceneKey(argv: readonly string[]): string {
+  const args = shardRenderArgs(argv);
+  const out: string[] = [];
+  for (let i = 0; i < args.length; i++) {
+    if (args[i] === '--frames') i++;
+    else if (!args[i]!.startsWith('--frames=')) out.push(args[i]!);
+  }
+  return JSON.stringify(out);
+}
+
 export function registerRender(program: Command, context: CliContext, given?: GivenEstimate): void {
   const command = program
     .command('render')
@@ -178,7 +192,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   const cameraPath = checkRenderOptions(sceneArg, o, given, png);
   const timeline = o.timings ? new Timeline() : undefined;
   for (const span of timeline ? processSpans() : []) timeline!.add(span);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), undefined, timeline);
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), undefined, timeline, context.sessions ? sceneKey(context.argv) : undefined);
   const setUp = performance.now();
   await renderer.resize(o.width, o.height);
   const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
@@ -251,7 +265,7 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   const rays = timeline ? await timeline.time('read ray counts', () => renderer.readRayCounts()) : await renderer.readRayCounts();
   if (o.shard && o.samples) {
     const sums = await renderer.readAccumulationSums();
-    const header = { version: SHARD_VERSION, render: shardRenderArgs(process.argv), width: o.width, height: o.height, start: o.samples.start, end: o.samples.end };
+    const header = { version: SHARD_VERSION, render: shardRenderArgs(context.argv), width: o.width, height: o.height, start: o.samples.start, end: o.samples.end };
     writeFile(o.shard, encodeShard({ header, sums }));
   }
   if (png) await writePng(renderer, png, timeline);

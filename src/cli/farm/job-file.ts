@@ -35,7 +35,7 @@ function checkRenderArgs(job: FarmJob): void {
   const program = new Command().exitOverride();
   let message = '';
   program.configureOutput({ writeErr: (text) => (message += text), writeOut: () => {} });
-  const idle: CliContext = { verbose: () => false, print: () => {}, note: () => {}, warn: () => {}, dawnOutput: () => {}, run: async () => {} };
+  const idle: CliContext = { verbose: () => false, argv: [], print: () => {}, note: () => {}, warn: () => {}, dawnOutput: () => {}, run: async () => {} };
   registerRender(program, idle);
   const first = jobChunks(job)[0]!;
   try {

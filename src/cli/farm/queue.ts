@@ -19,8 +19,9 @@ import { hostname } from 'node:os';
 import type { FlowProducer as FlowProducerType, Job, Queue as QueueType, Worker as WorkerType } from 'bullmq';
 import { LanternError } from '../../errors.ts';
 import { jobChunks, type Chunk, type FarmJob } from '../../farm/job.ts';
-import { children, jobKey, mergeJob, runChunk } from './run-lantern.ts';
+import { children, ChunkServer, jobKey, mergeJob, runChunk } from './run-lantern.ts';
 import { acquireNodeGpu } from '../dawn.ts';
+import { gpuIdentity, holdGpu, type LeaseClient } from './gpu-lease.ts';
 
 export const CHUNK_QUEUE = 'lantern-chunks';
 export const MERGE_QUEUE = 'lantern-merge';
@@ -134,6 +135,8 @@ export interface WorkerOptions {
   readonly log: (line: string) => void;
   /** Stop after this many chunks (tests; 0: run until stopped). */
   readonly maxChunks?: number;
+  /** Render on a GPU other workers render on too (they must say so as well): N workers on one GPU on purpose. */
+  readonly shareGpu?: boolean;
 }
 
 /** Runs a worker until SIGINT / SIGTERM: chunks one at a time, and merges when a job's chunks are all done. */
@@ -153,11 +156,22 @@ export async function runWorker(url: string, o: WorkerOptions): Promise<void> {
   // The adapter this process's environment gives (its chunks' render children inherit it): logged,
   // so that two workers on one GPU show (docs/farm.md, GPU selection).
   const gpu = await acquireNodeGpu({ onNote: () => {} });
-  o.log(`${o.name}: adapter ${gpu.adapterName}${process.env.LANTERN_DAWN_OPTIONS ? ` (LANTERN_DAWN_OPTIONS=${process.env.LANTERN_DAWN_OPTIONS})` : ''}`);
+  const identity = gpuIdentity(gpu.adapterName);
   gpu.device.destroy();
+  // One worker a GPU, unless they share it on purpose (gpu-lease.ts): a second one is refused here.
+  let release: () => Promise<void>;
+  try {
+    release = await holdGpu(client as unknown as LeaseClient, identity, o.name, o.shareGpu ?? false);
+  } catch (e) {
+    await probe.close();
+    throw e;
+  }
+  o.log(`${o.name}: adapter ${gpu.adapterName}, GPU known as ${identity.described}${o.shareGpu ? ', shared with other workers (--share-gpu)' : ''}`);
   const lockDuration = o.lockSeconds * 1000;
   const settings = { connection, concurrency: 1, lockDuration, stalledInterval: lockDuration, maxStalledCount: 3, name: o.name };
   let done = 0;
+  // Its chunks render one after another in one chunk server, which keeps the device and the scene.
+  const server = new ChunkServer(children);
   const stopped = new Promise<void>((resolve) => {
     const stop = () => resolve();
     process.once('SIGINT', stop);
@@ -174,7 +188,7 @@ export async function runWorker(url: string, o: WorkerOptions): Promise<void> {
       const abort = new AbortController();
       const unwatch = watch(key, abort);
       try {
-        const r = await runChunk(job, chunk, abort.signal);
+        const r = await runChunk(job, chunk, abort.signal, server);
         o.log(`${o.name}: ${key} ${chunk.id} ${r.reused ? 'already done (its files were there)' : `done in ${r.seconds.toFixed(2)} s on adapter ${r.adapter}`}`);
         return { adapter: r.adapter, seconds: r.seconds, reused: r.reused, worker: o.name };
       } catch (e) {
@@ -192,7 +206,7 @@ export async function runWorker(url: string, o: WorkerOptions): Promise<void> {
     async (bj: Job<MergeData>) => {
       const { key, job } = bj.data;
       if (await cancelled(key)) throw new UnrecoverableError(`job ${key} was cancelled`);
-      const r = await mergeJob(job, jobChunks(job));
+      const r = await mergeJob(job, jobChunks(job), undefined, server);
       o.log(`${o.name}: ${key} merged in ${r.seconds.toFixed(2)} s${r.outputs.length ? ` -> ${r.outputs.join(' and ')}` : ''}`);
       return { seconds: r.seconds, outputs: r.outputs, worker: o.name };
     },
@@ -206,8 +220,10 @@ export async function runWorker(url: string, o: WorkerOptions): Promise<void> {
   }
   o.log(`${o.name}: waiting for chunks on ${url} (${CHUNK_QUEUE}, lock ${o.lockSeconds} s)`);
   await Promise.race([stopped, enough]);
+  server.stop();
   for (const child of children) child.kill('SIGTERM');
   await Promise.all([chunks.close(), merges.close()]);
+  await release();
   await probe.close();
 }
 

@@ -1,9 +1,11 @@
 /**
- * Runs a chunk or a merge as a `lantern` child process of this same bundle: each chunk gets a fresh
- * process (a Dawn failure ends the chunk, not the worker), and sees the worker's environment, so the
- * adapter chosen for the worker (docs/farm.md, GPU selection) is the chunk's.
+ * Runs a chunk or a merge in a `lantern` child process of this same bundle: a chunk in the worker
+ * slot's chunk server (chunk-server.ts: one process for chunk after chunk, keeping the device and the
+ * scene), a merge there too or in a process of its own. A Dawn failure ends the chunk, not the worker; the
+ * children see the worker's environment, so the adapter chosen for the worker (docs/farm.md, GPU
+ * selection) is theirs.
  */
-import { spawn, type ChildProcess } from 'node:child_process';
+import { fork, spawn, type ChildProcess } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { existsSync, mkdirSync, readdirSync, readFileSync, rmSync } from 'node:fs';
 import { writeFile } from '../output-files.ts';
@@ -83,14 +85,16 @@ export function chunkDone(job: FarmJob, chunk: Chunk): boolean {
 }
 
 /**
- * Renders one chunk into the job's folder, unless its outputs are there already: a chunk done twice
+ * Renders one chunk into the job's folder (in the worker slot's chunk server, else in a process of
+ * its own), unless its outputs are there already: a chunk done twice
  * (a retry after the first attempt's files were written, a stalled chunk handed out again) writes
  * the same files once, and files are renamed into place whole (output-files.ts writeFile).
  */
-export async function runChunk(job: FarmJob, chunk: Chunk, signal?: AbortSignal): Promise<ChunkResult> {
+export async function runChunk(job: FarmJob, chunk: Chunk, signal?: AbortSignal, server?: ChunkServer): Promise<ChunkResult> {
   if (chunkDone(job, chunk)) return { adapter: '', seconds: 0, reused: true };
   const t0 = performance.now();
-  const report = await runLantern(['render', ...chunkRenderArgs(job, chunk, chunkFiles(job, chunk))], signal);
+  const args = ['render', ...chunkRenderArgs(job, chunk, chunkFiles(job, chunk))];
+  const report = await (server ? server.run(args, signal) : runLantern(args, signal));
   // The chunk's files are this job's now: another job of the same name that wrote them before is no
   // longer done there.
   const markers = resolve(job.output.folder, 'chunks');
@@ -101,13 +105,92 @@ export async function runChunk(job: FarmJob, chunk: Chunk, signal?: AbortSignal)
   return { adapter: String(report.adapter ?? ''), seconds: (performance.now() - t0) / 1000, reused: false };
 }
 
-/** Merges a Sample job's shards into its images (lantern merge as a child); a Frame job has nothing to merge. */
-export async function mergeJob(job: FarmJob, chunks: readonly Chunk[], signal?: AbortSignal): Promise<{ seconds: number; outputs: string[] }> {
+/** Merges a Sample job's shards into its images (lantern merge, in the chunk server given, else in a child of its own); a Frame job has nothing to merge. */
+export async function mergeJob(job: FarmJob, chunks: readonly Chunk[], signal?: AbortSignal, server?: ChunkServer): Promise<{ seconds: number; outputs: string[] }> {
   if (job.kind !== 'samples') return { seconds: 0, outputs: [] };
   const missing = chunks.filter((c) => !chunkDone(job, c));
   if (missing.length > 0) throw new LanternError(`job ${job.name}: ${missing.length} chunks have no shard yet (${missing.slice(0, 3).map((c) => c.id).join(', ')}${missing.length > 3 ? ', …' : ''})`);
   const out = mergedOutputs(job);
   const t0 = performance.now();
-  await runLantern(['merge', ...chunks.map((c) => chunkFiles(job, c).shard!), ...(out.png ? ['--out', out.png] : []), ...(out.exr ? ['--exr', out.exr] : [])], signal);
+  const args = ['merge', ...chunks.map((c) => chunkFiles(job, c).shard!), ...(out.png ? ['--out', out.png] : []), ...(out.exr ? ['--exr', out.exr] : [])];
+  await (server ? server.run(args, signal) : runLantern(args, signal));
   return { seconds: (performance.now() - t0) / 1000, outputs: [out.png, out.exr].filter((f): f is string => f !== undefined).map((f) => resolve(f)) };
+}
+
+/** Set in a chunk server's environment (chunk-server.ts isChunkServer). */
+export const SERVER_ENV = 'LANTERN_CHUNK_SERVER';
+
+/** A chunk server's request: a command line; and its reply: the printed report, or the one-line error. */
+export interface ChunkRequest {
+  readonly id: number;
+  readonly args: readonly string[];
+}
+export type ChunkReply = { readonly id: number; readonly ok: true; readonly stdout: string } | { readonly id: number; readonly ok: false; readonly error: string };
+
+/**
+ * The worker's side: a chunk server started when first asked, asked one command at a time, and
+ * started again after it ended. `children` hears of each process, so that a stopping worker ends it.
+ */
+export class ChunkServer {
+  private child: ChildProcess | undefined;
+  private nextId = 1;
+
+  constructor(private readonly children: Set<ChildProcess>) {}
+
+  /** Runs `lantern <args> --json` in the server and resolves with its JSON report; a failure rejects with its one line. */
+  run(args: readonly string[], signal?: AbortSignal): Promise<Record<string, unknown>> {
+    const child = (this.child ??= this.start());
+    const id = this.nextId++;
+    return new Promise((done, fail) => {
+      // While a chunk runs, the server keeps this process alive; idle, it does not.
+      child.ref();
+      child.channel?.ref();
+      const settle = (f: () => void) => {
+        child.unref();
+        child.channel?.unref();
+        child.off('message', onMessage);
+        child.off('exit', onExit);
+        signal?.removeEventListener('abort', onAbort);
+        f();
+      };
+      const onMessage = (reply: ChunkReply) => {
+        if (reply.id !== id) return;
+        settle(() => {
+          if (!reply.ok) return fail(new Error(`lantern ${args[0]}: ${reply.error.replace(/^lantern: (error: )?/, '')}`));
+          try {
+            done(JSON.parse(reply.stdout) as Record<string, unknown>);
+          } catch {
+            fail(new Error(`lantern ${args[0]} printed no JSON report`));
+          }
+        });
+      };
+      const onExit = (code: number | null, sig: NodeJS.Signals | null) => settle(() => fail(new Error(`lantern ${args[0]}: the chunk server ${sig ? `was ended by ${sig}` : `exited with ${code}`}`)));
+      // An ended chunk ends its server: the render stops where it is, and the next chunk starts afresh.
+      const onAbort = () => this.stop();
+      child.on('message', onMessage);
+      child.on('exit', onExit);
+      if (signal?.aborted) return onAbort();
+      signal?.addEventListener('abort', onAbort);
+      child.send({ id, args: [...args, '--json'] } satisfies ChunkRequest);
+    });
+  }
+
+  /** Ends the server (its chunk, if one is running, fails). */
+  stop(): void {
+    this.child?.kill('SIGTERM');
+    this.child = undefined;
+  }
+
+  private start(): ChildProcess {
+    const child = fork(process.argv[1]!, [], { env: { ...process.env, [SERVER_ENV]: '1' }, stdio: ['ignore', 'ignore', 'ignore', 'ipc'] });
+    this.children.add(child);
+    child.once('exit', () => {
+      this.children.delete(child);
+      if (this.child === child) this.child = undefined;
+    });
+    // The server leaves when this process does; it must not keep it alive while idle.
+    child.unref();
+    child.channel?.unref();
+    return child;
+  }
 }
