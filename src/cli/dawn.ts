@@ -13,13 +13,14 @@
  * looks again and finds it without a word; where it found none, SwiftShader is used at once.
  */
 import { execFile } from 'node:child_process';
-import { existsSync } from 'node:fs';
+import { appendFileSync, existsSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import { pathToFileURL } from 'node:url';
 import { acquireGpu, type GpuContext } from '../gpu/device.ts';
 import { LanternError } from '../errors.ts';
 import type { StageListener } from '../gpu/stage-log.ts';
+import { observeCompiles } from '../gpu/pipeline-compiles.ts';
 
 export const SWIFTSHADER_ICD = '/usr/lib/chromium/vk_swiftshader_icd.json';
 
@@ -78,7 +79,33 @@ function environmentDawnOptions(): string[] {
   return (process.env.LANTERN_DAWN_OPTIONS ?? '').split(/\s+/).filter((o) => o !== '');
 }
 
+/**
+ * LANTERN_PIPELINE_LOG=<file>: every pipeline this process compiles is appended to the file, a line
+ * each (its label and variant, and the compile's milliseconds), so that a test or a person can count
+ * what a command compiles.
+ */
+export const PIPELINE_LOG_ENV = 'LANTERN_PIPELINE_LOG';
+
+function logPipelines(gpu: GpuContext): GpuContext {
+  const file = process.env[PIPELINE_LOG_ENV];
+  if (!file) return gpu;
+  const logged = new Set<string>();
+  observeCompiles(gpu.device, ({ compiles }) => {
+    for (const c of compiles) {
+      const id = `${c.key}@${c.requestedMs}`;
+      if (c.endMs === undefined || c.startMs === undefined || logged.has(id)) continue;
+      logged.add(id);
+      appendFileSync(file, `${c.key}\t${(c.endMs - c.startMs).toFixed(0)} ms\n`);
+    }
+  });
+  return gpu;
+}
+
 export async function acquireNodeGpu(options: NodeGpuOptions = {}): Promise<GpuContext> {
+  return logPipelines(await acquireDawnGpu(options));
+}
+
+async function acquireDawnGpu(options: NodeGpuOptions): Promise<GpuContext> {
   const t0 = performance.now();
   const dawnOptions = [...DEFAULT_DAWN_OPTIONS, ...(options.dawnOptions ?? []), ...environmentDawnOptions()];
   // The Vulkan loader complains on every start without it.

@@ -2,7 +2,9 @@
  * What every GPU command starts with: load the scene, acquire a device (noting a SwiftShader
  * fallback), create the renderer and upload the scene. The scene loads on a worker thread
  * (scene-thread.ts) while this one starts the GPU and compiles the tone mapper; then the path
- * tracer is compiled for that scene alone. Its reflection was made when the bundle was built.
+ * tracer is compiled for that scene alone, where the command accumulates (a progressive render);
+ * what else it runs it compiles itself (Renderer.compile). Its reflection was made when the bundle
+ * was built.
  */
 import type { PreparedScene } from '../renderer/prepare.ts';
 import type { Environment } from '../scene/environment.ts';
@@ -23,12 +25,32 @@ export interface Session {
   readonly loadMs: number;
 }
 
+export interface SessionOptions {
+  /** Changes the loaded scene before it is prepared (bench --levels). */
+  readonly adjust?: (scene: Scene) => Scene;
+  /** Hears of every start-up step. */
+  readonly timeline?: Timeline;
+  /**
+   * Whether the command accumulates (default true): the progressive path tracer then compiles as
+   * soon as the scene's features are known; without, never (frame mode, a debug view alone, rays timed).
+   */
+  readonly progressive?: boolean;
+  /**
+   * What the command checks of the loaded scene and the device's limits (an image size, a lens the
+   * scene's camera lacks): run before any kernel of the scene compiles, so that a mistake costs the
+   * load, not a compile. A LanternError it throws is the command's error.
+   */
+  readonly check?: (prepared: PreparedScene, limits: GPUSupportedLimits) => void;
+  /** What a process that keeps its scene (output.sessions) keeps it by: commands with one key share one load. */
+  readonly sceneKey?: string;
+}
+
 /**
  * `output` hears of what the loader worked around (warn), of information (note: the GPU fallback,
- * how the scene is lit) and of Dawn's own lines (dawnOutput, shown with --verbose); `adjust` changes
- * the loaded scene before it is prepared (bench --levels); `timeline` hears of every start-up step.
+ * how the scene is lit) and of Dawn's own lines (dawnOutput, shown with --verbose).
  */
-export async function openSession(sceneArg: string, output: Pick<CliContext, 'note' | 'warn' | 'dawnOutput' | 'sessions'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, adjust?: (scene: Scene) => Scene, timeline?: Timeline, sceneKey?: string): Promise<Session> {
+export async function openSession(sceneArg: string, output: Pick<CliContext, 'note' | 'warn' | 'dawnOutput' | 'sessions'>, sceneOptions: SceneOptionValues = {}, environment?: Environment, options: SessionOptions = {}): Promise<Session> {
+  const { adjust, timeline, progressive = true, check, sceneKey } = options;
   // A damaged file is refused before the GPU starts (and before Dawn has printed anything).
   checkSceneFiles(sceneArg);
   // A process that keeps its scene (session-cache.ts) loads it once for the commands that share a key.
@@ -54,9 +76,12 @@ export async function openSession(sceneArg: string, output: Pick<CliContext, 'no
     const gpu = await (cache ? (cache.gpu ??= acquire()) : acquire());
     if (timeline) observeStages(gpu.device, timeline.add.bind(timeline));
     // The tone mapper compiles while the scene loads; then only the variant this scene needs
-    // compiles, and the scene uploads.
-    const features = loading.then(({ prepared }) => prepared.packed.features);
-    const creating = Renderer.create(gpu, { features });
+    // compiles (of the progressive path tracer, for a command that accumulates), and the scene uploads.
+    const features = loading.then(({ prepared }) => {
+      check?.(prepared, gpu.device.limits);
+      return prepared.packed.features;
+    });
+    const creating = Renderer.create(gpu, { features, progressive });
     // While the threads work: the BSDF tables every scene upload binds (computed once per process).
     const t0 = performance.now();
     bsdfTableData();

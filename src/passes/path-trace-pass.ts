@@ -206,14 +206,15 @@ export class PathTracePass implements Pass<PathTracePassFrame> {
 
   /**
    * `first`: the features of the scene about to be rendered, if known (its variant is compiled instead
-   * of a plain scene's), or a promise of them: the module is reflected while it is pending.
+   * of a plain scene's), or a promise of them: the module is reflected while it is pending. `sampler`:
+   * the one to compile for (default the one progressive renders use by default).
    */
-  static async create(device: GPUDevice, first?: SceneFeatures | Promise<SceneFeatures>): Promise<PathTracePass> {
+  static async create(device: GPUDevice, first?: SceneFeatures | Promise<SceneFeatures>, sampler: Sampler = resolveSampler('auto', 'progressive')): Promise<PathTracePass> {
     reflectKernel(device, MODULE);
     const params = new UniformParams(device, MODULE);
     try {
-      // Compiled for the sampler progressive renders use by default; the renderer switches it if the settings ask for another.
-      return new PathTracePass(await TracingKernels.create(device, MODULE, PATH_TRACE_ENTRY, {}, await first, resolveSampler('auto', 'progressive')), params);
+      // The renderer switches the sampler later if the settings ask for another.
+      return new PathTracePass(await TracingKernels.create(device, MODULE, PATH_TRACE_ENTRY, {}, await first, sampler), params);
     } catch (e) {
       params.destroy();
       throw e;

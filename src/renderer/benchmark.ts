@@ -111,7 +111,8 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
   const width = renderer.width, height = renderer.height;
   const count = width * height;
   const timer = renderer.gpu.hasTimestamps ? new GpuTimer(device) : undefined;
-  const [trace, generate] = await Promise.all([TraceRaysPass.create(device), BenchmarkRaysPass.create(device)]);
+  // The scene's variant of the ray tracer alone (bind() would compile it beside a plain scene's).
+  const [trace, generate] = await Promise.all([TraceRaysPass.create(device, resources.features), BenchmarkRaysPass.create(device)]);
   const words = rayWords();
   const buffer = (label: string, size: number) => device.createBuffer({ label, size, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC });
   const primaryRays = buffer('primary rays', count * words.ray.stride * 4);
@@ -120,18 +121,33 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
   try {
     // A GPU lowers its clocks while it idles (a BVH build, a pipeline compile: the specialised
     // kernel's takes seconds), and a few milliseconds of work do not bring them back: an H200
-    // measured 5.5× slower right after a compile. Keep it busy for a while before timing anything.
-    const warmUntil = performance.now() + WARM_UP_MS;
-    for (let i = 0; i < 1000 && performance.now() < warmUntil; i++) {
-      renderer.accumulate(1);
-      await renderer.finish();
+    // measured 5.5× slower right after a compile. Keep it busy for a while before timing anything:
+    // with path tracing, by path tracing; without (the renderer then has no path tracer compiled,
+    // cli/commands/bench.ts), by tracing the primary rays.
+    const warmUp = async (work: () => void) => {
+      const warmUntil = performance.now() + WARM_UP_MS;
+      for (let i = 0; i < 1000 && performance.now() < warmUntil; i++) {
+        work();
+        await renderer.finish();
+      }
+    };
+    const pathTracing = options.pathTracing !== false;
+    if (pathTracing) {
+      await warmUp(() => renderer.accumulate(1));
+      renderer.resetAccumulation();
     }
-    renderer.resetAccumulation();
 
     const encoder = device.createCommandEncoder({ label: 'benchmark rays' });
     generate.encode(encoder, { view, width, height, rays: primaryRays, order: rayOrder });
     device.queue.submit([encoder.finish()]);
     const primaryGroups = await trace.bind(resources, primaryRays, primaryHits, count);
+    if (!pathTracing) {
+      await warmUp(() => {
+        const e = device.createCommandEncoder({ label: 'benchmark warm-up' });
+        trace.encode(e, { binding: primaryGroups, label: 'primary rays' });
+        device.queue.submit([e.finish()]);
+      });
+    }
     const primaryMs = await timePasses(device, timer, warmups, repeats, (e, t) => trace.encode(e, { binding: primaryGroups, timer: t, label: 'primary rays' }));
 
     const [rayBytes, hitBytes] = await Promise.all([readBuffer(device, primaryRays), readBuffer(device, primaryHits)]);
@@ -159,7 +175,7 @@ export async function runBenchmark(renderer: Renderer, options: BenchmarkOptions
       repeats,
       primary: figure(primaryMs, count, diffuse.count / count),
       diffuse: figure(diffuseMs, diffuse.count, diffuseHitFraction),
-      ...(options.pathTracing === false ? {} : { pathTracing: await timePathTracing(renderer, timer, warmups, repeats) }),
+      ...(pathTracing ? { pathTracing: await timePathTracing(renderer, timer, warmups, repeats) } : {}),
     };
   } finally {
     for (const b of owned) b.destroy();

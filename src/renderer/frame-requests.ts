@@ -11,6 +11,7 @@ import { LanternError } from '../errors.ts';
 import type { FrameContext } from './frame.ts';
 import type { ImageEstimate, ImageTargets } from './image.ts';
 import type { FrameRecipe, RecipeFrame } from './recipes/frame-recipe.ts';
+import type { ProgressiveRecipe } from './recipes/progressive.ts';
 import type { RecipeSet } from './recipes/recipe-set.ts';
 import { recipeFor } from './recipes/recipe.ts';
 import type { SceneResidency } from './scene-residency.ts';
@@ -44,13 +45,21 @@ export class FrameRequests {
     return this.host.device;
   }
 
+  /** The progressive path tracer (a renderer made without it compiles it when compile() asks for a progressive render). */
+  private get progressive(): ProgressiveRecipe {
+    const progressive = this.recipes.progressive;
+    if (!progressive) throw new Error('Renderer: compile() the progressive recipe before accumulate()');
+    return progressive;
+  }
+
   /** Renderer.accumulate: one submit per tile; the samples count at once. */
   accumulate(samples: number, tiles: readonly Tile[], timer?: GpuTimer): void {
     this.checkSamples(samples, 'dispatch');
+    const progressive = this.progressive;
     const frame = this.state.frame(timer);
     tiles.forEach((tile, i) => {
       const encoder = this.device.createCommandEncoder({ label: 'path trace' });
-      this.recipes.progressive.encode(encoder, frame, tile, this.image.nextSampleIndex, samples);
+      progressive.encode(encoder, frame, tile, this.image.nextSampleIndex, samples);
       if (timer && i === tiles.length - 1) timer.resolve(encoder);
       this.device.queue.submit([encoder.finish()]);
     });
@@ -61,7 +70,7 @@ export class FrameRequests {
   /** Renderer.beginAccumulate: the samples count once the last band is submitted. */
   beginAccumulate(samples: number, timer?: GpuTimer): SplitFrame {
     this.checkSamples(samples, 'dispatch');
-    const work = this.recipes.progressive.begin(this.state.frame(timer), samples, this.image.nextSampleIndex);
+    const work = this.progressive.begin(this.state.frame(timer), samples, this.image.nextSampleIndex);
     return this.split(work, samples, 'path trace', () => {
       this.image.add(samples);
       this.shown = 'accumulation';

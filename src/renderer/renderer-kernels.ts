@@ -25,7 +25,7 @@ export abstract class RendererKernels {
     kernels: () => this.recipes.tracingKernels(),
   });
 
-  protected constructor(device: GPUDevice, progressive: ProgressiveRecipe) {
+  protected constructor(device: GPUDevice, progressive: ProgressiveRecipe | undefined) {
     this.recipes = new RecipeSet(device, progressive, {
       firstFeatures: () => this.sceneFeatures,
       sceneFeatures: () => this.scene?.packed.features,

@@ -68,7 +68,7 @@ export class Renderer extends RendererKernels {
   private constructor(
     readonly gpu: GpuContext,
     private readonly view: ViewUniform,
-    progressive: ProgressiveRecipe,
+    progressive: ProgressiveRecipe | undefined,
     tonemap: TonemapPass,
     present?: PresentPass,
   ) {
@@ -105,15 +105,17 @@ export class Renderer extends RendererKernels {
    * Compiles the progressive path tracer and the tone mapper, side by side. `features`: those of the
    * scene setScene will get, where known (maybe still a promise): that scene's variant alone compiles,
    * and setScene awaits it; without, a plain scene's. `presentation`: the canvas's format, for the
-   * present pass.
+   * present pass. `progressive: false`: the path tracer is compiled only when compile() is asked for
+   * a progressive render (a front end that knows what it runs: the CLI's frame mode, debug views and
+   * ray benchmarks never accumulate).
    */
-  static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: GPUTextureFormat } = {}): Promise<Renderer> {
+  static async create(gpu: GpuContext, options: { readonly features?: SceneFeatures | Promise<SceneFeatures>; readonly presentation?: GPUTextureFormat; readonly progressive?: boolean } = {}): Promise<Renderer> {
     const { device } = gpu;
     // The small passes first: they compile while the path tracer is reflected and its scene awaited.
     const [tonemap, present, progressive, features] = await Promise.all([
       TonemapPass.create(device),
       options.presentation ? PresentPass.create(device, options.presentation) : undefined,
-      ProgressiveRecipe.create(device, options.features),
+      options.progressive === false ? undefined : ProgressiveRecipe.create(device, options.features),
       options.features,
     ]);
     const renderer = new Renderer(gpu, new ViewUniform(device), progressive, tonemap, present);

@@ -50,7 +50,7 @@ export class SpecialisationSchedule {
   /** Which kernels run now: generic until a compile is ready, and again after every edit. */
   get kernel(): KernelKind {
     const resources = this.subject.current()?.resources;
-    return resources && this.subject.kernels().sets[0]!.isSpecialised(resources) ? 'specialised' : 'generic';
+    return resources && this.subject.kernels().sets[0]?.isSpecialised(resources) ? 'specialised' : 'generic';
   }
 
   /** Which kernels the wavefront frame path tracer runs now. */

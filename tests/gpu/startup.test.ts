@@ -83,6 +83,32 @@ describe('start-up compiles', () => {
     }
   });
 
+  it('made without the progressive path tracer (the CLI), compile it only for a progressive render, for the sampler setting (issue #29)', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('cornell'));
+    const renderer = await Renderer.create(gpu, { features: prepared.packed.features, progressive: false });
+    try {
+      await renderer.resize(8, 8);
+      await renderer.setScene(prepared);
+      // A debug view that replaces the image, and a ray benchmark, trace no paths (the real-time chain's switches off, as the CLI's are).
+      renderer.updateSettings({ temporal: false, denoise: false, debugView: 'heat-nodes', debugLayout: 'replace' });
+      await renderer.compile();
+      await renderer.compile({ debugView: 'none' }, { accumulate: false });
+      expect(pipelines(spans).filter((p) => p === PATH_TRACE_PIPELINE)).toEqual([]);
+      renderer.updateSettings({ debugView: 'none', sampler: 'random' });
+      expect(() => renderer.accumulate(1)).toThrow(/compile\(\) the progressive recipe before accumulate\(\)/);
+      await renderer.compile();
+      renderer.accumulate(1);
+      expect((await renderer.readAccumulation()).radiance.some((v) => v > 0)).toBe(true);
+      const compiled = spans.filter((s) => s.stage === PATH_TRACE_PIPELINE);
+      expect(compiled).toHaveLength(1);
+      expect(compiled[0]!.detail!.split(' ')).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features, SAMPLERS.indexOf('random'))));
+    } finally {
+      renderer.destroy();
+    }
+  });
+
   it('compile a recipe enabled before or after the scene for that scene alone, not a plain scene first (issue #27)', async () => {
     const gpu = await testGpu();
     const prepared = prepareScene(builtinScene('cornell'));

@@ -133,12 +133,15 @@ async function bench(sceneArgument: string | undefined, o: BenchOptions, context
   }
   checkRealTimeOptions(o, protocol);
   if (o.unrollLimit !== undefined && o.kernel !== 'specialised') throw new LanternError('--unroll-limit applies to the specialised kernel only', 'Add --kernel specialised');
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), protocol ? protocolScene : adjustScene(o.levels, o.billboards));
+  // The ray figures alone (--no-path-tracing, --protocol) accumulate nothing, unless the specialised
+  // kernels are timed (they are the path tracer's); --real-time times frames.
+  const accumulates = !o.realTime && ((o.pathTracing && !protocol) || o.kernel === 'specialised');
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), { adjust: protocol ? protocolScene : adjustScene(o.levels, o.billboards), progressive: accumulates });
   await renderer.resize(o.width, o.height);
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o, benchSetting)));
   await renderer.accelSettled();
   // What the timed recipe runs (renderer/recipes/recipe.ts): --real-time asks for frames, its switches say which.
-  await renderer.compile({}, { frames: o.realTime });
+  await renderer.compile({}, { frames: o.realTime, accumulate: accumulates });
   if (renderer.settings.spectral && o.kernel === 'specialised') throw new LanternError('--kernel specialised compiles RGB kernels: spectral mode runs the generic ones', 'Drop --spectral or --kernel specialised');
   // A lens makes primary rays start all over the aperture: less coherent, and that is what is measured.
   const protocolView = protocol ? tinybvhView(protocol, prepared.triangles.positions) : undefined;

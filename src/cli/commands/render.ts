@@ -10,6 +10,8 @@ import { CLI_SETTINGS, settingMode, settingOption } from '../setting-options.ts'
 import { renderProgressive } from '../../renderer/progressive.ts';
 import { mergeSettings } from '../../renderer/settings-schema.ts';
 import { centreFocusDistance } from '../../renderer/focus.ts';
+import { checkImageSize } from '../../renderer/image.ts';
+import type { PreparedScene } from '../../renderer/prepare.ts';
 import { cameraFromOptions, withCameraOptions } from '../camera-option.ts';
 import { cameraWithLens, checkLensOptions, withLensOptions, type LensOptions } from '../lens-option.ts';
 import { integerOption, numberOption, pathOption, withImageOptions, withKernelOption, withSceneOptions } from '../options.ts';
@@ -20,7 +22,7 @@ import { openSession } from '../session.ts';
 import type { CliContext } from '../context.ts';
 import { environmentFromOptions, withEnvironmentOptions, type EnvironmentOptions } from '../environment-option.ts';
 import { settingsFromOptions, withSettingOptions } from '../setting-options.ts';
-import { DEFAULT_FRAME_SPP, DEFAULT_SPP, frameIntent, frameSelection, isFrameMode, renderFrames, samplesPerPixel, type FrameList, type FrameModeOptions } from './render-frames.ts';
+import { DEFAULT_FRAME_SPP, DEFAULT_SPP, frameIntent, frameSelection, isFrameMode, recipeOf, renderFrames, samplesPerPixel, type FrameList, type FrameModeOptions } from './render-frames.ts';
 import { InvalidArgumentError } from 'commander';
 import { parseFrames, parseSampleRange } from '../../farm/frames.ts';
 import { encodeShard, SHARD_VERSION } from '../../farm/shard.ts';
@@ -192,12 +194,27 @@ async function render(sceneArg: string, o: RenderOptions, context: CliContext, g
   const cameraPath = checkRenderOptions(sceneArg, o, given, png);
   const timeline = o.timings ? new Timeline() : undefined;
   for (const span of timeline ? processSpans() : []) timeline!.add(span);
-  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), undefined, timeline, context.sessions ? sceneKey(context.argv) : undefined);
+  // The camera the options make of the scene's, with its lens.
+  const renderCamera = (prepared: PreparedScene) => {
+    const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
+    const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;
+    return cameraWithLens(camera, o, { scene: prepared.scene, ...(target ? { target } : {}), centreDistance: (c) => centreFocusDistance(prepared, c) });
+  };
+  const { renderer, prepared, loadMs } = await openSession(sceneArg, context, o, environmentFromOptions(o), {
+    ...(timeline ? { timeline } : {}),
+    // Only a progressive render accumulates: frame mode, a debug view alone and a merge's given
+    // estimate never compile its path tracer.
+    progressive: !estimate && recipeOf(o) === 'progressive',
+    ...(context.sessions ? { sceneKey: sceneKey(context.argv) } : {}),
+    // The image size against the GPU's limits and the lens against the scene's camera, before a kernel compiles.
+    check: (loaded, limits) => {
+      checkImageSize(o.width, o.height, limits);
+      renderCamera(loaded);
+    },
+  });
   const setUp = performance.now();
   await renderer.resize(o.width, o.height);
-  const camera = cameraFromOptions(prepared.scene.camera, o.camera, o.fov);
-  const target = o.camera ? ([o.camera[3]!, o.camera[4]!, o.camera[5]!] as const) : undefined;
-  renderer.setCamera(cameraWithLens(camera, o, { scene: prepared.scene, ...(target ? { target } : {}), centreDistance: (c) => centreFocusDistance(prepared, c) }));
+  renderer.setCamera(renderCamera(prepared));
   renderer.updateSettings(mergeSettings(renderer.settings, settingsFromOptions(o)));
   await renderer.accelSettled();
   const s = renderer.settings;

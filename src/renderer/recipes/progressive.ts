@@ -6,6 +6,7 @@
 import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
 import type { GpuTimer } from '../../gpu/timestamps.ts';
 import { PathTracePass, type Tile, type TracingKernels } from '../../passes/path-trace-pass.ts';
+import type { Sampler } from '../../passes/variants.ts';
 import { pathDispatch, type FrameContext } from '../frame.ts';
 import type { RecipeFrame } from './frame-recipe.ts';
 
@@ -15,9 +16,9 @@ const TIMER_ROOM_AFTER_BANDS = 12;
 export class ProgressiveRecipe {
   private constructor(private readonly pass: PathTracePass) {}
 
-  /** `features`: those of the first scene, where known (or still loading): its variant compiles first. */
-  static async create(device: GPUDevice, features?: SceneFeatures | Promise<SceneFeatures>): Promise<ProgressiveRecipe> {
-    return new ProgressiveRecipe(await PathTracePass.create(device, features));
+  /** `features`: those of the first scene, where known (or still loading): its variant compiles first, for `sampler` (default progressive renders' default). */
+  static async create(device: GPUDevice, features?: SceneFeatures | Promise<SceneFeatures>, sampler?: Sampler): Promise<ProgressiveRecipe> {
+    return new ProgressiveRecipe(await PathTracePass.create(device, features, sampler));
   }
 
   prepare(features: SceneFeatures, spectral = false): Promise<void> {

@@ -1,5 +1,6 @@
 /**
- * The recipes a renderer has compiled: the progressive one always, the others once compile() asked
+ * The recipes a renderer has compiled: the progressive one from the start unless the renderer was
+ * made without it (then, as the others, once compile() asks for it), the others once compile() asked
  * for them (renderer/recipes/recipe.ts recipeCompiles), each for every scene prepared so far and
  * every later one. What a frame runs is looked up here; nothing outside decides it.
  */
@@ -9,7 +10,7 @@ import type { WavefrontFramePass } from '../../passes/wavefront-frame-pass.ts';
 import { DebugViews } from './debug.ts';
 import type { FrameRecipe } from './frame-recipe.ts';
 import { HybridRecipe } from './hybrid.ts';
-import type { ProgressiveRecipe } from './progressive.ts';
+import { ProgressiveRecipe } from './progressive.ts';
 import { RealTimeRecipe } from './real-time.ts';
 import type { Recipe, RecipeCompiles } from './recipe.ts';
 import type { RenderSettings } from '../settings.ts';
@@ -39,25 +40,50 @@ export class RecipeSet {
   restirError?: unknown;
   /** The path tracers' kernels for the sampler setting, compiling after a change (useSamplers). */
   private samplerPending: Promise<void> = Promise.resolve();
+  /** The progressive recipe's compile, when compile() made it (a renderer made without it). */
+  private progressivePending?: Promise<ProgressiveRecipe>;
 
   constructor(
     private readonly device: GPUDevice,
-    readonly progressive: ProgressiveRecipe,
+    /** The progressive path tracer: undefined until compile() asks for it, where the renderer was made without it. */
+    public progressive: ProgressiveRecipe | undefined,
     private readonly hooks: RecipeSetHooks,
   ) {}
 
   /** Compiles what `wants` names that is not compiled yet, for the scene and every later one. */
   async compile(wants: RecipeCompiles): Promise<void> {
-    await Promise.all([wants.debugViews ? this.compileDebugViews() : undefined, wants.spectral ? this.compileSpectral() : undefined, wants.hybrid ? this.compileHybrid() : undefined]);
+    await Promise.all([
+      wants.progressive ? this.compileProgressive() : undefined, wants.debugViews ? this.compileDebugViews() : undefined,
+      wants.spectral ? this.compileSpectral() : undefined, wants.hybrid ? this.compileHybrid() : undefined,
+    ]);
     if (wants.realTime) await this.compileRealTime(wants);
   }
 
   /** Compiles every recipe compiled so far for a scene with these features (before it is uploaded). */
   prepare(features: SceneFeatures): Promise<unknown> {
     return Promise.all([
-      this.progressive.prepare(features), this.realTime?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features),
-      ...(this.spectral ? [this.progressive.prepare(features, true), this.realTime?.prepare(features, true)] : []),
+      this.progressive?.prepare(features), this.realTime?.prepare(features), this.hybrid?.prepare(features), this.debugViews?.prepare(features),
+      ...(this.spectral ? [this.progressive?.prepare(features, true), this.realTime?.prepare(features, true)] : []),
     ]);
+  }
+
+  /** The progressive path tracer, for the sampler setting now, where the renderer was made without it. */
+  private async compileProgressive(): Promise<void> {
+    if (this.progressive) return;
+    this.progressivePending ??= (async () => {
+      const recipe = await ProgressiveRecipe.create(this.device, this.hooks.firstFeatures(), resolveSampler(this.hooks.sampler(), 'progressive'));
+      const features = this.hooks.sceneFeatures();
+      if (features) await Promise.all([recipe.prepare(features), this.spectral ? recipe.prepare(features, true) : undefined]);
+      return recipe;
+    })();
+    try {
+      const recipe = await this.progressivePending;
+      if (this.progressive) return;
+      this.progressive = recipe;
+    } finally {
+      this.progressivePending = undefined;
+    }
+    await this.hooks.tracingAdded();
   }
 
   async compileDebugViews(): Promise<DebugViews> {
@@ -70,7 +96,7 @@ export class RecipeSet {
   private async compileSpectral(): Promise<void> {
     this.spectral = true;
     const features = this.hooks.sceneFeatures();
-    if (features) await Promise.all([this.progressive.prepare(features, true), this.realTime?.prepare(features, true)]);
+    if (features) await Promise.all([this.progressive?.prepare(features, true), this.realTime?.prepare(features, true)]);
   }
 
   private async compileHybrid(): Promise<void> {
@@ -128,7 +154,7 @@ export class RecipeSet {
    * new sampler's estimate alone await samplersSettled() first (Renderer.accelSettled).
    */
   useSamplers(setting: SamplerSetting): void {
-    const wanted: [TracingKernels, Sampler][] = [[this.progressive.kernels, resolveSampler(setting, 'progressive')]];
+    const wanted: [TracingKernels, Sampler][] = this.progressive ? [[this.progressive.kernels, resolveSampler(setting, 'progressive')]] : [];
     if (this.realTime) wanted.push([this.realTime.frameKernels, resolveSampler(setting, 'real-time')]);
     const switching = wanted.filter(([k, sampler]) => k.sampler !== sampler);
     if (switching.length === 0) return;
@@ -154,7 +180,7 @@ export class RecipeSet {
   /** Every tracing pass's kernels, the progressive path tracer's first (what specialisation compiles for). */
   tracingKernels(): { readonly sets: readonly TracingKernels[]; readonly wavefront?: WavefrontFramePass } {
     const wavefront = this.realTime?.wavefrontPass;
-    return { sets: [this.progressive.kernels, ...(this.realTime ? [this.realTime.frameKernels] : [])], ...(wavefront ? { wavefront } : {}) };
+    return { sets: [...(this.progressive ? [this.progressive.kernels] : []), ...(this.realTime ? [this.realTime.frameKernels] : [])], ...(wavefront ? { wavefront } : {}) };
   }
 
   /** Drops the frame recipes' histories. */
@@ -164,7 +190,8 @@ export class RecipeSet {
   }
 
   destroy(): void {
-    this.progressive.destroy();
+    this.progressive?.destroy();
+    this.progressive = undefined;
     this.realTime?.destroy();
     this.realTime = undefined;
     this.hybrid?.destroy();

@@ -23,6 +23,8 @@ export type Recipe = (typeof RECIPES)[number];
 export interface RecipeIntent {
   /** Frames in time are asked for (the CLI's --frames or --path): the real-time chain even with its filters off. */
   readonly frames?: boolean;
+  /** false: nothing is accumulated (a benchmark of rays alone): the progressive path tracer is not compiled for it. */
+  readonly accumulate?: boolean;
 }
 
 /** The settings that choose the recipe and what it compiles. */
@@ -43,10 +45,13 @@ export function recipeFor(s: RecipeSettings, intent: RecipeIntent = {}): Recipe 
 export const isFrameRecipe = (recipe: Recipe): boolean => recipe === 'real-time' || recipe === 'hybrid';
 
 /**
- * The kernels a recipe runs beyond those every renderer has (the progressive path tracer, the tone
- * mapper): what Renderer.compile compiles before such a frame, and nothing else.
+ * The kernels a recipe runs beyond those every renderer has (the tone mapper, and the progressive
+ * path tracer unless the renderer was made without it): what Renderer.compile compiles before such a
+ * frame, and nothing else.
  */
 export interface RecipeCompiles {
+  /** The progressive path tracer (a renderer made without it compiles it only for a progressive render). */
+  readonly progressive: boolean;
   /** The real-time chain's passes (frame path tracer with its G-buffer, temporal, à-trous, output). */
   readonly realTime: boolean;
   /** The wavefront frame path tracer (settings.integrator), within the real-time chain. */
@@ -66,6 +71,7 @@ export function recipeCompiles(s: RecipeSettings, intent: RecipeIntent = {}): Re
   const recipe = recipeFor(s, intent);
   const realTime = recipe === 'real-time';
   return {
+    progressive: recipe === 'progressive' && intent.accumulate !== false,
     realTime,
     wavefront: realTime && s.integrator === 'wavefront',
     restir: realTime && s.restir,
