@@ -7,15 +7,18 @@ import { bundleEvaluated } from './process-clock.ts';
 import type { Command } from 'commander';
 import { createCliContext } from './context.ts';
 import { isChunkServer, serveChunks } from './farm/chunk-server.ts';
+import { isFrameWriterThread, runFrameWriterThread } from './frame-writer.ts';
 import { buildProgram, LimitsRefused } from './program.ts';
 import { isSceneThread, runSceneThread } from './scene-thread.ts';
 import { exitWhenDrained } from './terminal-text.ts';
 
 bundleEvaluated();
 
-// The same bundle started as a worker loads a scene for the main thread (scene-thread.ts); started
+// The same bundle started as a worker loads a scene for the main thread (scene-thread.ts) or writes
+// a frame sequence's files (frame-writer.ts); started
 // by a farm worker as its chunk server, it renders chunk after chunk (farm/chunk-server.ts).
 if (isSceneThread()) await runSceneThread();
+else if (isFrameWriterThread()) runFrameWriterThread();
 else if (isChunkServer()) await serveChunks();
 else await runCommand();
 

@@ -82,7 +82,7 @@ export function writeFile(path: string, bytes: Uint8Array): void {
 }
 
 /** Node's own zlib (C): several times faster than the portable one for a large image, the same bytes out of the decoder. */
-const nativeZlib = (raw: Uint8Array): Uint8Array => deflateSync(raw, { level: 3 });
+export const nativeZlib = (raw: Uint8Array): Uint8Array => deflateSync(raw, { level: 3 });
 
 export async function writePng(renderer: Renderer, path: string, timeline?: Timeline): Promise<void> {
   const t0 = performance.now();

@@ -5,15 +5,14 @@
  */
 import { join } from 'node:path';
 import { rmse } from '../../image/compare.ts';
-import { encodeExr } from '../../image/exr.ts';
-import { encodePng } from '../../image/png.ts';
 import { GpuTimer } from '../../gpu/timestamps.ts';
 import type { Renderer } from '../../renderer/renderer.ts';
 import { cameraAt, frameTime, parseCameraPath, type CameraPath } from '../../scene/camera-path.ts';
 import type { Camera } from '../../scene/types.ts';
 import { isEmptyUpdate } from '../../scene/dynamics.ts';
 import type { World } from '../../world/world.ts';
-import { readDebugRgb, writeFile } from '../output-files.ts';
+import { readDebugRgb } from '../output-files.ts';
+import { FrameWriter } from '../frame-writer.ts';
 import { readJsonFile } from '../user-files.ts';
 import { median } from '../../math/median.ts';
 import { isFrameRecipe, recipeFor, type Recipe, type RecipeIntent } from '../../renderer/recipes/recipe.ts';
@@ -148,44 +147,52 @@ export async function renderFrames(renderer: Renderer, base: Camera, spp: number
   const changes: number[] = [];
   let previous: Float32Array | undefined;
   const start = performance.now();
-  for (let f = 0; f < frames; f++) {
-    const camera = path ? cameraAt(path, frameTime(path, f, total), base) : base;
-    renderer.setCamera(camera);
-    if (moving) {
-      // Scene time follows the path's clock, or the frame rate; the first frame is at `start`.
-      const t = moving.start + (path ? frameTime(path, f, total) - frameTime(path, 0, total) : f / moving.fps);
-      const update = moving.world.advanceTo(Math.max(t, moving.world.seconds), camera);
-      if (!isEmptyUpdate(update)) renderer.applySceneUpdate(update);
+  // The files are encoded and written on other threads while the GPU renders on (frame-writer.ts).
+  const writer = new FrameWriter(out.png || out.exr ? undefined : 0);
+  try {
+    for (let f = 0; f < frames; f++) {
+      const camera = path ? cameraAt(path, frameTime(path, f, total), base) : base;
+      renderer.setCamera(camera);
+      if (moving) {
+        // Scene time follows the path's clock, or the frame rate; the first frame is at `start`.
+        const t = moving.start + (path ? frameTime(path, f, total) - frameTime(path, 0, total) : f / moving.fps);
+        const update = moving.world.advanceTo(Math.max(t, moving.world.seconds), camera);
+        if (!isEmptyUpdate(update)) renderer.applySceneUpdate(update);
+      }
+      // Without history a frame still inherits state of the frame before it (found: the first frame
+      // traced after a start differs from the sequence's in the EXR's last bits), so the frame before
+      // each listed one is traced too, not read back.
+      if (historyFree && !wanted.has(f) && !wanted.has(f + 1)) continue;
+      // After skipped frames only: a sequence traced whole never seeks, and stays what it was.
+      if (historyFree && lastTraced !== f - 1) renderer.seekFrameSamples(f * spp, f === 0 ? undefined : path ? cameraAt(path, frameTime(path, f - 1, total), base) : base);
+      renderer.renderFrame(spp, timer);
+      lastTraced = f;
+      const name = `frame-${String(f).padStart(4, '0')}`;
+      // The automatic exposure adapts over the sequence's own clock (the first frame takes its target).
+      if (f > 0) renderer.advanceExposure(path ? frameTime(path, f, total) - frameTime(path, f - 1, total) : 1 / (o.fps ?? 30));
+      if (!wanted.has(f)) {
+        // Not asked for: rendered for what the next frames inherit, not read back. Its timestamps are dropped.
+        if (timer) await timer.read();
+        continue;
+      }
+      // The tone map (and automatic exposure) are timed with the frame's passes.
+      const image = out.png ? await renderer.readImage(timer) : undefined;
+      if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
+      if (image && out.png) await writer.write({ kind: 'png', path: sequence ? join(out.png, `${name}.png`) : out.png, width: renderer.width, height: renderer.height, rgba: image });
+      if (out.exr) {
+        // A debug view that replaces the image has no radiance: its frames hold its values, as a still render's EXR does.
+        const { width, height, radiance } = debugOnly ? { width: renderer.width, height: renderer.height, radiance: await readDebugRgb(renderer) } : await renderer.readFrame();
+        if (previous && f >= frames / 2) changes.push(rmse(radiance, previous));
+        previous = radiance;
+        await writer.write({ kind: 'exr', path: sequence ? join(out.exr, `${name}.exr`) : out.exr, width, height, radiance });
+      }
     }
-    // Without history a frame still inherits state of the frame before it (found: the first frame
-    // traced after a start differs from the sequence's in the EXR's last bits), so the frame before
-    // each listed one is traced too, not read back.
-    if (historyFree && !wanted.has(f) && !wanted.has(f + 1)) continue;
-    // After skipped frames only: a sequence traced whole never seeks, and stays what it was.
-    if (historyFree && lastTraced !== f - 1) renderer.seekFrameSamples(f * spp, f === 0 ? undefined : path ? cameraAt(path, frameTime(path, f - 1, total), base) : base);
-    renderer.renderFrame(spp, timer);
-    lastTraced = f;
-    const name = `frame-${String(f).padStart(4, '0')}`;
-    // The automatic exposure adapts over the sequence's own clock (the first frame takes its target).
-    if (f > 0) renderer.advanceExposure(path ? frameTime(path, f, total) - frameTime(path, f - 1, total) : 1 / (o.fps ?? 30));
-    if (!wanted.has(f)) {
-      // Not asked for: rendered for what the next frames inherit, not read back. Its timestamps are dropped.
-      if (timer) await timer.read();
-      continue;
-    }
-    // The tone map (and automatic exposure) are timed with the frame's passes.
-    const image = out.png ? await renderer.readImage(timer) : undefined;
-    if (timer) for (const { name, ms } of await timer.read()) samples.set(name, [...(samples.get(name) ?? []), ms]);
-    if (image && out.png) writeFile(sequence ? join(out.png, `${name}.png`) : out.png, encodePng(renderer.width, renderer.height, image));
-    if (out.exr) {
-      // A debug view that replaces the image has no radiance: its frames hold its values, as a still render's EXR does.
-      const { width, height, radiance } = debugOnly ? { width: renderer.width, height: renderer.height, radiance: await readDebugRgb(renderer) } : await renderer.readFrame();
-      if (previous && f >= frames / 2) changes.push(rmse(radiance, previous));
-      previous = radiance;
-      writeFile(sequence ? join(out.exr, `${name}.exr`) : out.exr, encodeExr(width, height, radiance));
-    }
+  } catch (e) {
+    await writer.close().catch(() => undefined);
+    throw e;
   }
   await renderer.finish();
+  await writer.close();
   const seconds = (performance.now() - start) / 1000;
   timer?.destroy();
   const gpuMs = timer ? Object.fromEntries([...samples].map(([name, ms]) => [name, median(ms)])) : undefined;
