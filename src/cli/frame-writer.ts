@@ -6,16 +6,16 @@
  * are the ones a still's files use (PNG through Node's zlib, EXR), so a file's bytes do not depend
  * on the thread that wrote it. At most two frames a thread wait, so memory stays bounded.
  *
- * Run from sources (tests), where there is no bundle to start a thread from, files are written
- * in the calling thread.
+ * Run from sources (tests), where there is no bundle to start a thread from, or with
+ * LANTERN_START_THREADS=0, files are written in the calling thread.
  */
 import { availableParallelism } from 'node:os';
-import { fileURLToPath } from 'node:url';
 import { isMainThread, parentPort, Worker, workerData } from 'node:worker_threads';
 import { LanternError } from '../errors.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
 import { nativeZlib, writeFile } from './output-files.ts';
+import { bundlePath } from './scene-thread.ts';
 
 const ROLE = 'lantern-frame-writer';
 
@@ -42,11 +42,6 @@ export function runFrameWriterThread(): void {
       port.postMessage({ id: m.id, error: e instanceof LanternError ? e.userMessage : (e as Error).message } satisfies WriteReply);
     }
   });
-}
-
-function bundlePath(): string | undefined {
-  const url = import.meta.url;
-  return url.startsWith('file:') && url.endsWith('.mjs') ? fileURLToPath(url) : undefined;
 }
 
 export class FrameWriter {

@@ -77,7 +77,7 @@ function isBigMeshFile(sceneArg: string): boolean {
  * undefined with LANTERN_START_THREADS=0 in the environment (all on one thread: a comparison, or a
  * machine with one core).
  */
-function bundlePath(): string | undefined {
+export function bundlePath(): string | undefined {
   if (process.env.LANTERN_START_THREADS === '0') return undefined;
   const url = import.meta.url;
   return url.startsWith('file:') && url.endsWith('.mjs') ? fileURLToPath(url) : undefined;
