@@ -14,7 +14,7 @@ import { isMainThread, parentPort, Worker, workerData } from 'node:worker_thread
 import { LanternError } from '../errors.ts';
 import { encodeExr } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
-import { nativeZlib, writeFile } from './output-files.ts';
+import { nativeExrDeflate, nativeZlib, writeFile } from './output-files.ts';
 import { bundlePath } from './scene-thread.ts';
 
 const ROLE = 'lantern-frame-writer';
@@ -23,7 +23,7 @@ type FrameFile = { readonly path: string; readonly width: number; readonly heigh
 type WriteReply = { readonly id: number; readonly error?: string };
 
 function writeFrameFile(f: FrameFile): void {
-  writeFile(f.path, f.kind === 'png' ? encodePng(f.width, f.height, f.rgba, nativeZlib) : encodeExr(f.width, f.height, f.radiance));
+  writeFile(f.path, f.kind === 'png' ? encodePng(f.width, f.height, f.rgba, nativeZlib) : encodeExr(f.width, f.height, f.radiance, {}, nativeExrDeflate));
 }
 
 /** Whether this thread is one of a FrameWriter's. */

@@ -1,9 +1,10 @@
 /** Writing rendered images: PNG (tone-mapped sRGB) and EXR (linear radiance, float32 RGB). */
 import { accessSync, constants, mkdirSync, realpathSync, renameSync, rmSync, statfsSync, statSync, writeFileSync, type Stats } from 'node:fs';
 import { basename, dirname, join, resolve, sep } from 'node:path';
-import { deflateSync } from 'node:zlib';
+import { promisify } from 'node:util';
+import { deflate, deflateSync } from 'node:zlib';
 import { LanternError } from '../errors.ts';
-import { encodeExr } from '../image/exr.ts';
+import { encodeExrAsync, type ChunkDeflate } from '../image/exr.ts';
 import { encodePng } from '../image/png.ts';
 import type { Renderer } from '../renderer/renderer.ts';
 import type { Timeline } from './timeline.ts';
@@ -84,6 +85,19 @@ export function writeFile(path: string, bytes: Uint8Array): void {
 /** Node's own zlib (C): several times faster than the portable one for a large image, the same bytes out of the decoder. */
 export const nativeZlib = (raw: Uint8Array): Uint8Array => deflateSync(raw, { level: 3 });
 
+/** An EXR chunk through Node's zlib at OpenEXR's level 4 (the frame writer's threads; the file decodes to the same pixels as fflate's). */
+export const nativeExrDeflate: ChunkDeflate = (filtered) => deflateSync(filtered, { level: 4 });
+
+const deflateAsync = promisify(deflate);
+
+/**
+ * An EXR with its chunks compressed in parallel on Node's thread pool (libuv's, 4 threads unless
+ * UV_THREADPOOL_SIZE says otherwise): a 4K image is 135 chunks of 16 scanlines, which fflate
+ * compressed one after another on the main thread.
+ */
+export const encodeExrNative = (width: number, height: number, rgb: Float32Array): Promise<Uint8Array> =>
+  encodeExrAsync(width, height, rgb, {}, (chunks) => Promise.all(chunks.map((c) => deflateAsync(c, { level: 4 }))));
+
 export async function writePng(renderer: Renderer, path: string, timeline?: Timeline): Promise<void> {
   const t0 = performance.now();
   const rgba = await renderer.readImage();
@@ -100,7 +114,7 @@ export async function writePng(renderer: Renderer, path: string, timeline?: Time
 
 /** The debug view's raw values as EXR: R, G, B = the first three of shaders/passes/debug-view.wgsl's four. */
 export async function writeDebugExr(renderer: Renderer, path: string): Promise<void> {
-  writeFile(path, encodeExr(renderer.width, renderer.height, await readDebugRgb(renderer)));
+  writeFile(path, await encodeExrNative(renderer.width, renderer.height, await readDebugRgb(renderer)));
 }
 
 /** The debug view's raw values, the first three of each pixel's four (what an EXR of a debug view holds). */
@@ -113,5 +127,5 @@ export async function readDebugRgb(renderer: Renderer): Promise<Float32Array> {
 
 export async function writeExr(renderer: Renderer, path: string): Promise<void> {
   const { width, height, radiance } = await renderer.readAccumulation();
-  writeFile(path, encodeExr(width, height, radiance));
+  writeFile(path, await encodeExrNative(width, height, radiance));
 }

@@ -6,7 +6,7 @@
  * - predictor: each byte becomes its difference from the previous one (+128, mod 256), turning
  *   smooth runs into runs of near-constant bytes.
  */
-import { unzlibSync, zlibSync } from 'fflate';
+import { unzlibSync } from 'fflate';
 
 /** Filters for writing: interleave, then delta-encode. */
 export function filterForCompression(raw: Uint8Array): Uint8Array {
@@ -36,8 +36,6 @@ export function unfilterAfterDecompression(filtered: Uint8Array): Uint8Array {
   return out;
 }
 
-/** zlib level 4: what OpenEXR itself defaults to; most of level 9's ratio at a fraction of the time. */
-export const zipCompress = (raw: Uint8Array): Uint8Array => zlibSync(filterForCompression(raw), { level: 4 });
 
 /** Inflates into a buffer of exactly the expected size; returns undefined if the data does not fill it. */
 export function zipDecompress(data: Uint8Array, expectedSize: number): Uint8Array | undefined {

@@ -2,7 +2,7 @@ import { zlibSync } from 'fflate';
 import { describe, expect, it } from 'vitest';
 import { LanternError } from '../errors.ts';
 import { filterForCompression } from './exr-compression.ts';
-import { decodeExr, decodeExrRgb, encodeExr, exrToRgb } from './exr.ts';
+import { decodeExr, decodeExrRgb, encodeExr, encodeExrAsync, exrToRgb } from './exr.ts';
 import { floatToHalf, halfToFloat } from './half.ts';
 import { expectLanternError } from '../expect-lantern-error.ts';
 
@@ -337,5 +337,36 @@ describe('EXR errors', () => {
     expectLanternError(() => decodeExrRgb(new Uint8Array(Buffer.from(OPENEXR_FILES.zip, 'base64')), 'gru.exr'), /gru\.exr: no R, G, B \(or Y\) channels; it has G, R, U/);
     const grey = handMadeExr({ channels: [{ name: 'A', type: 2 }, { name: 'Y', type: 2 }], compression: 0, window: [0, 0, 1, 0], chunks: [{ y: 0, data: [0.5, 0.25, 3, 4].flatMap(f32) }] });
     expect(Array.from(decodeExrRgb(grey).rgb)).toEqual([3, 3, 3, 4, 4, 4]);
+  });
+});
+
+describe('EXR chunk compression handed out', () => {
+  const [width, height] = [64, 50];
+  const rgb = gradient(width, height);
+
+  it('gives encodeExr\'s bytes when the chunks go through the same zlib, all at once', async () => {
+    const handed: number[] = [];
+    const file = await encodeExrAsync(width, height, rgb, {}, async (chunks) => {
+      handed.push(chunks.length);
+      return chunks.map((c) => zlibSync(c, { level: 4 }));
+    });
+    expect(handed).toEqual([Math.ceil(height / 16)]);
+    expect(Buffer.from(file).equals(Buffer.from(encodeExr(width, height, rgb)))).toBe(true);
+  });
+
+  it('decodes to the same floats through another deflate, and stores a chunk raw where it does not shrink', () => {
+    const other = encodeExr(width, height, rgb, {}, (filtered) => zlibSync(filtered, { level: 9 }));
+    expect(Array.from(decodeExrRgb(other).rgb)).toEqual(Array.from(rgb));
+    // A deflate that never shrinks anything: every chunk is then written raw, and still decodes.
+    const raw = encodeExr(width, height, rgb, {}, (filtered) => new Uint8Array(filtered.length + 1));
+    // The raw pixels, plus the header (under 400 bytes) and 16 bytes of table and chunk header a chunk.
+    expect(raw.length - width * height * 12).toBeGreaterThan(16 * Math.ceil(height / 16));
+    expect(raw.length - width * height * 12).toBeLessThan(400 + 16 * Math.ceil(height / 16));
+    expect(Array.from(decodeExrRgb(raw).rgb)).toEqual(Array.from(rgb));
+  });
+
+  it('hands nothing out without compression', async () => {
+    const file = await encodeExrAsync(width, height, rgb, { compression: 'none' }, () => Promise.reject(new Error('not called')));
+    expect(Buffer.from(file).equals(Buffer.from(encodeExr(width, height, rgb, { compression: 'none' })))).toBe(true);
   });
 });

@@ -9,9 +9,8 @@ import { Command } from 'commander';
 import { LanternError } from '../../errors.ts';
 import { decodeShard, mergeShards, type Merged } from '../../farm/shard.ts';
 import type { CliContext } from '../context.ts';
-import { checkOutputPath, writeFile } from '../output-files.ts';
+import { checkOutputPath, encodeExrNative, writeFile } from '../output-files.ts';
 import { accumulationEstimate } from '../../renderer/image-readback.ts';
-import { encodeExr } from '../../image/exr.ts';
 import { pathOption } from '../options.ts';
 import { readUserFile } from '../user-files.ts';
 import { registerRender } from './render.ts';
@@ -71,7 +70,7 @@ async function merge(files: string[], o: MergeOptions, context: CliContext): Pro
   // The PNG's tone map (and its exposure) is render's own GPU pass.
   if (o.exr) {
     const estimate = accumulationEstimate(merged.sums, merged.width, merged.height, merged.end - merged.start);
-    writeFile(o.exr, encodeExr(merged.width, merged.height, estimate.radiance));
+    writeFile(o.exr, await encodeExrNative(merged.width, merged.height, estimate.radiance));
   }
   const adapter = o.out ? await writeMerged(merged, { png: o.out }, context) : 'the CPU';
   const seconds = (performance.now() - t0) / 1000;
