@@ -18,22 +18,32 @@ export interface UserFileOptions {
 
 /** A regular file's bytes, read whole after its size was checked; anything else is a one-line LanternError. */
 export function readUserFile(path: string, options: UserFileOptions = {}): Uint8Array {
-  const { fd, size } = openUserFile(path, options);
+  return readUserFilePrefix(path, Infinity, options).bytes;
+}
+
+/** readUserFile's checks, but only the file's first `bytes` bytes read (all of a shorter file), with the whole file's size. */
+export function readUserFilePrefix(path: string, bytes: number, options: UserFileOptions = {}): { bytes: Uint8Array; fileBytes: number } {
+  const { fd, size: fileBytes } = openUserFile(path, options);
+  const size = Math.min(bytes, fileBytes);
   try {
-    const bytes = new Uint8Array(size);
-    let at = 0;
-    // The size was read once: a file that grows meanwhile is read to that size, one that shrinks to its end.
-    while (at < size) {
-      const n = readSync(fd, bytes, at, size - at, at);
-      if (n === 0) break;
-      at += n;
-    }
-    return at === size ? bytes : bytes.subarray(0, at);
+    return { bytes: readTo(fd, size), fileBytes };
   } catch (e) {
     throw e instanceof LanternError ? e : explain(path, e, options.what);
   } finally {
     closeSync(fd);
   }
+}
+
+function readTo(fd: number, size: number): Uint8Array {
+  const bytes = new Uint8Array(size);
+  let at = 0;
+  // The size was read once: a file that grows meanwhile is read to that size, one that shrinks to its end.
+  while (at < size) {
+    const n = readSync(fd, bytes, at, size - at, at);
+    if (n === 0) break;
+    at += n;
+  }
+  return at === size ? bytes : bytes.subarray(0, at);
 }
 
 /** Checks, without reading it, what readUserFile would: a command checks its inputs before slow work starts. */

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { expectLanternError } from '../expect-lantern-error.ts';
-import { decodeShard, encodeShard, mergeShards, SHARD_VERSION, type Shard } from './shard.ts';
+import { decodeShard, decodeShardHeader, encodeShard, mergeShards, SHARD_PREFIX_BYTES, SHARD_VERSION, ShardPrefixShort, type Shard } from './shard.ts';
 
 const render = ['cornell', '-W', '2', '-H', '1'];
 const shard = (start: number, end: number, values: number[], r = render): Shard => ({ header: { version: SHARD_VERSION, render: r, width: 2, height: 1, start, end }, sums: new Float32Array(values) });
@@ -30,5 +30,32 @@ describe('shards', () => {
     expectLanternError(() => decodeShard(new TextEncoder().encode('P6 not a shard'), 'x.ppm'), /x.ppm is not a Lantern shard/);
     const bytes = encodeShard(shard(0, 1, z));
     expectLanternError(() => decodeShard(bytes.subarray(0, bytes.length - 4), 'cut.shard'), /bytes of sums/);
+  });
+  it('give their header from the first bytes and the file size, asking for more where the header is longer', () => {
+    const bytes = encodeShard(shard(4, 8, new Array(8).fill(1)));
+    const short = () => decodeShardHeader(bytes.subarray(0, SHARD_PREFIX_BYTES), bytes.length, 'a.shard');
+    expect(short).toThrow(ShardPrefixShort);
+    let need = 0;
+    try {
+      short();
+    } catch (e) {
+      need = (e as ShardPrefixShort).bytes;
+    }
+    expect(need).toBeGreaterThan(SHARD_PREFIX_BYTES);
+    expect(decodeShardHeader(bytes.subarray(0, need), bytes.length, 'a.shard').header).toEqual(shard(4, 8, []).header);
+    // The size is checked against the header's without the sums: a cut file is refused from its first bytes.
+    expectLanternError(() => decodeShardHeader(bytes.subarray(0, need), bytes.length - 4, 'cut.shard'), /bytes of sums/);
+    expectLanternError(() => decodeShardHeader(bytes.subarray(0, 10), 10, 'tiny.shard'), /no LANTERN-SHARD header/);
+  });
+  it('decode their sums as a view of the bytes where aligned, and as a copy where not', () => {
+    const s = shard(0, 2, [1, 2, 3, 4, 5, 6, 7, 8]);
+    const bytes = encodeShard(s);
+    const view = decodeShard(bytes, 'a.shard');
+    expect(view.sums.buffer).toBe(bytes.buffer);
+    const shifted = new Uint8Array(bytes.length + 1);
+    shifted.set(bytes, 1);
+    const copy = decodeShard(shifted.subarray(1), 'b.shard');
+    expect(copy.sums.buffer).not.toBe(shifted.buffer);
+    expect([...copy.sums]).toEqual([...s.sums]);
   });
 });

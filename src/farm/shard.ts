@@ -54,19 +54,27 @@ export function encodeShard(shard: Shard): Uint8Array {
   return out;
 }
 
-/** Reads a shard; `name` (the file) is named in errors. */
-export function decodeShard(bytes: Uint8Array, name: string): Shard {
+/** Bytes of a shard's start that hold its header's length: a reader of headers reads this much first. */
+export const SHARD_PREFIX_BYTES = 18;
+
+/**
+ * A shard's header from the file's first bytes (`prefix`, at least SHARD_PREFIX_BYTES and then as
+ * many as the length there says) and its whole size, checked against what the header says; `name`
+ * (the file) is named in errors. Throws `ShardPrefixShort` when the prefix is too short for the header.
+ */
+export function decodeShardHeader(prefix: Uint8Array, fileBytes: number, name: string): { header: ShardHeader; dataStart: number } {
   const fail = (why: string): never => {
     throw new LanternError(`${name} is not a Lantern shard: ${why}`, 'Give the .shard files that `render --shard` or a farm worker wrote');
   };
-  if (bytes.length < MAGIC.length + 4 || new TextDecoder().decode(bytes.subarray(0, MAGIC.length)) !== MAGIC) fail('no LANTERN-SHARD header');
-  const dv = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  if (fileBytes < SHARD_PREFIX_BYTES || prefix.length < SHARD_PREFIX_BYTES || new TextDecoder().decode(prefix.subarray(0, MAGIC.length)) !== MAGIC) fail('no LANTERN-SHARD header');
+  const dv = new DataView(prefix.buffer, prefix.byteOffset, prefix.byteLength);
   const length = dv.getUint32(MAGIC.length, true);
   const headStart = MAGIC.length + 4;
-  if (headStart + length > bytes.length) fail('its header is cut short');
+  if (headStart + length > fileBytes) fail('its header is cut short');
+  if (headStart + length > prefix.length) throw new ShardPrefixShort(headStart + length);
   let header: ShardHeader;
   try {
-    header = JSON.parse(new TextDecoder().decode(bytes.subarray(headStart, headStart + length))) as ShardHeader;
+    header = JSON.parse(new TextDecoder().decode(prefix.subarray(headStart, headStart + length))) as ShardHeader;
   } catch {
     return fail('its header is not JSON');
   }
@@ -76,14 +84,30 @@ export function decodeShard(bytes: Uint8Array, name: string): Shard {
   if (!Array.isArray(header.render) || !header.render.every((a) => typeof a === 'string') || header.render.length < 1) fail('it does not say what was rendered');
   const dataStart = Math.ceil((headStart + length) / 4) * 4;
   const floats = width * height * 4;
-  if (bytes.length !== dataStart + floats * 4) fail(`${bytes.length - dataStart} bytes of sums where ${width}×${height} needs ${floats * 4}`);
-  const sums = new Float32Array(floats);
-  if (LITTLE_ENDIAN) {
-    new Uint8Array(sums.buffer).set(bytes.subarray(dataStart, dataStart + floats * 4));
-  } else {
-    const data = new DataView(bytes.buffer, bytes.byteOffset + dataStart, floats * 4);
-    for (let i = 0; i < floats; i++) sums[i] = data.getFloat32(i * 4, true);
+  if (fileBytes !== dataStart + floats * 4) fail(`${fileBytes - dataStart} bytes of sums where ${width}×${height} needs ${floats * 4}`);
+  return { header, dataStart };
+}
+
+/** decodeShardHeader was given fewer bytes than the header needs: read `bytes` and ask again. */
+export class ShardPrefixShort extends Error {
+  readonly bytes: number;
+  constructor(bytes: number) {
+    super(`a shard header needs its first ${bytes} bytes`);
+    this.bytes = bytes;
   }
+}
+
+/**
+ * Reads a shard; `name` (the file) is named in errors. The sums are a view of `bytes` where the
+ * machine is little-endian and they sit at a multiple of 4 (no copy of a 4K shard's 127 MiB).
+ */
+export function decodeShard(bytes: Uint8Array, name: string): Shard {
+  const { header, dataStart } = decodeShardHeader(bytes, bytes.length, name);
+  const floats = header.width * header.height * 4;
+  if (LITTLE_ENDIAN && (bytes.byteOffset + dataStart) % 4 === 0) return { header, sums: new Float32Array(bytes.buffer, bytes.byteOffset + dataStart, floats) };
+  const sums = new Float32Array(floats);
+  const data = new DataView(bytes.buffer, bytes.byteOffset + dataStart, floats * 4);
+  for (let i = 0; i < floats; i++) sums[i] = data.getFloat32(i * 4, true);
   return { header, sums };
 }
 

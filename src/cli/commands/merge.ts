@@ -7,12 +7,12 @@
  */
 import { Command } from 'commander';
 import { LanternError } from '../../errors.ts';
-import { decodeShard, mergeShards, type Merged } from '../../farm/shard.ts';
+import { mergeShards, type Merged } from '../../farm/shard.ts';
 import type { CliContext } from '../context.ts';
 import { checkOutputPath, encodeExrNative, writeFile } from '../output-files.ts';
 import { accumulationEstimate } from '../../renderer/image-readback.ts';
 import { pathOption } from '../options.ts';
-import { readUserFile } from '../user-files.ts';
+import { readShard, readShardHeader } from '../shard-files.ts';
 import { registerRender } from './render.ts';
 
 interface MergeOptions {
@@ -33,13 +33,12 @@ export function registerMerge(program: Command, context: CliContext): void {
 }
 
 /**
- * Reads and adds the shards: each file is read once for its header (all checked before any adding),
- * then again in sample order for its sums, so one shard's sums are in memory at a time (a 4K shard
- * is 127 MiB).
+ * Reads and adds the shards: every file's header, from its first bytes, is checked before any adding;
+ * then each file is read whole once, in sample order, for its sums, so one shard's sums are in memory
+ * at a time (a 4K shard is 127 MiB).
  */
 export function readAndMerge(files: readonly string[]): Merged {
-  const read = (name: string) => decodeShard(readUserFile(name, { what: 'shard' }), name);
-  return mergeShards(files.map((name) => ({ name, header: read(name).header, sums: () => read(name).sums })));
+  return mergeShards(files.map((name) => ({ name, header: readShardHeader(name), sums: () => readShard(name).sums })));
 }
 
 /** Writes the merged estimate as `render` of its command line would; resolves with the adapter that tone-mapped it. */

@@ -12,8 +12,7 @@ import { writeFile } from '../output-files.ts';
 import { LanternError } from '../../errors.ts';
 import { chunkFiles, chunkOutputs, mergedOutputs } from './job-file.ts';
 import { chunkRenderArgs, renderOptionArgs, type Chunk, type FarmJob } from '../../farm/job.ts';
-import { decodeShard } from '../../farm/shard.ts';
-import { readUserFile } from '../user-files.ts';
+import { readShardHeader } from '../shard-files.ts';
 import { resolve } from 'node:path';
 
 export interface ChunkResult {
@@ -76,7 +75,7 @@ export function chunkDone(job: FarmJob, chunk: Chunk): boolean {
   const shard = chunkFiles(job, chunk).shard;
   if (!shard) return true;
   try {
-    const h = decodeShard(readUserFile(shard), shard).header;
+    const h = readShardHeader(shard);
     // Of this chunk's samples, and of this job's render (not one another job of the same name left).
     return h.start === chunk.values[0] && h.end === chunk.values[chunk.values.length - 1]! + 1 && JSON.stringify(h.render) === JSON.stringify([job.scene, ...renderOptionArgs(job)]);
   } catch {
