@@ -3,7 +3,9 @@
 // the costliest compiles that only one test asked for. Usage: node tests/gpu/pipeline-summary.mjs <log>
 import { readFileSync } from 'node:fs';
 
-const rows = readFileSync(process.argv[2], 'utf8').trim().split('\n').map((l) => JSON.parse(l));
+// The test device is acquired as the CLI's is (src/cli/dawn.ts), which appends its own tab-separated
+// lines to the same file: only gpu-context.ts's JSON lines are read.
+const rows = readFileSync(process.argv[2], 'utf8').trim().split('\n').filter((l) => l.startsWith('{')).map((l) => JSON.parse(l));
 const seen = new Set();
 const files = new Map();
 const testsOf = new Map();
