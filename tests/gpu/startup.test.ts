@@ -5,7 +5,7 @@
  * The stage log (gpu/stage-log.ts) says what was compiled.
  */
 import { afterEach, describe, expect, it } from 'vitest';
-import { TRACING_FEATURES } from '../../src/gpu/kernel.ts';
+import { PLAIN_SCENE, TRACING_FEATURES } from '../../src/gpu/kernel.ts';
 import { FEATURE_CONSTANTS, featureValue } from '../../src/gpu/kernel-variants.ts';
 import type { SceneFeatures } from '../../src/gpu/pack/scene-pack.ts';
 import { observeStages, type StageSpan } from '../../src/gpu/stage-log.ts';
@@ -111,9 +111,10 @@ describe('start-up compiles', () => {
 
   it('compile a recipe enabled before or after the scene for that scene alone, not a plain scene first (issue #27)', async () => {
     const gpu = await testGpu();
-    const prepared = prepareScene(builtinScene('cornell'));
-    // The Cornell box is not the plain scene (its small BVH takes the shallow stack): a plain variant would be compiled for nothing.
-    expect(prepared.packed.features.shallowStack).toBe(true);
+    // Not the plain scene (general materials), so that a plain variant compiled first would show; the
+    // wavefront test traces frames of it too.
+    const prepared = prepareScene(builtinScene('materials'));
+    expect(prepared.packed.features).not.toEqual(PLAIN_SCENE);
     const frameKernels = (spans: readonly StageSpan[]) => spans.filter((s) => /^pipeline .*:(path_trace_frame|frame_gbuffer)$/.test(s.stage));
     // The page's order: the renderer told the scene's features, the real-time chain enabled, then the scene set.
     for (const order of ['recipe first', 'scene first'] as const) {
