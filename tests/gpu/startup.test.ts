@@ -140,4 +140,43 @@ describe('start-up compiles', () => {
       }
     }
   });
+
+  it('compile ReSTIR enabled before the scene for the features the renderer was told, not a plain scene\'s beside them (issue #29)', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('materials'));
+    expect(prepared.packed.features).not.toEqual(PLAIN_SCENE);
+    const renderer = await Renderer.create(gpu, { features: prepared.packed.features });
+    try {
+      await renderer.compile({ restir: true }, { frames: true });
+      await renderer.setScene(prepared);
+      const restir = spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'));
+      expect(restir.map((s) => s.stage).sort()).toEqual(['restir_initial', 'restir_lend', 'restir_spatial', 'restir_temporal'].map((e) => `pipeline restir/restir:${e}`));
+      for (const s of restir) expect(s.detail!.split(' '), s.stage).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features, null)));
+    } finally {
+      renderer.destroy();
+    }
+  });
+
+  it('compile the frame kernels for the sampler set before the recipe, not the default\'s first (issue #29)', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('cornell'));
+    const renderer = await Renderer.create(gpu, { features: prepared.packed.features });
+    try {
+      await renderer.resize(8, 8);
+      // Not the real-time chain's default (PCG), whose kernels the renderer used to compile and then switch from.
+      expect(resolveSampler('auto', 'real-time')).not.toBe('sobol');
+      renderer.updateSettings({ sampler: 'sobol' });
+      await renderer.compile({}, { frames: true });
+      await renderer.setScene(prepared);
+      await renderer.accelSettled();
+      renderer.renderFrame(1);
+      expect((await renderer.readFrame()).radiance.some((v) => v > 0)).toBe(true);
+      const compiled = spans.filter((s) => s.stage === 'pipeline passes/path-trace-frame:path_trace_frame');
+      expect(compiled.map((s) => s.detail!.split(' ').filter((c) => c.startsWith('SAMPLER=')))).toEqual([[`SAMPLER=${SAMPLERS.indexOf('sobol')}`]]);
+    } finally {
+      renderer.destroy();
+    }
+  });
 });

@@ -26,6 +26,7 @@ import {
   denoiseOutputParams, denoiseSlopesParams, denoiseWeightsParams, temporalParams, type DenoisePasses,
 } from '../../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
+import type { Sampler } from '../../passes/variants.ts';
 import { PathTraceFramePass, type FrameTarget } from '../../passes/path-trace-frame-pass.ts';
 import { WavefrontFramePass } from '../../passes/wavefront-frame-pass.ts';
 import { RestirPass, type RestirTarget } from '../../passes/restir-pass.ts';
@@ -160,12 +161,15 @@ export class RealTimeRecipe implements FrameRecipe {
     private readonly device: GPUDevice,
     private readonly frame: PathTraceFramePass,
     private readonly passes: DenoisePasses,
+    /** The features create() was given (the scene to be rendered, where known). */
+    private readonly first: SceneFeatures | undefined,
   ) {}
 
   /** `first`: the features of the scene to be rendered, where known (its frame kernels compile instead of a plain scene's). */
-  static async create(device: GPUDevice, first?: SceneFeatures): Promise<RealTimeRecipe> {
-    const [frame, passes] = await Promise.all([PathTraceFramePass.create(device, first), createDenoisePasses(device)]);
-    return new RealTimeRecipe(device, frame, passes);
+  /** `sampler`: the frame path tracer's, as the settings resolve it (PathTraceFramePass.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures, sampler?: Sampler): Promise<RealTimeRecipe> {
+    const [frame, passes] = await Promise.all([PathTraceFramePass.create(device, first, sampler), createDenoisePasses(device)]);
+    return new RealTimeRecipe(device, frame, passes, first);
   }
 
   /** Compiles the frame path tracer's variant for a scene with these features. */
@@ -204,9 +208,14 @@ export class RealTimeRecipe implements FrameRecipe {
   }
 
   /** The features of the first scene prepared in this mode (what a pass made now compiles first), if any. */
+  /**
+   * The features a pass made now compiles for first: the first scene prepared, or before any, the one
+   * create() was told of (ReSTIR or the wavefront enabled before the scene is set compiled a plain
+   * scene's variants beside it: 4 pipelines for nothing in the ReSTIR test).
+   */
   private firstPrepared(spectral: boolean): SceneFeatures | undefined {
     for (const p of this.preparedFor.values()) if (p.spectral === spectral) return p.features;
-    return undefined;
+    return spectral ? undefined : this.first;
   }
 
   private async prepareRestir(r: RestirPass, features: SceneFeatures): Promise<void> {

@@ -108,7 +108,8 @@ export class RecipeSet {
   /** The real-time chain, with the wavefront integrator and ReSTIR where asked. */
   private async compileRealTime(wants: { readonly wavefront: boolean; readonly restir: boolean }): Promise<void> {
     const created = !this.realTime;
-    this.realTime ??= await RealTimeRecipe.create(this.device, this.hooks.firstFeatures());
+    // For the sampler the settings ask for now: the default's kernels would be compiled and then switched away from.
+    this.realTime ??= await RealTimeRecipe.create(this.device, this.hooks.firstFeatures(), resolveSampler(this.hooks.sampler(), 'real-time'));
     const features = this.hooks.sceneFeatures();
     if (features) await Promise.all([this.realTime.prepare(features), this.spectral ? this.realTime.prepare(features, true) : undefined]);
     if (wants.wavefront) await this.compileWavefront();
