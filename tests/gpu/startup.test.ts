@@ -111,8 +111,7 @@ describe('start-up compiles', () => {
 
   it('compile a recipe enabled before or after the scene for that scene alone, not a plain scene first (issue #27)', async () => {
     const gpu = await testGpu();
-    // Not the plain scene (general materials), so that a plain variant compiled first would show; the
-    // wavefront test traces frames of it too.
+    // Not the plain scene (general materials), so that a plain variant compiled first would show.
     const prepared = prepareScene(builtinScene('materials'));
     expect(prepared.packed.features).not.toEqual(PLAIN_SCENE);
     const frameKernels = (spans: readonly StageSpan[]) => spans.filter((s) => /^pipeline .*:(path_trace_frame|frame_gbuffer)$/.test(s.stage));
@@ -153,6 +152,31 @@ describe('start-up compiles', () => {
       const restir = spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'));
       expect(restir.map((s) => s.stage).sort()).toEqual(['restir_initial', 'restir_lend', 'restir_spatial', 'restir_temporal'].map((e) => `pipeline restir/restir:${e}`));
       for (const s of restir) expect(s.detail!.split(' '), s.stage).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features, null)));
+    } finally {
+      renderer.destroy();
+    }
+  });
+
+  it('compile ReSTIR enabled after two scenes for the scene set now, not for every scene traced before (issue #29)', async () => {
+    const gpu = await testGpu();
+    const cornell = prepareScene(builtinScene('cornell'));
+    const materials = prepareScene(builtinScene('materials'));
+    expect(materials.packed.features).not.toEqual(cornell.packed.features);
+    const renderer = await Renderer.create(gpu, { features: cornell.packed.features });
+    try {
+      await renderer.resize(8, 8);
+      await renderer.compile({}, { frames: true });
+      await renderer.setScene(cornell);
+      await renderer.setScene(materials);
+      const spans = await recordStages();
+      renderer.updateSettings({ restir: true });
+      await renderer.compile({ restir: true }, { frames: true });
+      const restir = spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'));
+      expect(restir).toHaveLength(4);
+      for (const s of restir) expect(s.detail!.split(' '), s.stage).toEqual(expect.arrayContaining(constantsOf(materials.packed.features, null)));
+      // The Cornell box set again gets its own when it is set.
+      await renderer.setScene(cornell);
+      expect(spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'))).toHaveLength(8);
     } finally {
       renderer.destroy();
     }

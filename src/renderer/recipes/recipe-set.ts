@@ -125,7 +125,7 @@ export class RecipeSet {
   async compileWavefront(): Promise<void> {
     if (!this.realTime) throw new Error('Renderer: the real-time chain before its wavefront integrator');
     const created = !this.realTime.wavefrontPass;
-    await this.realTime.compileWavefront();
+    await this.realTime.compileWavefront(this.hooks.sceneFeatures());
     this.wavefrontError = undefined;
     if (created) await this.hooks.tracingAdded();
   }
@@ -133,7 +133,7 @@ export class RecipeSet {
   /** The ReSTIR passes, into the real-time chain (compiled first). Until they are ready, frames run without them. */
   async compileRestir(): Promise<void> {
     if (!this.realTime) throw new Error('Renderer: the real-time chain before ReSTIR');
-    await this.realTime.compileRestir();
+    await this.realTime.compileRestir(this.hooks.sceneFeatures());
     this.restirError = undefined;
   }
 
