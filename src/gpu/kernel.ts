@@ -208,7 +208,7 @@ export class SceneKernels {
 
   /**
    * Creates the set and compiles the variant of a plain scene (diffuse, opaque, no lights but
-   * emitters), so errors surface at once. With `first`, the features of the scene about to be
+   * emitters, a BVH shallow enough for the short stack: the Cornell box), so errors surface at once. With `first`, the features of the scene about to be
    * rendered, that variant alone starts compiling instead and the set is returned at once: the
    * scene's prepare() awaits it and reports its errors; no plain variant is compiled for nothing.
    */
@@ -254,7 +254,13 @@ export class SceneKernels {
   }
 }
 
-export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticAccel: 'bvh2', shallowStack: false });
+/**
+ * What a renderer told no features compiles for. Its BVH takes the short stack, as nearly every scene's
+ * does (at most SHALLOW_STACK_ENTRIES deep, no moving instances: the Cornell box, the viewer's first
+ * scene): with the deep stack here, a renderer made without features compiled every kernel's deep
+ * variant and then the small scene's (the ReSTIR test: 8 of its 20 pipelines for nothing).
+ */
+export const PLAIN_SCENE: SceneFeatures = Object.freeze({ alphaMasks: false, generalMaterials: false, punctualLights: false, environment: false, analyticPrimitives: false, instances: false, staticAccel: 'bvh2', shallowStack: true });
 /** The features every path-tracing entry point compiles by. */
 export const TRACING_FEATURES: readonly (keyof SceneFeatures)[] = ['alphaMasks', 'generalMaterials', 'punctualLights', 'environment', 'analyticPrimitives', 'instances', 'staticAccel', 'shallowStack'];
 /** The features of passes that only trace (debug views, ray buffers). */

@@ -14,7 +14,7 @@ import { PATH_TRACE_MODULE, pathTraceParams, TracingKernels, type PathTraceDispa
 import { KERNEL_CONSTANTS } from '../gpu/kernel-variants.ts';
 import type { Pass, PassFrame } from './pass.ts';
 import { UniformParams, type UniformValues } from './uniform-params.ts';
-import { resolveSampler } from './variants.ts';
+import { resolveSampler, type Sampler } from './variants.ts';
 
 const MODULE = 'passes/path-trace-frame';
 
@@ -68,10 +68,14 @@ export class PathTraceFramePass implements Pass<RealTimeTraceFrame> {
     private readonly emissionFrame: UniformParams<UniformValues>,
   ) {}
 
-  /** `first`: the features of the scene to be rendered, where known: its variants start compiling instead of a plain scene's (SceneKernels.create). */
-  static async create(device: GPUDevice, first?: SceneFeatures): Promise<PathTraceFramePass> {
+  /**
+   * `first`: the features of the scene to be rendered, where known: its variants start compiling
+   * instead of a plain scene's (SceneKernels.create). `sampler`: the one the settings ask for (default
+   * the real-time chain's), so that a renderer set to another one does not compile the default's first.
+   */
+  static async create(device: GPUDevice, first?: SceneFeatures, sampler: Sampler = resolveSampler('auto', 'real-time')): Promise<PathTraceFramePass> {
     const [kernels, gbufferKernels] = await Promise.all([
-      TracingKernels.create(device, MODULE, 'path_trace_frame', KERNEL_CONSTANTS.pathTraceFrame, first, resolveSampler('auto', 'real-time')),
+      TracingKernels.create(device, MODULE, 'path_trace_frame', KERNEL_CONSTANTS.pathTraceFrame, first, sampler),
       TracingKernels.create(device, MODULE, 'frame_gbuffer', {}, first),
     ]);
     const params = () => new UniformParams(device, PATH_TRACE_MODULE);

@@ -8,6 +8,8 @@
  * With LANTERN_PIPELINE_LOG=<file> set, every pipeline the shared device compiles is appended to
  * <file> as one JSON line (test file, test, label, a key for what compiles alike, milliseconds), for
  * finding which files and tests pay for which compiles: `node tests/gpu/pipeline-summary.mjs <file>`.
+ * Each compute pipeline's first dispatch is logged as well, and the summary names those compiled
+ * and never dispatched.
  */
 import { appendFileSync } from 'node:fs';
 import { createHash } from 'node:crypto';
@@ -46,11 +48,34 @@ function logPipelines(device: GPUDevice, file: string): void {
   const record = (kind: string, label: string | undefined, key: string, t0: number) => {
     appendFileSync(file, `${JSON.stringify({ ...where(), kind, label: label ?? '', key, ms: Math.round(performance.now() - t0) })}\n`);
   };
+  // The first dispatch of each compute pipeline is logged too ('used'), so that the summary can name
+  // those compiled and never dispatched.
+  const keyOf = new WeakMap<GPUComputePipeline, { key: string; label: string; used: boolean }>();
+  const createCommandEncoder = device.createCommandEncoder.bind(device);
+  device.createCommandEncoder = (descriptor) => {
+    const encoder = createCommandEncoder(descriptor);
+    const beginComputePass = encoder.beginComputePass.bind(encoder);
+    encoder.beginComputePass = (passDescriptor) => {
+      const pass = beginComputePass(passDescriptor);
+      const setPipeline = pass.setPipeline.bind(pass);
+      pass.setPipeline = (pipeline) => {
+        const k = keyOf.get(pipeline);
+        if (k && !k.used) {
+          k.used = true;
+          appendFileSync(file, `${JSON.stringify({ ...where(), kind: 'used', label: k.label, key: k.key, ms: 0 })}\n`);
+        }
+        setPipeline(pipeline);
+      };
+      return pass;
+    };
+    return encoder;
+  };
   const computeAsync = device.createComputePipelineAsync.bind(device);
   device.createComputePipelineAsync = async (d) => {
     const t0 = performance.now();
     const p = await computeAsync(d);
     record('compute', d.label, stageKey(d.compute), t0);
+    keyOf.set(p, { key: stageKey(d.compute), label: d.label ?? '', used: false });
     return p;
   };
   const compute = device.createComputePipeline.bind(device);
@@ -58,6 +83,7 @@ function logPipelines(device: GPUDevice, file: string): void {
     const t0 = performance.now();
     const p = compute(d);
     record('compute-sync', d.label, stageKey(d.compute), t0);
+    keyOf.set(p, { key: stageKey(d.compute), label: d.label ?? '', used: false });
     return p;
   };
   const renderKey = (d: GPURenderPipelineDescriptor) => `${stageKey(d.vertex)}|${d.fragment ? stageKey(d.fragment) : ''}|${[...(d.fragment?.targets ?? [])].map((t) => t?.format).join(',')}`;

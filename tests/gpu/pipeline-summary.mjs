@@ -3,7 +3,12 @@
 // the costliest compiles that only one test asked for. Usage: node tests/gpu/pipeline-summary.mjs <log>
 import { readFileSync } from 'node:fs';
 
-const rows = readFileSync(process.argv[2], 'utf8').trim().split('\n').map((l) => JSON.parse(l));
+// The test device is acquired as the CLI's is (src/cli/dawn.ts), which appends its own tab-separated
+// lines to the same file: only gpu-context.ts's JSON lines are read.
+const lines = readFileSync(process.argv[2], 'utf8').trim().split('\n').filter((l) => l.startsWith('{')).map((l) => JSON.parse(l));
+// gpu-context.ts logs each compute pipeline's first dispatch as kind 'used'.
+const used = new Set(lines.filter((r) => r.kind === 'used').map((r) => r.key));
+const rows = lines.filter((r) => r.kind !== 'used');
 const seen = new Set();
 const files = new Map();
 const testsOf = new Map();
@@ -25,3 +30,10 @@ const total = [...files.values()].reduce((a, f) => ({ requests: a.requests + f.r
 console.log(`total: ${total.requests} requests, ${total.fresh} distinct pipelines, ${s(total.freshMs)} s compiling them`);
 console.log('\ncostliest pipelines asked for by one test only:');
 for (const [key, t] of [...testsOf].filter(([, t]) => t.tests.size === 1).sort((a, b) => b[1].ms - a[1].ms).slice(0, 40)) console.log(s(t.ms).padStart(6), t.label, key, '<-', [...t.tests][0]);
+// Dawn returns the pipeline it already made for the same descriptor: a key is used where any of its pipelines was dispatched.
+const unused = new Map();
+for (const r of rows) if (r.kind.startsWith('compute') && !used.has(r.key)) unused.set(r.key, { ...r, ms: Math.max(r.ms, unused.get(r.key)?.ms ?? 0) });
+if (used.size > 0) {
+  console.log(`\ncompute pipelines compiled and never dispatched: ${unused.size} (${s([...unused.values()].reduce((a, r) => a + r.ms, 0))} s)`);
+  for (const r of [...unused.values()].sort((a, b) => b.ms - a.ms)) console.log(s(r.ms).padStart(6), r.label, r.key, '<-', `${r.file} > ${r.test}`);
+}

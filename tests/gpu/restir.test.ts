@@ -21,7 +21,10 @@ const camera = (x: number): Camera => ({ ...SCENE.scene.camera, position: [x, 1.
 
 let renderer: Renderer;
 beforeAll(async () => {
-  renderer = await Renderer.create(await testGpu());
+  // For the scene's features and the Sobol sampler both tests set: the kernels they run, and no
+  // plain scene's variant (a deep BVH's stack) or PCG frame kernels beside them (20 pipelines were 11).
+  renderer = await Renderer.create(await testGpu(), { features: SCENE.packed.features });
+  renderer.updateSettings({ sampler: 'sobol' });
   await renderer.compile({}, { frames: true });
   // ReSTIR is off by default: its passes compiled now, not in the background while the first frames run without them.
   await renderer.compile({ restir: true }, { frames: true });

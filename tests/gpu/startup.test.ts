@@ -5,7 +5,7 @@
  * The stage log (gpu/stage-log.ts) says what was compiled.
  */
 import { afterEach, describe, expect, it } from 'vitest';
-import { TRACING_FEATURES } from '../../src/gpu/kernel.ts';
+import { PLAIN_SCENE, TRACING_FEATURES } from '../../src/gpu/kernel.ts';
 import { FEATURE_CONSTANTS, featureValue } from '../../src/gpu/kernel-variants.ts';
 import type { SceneFeatures } from '../../src/gpu/pack/scene-pack.ts';
 import { observeStages, type StageSpan } from '../../src/gpu/stage-log.ts';
@@ -111,9 +111,9 @@ describe('start-up compiles', () => {
 
   it('compile a recipe enabled before or after the scene for that scene alone, not a plain scene first (issue #27)', async () => {
     const gpu = await testGpu();
-    const prepared = prepareScene(builtinScene('cornell'));
-    // The Cornell box is not the plain scene (its small BVH takes the shallow stack): a plain variant would be compiled for nothing.
-    expect(prepared.packed.features.shallowStack).toBe(true);
+    // Not the plain scene (general materials), so that a plain variant compiled first would show.
+    const prepared = prepareScene(builtinScene('materials'));
+    expect(prepared.packed.features).not.toEqual(PLAIN_SCENE);
     const frameKernels = (spans: readonly StageSpan[]) => spans.filter((s) => /^pipeline .*:(path_trace_frame|frame_gbuffer)$/.test(s.stage));
     // The page's order: the renderer told the scene's features, the real-time chain enabled, then the scene set.
     for (const order of ['recipe first', 'scene first'] as const) {
@@ -137,6 +137,70 @@ describe('start-up compiles', () => {
         renderer.destroy();
         observeStages(gpu.device, undefined);
       }
+    }
+  });
+
+  it('compile ReSTIR enabled before the scene for the features the renderer was told, not a plain scene\'s beside them (issue #29)', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('materials'));
+    expect(prepared.packed.features).not.toEqual(PLAIN_SCENE);
+    const renderer = await Renderer.create(gpu, { features: prepared.packed.features });
+    try {
+      await renderer.compile({ restir: true }, { frames: true });
+      await renderer.setScene(prepared);
+      const restir = spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'));
+      expect(restir.map((s) => s.stage).sort()).toEqual(['restir_initial', 'restir_lend', 'restir_spatial', 'restir_temporal'].map((e) => `pipeline restir/restir:${e}`));
+      for (const s of restir) expect(s.detail!.split(' '), s.stage).toEqual(expect.arrayContaining(constantsOf(prepared.packed.features, null)));
+    } finally {
+      renderer.destroy();
+    }
+  });
+
+  it('compile ReSTIR enabled after two scenes for the scene set now, not for every scene traced before (issue #29)', async () => {
+    const gpu = await testGpu();
+    const cornell = prepareScene(builtinScene('cornell'));
+    const materials = prepareScene(builtinScene('materials'));
+    expect(materials.packed.features).not.toEqual(cornell.packed.features);
+    const renderer = await Renderer.create(gpu, { features: cornell.packed.features });
+    try {
+      await renderer.resize(8, 8);
+      await renderer.compile({}, { frames: true });
+      await renderer.setScene(cornell);
+      await renderer.setScene(materials);
+      const spans = await recordStages();
+      renderer.updateSettings({ restir: true });
+      await renderer.compile({ restir: true }, { frames: true });
+      const restir = spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'));
+      expect(restir).toHaveLength(4);
+      for (const s of restir) expect(s.detail!.split(' '), s.stage).toEqual(expect.arrayContaining(constantsOf(materials.packed.features, null)));
+      // The Cornell box set again gets its own when it is set.
+      await renderer.setScene(cornell);
+      expect(spans.filter((s) => s.stage.startsWith('pipeline restir/restir:'))).toHaveLength(8);
+    } finally {
+      renderer.destroy();
+    }
+  });
+
+  it('compile the frame kernels for the sampler set before the recipe, not the default\'s first (issue #29)', async () => {
+    const spans = await recordStages();
+    const gpu = await testGpu();
+    const prepared = prepareScene(builtinScene('cornell'));
+    const renderer = await Renderer.create(gpu, { features: prepared.packed.features });
+    try {
+      await renderer.resize(8, 8);
+      // Not the real-time chain's default (PCG), whose kernels the renderer used to compile and then switch from.
+      expect(resolveSampler('auto', 'real-time')).not.toBe('sobol');
+      renderer.updateSettings({ sampler: 'sobol' });
+      await renderer.compile({}, { frames: true });
+      await renderer.setScene(prepared);
+      await renderer.accelSettled();
+      renderer.renderFrame(1);
+      expect((await renderer.readFrame()).radiance.some((v) => v > 0)).toBe(true);
+      const compiled = spans.filter((s) => s.stage === 'pipeline passes/path-trace-frame:path_trace_frame');
+      expect(compiled.map((s) => s.detail!.split(' ').filter((c) => c.startsWith('SAMPLER=')))).toEqual([[`SAMPLER=${SAMPLERS.indexOf('sobol')}`]]);
+    } finally {
+      renderer.destroy();
     }
   });
 });

@@ -26,6 +26,7 @@ import {
   denoiseOutputParams, denoiseSlopesParams, denoiseWeightsParams, temporalParams, type DenoisePasses,
 } from '../../passes/denoise-passes.ts';
 import type { SceneFeatures } from '../../gpu/pack/scene-pack.ts';
+import type { Sampler } from '../../passes/variants.ts';
 import { PathTraceFramePass, type FrameTarget } from '../../passes/path-trace-frame-pass.ts';
 import { WavefrontFramePass } from '../../passes/wavefront-frame-pass.ts';
 import { RestirPass, type RestirTarget } from '../../passes/restir-pass.ts';
@@ -160,12 +161,15 @@ export class RealTimeRecipe implements FrameRecipe {
     private readonly device: GPUDevice,
     private readonly frame: PathTraceFramePass,
     private readonly passes: DenoisePasses,
+    /** The features create() was given (the scene to be rendered, where known). */
+    private readonly first: SceneFeatures | undefined,
   ) {}
 
   /** `first`: the features of the scene to be rendered, where known (its frame kernels compile instead of a plain scene's). */
-  static async create(device: GPUDevice, first?: SceneFeatures): Promise<RealTimeRecipe> {
-    const [frame, passes] = await Promise.all([PathTraceFramePass.create(device, first), createDenoisePasses(device)]);
-    return new RealTimeRecipe(device, frame, passes);
+  /** `sampler`: the frame path tracer's, as the settings resolve it (PathTraceFramePass.create). */
+  static async create(device: GPUDevice, first?: SceneFeatures, sampler?: Sampler): Promise<RealTimeRecipe> {
+    const [frame, passes] = await Promise.all([PathTraceFramePass.create(device, first, sampler), createDenoisePasses(device)]);
+    return new RealTimeRecipe(device, frame, passes, first);
   }
 
   /** Compiles the frame path tracer's variant for a scene with these features. */
@@ -175,13 +179,15 @@ export class RealTimeRecipe implements FrameRecipe {
   }
 
   /**
-   * Compiles the wavefront frame path tracer for every scene prepared so far and later. Until it is
-   * ready for a frame's scene, frames asking for it are traced by the megakernel (frameIntegrator says which ran).
+   * Compiles the wavefront frame path tracer for `current` (the scene set now, if one is), every scene
+   * prepared while it compiles, and every later one (prepare). Until it is ready for a frame's scene,
+   * frames asking for it are traced by the megakernel (frameIntegrator says which ran).
    */
-  async compileWavefront(): Promise<void> {
+  async compileWavefront(current?: SceneFeatures): Promise<void> {
     if (!this.wavefrontPending) {
-      this.wavefrontPending = WavefrontFramePass.create(this.device, this.firstPrepared(false)).then(async (w) => {
-        await Promise.all([...this.preparedFor.values()].map((p) => this.prepareWavefront(w, p.features, p.spectral)));
+      const wanted = this.wantedBy(current);
+      this.wavefrontPending = WavefrontFramePass.create(this.device, current ?? this.firstPrepared(false)).then(async (w) => {
+        await Promise.all(wanted().map((p) => this.prepareWavefront(w, p.features, p.spectral)));
         this.wavefront = w;
         return w;
       });
@@ -190,11 +196,12 @@ export class RealTimeRecipe implements FrameRecipe {
     await this.wavefrontPending;
   }
 
-  /** Compiles the ReSTIR passes for every scene prepared so far and later; frames use them once ready for their scene. */
-  async compileRestir(): Promise<void> {
+  /** Compiles the ReSTIR passes as compileWavefront does the wavefront; frames use them once ready for their scene. */
+  async compileRestir(current?: SceneFeatures): Promise<void> {
     if (!this.restirPending) {
-      this.restirPending = RestirPass.create(this.device, this.firstPrepared(false)).then(async (r) => {
-        await Promise.all([...this.preparedFor.values()].filter((p) => !p.spectral).map((p) => this.prepareRestir(r, p.features)));
+      const wanted = this.wantedBy(current);
+      this.restirPending = RestirPass.create(this.device, current ?? this.firstPrepared(false)).then(async (r) => {
+        await Promise.all(wanted().filter((p) => !p.spectral).map((p) => this.prepareRestir(r, p.features)));
         this.restir = r;
         return r;
       });
@@ -203,10 +210,26 @@ export class RealTimeRecipe implements FrameRecipe {
     await this.restirPending;
   }
 
-  /** The features of the first scene prepared in this mode (what a pass made now compiles first), if any. */
+  /**
+   * What a pass enabled now compiles once made: the variants prepared for `current`, and those
+   * prepared from now on (while it compiles, prepare() cannot reach it). Without `current`, every
+   * variant prepared. The other scenes prepared before get theirs when they are set again (prepare):
+   * compiling ReSTIR for every scene a renderer had traced cost the denoise test 12 compiles.
+   */
+  private wantedBy(current: SceneFeatures | undefined): () => { readonly features: SceneFeatures; readonly spectral: boolean }[] {
+    const before = new Set(this.preparedFor.keys());
+    const currentKey = current && featureKey(current, false);
+    return () => [...this.preparedFor.entries()].filter(([k, p]) => !current || !before.has(k) || featureKey(p.features, false) === currentKey).map(([, p]) => p);
+  }
+
+  /**
+   * The features a pass made now compiles for first: the first scene prepared, or before any, the one
+   * create() was told of (ReSTIR or the wavefront enabled before the scene is set compiled a plain
+   * scene's variants beside it: 4 pipelines for nothing in the ReSTIR test).
+   */
   private firstPrepared(spectral: boolean): SceneFeatures | undefined {
     for (const p of this.preparedFor.values()) if (p.spectral === spectral) return p.features;
-    return undefined;
+    return spectral ? undefined : this.first;
   }
 
   private async prepareRestir(r: RestirPass, features: SceneFeatures): Promise<void> {

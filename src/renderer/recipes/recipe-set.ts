@@ -108,7 +108,8 @@ export class RecipeSet {
   /** The real-time chain, with the wavefront integrator and ReSTIR where asked. */
   private async compileRealTime(wants: { readonly wavefront: boolean; readonly restir: boolean }): Promise<void> {
     const created = !this.realTime;
-    this.realTime ??= await RealTimeRecipe.create(this.device, this.hooks.firstFeatures());
+    // For the sampler the settings ask for now: the default's kernels would be compiled and then switched away from.
+    this.realTime ??= await RealTimeRecipe.create(this.device, this.hooks.firstFeatures(), resolveSampler(this.hooks.sampler(), 'real-time'));
     const features = this.hooks.sceneFeatures();
     if (features) await Promise.all([this.realTime.prepare(features), this.spectral ? this.realTime.prepare(features, true) : undefined]);
     if (wants.wavefront) await this.compileWavefront();
@@ -124,7 +125,7 @@ export class RecipeSet {
   async compileWavefront(): Promise<void> {
     if (!this.realTime) throw new Error('Renderer: the real-time chain before its wavefront integrator');
     const created = !this.realTime.wavefrontPass;
-    await this.realTime.compileWavefront();
+    await this.realTime.compileWavefront(this.hooks.sceneFeatures());
     this.wavefrontError = undefined;
     if (created) await this.hooks.tracingAdded();
   }
@@ -132,7 +133,7 @@ export class RecipeSet {
   /** The ReSTIR passes, into the real-time chain (compiled first). Until they are ready, frames run without them. */
   async compileRestir(): Promise<void> {
     if (!this.realTime) throw new Error('Renderer: the real-time chain before ReSTIR');
-    await this.realTime.compileRestir();
+    await this.realTime.compileRestir(this.hooks.sceneFeatures());
     this.restirError = undefined;
   }
 
