@@ -3,8 +3,8 @@ import { expectLanternError } from '../../expect-lantern-error.ts';
 import { builtinScene } from '../../loaders/builtin/index.ts';
 import { prepareScene } from '../../renderer/prepare.ts';
 import { SHADER_MODULES } from '../../shaders/index.ts';
-import { sceneLayouts, type PackedScene } from './scene-pack.ts';
-import { packSceneTextures, RECORD_TEXTURES, recordTextureSize, sceneTextureRowShift, texelCoord, texelsPerRecord, type SceneTexture } from './scene-textures.ts';
+import { sceneLayouts, TRIANGLE_ATTRIBUTE_TEXELS, TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW, type PackedScene } from './scene-pack.ts';
+import { packSceneTextures, RECORD_TEXTURES, TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW, textureTriangleAttributes, recordTextureSize, sceneTextureRowShift, texelCoord, texelsPerRecord, type SceneTexture } from './scene-textures.ts';
 
 /** Record i of a record texture, read back texel by texel at the coordinates the WGSL computes. */
 function readRecord(t: SceneTexture, rowShift: number, perRecord: number, i: number, stride: number): Uint8Array {
@@ -77,6 +77,25 @@ describe('scene textures', () => {
     }
     const shared = SHADER_MODULES.get('scene/bindings-shared')!;
     for (const t of st.textures.filter((x) => x.binding > 6)) expect(shared).toContain(`@group(0) @binding(${t.binding}) var ${t.name}: texture_2d${t.array ? '_array' : ''}<`);
+  });
+
+  it('repack the triangle attributes into rows within 2048 texels, every triangle at its place', () => {
+    expect(SHADER_MODULES.get('scene/bindings-textures')).toContain(`const TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW: u32 = ${TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW}u;`);
+    const rows = 3, width = TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW * TRIANGLE_ATTRIBUTE_TEXELS;
+    const data = new Float32Array(width * rows * 4).map((_, i) => i);
+    const t = textureTriangleAttributes({ width, height: rows, data }, rows * TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW);
+    expect(t.height).toBe(Math.ceil((rows * TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) / TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW));
+    expect(textureTriangleAttributes({ width, height: rows, data }, 410).height).toBe(2);
+    expect(t.width).toBe(TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW * TRIANGLE_ATTRIBUTE_TEXELS);
+    expect(t.width).toBeLessThanOrEqual(2048);
+    for (let tri = 0; tri < rows * TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW; tri++) {
+      for (let k = 0; k < TRIANGLE_ATTRIBUTE_TEXELS * 4; k++) {
+        const from = (Math.floor(tri / TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * width + (tri % TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * TRIANGLE_ATTRIBUTE_TEXELS) * 4 + k;
+        const perRow = TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW;
+        expect(t.data[(Math.floor(tri / perRow) * t.width + (tri % perRow) * TRIANGLE_ATTRIBUTE_TEXELS) * 4 + k]).toBe(data[from]);
+      }
+    }
+    expect(textureTriangleAttributes({ width: 1, height: 1, data: new Float32Array(4) }, 5)).toEqual({ width: 1, height: 1, data: new Float32Array(4) });
   });
 
   it('choose 2048-wide rows, wider only where the device allows and the scene needs them', () => {

@@ -5,15 +5,15 @@
  * texture_refs) become rgba32uint textures that shaders/scene/bindings-textures.wgsl reads: record i
  * of a struct of S bytes takes the ceil(S / 16) texels from i · ceil(S / 16) on (its bytes in storage
  * order, the last texel zero-padded), texel k at (k mod W, k div W) for a row width W = 2^rowShift.
- * The scene's other textures (atlases, environment map and CDFs, BSDF tables, triangle attributes,
- * instance records) are listed as they are uploaded to WebGPU, so that one list is every texture of
- * group 0. Uniforms (scene_info, punctual_lights, environment_info) stay buffers: WebGL2 has uniform
+ * The scene's other textures (atlases, environment map and CDFs, BSDF tables, instance records) are
+ * listed as they are uploaded to WebGPU, triangle_attributes repacked into rows within 2048 texels,
+ * so that one list is every texture of group 0. Uniforms (scene_info, punctual_lights, environment_info) stay buffers: WebGL2 has uniform
  * blocks. Pure: bytes in, bytes out.
  */
 import { LanternError } from '../../errors.ts';
 import { bsdfTableTexture, BSDF_TABLE_TEXTURE_FORMAT } from './bsdf-tables.ts';
 import { ENVIRONMENT_CDF_FORMAT, ENVIRONMENT_MAP_FORMAT } from './environment-pack.ts';
-import { INSTANCE_TEXELS, INSTANCES_PER_ROW, sceneLayouts, type PackedScene } from './scene-pack.ts';
+import { INSTANCE_TEXELS, INSTANCES_PER_ROW, sceneLayouts, TRIANGLE_ATTRIBUTE_TEXELS, TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW, type PackedScene } from './scene-pack.ts';
 
 /** WebGL2's guaranteed MAX_TEXTURE_SIZE: the default limit of every side. */
 export const WEBGL2_MAX_TEXTURE_SIZE = 2048;
@@ -70,6 +70,33 @@ export interface SceneTextureOptions {
   readonly label?: string;
   /** log2 of the record textures' row width, instead of sceneTextureRowShift's choice (tests: rows of a few texels). */
   readonly rowShift?: number;
+}
+
+/**
+ * Triangles a row of the fragment tracer's triangle_attributes (TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW
+ * of bindings-textures.wgsl): 2,045 texels, within WebGL2's 2,048, where the storage layout's rows
+ * of TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW take 4,095.
+ */
+export const TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW = 409;
+
+/**
+ * The first `triangles` triangles of triangle_attributes repacked from rows of
+ * TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW triangles to rows of TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW
+ * (the 1×1 placeholder as it is).
+ */
+export function textureTriangleAttributes(a: PackedScene['triangleAttributes'], triangles: number): { width: number; height: number; data: Float32Array } {
+  if (a.width === 1 && a.height === 1) return { width: 1, height: 1, data: a.data };
+  const floats = TRIANGLE_ATTRIBUTE_TEXELS * 4;
+  const slots = Math.max(1, Math.min(triangles, a.height * TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW));
+  const perRow = TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW;
+  const width = perRow * TRIANGLE_ATTRIBUTE_TEXELS, height = Math.ceil(slots / perRow);
+  const data = new Float32Array(width * height * 4);
+  for (let t = 0; t < slots; t++) {
+    const from = (Math.floor(t / TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * a.width + (t % TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * TRIANGLE_ATTRIBUTE_TEXELS) * 4;
+    const to = (Math.floor(t / perRow) * width + (t % perRow) * TRIANGLE_ATTRIBUTE_TEXELS) * 4;
+    data.set(a.data.subarray(from, from + floats), to);
+  }
+  return { width, height, data };
 }
 
 const RECORD_FORMAT = 'rgba32uint';
@@ -156,7 +183,7 @@ export function packSceneTextures(packed: PackedScene, options: SceneTextureOpti
   const bsdf = bsdfTableTexture();
   const instanceRecords = Math.max(1, Math.ceil(packed.instances.byteLength / (INSTANCE_TEXELS * TEXEL_BYTES)));
   const instanceSize = { width: INSTANCES_PER_ROW * INSTANCE_TEXELS, height: Math.ceil(instanceRecords / INSTANCES_PER_ROW) };
-  const attributes = packed.triangleAttributes;
+  const attributes = textureTriangleAttributes(packed.triangleAttributes, packed.counts.triangles);
   const sides: [string, number, number][] = [
     ['texture_atlas', packed.atlas.pageSize, packed.atlas.pageSize],
     ['texture_atlas_linear', packed.linearAtlas.pageSize, packed.linearAtlas.pageSize],

@@ -140,6 +140,17 @@ fn scene_light_slot(i: u32) -> LightSlot {
   return LightSlot(a.x, a.y, bitcast<f32>(a.z), a.w, b.x);
 }
 
+// Texel k of triangle i's attributes. triangle_attributes (bindings-shared) is laid out here with
+// rows of TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW triangles, 2,045 texels, within WebGL2's 2,048
+// (scene-textures.ts repacks the storage layout's rows of 819, 4,095 texels).
+const TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW: u32 = 409u;
+
+fn scene_triangle_attribute(i: u32, k: u32) -> vec4u {
+  let row = i / TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW;
+  let column = (i % TEXTURE_TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * TRIANGLE_ATTRIBUTE_TEXELS + k;
+  return textureLoad(triangle_attributes, vec2u(column, row), 0);
+}
+
 // (origin, size), (page, flags), (transform_u, levels), transform_v.
 fn scene_texture_ref(i: u32) -> TextureRef {
   let k = i * TEXTURE_REF_TEXELS;

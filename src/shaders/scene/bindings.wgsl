@@ -57,3 +57,11 @@ fn scene_light_slot(i: u32) -> LightSlot {
 fn scene_texture_ref(i: u32) -> TextureRef {
   return texture_refs[i];
 }
+
+// Texel k (< TRIANGLE_ATTRIBUTE_TEXELS) of triangle i's attributes in triangle_attributes, whose rows
+// hold TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW triangles.
+fn scene_triangle_attribute(i: u32, k: u32) -> vec4u {
+  let row = i / TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW;
+  let column = (i % TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * TRIANGLE_ATTRIBUTE_TEXELS + k;
+  return textureLoad(triangle_attributes, vec2u(column, row), 0);
+}

@@ -29,11 +29,9 @@ var<private> texture_lod: f32 = -1e30;
 // The second uv set at the current hit (integrator/path.wgsl sets it for scenes that have one).
 var<private> surface_uv1: vec2f;
 
-// Texel k of triangle `triangle`'s per-vertex attributes, as f32.
+// Texel k of triangle `triangle`'s per-vertex attributes, as f32 (scene/bindings lays them out).
 fn triangle_attribute(triangle: u32, k: u32) -> vec4f {
-  let row = triangle / TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW;
-  let column = (triangle % TRIANGLE_ATTRIBUTE_TRIANGLES_PER_ROW) * TRIANGLE_ATTRIBUTE_TEXELS + k;
-  return bitcast<vec4f>(textureLoad(triangle_attributes, vec2u(column, row), 0));
+  return bitcast<vec4f>(scene_triangle_attribute(triangle, k));
 }
 
 // The second uv set at barycentrics (u, v) of v1 and v2.
