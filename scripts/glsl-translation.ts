@@ -1,0 +1,59 @@
+/**
+ * WGSL -> GLSL ES 3.00 for the WebGL2 backend, at build time (issue #30): every program of
+ * src/webgl2/programs.ts translated by naga's GLSL back end (the naga-wasm package, a dev dependency:
+ * Node loads its WebAssembly on import), its uniform blocks and samplers read from the output
+ * (src/webgl2/glsl.ts parseGlslInterface). The Vite plugin puts the result in place of
+ * src/webgl2/glsl-translated.ts for the page build and the dev server, so the page carries GLSL text
+ * and no translator; tests call translateProgram directly. Translation is deterministic (its test).
+ */
+import { resolve } from 'node:path';
+import { translate } from 'naga-wasm';
+import { runnerImport, type Plugin } from 'vite';
+import type { GlslProgram } from '../src/webgl2/glsl.ts';
+import type { WebGl2ProgramSpec } from '../src/webgl2/programs.ts';
+
+const TARGET = 'src/webgl2/glsl-translated.ts';
+const PROGRAMS = 'src/webgl2/programs.ts';
+const GLSL = 'src/webgl2/glsl.ts';
+
+type ParseInterface = typeof import('../src/webgl2/glsl.ts').parseGlslInterface;
+
+/** One program's two stages translated and its interface read; naga's message (module:line) on a failure, naming the program. */
+export function translateProgram(spec: WebGl2ProgramSpec, parseGlslInterface: ParseInterface): GlslProgram {
+  const stage = (stage: 'vertex' | 'fragment', entryPoint: string): string => {
+    try {
+      return translate({ from: 'wgsl', to: 'glsl', source: spec.wgsl, options: { version: '300 es', stage, entryPoint } });
+    } catch (e) {
+      const formatted = (e as { formatted?: string }).formatted ?? (e as Error).message;
+      throw new Error(`GLSL translation of the WebGL2 program '${spec.key}' (${spec.module}, ${stage} entry ${entryPoint}) failed:\n${formatted}`, { cause: e });
+    }
+  };
+  const vertex = stage('vertex', spec.vertexEntry);
+  const fragment = stage('fragment', spec.fragmentEntry);
+  return { key: spec.key, vertex, fragment, ...parseGlslInterface(vertex, fragment) };
+}
+
+/** Every program, translated, as the JSON text glsl-translated.ts stands for. */
+export async function translateAll(root: string): Promise<string> {
+  const { module: programs } = await runnerImport<{ webGl2ProgramSpecs: () => WebGl2ProgramSpec[] }>(resolve(root, PROGRAMS), { root, configFile: false, logLevel: 'error' });
+  const { module: glsl } = await runnerImport<{ parseGlslInterface: ParseInterface }>(resolve(root, GLSL), { root, configFile: false, logLevel: 'error' });
+  return JSON.stringify(programs.webGl2ProgramSpecs().map((spec) => translateProgram(spec, glsl.parseGlslInterface)));
+}
+
+/** Loads the translation in place of src/webgl2/glsl-translated.ts (the page build and the dev server alike). */
+export function glslTranslation(): Plugin {
+  let root = process.cwd();
+  return {
+    name: 'lantern:glsl-translation',
+    configResolved(config) {
+      root = config.root;
+    },
+    async load(id) {
+      if (id.split('?')[0] !== resolve(root, TARGET)) return null;
+      const started = performance.now();
+      const json = await translateAll(root);
+      this.info(`WGSL -> GLSL for WebGL2: ${(performance.now() - started).toFixed(0)} ms`);
+      return `export const TRANSLATED_GLSL = ${JSON.stringify(json)};\n`;
+    },
+  };
+}
