@@ -52,6 +52,6 @@ describe('WGSL -> GLSL ES 3.00 for the WebGL2 backend', () => {
     const json = await translateAll(process.cwd());
     expect(await translateAll(process.cwd())).toBe(json);
     for (const spec of specs) expect(translatedProgram(spec.key, json)).toEqual(translateProgram(spec, parseGlslInterface));
-    expect(() => translatedProgram('nothing', json)).toThrow(/no translated program 'nothing' \(the build made: tonemap, present/);
+    expect(() => translatedProgram('nothing', json)).toThrow(/no translated program 'nothing' \(the build made: tonemap/);
   });
 });

@@ -30,28 +30,35 @@ export function translateProgram(spec: WebGl2ProgramSpec, parseGlslInterface: Pa
   };
   const vertex = stage('vertex', spec.vertexEntry);
   const fragment = stage('fragment', spec.fragmentEntry);
-  return { key: spec.key, vertex, fragment, ...parseGlslInterface(vertex, fragment) };
+  return { key: spec.key, module: spec.module, vertex, fragment, ...parseGlslInterface(vertex, fragment) };
 }
 
-/** Every program, translated, as the JSON text glsl-translated.ts stands for. */
-export async function translateAll(root: string): Promise<string> {
+/** Every program, translated, as the JSON text glsl-translated.ts stands for; `extra` adds programs (a test's own). */
+export async function translateAll(root: string, extra: readonly WebGl2ProgramSpec[] = []): Promise<string> {
   const { module: programs } = await runnerImport<{ webGl2ProgramSpecs: () => WebGl2ProgramSpec[] }>(resolve(root, PROGRAMS), { root, configFile: false, logLevel: 'error' });
   const { module: glsl } = await runnerImport<{ parseGlslInterface: ParseInterface }>(resolve(root, GLSL), { root, configFile: false, logLevel: 'error' });
-  return JSON.stringify(programs.webGl2ProgramSpecs().map((spec) => translateProgram(spec, glsl.parseGlslInterface)));
+  return JSON.stringify([...programs.webGl2ProgramSpecs(), ...extra].map((spec) => translateProgram(spec, glsl.parseGlslInterface)));
+}
+
+export interface GlslTranslationOptions {
+  /** The repository's root (default: the Vite root): where src/webgl2 is. */
+  readonly sourceRoot?: string;
+  /** Programs translated besides the backend's own (a browser test's harness). */
+  readonly extra?: readonly WebGl2ProgramSpec[];
 }
 
 /** Loads the translation in place of src/webgl2/glsl-translated.ts (the page build and the dev server alike). */
-export function glslTranslation(): Plugin {
-  let root = process.cwd();
+export function glslTranslation(options: GlslTranslationOptions = {}): Plugin {
+  let root = options.sourceRoot ?? process.cwd();
   return {
     name: 'lantern:glsl-translation',
     configResolved(config) {
-      root = config.root;
+      root = options.sourceRoot ?? config.root;
     },
     async load(id) {
       if (id.split('?')[0] !== resolve(root, TARGET)) return null;
       const started = performance.now();
-      const json = await translateAll(root);
+      const json = await translateAll(root, options.extra);
       this.info(`WGSL -> GLSL for WebGL2: ${(performance.now() - started).toFixed(0)} ms`);
       return `export const TRANSLATED_GLSL = ${JSON.stringify(json)};\n`;
     },

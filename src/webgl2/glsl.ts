@@ -37,6 +37,8 @@ export interface GlslSampler {
 /** One program of the backend: a WGSL module's vertex and fragment entries, translated. */
 export interface GlslProgram {
   readonly key: string;
+  /** The WGSL module of src/shaders it was translated from (its structs give the uniform layouts). */
+  readonly module: string;
   readonly vertex: string;
   readonly fragment: string;
   readonly blocks: readonly GlslUniformBlock[];

@@ -25,7 +25,5 @@ export function webGl2ProgramSpecs(): WebGl2ProgramSpec[] {
   return [
     // The accumulated sums -> the tone-mapped 8-bit image (the image's size).
     fromModule('tonemap', 'passes/tonemap-fragment', 'vs_tonemap', 'fs_tonemap'),
-    // The 8-bit image -> the canvas, scaled with a linear filter (the WebGPU page's present pass).
-    fromModule('present', 'passes/present', 'present_vertex', 'present_fragment'),
   ];
 }
