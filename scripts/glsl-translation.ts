@@ -2,7 +2,8 @@
  * WGSL -> GLSL ES 3.00 for the WebGL2 backend, at build time (issue #30): every program of
  * src/webgl2/programs.ts translated by naga's GLSL back end (the naga-wasm package, a dev dependency:
  * Node loads its WebAssembly on import), its uniform blocks and samplers read from the output
- * (src/webgl2/glsl.ts parseGlslInterface). The Vite plugin puts the result in place of
+ * (src/webgl2/glsl.ts parseGlslInterface), the ES 3.10 built-ins naga uses defined for ES 3.00
+ * (src/webgl2/glsl-es300.ts). The Vite plugin puts the result in place of
  * src/webgl2/glsl-translated.ts for the page build and the dev server, so the page carries GLSL text
  * and no translator; tests call translateProgram directly. Translation is deterministic (its test).
  */
@@ -15,14 +16,16 @@ import type { WebGl2ProgramSpec } from '../src/webgl2/programs.ts';
 const TARGET = 'src/webgl2/glsl-translated.ts';
 const PROGRAMS = 'src/webgl2/programs.ts';
 const GLSL = 'src/webgl2/glsl.ts';
+const FIXUPS = 'src/webgl2/glsl-es300.ts';
 
 type ParseInterface = typeof import('../src/webgl2/glsl.ts').parseGlslInterface;
+type Fixups = typeof import('../src/webgl2/glsl-es300.ts').esslFixups;
 
 /** One program's two stages translated and its interface read; naga's message (module:line) on a failure, naming the program. */
-export function translateProgram(spec: WebGl2ProgramSpec, parseGlslInterface: ParseInterface): GlslProgram {
+export function translateProgram(spec: WebGl2ProgramSpec, parseGlslInterface: ParseInterface, esslFixups: Fixups): GlslProgram {
   const stage = (stage: 'vertex' | 'fragment', entryPoint: string): string => {
     try {
-      return translate({ from: 'wgsl', to: 'glsl', source: spec.wgsl, options: { version: '300 es', stage, entryPoint } });
+      return esslFixups(translate({ from: 'wgsl', to: 'glsl', source: spec.wgsl, options: { version: '300 es', stage, entryPoint } }));
     } catch (e) {
       const formatted = (e as { formatted?: string }).formatted ?? (e as Error).message;
       throw new Error(`GLSL translation of the WebGL2 program '${spec.key}' (${spec.module}, ${stage} entry ${entryPoint}) failed:\n${formatted}`, { cause: e });
@@ -37,7 +40,8 @@ export function translateProgram(spec: WebGl2ProgramSpec, parseGlslInterface: Pa
 export async function translateAll(root: string, extra: readonly WebGl2ProgramSpec[] = []): Promise<string> {
   const { module: programs } = await runnerImport<{ webGl2ProgramSpecs: () => WebGl2ProgramSpec[] }>(resolve(root, PROGRAMS), { root, configFile: false, logLevel: 'error' });
   const { module: glsl } = await runnerImport<{ parseGlslInterface: ParseInterface }>(resolve(root, GLSL), { root, configFile: false, logLevel: 'error' });
-  return JSON.stringify([...programs.webGl2ProgramSpecs(), ...extra].map((spec) => translateProgram(spec, glsl.parseGlslInterface)));
+  const { module: es300 } = await runnerImport<{ esslFixups: Fixups }>(resolve(root, FIXUPS), { root, configFile: false, logLevel: 'error' });
+  return JSON.stringify([...programs.webGl2ProgramSpecs(), ...extra].map((spec) => translateProgram(spec, glsl.parseGlslInterface, es300.esslFixups)));
 }
 
 export interface GlslTranslationOptions {
