@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { liveEntryResources } from '../src/gpu/wgsl/reflect.ts';
 import { parseGlslInterface, translatedProgram } from '../src/webgl2/glsl.ts';
-import { esslFixups } from '../src/webgl2/glsl-es300.ts';
+import { translateSpec } from '../src/webgl2/translate.ts';
 import { webGl2ProgramSpecs } from '../src/webgl2/programs.ts';
 import { translateAll, translateProgram } from './glsl-translation.ts';
 
@@ -12,8 +12,8 @@ describe('WGSL -> GLSL ES 3.00 for the WebGL2 backend', () => {
     expect(specs.length).toBeGreaterThan(0);
     expect(new Set(specs.map((s) => s.key)).size).toBe(specs.length);
     for (const spec of specs) {
-      const a = translateProgram(spec, parseGlslInterface, esslFixups);
-      const b = translateProgram(spec, parseGlslInterface, esslFixups);
+      const a = translateProgram(spec, translateSpec);
+      const b = translateProgram(spec, translateSpec);
       expect(b).toEqual(a);
       for (const text of [a.vertex, a.fragment]) {
         expect(text.startsWith('#version 300 es\n')).toBe(true);
@@ -26,7 +26,7 @@ describe('WGSL -> GLSL ES 3.00 for the WebGL2 backend', () => {
 
   it('declares a uniform block or a sampler for every WGSL binding each entry point uses, and nothing else', () => {
     for (const spec of specs) {
-      const program = translateProgram(spec, parseGlslInterface, esslFixups);
+      const program = translateProgram(spec, translateSpec);
       const linked = { entry: spec.module, code: spec.wgsl, modules: [spec.module], lineMap: [] };
       for (const [stage, entry] of [['vertex', spec.vertexEntry], ['fragment', spec.fragmentEntry]] as const) {
         const used = liveEntryResources(linked, entry).filter((r) => !r.layout.sampler);
@@ -40,7 +40,7 @@ describe('WGSL -> GLSL ES 3.00 for the WebGL2 backend', () => {
   });
 
   it('reads the tone map pass: one std140 block of TonemapFragmentParams and the accumulation as a float sampler', () => {
-    const tonemap = translateProgram(specs.find((s) => s.key === 'tonemap')!, parseGlslInterface, esslFixups);
+    const tonemap = translateProgram(specs.find((s) => s.key === 'tonemap')!, translateSpec);
     expect(tonemap.blocks).toEqual([{ group: 0, binding: 0, stage: 'fragment', block: 'TonemapFragmentParams_block_0Fragment', struct: 'TonemapFragmentParams', instance: '_group_0_binding_0_fs' }]);
     expect(tonemap.samplers).toEqual([{ group: 0, binding: 1, stage: 'fragment', name: '_group_0_binding_1_fs', type: 'sampler2D' }]);
   });
@@ -52,7 +52,7 @@ describe('WGSL -> GLSL ES 3.00 for the WebGL2 backend', () => {
   it('makes the JSON the page build carries, which the host reads back by key', async () => {
     const json = await translateAll(process.cwd());
     expect(await translateAll(process.cwd())).toBe(json);
-    for (const spec of specs) expect(translatedProgram(spec.key, json)).toEqual(translateProgram(spec, parseGlslInterface, esslFixups));
-    expect(() => translatedProgram('nothing', json)).toThrow(/no translated program 'nothing' \(the build made: tonemap/);
+    for (const spec of specs) expect(translatedProgram(spec.key, json)).toEqual(translateProgram(spec, translateSpec));
+    expect(() => translatedProgram('nothing', json)).toThrow(/no translated program 'nothing' \(the build made: tonemap, path-trace:shallowStack, path-trace:environment\+analyticPrimitives\+shallowStack/);
   });
 });

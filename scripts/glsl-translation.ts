@@ -15,33 +15,20 @@ import type { WebGl2ProgramSpec } from '../src/webgl2/programs.ts';
 
 const TARGET = 'src/webgl2/glsl-translated.ts';
 const PROGRAMS = 'src/webgl2/programs.ts';
-const GLSL = 'src/webgl2/glsl.ts';
-const FIXUPS = 'src/webgl2/glsl-es300.ts';
+const TRANSLATE = 'src/webgl2/translate.ts';
 
-type ParseInterface = typeof import('../src/webgl2/glsl.ts').parseGlslInterface;
-type Fixups = typeof import('../src/webgl2/glsl-es300.ts').esslFixups;
+type TranslateSpec = typeof import('../src/webgl2/translate.ts').translateSpec;
 
-/** One program's two stages translated and its interface read; naga's message (module:line) on a failure, naming the program. */
-export function translateProgram(spec: WebGl2ProgramSpec, parseGlslInterface: ParseInterface, esslFixups: Fixups): GlslProgram {
-  const stage = (stage: 'vertex' | 'fragment', entryPoint: string): string => {
-    try {
-      return esslFixups(translate({ from: 'wgsl', to: 'glsl', source: spec.wgsl, options: { version: '300 es', stage, entryPoint } }));
-    } catch (e) {
-      const formatted = (e as { formatted?: string }).formatted ?? (e as Error).message;
-      throw new Error(`GLSL translation of the WebGL2 program '${spec.key}' (${spec.module}, ${stage} entry ${entryPoint}) failed:\n${formatted}`, { cause: e });
-    }
-  };
-  const vertex = stage('vertex', spec.vertexEntry);
-  const fragment = stage('fragment', spec.fragmentEntry);
-  return { key: spec.key, module: spec.module, vertex, fragment, ...parseGlslInterface(vertex, fragment) };
+/** One program translated with the Node package (src/webgl2/translate.ts translateSpec). */
+export function translateProgram(spec: WebGl2ProgramSpec, translateSpec: TranslateSpec): GlslProgram {
+  return translateSpec(spec, translate);
 }
 
 /** Every program, translated, as the JSON text glsl-translated.ts stands for; `extra` adds programs (a test's own). */
 export async function translateAll(root: string, extra: readonly WebGl2ProgramSpec[] = []): Promise<string> {
   const { module: programs } = await runnerImport<{ webGl2ProgramSpecs: () => WebGl2ProgramSpec[] }>(resolve(root, PROGRAMS), { root, configFile: false, logLevel: 'error' });
-  const { module: glsl } = await runnerImport<{ parseGlslInterface: ParseInterface }>(resolve(root, GLSL), { root, configFile: false, logLevel: 'error' });
-  const { module: es300 } = await runnerImport<{ esslFixups: Fixups }>(resolve(root, FIXUPS), { root, configFile: false, logLevel: 'error' });
-  return JSON.stringify([...programs.webGl2ProgramSpecs(), ...extra].map((spec) => translateProgram(spec, glsl.parseGlslInterface, es300.esslFixups)));
+  const { module: translation } = await runnerImport<{ translateSpec: TranslateSpec }>(resolve(root, TRANSLATE), { root, configFile: false, logLevel: 'error' });
+  return JSON.stringify([...programs.webGl2ProgramSpecs(), ...extra].map((spec) => translateProgram(spec, translation.translateSpec)));
 }
 
 export interface GlslTranslationOptions {

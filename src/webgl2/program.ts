@@ -79,21 +79,27 @@ export async function compileProgram(ctx: WebGl2Context, source: GlslProgram, la
   gl.deleteShader(vs);
   gl.deleteShader(fs);
 
-  const blocks: LinkedBlock[] = source.blocks.map((b, bindingPoint) => {
+  // A block or sampler the translation declared but the compiler found unused (a feature frozen off)
+  // is inactive: nothing is bound for it.
+  const blocks: LinkedBlock[] = [];
+  for (const b of source.blocks) {
     const index = gl.getUniformBlockIndex(program, b.block);
-    if (index === gl.INVALID_INDEX) throw new LanternError(`WebGL2: the program '${source.key}' has no uniform block ${b.block} (group ${b.group}, binding ${b.binding})`);
+    if (index === gl.INVALID_INDEX) continue;
+    const bindingPoint = blocks.length;
     gl.uniformBlockBinding(program, index, bindingPoint);
     const dataSize = gl.getActiveUniformBlockParameter(program, index, gl.UNIFORM_BLOCK_DATA_SIZE) as number;
     checkBlockLayout(gl, program, index, source.key, b.block, b.instance, layouts(b.struct));
-    return { group: b.group, binding: b.binding, bindingPoint, dataSize, struct: b.struct };
-  });
+    blocks.push({ group: b.group, binding: b.binding, bindingPoint, dataSize, struct: b.struct });
+  }
   gl.useProgram(program);
-  const samplers: LinkedSampler[] = source.samplers.map((s, unit) => {
+  const samplers: LinkedSampler[] = [];
+  for (const s of source.samplers) {
     const location = gl.getUniformLocation(program, s.name);
-    if (!location) throw new LanternError(`WebGL2: the program '${source.key}' has no sampler ${s.name} (group ${s.group}, binding ${s.binding})`);
+    if (!location) continue;
+    const unit = samplers.length;
     gl.uniform1i(location, unit);
-    return { group: s.group, binding: s.binding, unit, type: s.type };
-  });
+    samplers.push({ group: s.group, binding: s.binding, unit, type: s.type });
+  }
   if (samplers.length > ctx.limits.maxTextureImageUnits) {
     throw new LanternError(`WebGL2: the program '${source.key}' samples ${samplers.length} textures, this GPU allows ${ctx.limits.maxTextureImageUnits}`);
   }
@@ -118,13 +124,15 @@ export function blockLayoutProblems(members: readonly { name: string; offset: nu
   const problems: string[] = [];
   for (const { name, offset } of members) {
     const path = name.replace(`${block}.`, '').replace(`${instance}.`, '');
-    const fieldName = path.split(/[.[]/)[0]!;
+    const glslName = path.split(/[.[]/)[0]!;
+    // naga's namer appends '_' to a name GLSL reserves (sampler) or one ending in a digit (p0).
+    const fieldName = layout.fields.has(glslName) || !glslName.endsWith('_') ? glslName : glslName.slice(0, -1);
     const field = layout.fields.get(fieldName);
     if (!field) {
       problems.push(`${path} is no field of the WGSL struct`);
-    } else if (path === fieldName && offset !== field.offset) {
+    } else if (path === glslName && offset !== field.offset) {
       problems.push(`${path} at byte ${offset}, WGSL has ${field.offset}`);
-    } else if (path !== fieldName && (offset < field.offset || offset >= field.offset + field.size)) {
+    } else if (path !== glslName && (offset < field.offset || offset >= field.offset + field.size)) {
       problems.push(`${path} at byte ${offset}, outside WGSL's ${fieldName} (${field.offset}..${field.offset + field.size})`);
     }
   }
