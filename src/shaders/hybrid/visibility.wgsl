@@ -56,7 +56,7 @@ fn visible_hit(ray: Ray, id: vec2u) -> Hit {
     return none;
   }
   let r = local_ray(ray, id.x);
-  let tri = triangles_hot[id.y];
+  let tri = scene_triangle_hot(id.y);
   var h: vec3f;
   if (SCENE_HAS_ANALYTIC_PRIMITIVES && (tri.flags & PRIMITIVE_ANALYTIC) != 0u) {
     h = intersect_primitive(r.origin, r.direction, tri, 0.0, T_MISS);

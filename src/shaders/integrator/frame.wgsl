@@ -124,7 +124,7 @@ fn pixel_demodulation(pixel_index: u32) -> Demodulation {
   if (id == NO_ID) {
     return Demodulation(true, vec3f(1.0));
   }
-  let material = materials[id];
+  let material = scene_material(id);
   return Demodulation(material.base_color_texture == NO_TEXTURE, unpack_rgb9e5(pack_rgb9e5(material.base_color)));
 }
 

@@ -283,7 +283,7 @@ fn path_step(state: ptr<function, PathState>, record: ptr<function, PathRecord>,
     return false;
   }
   let surface = surface_at(hit, ray);
-  let material = materials[surface.material];
+  let material = scene_material(surface.material);
   if (SCENE_HAS_GENERAL_MATERIALS) {
     (*state).cone_width += (*state).cone_spread * hit.t;
     texture_lod = texture_lod_at(surface, hit.triangle, (*state).cone_width, ray.direction);

@@ -5,7 +5,7 @@
 //    white noise. rng_seed always gives this stream (tests, the debug views' primary rays);
 //  - the path tracers' sampler (sampler_seed, settings.sampler): that stream, or (SAMPLER_SOBOL) an
 //    Owen-scrambled Sobol sequence per pixel spread over the screen as blue noise, below.
-// Expects nothing.
+// Expects nothing (lib/bits: its bit reversal).
 //
 // The Sobol sampler. Every rng_next_2d draws one 2D dimension pair d (camera jitter d = 0, lens
 // d = 1, then the path's draws in trace_path's order; rng_next_f32 draws a whole pair and keeps x, so
@@ -35,6 +35,8 @@
 //    known in advance, which progressive and real-time rendering do not have.
 // The cost: pixels of a tile share their index block across samples, so a 2 × 2 tile's first two
 // frames hold its four points twice (each pixel's own sequence stays a net).
+
+#import lib/bits
 
 const SAMPLER_RANDOM: u32 = 0u;
 const SAMPLER_SOBOL: u32 = 1u;
@@ -90,7 +92,7 @@ fn sampler_pixel(sampler: u32, pixel: vec2u, image_size: vec2u, seed: u32) -> Rn
     return Rng(0u, RNG_WHITE, 0u, 0u);
   }
   let key = pcg_hash(seed ^ 0x2545f491u);
-  return Rng(key, 0u, 0u, reverseBits(morton_rank(pixel, image_size, pcg_hash(key))));
+  return Rng(key, 0u, 0u, bits_reverse(morton_rank(pixel, image_size, pcg_hash(key))));
 }
 
 // The stream of sample `sample_index` of the pixel `pixel_stream` (sampler_pixel) was made for.
@@ -99,7 +101,7 @@ fn sampler_next_sample(pixel_stream: Rng, pixel: vec2u, image_size: vec2u, sampl
     return rng_seed(pixel.y * image_size.x + pixel.x, sample_index, seed);
   }
   var rng = pixel_stream;
-  rng.sample_bits = reverseBits(sample_index);
+  rng.sample_bits = bits_reverse(sample_index);
   return rng;
 }
 
@@ -171,9 +173,9 @@ fn sobol_next_2d_bits(rng: ptr<function, Rng>) -> vec2u {
   let d = (*rng).dimension;
   (*rng).dimension = d + 1u;
   let key = pcg_hash((*rng).state ^ pcg_hash(d));
-  let index = reverseBits(laine_karras_permutation((*rng).sample_bits, key) ^ laine_karras_permutation((*rng).rank_bits, pcg_hash(key ^ 0x68e31da4u)));
-  let x = reverseBits(laine_karras_permutation(index, pcg_hash(key ^ 0xb5297a4du)));
-  let y = reverseBits(laine_karras_permutation(sobol_2d_y_reversed(index), pcg_hash(key ^ 0x1b56c4e9u)));
+  let index = bits_reverse(laine_karras_permutation((*rng).sample_bits, key) ^ laine_karras_permutation((*rng).rank_bits, pcg_hash(key ^ 0x68e31da4u)));
+  let x = bits_reverse(laine_karras_permutation(index, pcg_hash(key ^ 0xb5297a4du)));
+  let y = bits_reverse(laine_karras_permutation(sobol_2d_y_reversed(index), pcg_hash(key ^ 0x1b56c4e9u)));
   return vec2u(x, y);
 }
 
@@ -185,7 +187,7 @@ fn sobol_next_2d_bits(rng: ptr<function, Rng>) -> vec2u {
 // shift-mask-XOR steps (one per position bit) instead of a loop over the index's 32 bits (equal for
 // every index: tests/gpu/sampler.test.ts compares it with the loop).
 fn sobol_2d(i: u32) -> vec2u {
-  return vec2u(reverseBits(i), reverseBits(sobol_2d_y_reversed(i)));
+  return vec2u(bits_reverse(i), bits_reverse(sobol_2d_y_reversed(i)));
 }
 
 // The second coordinate of sobol_2d(i) with its bits reversed (bit k of the result is bit 31 − k of
@@ -216,7 +218,7 @@ fn laine_karras_permutation(x: u32, seed: u32) -> u32 {
 // random function of the bits above it, so dyadic intervals map to dyadic intervals of the same size.
 // Applied to an index it is Burley's shuffle: aligned blocks of 2^k indices map to aligned blocks.
 fn owen_scramble(x: u32, seed: u32) -> u32 {
-  return reverseBits(laine_karras_permutation(reverseBits(x), seed));
+  return bits_reverse(laine_karras_permutation(bits_reverse(x), seed));
 }
 
 // Permutation p (0 ≤ p < 24) of the four quadtree children, applied to child `digit`: Fisher–Yates on

@@ -32,7 +32,7 @@ fn box_corner(n: BvhNode, corner: u32) -> vec3f {
 
 @vertex
 fn wireframe_vertex(@builtin(vertex_index) index: u32, @builtin(instance_index) instance: u32) -> WireframeVertex {
-  let n = bvh_nodes[wireframe_nodes[instance]];
+  let n = scene_bvh_node(wireframe_nodes[instance]);
   // Edge e runs along axis e / 4; its other two corner bits are the two bits of e % 4.
   let edge = index / 2u;
   let axis = edge / 4u;

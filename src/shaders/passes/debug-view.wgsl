@@ -51,7 +51,7 @@ fn debug_value(kind: u32, ray: Ray, hit: Hit) -> vec4f {
   }
   switch kind {
     case DEBUG_VIEW_LEAF_SIZE: {
-      return vec4f(f32(bvh_nodes[work.hit_leaf].tri_count), 0.0, 0.0, 1.0);
+      return vec4f(f32(scene_bvh_node(work.hit_leaf).tri_count), 0.0, 0.0, 1.0);
     }
     case DEBUG_VIEW_BVH_DEPTH: {
       return vec4f(f32(node_depths[work.hit_leaf]), 0.0, 0.0, 1.0);
@@ -70,7 +70,7 @@ fn debug_value(kind: u32, ray: Ray, hit: Hit) -> vec4f {
       return vec4f(surface.shading_normal, 1.0);
     }
     case DEBUG_VIEW_ALBEDO: {
-      return vec4f(material_albedo(materials[surface.material], surface.uv).rgb, 1.0);
+      return vec4f(material_albedo(scene_material(surface.material), surface.uv).rgb, 1.0);
     }
     default: {
       return vec4f(abs(dot(surface.shading_normal, ray.direction)), 0.0, 0.0, 1.0);

@@ -70,7 +70,7 @@ fn raster_masked(tri: TriangleHot, instance: u32) -> bool {
 fn triangle_vertex(vertex: u32, instance: u32, masked: bool) -> RasterVertex {
   let primitive = vertex / 3u;
   let corner = vertex % 3u;
-  let tri = triangles_hot[primitive];
+  let tri = scene_triangle_hot(primitive);
   var out: RasterVertex;
   out.id = vec2u(instance, primitive);
   if ((tri.flags & PRIMITIVE_ANALYTIC) != 0u || raster_masked(tri, instance) != masked) {
@@ -110,7 +110,7 @@ fn raster_masked_fragment(v: RasterVertex) -> @location(0) vec2u {
   let ray = fragment_ray(v.clip.xy);
   set_alpha_salt(ray);
   set_filter_instance(v.id.x);
-  let tri = triangles_hot[v.id.y];
+  let tri = scene_triangle_hot(v.id.y);
   let h = triangle_plane_hit(local_ray(ray, v.id.x), tri);
   if (!accept_hit(tri, v.id.y, h.yz)) {
     discard;
@@ -140,7 +140,7 @@ fn analytic_bounds(tri: TriangleHot) -> array<vec3f, 2> {
 @vertex
 fn raster_analytic(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> RasterVertex {
   let primitive = vertex / 36u;
-  let tri = triangles_hot[primitive];
+  let tri = scene_triangle_hot(primitive);
   var out: RasterVertex;
   out.id = vec2u(instance, primitive);
   if ((tri.flags & PRIMITIVE_ANALYTIC) == 0u) {

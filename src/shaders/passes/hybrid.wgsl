@@ -89,7 +89,7 @@ struct Shading {
 
 fn shading_at(hit: Hit, ray: Ray) -> Shading {
   let surface = surface_at(hit, ray);
-  let material = materials[surface.material];
+  let material = scene_material(surface.material);
   if (SCENE_HAS_GENERAL_MATERIALS) {
     texture_lod = texture_lod_at(surface, hit.triangle, path_settings().pixel_spread * hit.t, ray.direction);
   }
@@ -240,7 +240,7 @@ fn bsdf_ray(s: Shading, wo_world: vec3f, count: u32, rng: ptr<function, Rng>) ->
     return result;
   }
   let surface = surface_at(hit, ray);
-  let material = materials[surface.material];
+  let material = scene_material(surface.material);
   let cos_emitter = emitter_cosine(material, -dot(surface.geometric_normal, wi));
   if (cos_emitter > 0.0 && any(material.emission > vec3f(0.0))) {
     let light_pdf = emitter_pdf(surface, material, origin, hit.t, cos_emitter);

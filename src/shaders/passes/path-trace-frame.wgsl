@@ -72,7 +72,7 @@ var<private> emission_rays: u32 = 0u;
 // Whether a material emits at all (its emission factor; a texture only modulates it). The centre
 // records' id is the material's index.
 fn material_emits(id: u32) -> bool {
-  return id != NO_ID && any(materials[id].emission > vec3f(0.0));
+  return id != NO_ID && any(scene_material(id).emission > vec3f(0.0));
 }
 
 // Whether the centre of the pixel or of a neighbour (3×3) is on an emitting material (this frame's
@@ -114,7 +114,7 @@ fn pixel_emission(pixel: vec2u) -> u32 {
       continue;
     }
     let s = surface_at(h, r);
-    let material = materials[s.material];
+    let material = scene_material(s.material);
     if (!(emitter_cosine(material, -dot(s.geometric_normal, r.direction)) > 0.0)) {
       continue;
     }

@@ -165,7 +165,7 @@ fn no_light_view() -> LightView {
 
 // The light code and instance a light point names (as sample_light reads its slot).
 fn light_point_code(point: LightPoint) -> vec2u {
-  let slot = light_slots[point.slot];
+  let slot = scene_light_slot(point.slot);
   let code = select(slot.light, slot.alias_light, point.use_alias);
   let instance = select(0u, select(slot.instance, slot.alias_instance, point.use_alias), SCENE_HAS_INSTANCES);
   return vec2u(code, instance);
@@ -203,7 +203,7 @@ fn view_sphere_point(sphere: u32, instance: u32, x: vec3f, q: vec2u) -> LightVie
   if (!(sin2_max < 1.0) || !(cos_light > 0.0) || !(distance > 0.0)) {
     return no_light_view();
   }
-  let material = materials[instance_material(instance, sphere)];
+  let material = scene_material(instance_material(instance, sphere));
   let area = 4.0 * PI * s.w * s.w;
   let pdf = light_selection_pmf(material, area) / sphere_cone_solid_angle(sin2_max);
   return LightView(wi, distance, material_emission(material, sphere_uv(point - s.xyz), wi), cos_light / distance2, pdf);
@@ -218,7 +218,7 @@ fn view_light_point(point: LightPoint, x: vec3f) -> LightView {
   let kind = ci.x >> LIGHT_KIND_SHIFT;
   let index = ci.x & LIGHT_INDEX_MASK;
   if (kind == LIGHT_KIND_TRIANGLE) {
-    if (SCENE_HAS_ANALYTIC_PRIMITIVES && (triangles_hot[index].flags & PRIMITIVE_SPHERE) != 0u) {
+    if (SCENE_HAS_ANALYTIC_PRIMITIVES && (scene_triangle_flags(index) & PRIMITIVE_SPHERE) != 0u) {
       return view_sphere_point(index, ci.y, x, point.q);
     }
     return view_triangle_point(index, ci.y, x, restir_u(point.q));
@@ -247,11 +247,11 @@ fn restir_candidate(x: vec3f, rng: ptr<function, Rng>) -> LightPoint {
   let u = rng_next_2d(rng);
   let light_count = scene_light_count();
   let slot_index = min(u32(u_select.x * f32(light_count)), light_count - 1u);
-  var point = LightPoint(slot_index, !(u_select.y < light_slots[slot_index].keep), restir_q(u));
+  var point = LightPoint(slot_index, !(u_select.y < scene_light_slot(slot_index).keep), restir_q(u));
   if (SCENE_HAS_ANALYTIC_PRIMITIVES) {
     let ci = light_point_code(point);
     let index = ci.x & LIGHT_INDEX_MASK;
-    if ((ci.x >> LIGHT_KIND_SHIFT) == LIGHT_KIND_TRIANGLE && (triangles_hot[index].flags & PRIMITIVE_SPHERE) != 0u) {
+    if ((ci.x >> LIGHT_KIND_SHIFT) == LIGHT_KIND_TRIANGLE && (scene_triangle_flags(index) & PRIMITIVE_SPHERE) != 0u) {
       // A sphere's point depends on x (its cone): name it by where it lies on the sphere instead.
       let ls = sample_sphere_light(index, ci.y, x, restir_u(point.q));
       let s = sphere_of(index, ci.y);

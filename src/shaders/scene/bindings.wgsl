@@ -1,46 +1,59 @@
 // Bind group 0, the scene, shared by every pass that traces rays (gpu/scene-resources.ts fills it).
-// Expects nothing; provides the scene arrays under these names. Storage buffers are few on purpose:
+// Expects nothing; provides the scene's records through the accessors below (scene_bvh_node, ...),
+// which every module calls instead of indexing the arrays: scene/bindings-textures declares the same
+// functions and bindings with the arrays in rgba32uint textures (the fragment tracer, which WebGL2
+// runs: docs/fragment-tracer.md), linked in place of this module. Storage buffers are few on purpose:
 // with group 2's they must fit WebGPU's default limit of 8 per shader stage.
 
 #import scene/types
+#import scene/bindings-shared
 
-@group(0) @binding(0) var<uniform> scene_info: SceneInfo;
 @group(0) @binding(1) var<storage, read> bvh_nodes: array<BvhNode>;
 @group(0) @binding(2) var<storage, read> triangles_hot: array<TriangleHot>;
 @group(0) @binding(3) var<storage, read> triangles_shading: array<TriangleShading>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var<storage, read> light_slots: array<LightSlot>;
 @group(0) @binding(6) var<storage, read> texture_refs: array<TextureRef>;
-// rgba8unorm-srgb pages: textureLoad returns linear colour.
-@group(0) @binding(7) var texture_atlas: texture_2d_array<f32>;
-// rgba8unorm pages for data textures (TEXTURE_LINEAR).
-@group(0) @binding(13) var texture_atlas_linear: texture_2d_array<f32>;
-@group(0) @binding(14) var<uniform> punctual_lights: PunctualLights;
-// Per-vertex tangents and the second uv set, only for scenes with normal maps or TEXCOORD_1 (else
-// 1×1): f32 bits in an rgba32uint texture (gpu/pack/scene-pack.ts), read where a material needs them.
-@group(0) @binding(15) var triangle_attributes: texture_2d<u32>;
-// The instances of the two-level BVH (bvh/levels.ts; one, the static world, without moving instances):
-// the bytes of Instance records, INSTANCE_TEXELS rgba32uint texels each, INSTANCES_PER_ROW to a row
-// (scene/instances.wgsl instance_record reads one). A texture, not a storage buffer: the real-time
-// chain's passes already use the ten storage buffers a browser may give a shader stage.
-@group(0) @binding(16) var instance_data: texture_2d<u32>;
 
-// ---- Environment (bindings 8–11): scene/environment.wgsl reads these; gpu/pack/environment-pack.ts
-// packs them. environment_map is a lat-long image of f32 RGBA radiance (top row = +y) stored as the
-// bits of an rgba32uint texture: rgba32float textures are unfilterable, which a layout reflected from
-// texture_2d<f32> cannot say, and filtering is manual anyway (textureLoad + bitcast, full f32 range).
-// environment_cdf holds the CDFs of its piecewise-constant sampling density as f32 bits (r32uint):
-// row j < height the conditional CDF over the columns of row j, row height the marginal CDF over
-// rows, each without its first entry (always 0), so max(width, height) texels a row: an 8192-wide
-// map fits a device's maxTextureDimension2D of 8192. A texture, not a storage buffer: storage
-// buffers are kept within WebGPU's per-stage limit.
-#import scene/environment-types
+// The records, by index. The _low/_high and field accessors load only what their callers read.
+fn scene_bvh_node(i: u32) -> BvhNode {
+  return bvh_nodes[i];
+}
 
-@group(0) @binding(8) var<uniform> environment_info: EnvironmentInfo;
-@group(0) @binding(9) var environment_map: texture_2d<u32>;
-@group(0) @binding(10) var environment_cdf: texture_2d<u32>;
+// The node's first 16 bytes as words: (aabb_min bits, left_first).
+fn scene_bvh_node_low(i: u32) -> vec4u {
+  return vec4u(bitcast<vec3u>(bvh_nodes[i].aabb_min), bvh_nodes[i].left_first);
+}
 
-// ---- BSDF energy tables (binding 12): scene/bsdf-tables.wgsl reads them; gpu/pack/bsdf-tables.ts
-// computes them. f32 values as the bits of an r32uint texture, BSDF_TABLE_TEXTURE_WIDTH values a
-// row (a texture rather than a storage buffer, for the per-stage storage-buffer limit).
-@group(0) @binding(12) var bsdf_tables: texture_2d<u32>;
+// Its last 16: (aabb_max bits, tri_count).
+fn scene_bvh_node_high(i: u32) -> vec4u {
+  return vec4u(bitcast<vec3u>(bvh_nodes[i].aabb_max), bvh_nodes[i].tri_count);
+}
+
+fn scene_triangle_hot(i: u32) -> TriangleHot {
+  return triangles_hot[i];
+}
+
+fn scene_triangle_flags(i: u32) -> u32 {
+  return triangles_hot[i].flags;
+}
+
+fn scene_triangle_shading(i: u32) -> TriangleShading {
+  return triangles_shading[i];
+}
+
+fn scene_triangle_material(i: u32) -> u32 {
+  return triangles_shading[i].material;
+}
+
+fn scene_material(i: u32) -> Material {
+  return materials[i];
+}
+
+fn scene_light_slot(i: u32) -> LightSlot {
+  return light_slots[i];
+}
+
+fn scene_texture_ref(i: u32) -> TextureRef {
+  return texture_refs[i];
+}

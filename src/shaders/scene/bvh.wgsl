@@ -55,7 +55,7 @@ const BVH_SHALLOW_STACK_SIZE: u32 = 32u;
 // popped nodes that start beyond the closest hit (by re-testing the box, or by pushing entry distances:
 // the extra work in the pop path costs more than the visits it saves on a closed mesh).
 fn node_entry(node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> f32 {
-  let n = bvh_nodes[node];
+  let n = scene_bvh_node(node);
   return intersect_aabb(origin, inv_dir, n.aabb_min, n.aabb_max, t_best);
 }
 
@@ -164,7 +164,7 @@ fn trace_closest(ray: Ray) -> Hit {
   var shallow_stack: array<u32, BVH_SHALLOW_STACK_SIZE>;
   var sp = 0u;
   loop {
-    let n = bvh_nodes[node];
+    let n = scene_bvh_node(node);
     if (BVH_COUNT_WORK) {
       bvh_work.nodes_visited += 1u;
     }
@@ -175,7 +175,7 @@ fn trace_closest(ray: Ray) -> Hit {
         continue;
       }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
-        let tri = triangles_hot[i];
+        let tri = scene_triangle_hot(i);
         let r = intersect_primitive(local.origin, local.direction, tri, ray.t_min, hit.t);
         if (BVH_COUNT_WORK) {
           bvh_work.triangles_tested += 1u;
@@ -233,7 +233,7 @@ fn trace_closest(ray: Ray) -> Hit {
     node = bvh_stack_entry(&stack, &shallow_stack, sp);
   }
   // A mirroring instance's world triangle has v1 and v2 swapped (scene/instances world_primitive): so do the barycentrics.
-  if (SCENE_HAS_INSTANCES && hit.triangle != NO_TRIANGLE && instance_mirrored(hit.instance) && (triangles_hot[hit.triangle].flags & PRIMITIVE_ANALYTIC) == 0u) {
+  if (SCENE_HAS_INSTANCES && hit.triangle != NO_TRIANGLE && instance_mirrored(hit.instance) && (scene_triangle_flags(hit.triangle) & PRIMITIVE_ANALYTIC) == 0u) {
     let u = hit.u;
     hit.u = hit.v;
     hit.v = u;
@@ -263,14 +263,14 @@ fn trace_any(ray: Ray) -> bool {
   var shallow_stack: array<u32, BVH_SHALLOW_STACK_SIZE>;
   var sp = 0u;
   loop {
-    let n = bvh_nodes[node];
+    let n = scene_bvh_node(node);
     if (n.tri_count > 0u) {
       if (SCENE_HAS_INSTANCES && instance == NO_INSTANCE) {
         node = enter_instance(ray, n.left_first, sp, &instance, &local, &leave_at);
         continue;
       }
       for (var i = n.left_first; i < n.left_first + n.tri_count; i++) {
-        let tri = triangles_hot[i];
+        let tri = scene_triangle_hot(i);
         let r = intersect_primitive(local.origin, local.direction, tri, ray.t_min, ray.t_max);
         if (r.x < ray.t_max && accept_hit(tri, i, r.yz)) {
           return true;
@@ -305,9 +305,12 @@ fn trace_any(ray: Ray) -> bool {
       local = traversal_ray(ray, 0u);
     }
     if (sp == 0u) {
-      return false;
+      break;
     }
     sp -= 1u;
     node = bvh_stack_entry(&stack, &shallow_stack, sp);
   }
+  // After the loop, not inside it: naga (the fragment tracer's GLSL translation) wants a return at
+  // the end of a function that returns a value.
+  return false;
 }

@@ -20,11 +20,11 @@ const BVH4_LEAF_BIT: u32 = 0x80000000u;
 const BVH4_FIRST_MASK: u32 = 0x07ffffffu;
 
 fn bvh4_lo(r: u32) -> vec4f {
-  return bitcast<vec4f>(vec4u(bitcast<vec3u>(bvh_nodes[r].aabb_min), bvh_nodes[r].left_first));
+  return bitcast<vec4f>(scene_bvh_node_low(r));
 }
 
 fn bvh4_hi(r: u32) -> vec4f {
-  return bitcast<vec4f>(vec4u(bitcast<vec3u>(bvh_nodes[r].aabb_max), bvh_nodes[r].tri_count));
+  return bitcast<vec4f>(scene_bvh_node_high(r));
 }
 
 // Node `node`'s four entry distances (T_MISS: missed, or an unused slot) and child references.
@@ -35,7 +35,7 @@ struct Bvh4Visit {
 
 fn bvh4_visit(nodes_record: u32, node: u32, origin: vec3f, inv_dir: vec3f, t_best: f32) -> Bvh4Visit {
   let r = nodes_record + 4u * node;
-  let refs = vec4u(bitcast<vec3u>(bvh_nodes[r + 3u].aabb_min), bvh_nodes[r + 3u].left_first);
+  let refs = scene_bvh_node_low(r + 3u);
   let t = wide_slabs4(bvh4_lo(r), bvh4_hi(r), bvh4_lo(r + 1u), bvh4_hi(r + 1u), bvh4_lo(r + 2u), bvh4_hi(r + 2u), origin, inv_dir, t_best);
   return Bvh4Visit(select(t, vec4f(T_MISS), refs == vec4u(WIDE_EMPTY)), refs);
 }
@@ -101,7 +101,7 @@ fn bvh4_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
       }
       let leaf = bvh4_leaf_range(child_ref);
       for (var i = leaf.x; i < leaf.y; i++) {
-        let tri = triangles_hot[i];
+        let tri = scene_triangle_hot(i);
         let r = intersect_primitive(origin, direction, tri, t_min, (*hit).t);
         work.y += 1u;
         if (r.x < (*hit).t && accept_hit(tri, i, r.yz)) {
@@ -140,7 +140,7 @@ fn bvh4_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
       }
       let leaf = bvh4_leaf_range(child_ref);
       for (var i = leaf.x; i < leaf.y; i++) {
-        let tri = triangles_hot[i];
+        let tri = scene_triangle_hot(i);
         let r = intersect_primitive(origin, direction, tri, t_min, t_max);
         if (r.x < t_max && accept_hit(tri, i, r.yz)) {
           return true;
@@ -148,8 +148,11 @@ fn bvh4_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
       }
     }
     if (next == WIDE_EMPTY) {
-      return false;
+      break;
     }
     node = next;
   }
+  // After the loop, not inside it: naga (the fragment tracer's GLSL translation) wants a return at
+  // the end of a function that returns a value.
+  return false;
 }

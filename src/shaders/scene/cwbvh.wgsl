@@ -12,6 +12,7 @@
 // 5 the node's first leaf-table entry, 6-7 a meta byte a slot (leaf: count | entry << 5; 0 else),
 // 8-19 the quantised planes: lo x, lo y, lo z, hi x, hi y, hi z, two words (slots 0-3, 4-7) each.
 
+#import lib/bits
 #import scene/hit-filter
 #import scene/bindings
 #import scene/intersect
@@ -54,9 +55,9 @@ struct CwbvhNode {
 
 fn cwbvh_node(w: u32) -> CwbvhNode {
   let r = w >> 3u;
-  let a = bvh_nodes[r];
-  let b = bvh_nodes[r + 1u];
-  let c = bvh_nodes[r + 2u];
+  let a = scene_bvh_node(r);
+  let b = scene_bvh_node(r + 1u);
+  let c = scene_bvh_node(r + 2u);
   let a_lo = vec4u(bitcast<vec3u>(a.aabb_min), a.left_first);
   let a_hi = vec4u(bitcast<vec3u>(a.aabb_max), a.tri_count);
   let b_lo = vec4u(bitcast<vec3u>(b.aabb_min), b.left_first);
@@ -126,9 +127,9 @@ fn cwbvh_entry_group(e: vec2u) -> CwbvhGroup {
 // Takes the group's next hit in visiting order and returns its node (the internal children follow
 // base in slot order).
 fn cwbvh_take(g: ptr<function, CwbvhGroup>, octant: u32) -> u32 {
-  let slot = firstTrailingBit((*g).hits) ^ octant;
+  let slot = bits_first_trailing((*g).hits) ^ octant;
   (*g).hits &= (*g).hits - 1u;
-  return (*g).base + countOneBits((*g).imask & ((1u << slot) - 1u));
+  return (*g).base + bits_count_ones((*g).imask & ((1u << slot) - 1u));
 }
 
 // The closest hit of the static world before (*hit).t, written to `hit` (instance 0). Returns the
@@ -161,10 +162,10 @@ fn cwbvh_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hi
       if (leaves == 0u) {
         break;
       }
-      let range = cwbvh_leaf(v, firstTrailingBit(leaves), octant, header.y);
+      let range = cwbvh_leaf(v, bits_first_trailing(leaves), octant, header.y);
       leaves &= leaves - 1u;
       for (var i = range.x; i < range.x + range.y; i++) {
-        let tri = triangles_hot[i];
+        let tri = scene_triangle_hot(i);
         let r = intersect_primitive(origin, direction, tri, t_min, (*hit).t);
         work.y += 1u;
         if (r.x < (*hit).t && accept_hit(tri, i, r.yz)) {
@@ -187,7 +188,7 @@ fn cwbvh_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max:
   loop {
     if (group.hits == 0u) {
       if (sp == 0u) {
-        return false;
+        break;
       }
       sp -= 1u;
       group = cwbvh_entry_group(stack[sp]);
@@ -203,10 +204,10 @@ fn cwbvh_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max:
       if (leaves == 0u) {
         break;
       }
-      let range = cwbvh_leaf(v, firstTrailingBit(leaves), octant, header.y);
+      let range = cwbvh_leaf(v, bits_first_trailing(leaves), octant, header.y);
       leaves &= leaves - 1u;
       for (var i = range.x; i < range.x + range.y; i++) {
-        let tri = triangles_hot[i];
+        let tri = scene_triangle_hot(i);
         let r = intersect_primitive(origin, direction, tri, t_min, t_max);
         if (r.x < t_max && accept_hit(tri, i, r.yz)) {
           return true;
@@ -215,4 +216,7 @@ fn cwbvh_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max:
     }
     group = CwbvhGroup(v.child_base, v.internal_hits, v.imask);
   }
+  // After the loop, not inside it: naga (the fragment tracer's GLSL translation) wants a return at
+  // the end of a function that returns a value.
+  return false;
 }

@@ -21,14 +21,14 @@ struct GridHeader {
 }
 
 fn grid_header() -> GridHeader {
-  let a = bvh_nodes[scene_info.grid_base];
-  let b = bvh_nodes[scene_info.grid_base + 1u];
+  let a = scene_bvh_node(scene_info.grid_base);
+  let b = scene_bvh_node(scene_info.grid_base + 1u);
   return GridHeader(a.aabb_min, a.aabb_max, b.aabb_min, vec3u(a.left_first, a.tri_count, b.left_first), bitcast<u32>(b.aabb_max.x), bitcast<u32>(b.aabb_max.y));
 }
 
 // The four words of bvh_nodes that hold word `w` (w & 3 picks one).
 fn grid_quad(w: u32) -> vec4u {
-  let n = bvh_nodes[w >> 3u];
+  let n = scene_bvh_node(w >> 3u);
   return select(vec4u(bitcast<vec3u>(n.aabb_min), n.left_first), vec4u(bitcast<vec3u>(n.aabb_max), n.tri_count), (w & 4u) != 0u);
 }
 
@@ -147,7 +147,7 @@ fn grid_closest(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, hit
       if (mailbox_seen(&seen, leaf)) {
         continue;
       }
-      let tri = triangles_hot[leaf];
+      let tri = scene_triangle_hot(leaf);
       let r = intersect_primitive(origin, direction, tri, t_min, (*hit).t);
       tested += 1u;
       if (r.x < (*hit).t && accept_hit(tri, leaf, r.yz)) {
@@ -178,14 +178,17 @@ fn grid_any(origin: vec3f, direction: vec3f, inv_dir: vec3f, t_min: f32, t_max: 
       if (mailbox_seen(&seen, leaf)) {
         continue;
       }
-      let tri = triangles_hot[leaf];
+      let tri = scene_triangle_hot(leaf);
       let r = intersect_primitive(origin, direction, tri, t_min, t_max);
       if (r.x < t_max && accept_hit(tri, leaf, r.yz)) {
         return true;
       }
     }
     if (t_max <= t_exit || !grid_step(h, &walk, axis, origin, inv_dir)) {
-      return false;
+      break;
     }
   }
+  // After the loop, not inside it: naga (the fragment tracer's GLSL translation) wants a return at
+  // the end of a function that returns a value.
+  return false;
 }

@@ -38,7 +38,7 @@ fn accept_hit(tri: TriangleHot, triangle: u32, bary: vec2f) -> bool {
     }
     return alpha_test_passes(instance_material(filter_instance, triangle), triangle, bary, alpha_salt);
   }
-  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(triangles_shading[triangle].material, triangle, bary, alpha_salt);
+  return (tri.flags & TRIANGLE_ALPHA_MASKED) == 0u || alpha_test_passes(scene_triangle_material(triangle), triangle, bary, alpha_salt);
 }
 
 fn set_alpha_salt(ray: Ray) {

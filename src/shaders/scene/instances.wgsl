@@ -83,7 +83,7 @@ fn instance_scale(inst: Instance) -> f32 {
 // The primitive `leaf` of `instance` in world space. A mirroring instance's triangles have e1 and e2
 // swapped, so that e1 × e2 still points out of the front face (as scene/triangles.ts writes them).
 fn world_primitive(instance: u32, leaf: u32) -> TriangleHot {
-  let prim = triangles_hot[leaf];
+  let prim = scene_triangle_hot(leaf);
   if (instance_is_static(instance)) {
     return prim;
   }
@@ -109,13 +109,13 @@ fn world_primitive(instance: u32, leaf: u32) -> TriangleHot {
 // swapped with a mirror, like the positions), the instance's material where it replaces the mesh's,
 // and the source index in the scene's flattened list.
 fn world_shading(instance: u32, leaf: u32) -> TriangleShading {
-  let s = triangles_shading[leaf];
+  let s = scene_triangle_shading(leaf);
   if (instance_is_static(instance)) {
     return s;
   }
   let inst = instance_record(instance);
   var out = s;
-  let mirrored = (inst.flags & INSTANCE_MIRRORED) != 0u && (triangles_hot[leaf].flags & PRIMITIVE_ANALYTIC) == 0u;
+  let mirrored = (inst.flags & INSTANCE_MIRRORED) != 0u && (scene_triangle_flags(leaf) & PRIMITIVE_ANALYTIC) == 0u;
   out.n0 = world_normal(inst, s.n0);
   out.n1 = world_normal(inst, select(s.n1, s.n2, mirrored));
   out.n2 = world_normal(inst, select(s.n2, s.n1, mirrored));
@@ -128,7 +128,7 @@ fn world_shading(instance: u32, leaf: u32) -> TriangleShading {
 
 // The material of `leaf` as `instance` shows it.
 fn instance_material(instance: u32, leaf: u32) -> u32 {
-  let own = triangles_shading[leaf].material;
+  let own = scene_triangle_material(leaf);
   if (instance_is_static(instance)) {
     return own;
   }
@@ -138,7 +138,7 @@ fn instance_material(instance: u32, leaf: u32) -> u32 {
 
 // Which stored vertex (0, 1, 2) of `leaf` is vertex k of the world-space primitive.
 fn stored_vertex(instance: u32, leaf: u32, k: u32) -> u32 {
-  if (k == 0u || !instance_mirrored(instance) || (triangles_hot[leaf].flags & PRIMITIVE_ANALYTIC) != 0u) {
+  if (k == 0u || !instance_mirrored(instance) || (scene_triangle_flags(leaf) & PRIMITIVE_ANALYTIC) != 0u) {
     return k;
   }
   return 3u - k;
@@ -147,5 +147,5 @@ fn stored_vertex(instance: u32, leaf: u32, k: u32) -> u32 {
 // A hit's barycentrics in the stored vertex order (trace_closest swaps them for mirroring instances).
 fn stored_bary(hit: Hit) -> vec2f {
   let bary = vec2f(hit.u, hit.v);
-  return select(bary, bary.yx, instance_mirrored(hit.instance) && (triangles_hot[hit.triangle].flags & PRIMITIVE_ANALYTIC) == 0u);
+  return select(bary, bary.yx, instance_mirrored(hit.instance) && (scene_triangle_flags(hit.triangle) & PRIMITIVE_ANALYTIC) == 0u);
 }

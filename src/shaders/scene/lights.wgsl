@@ -116,7 +116,7 @@ fn triangle_light_point(triangle: u32, instance: u32, p: vec3f, u: vec2f) -> Tri
   let b = sample_triangle_uniform(u);
   let cross_e = cross(tri.e1, tri.e2);
   let area = 0.5 * length(cross_e);
-  let material = materials[shading.material];
+  let material = scene_material(shading.material);
   let to_light = tri.v0 + b.x * tri.e1 + b.y * tri.e2 - p;
   let distance2 = dot(to_light, to_light);
   let distance = sqrt(distance2);
@@ -137,7 +137,7 @@ fn triangle_light_point(triangle: u32, instance: u32, p: vec3f, u: vec2f) -> Tri
 fn sample_sphere_light(sphere: u32, instance: u32, p: vec3f, u: vec2f) -> LightSample {
   let prim = world_primitive(instance, sphere);
   let r = prim.e1.x;
-  let material = materials[instance_material(instance, sphere)];
+  let material = scene_material(instance_material(instance, sphere));
   let to_centre = prim.v0 - p;
   let d2 = dot(to_centre, to_centre);
   let sin2_max = r * r / d2;
@@ -196,14 +196,14 @@ fn sample_punctual_light(index: u32, p: vec3f) -> LightSample {
 fn sample_light(p: vec3f, u_select: vec2f, u: vec2f) -> LightSample {
   let light_count = scene_light_count();
   let slot_index = min(u32(u_select.x * f32(light_count)), light_count - 1u);
-  let slot = light_slots[slot_index];
+  let slot = scene_light_slot(slot_index);
   let keep = u_select.y < slot.keep;
   let code = select(slot.alias_light, slot.light, keep);
   let kind = code >> LIGHT_KIND_SHIFT;
   let index = code & LIGHT_INDEX_MASK;
   if (kind == LIGHT_KIND_TRIANGLE) {
     let instance = select(0u, select(slot.alias_instance, slot.instance, keep), SCENE_HAS_INSTANCES);
-    if (SCENE_HAS_ANALYTIC_PRIMITIVES && (triangles_hot[index].flags & PRIMITIVE_SPHERE) != 0u) {
+    if (SCENE_HAS_ANALYTIC_PRIMITIVES && (scene_triangle_flags(index) & PRIMITIVE_SPHERE) != 0u) {
       return sample_sphere_light(index, instance, p, u);
     }
     return sample_triangle_light(index, instance, p, u);

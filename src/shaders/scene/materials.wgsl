@@ -73,7 +73,7 @@ fn texture_bilinear(t: TextureRef, st: vec2f) -> vec4f {
 // colour. Nearest textures read level 0; filtered ones blend the two mip levels around the ray
 // cone's level of detail (trilinear).
 fn texture_texel(index: u32, uv: vec2f) -> vec4f {
-  let t = texture_refs[index];
+  let t = scene_texture_ref(index);
   let coords = select(uv, surface_uv1, (t.flags & TEXTURE_UV1) != 0u);
   let st = vec2f(dot(t.transform_u, vec3f(coords, 1.0)), dot(t.transform_v, vec3f(coords, 1.0)));
   if ((t.flags & TEXTURE_BILINEAR) == 0u) {
@@ -97,7 +97,7 @@ fn coverage_texel(index: u32, uv: vec2f) -> f32 {
   if (index == NO_TEXTURE) {
     return 1.0;
   }
-  let t = texture_refs[index];
+  let t = scene_texture_ref(index);
   let st = vec2f(dot(t.transform_u, vec3f(uv, 1.0)), dot(t.transform_v, vec3f(uv, 1.0)));
   if ((t.flags & TEXTURE_BILINEAR) == 0u) {
     return texture_fetch(t, vec2i(floor(st * vec2f(t.size)))).a;
@@ -140,7 +140,7 @@ fn material_emission(material: Material, uv: vec2f, direction: vec3f) -> vec3f {
 
 // Texture coordinates at barycentrics (u, v) of v1 and v2 of a triangle (leaf order).
 fn triangle_uv(triangle: u32, bary: vec2f) -> vec2f {
-  let s = triangles_shading[triangle];
+  let s = scene_triangle_shading(triangle);
   return (1.0 - bary.x - bary.y) * s.uv0 + bary.x * s.uv1 + bary.y * s.uv2;
 }
 
@@ -154,7 +154,7 @@ fn coverage_random(triangle: u32, bary: vec2f, salt: u32) -> f32 {
 // Whether a triangle with a hit filter (alpha mask or blend) is really there at these barycentrics,
 // for a ray identified by `salt`, when it shows `material_index` (its own, or its instance's).
 fn alpha_test_passes(material_index: u32, triangle: u32, bary: vec2f, salt: u32) -> bool {
-  let material = materials[material_index];
+  let material = scene_material(material_index);
   if ((material.flags & (MATERIAL_ALPHA_MASK | MATERIAL_ALPHA_BLEND)) == 0u) {
     return true;
   }

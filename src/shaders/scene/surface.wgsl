@@ -151,7 +151,7 @@ fn instance_tangent(instance: u32, t: vec4f) -> vec4f {
 // Cones", JCGT 10(1), §3).
 // Spheres and capsules cover the unit uv square once, so their uv area is 1.
 fn texture_lod_at(surface: Surface, triangle: u32, cone_width: f32, direction: vec3f) -> f32 {
-  let s = triangles_shading[triangle];
+  let s = scene_triangle_shading(triangle);
   let duv1 = s.uv1 - s.uv0;
   let duv2 = s.uv2 - s.uv0;
   let uv_area = select(0.5 * abs(duv1.x * duv2.y - duv1.y * duv2.x), 1.0, surface.kind != 0u);

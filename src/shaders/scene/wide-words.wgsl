@@ -17,9 +17,9 @@ const WIDE_STACK_SIZE: u32 = 64u;
 fn wide_quad(w: u32) -> vec4u {
   let r = w >> 3u;
   if ((w & 4u) != 0u) {
-    return vec4u(bitcast<vec3u>(bvh_nodes[r].aabb_max), bvh_nodes[r].tri_count);
+    return scene_bvh_node_high(r);
   }
-  return vec4u(bitcast<vec3u>(bvh_nodes[r].aabb_min), bvh_nodes[r].left_first);
+  return scene_bvh_node_low(r);
 }
 
 fn wide_word(w: u32) -> u32 {
@@ -28,7 +28,7 @@ fn wide_word(w: u32) -> u32 {
 
 // (word of node 0, word of the leaf table).
 fn wide_header() -> vec2u {
-  let n = bvh_nodes[scene_info.grid_base];
+  let n = scene_bvh_node(scene_info.grid_base);
   return bitcast<vec3u>(n.aabb_min).xy;
 }
 
