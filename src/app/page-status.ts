@@ -94,6 +94,7 @@ export class PageStatus {
     else if (v.state === 'idle') parts = [part(10, 'press Play to start')];
     else if (v.webgl2.compiling) parts = [part(10, `compiling ${v.webgl2.compiling} (WebGL2; ANGLE takes seconds for it)…`, 'compiling (WebGL2)…')];
     else if (v.state === 'starting' || (v.awaitingFirstFrame && compiling)) parts = compiling ? waitParts('', 'shaders') : [part(10, 'starting the GPU…')];
+    else if (v.awaitingFirstFrame && v.backend.kind === 'webgl2') parts = [part(10, 'rendering the first frame (WebGL2: the driver compiles the path tracer at its first draw, seconds to minutes)…', 'rendering the first frame…')];
     else if (v.awaitingFirstFrame) parts = [part(10, 'rendering the first frame…')];
     else {
       const r = v.settings.render;

@@ -35,7 +35,7 @@ interface Radiance {
 }
 
 /** Opens `query`, plays until `samples`, pauses and reads the estimate. */
-async function render(browser: Browser, query: string, samples: number): Promise<{ page: Page; errors: string[]; radiance: Radiance; ms: number }> {
+async function render(browser: Browser, query: string, samples: number): Promise<{ page: Page; errors: string[]; radiance: Radiance; ms: number; firstFrameMs: number }> {
   const { page, errors } = await openWatchedPage(browser, `${served.url}?${query}`, VIEWPORT);
   await waitForPage(page, () => window.lantern && !window.lantern.loading && window.lantern.scene !== '' && !(document.getElementById('play') as HTMLButtonElement).disabled, undefined, 60_000, 'the scene loaded and Play enabled');
   const started = Date.now();
@@ -45,7 +45,8 @@ async function render(browser: Browser, query: string, samples: number): Promise
   await page.click('#play');
   await expect.poll(() => page.evaluate(() => window.lantern.state)).toBe('paused');
   const radiance = await page.evaluate(() => window.lantern.readRadiance());
-  return { page, errors, radiance, ms };
+  const firstFrameMs = (await page.evaluate(() => window.lantern.firstFrameMs)) ?? NaN;
+  return { page, errors, radiance, ms, firstFrameMs };
 }
 
 function channelMeans(r: Radiance): [number, number, number] {
@@ -86,7 +87,9 @@ describe('the page on WebGL2 (WebGPU off, SwiftShader)', () => {
     expect([gl.radiance.width, gl.radiance.height]).toEqual([gpu.radiance.width, gpu.radiance.height]);
     const a = channelMeans(gl.radiance), b = channelMeans(gpu.radiance);
     const median = blockMedianDifference(gl.radiance, gpu.radiance);
-    console.log(`Cornell ${gl.radiance.width}×${gl.radiance.height}: WebGL2 ${gl.radiance.samples} spp in ${gl.ms} ms, means ${a.map((v) => v.toFixed(4))}; WebGPU ${gpu.radiance.samples} spp in ${gpu.ms} ms, means ${b.map((v) => v.toFixed(4))}; block median ${(100 * median).toFixed(2)} %; compiles ${backend.compiles.map((c) => `${c.key} ${c.ms.toFixed(0)} ms`).join(', ')}`);
+    // After the first frame (compiles and the first draw), milliseconds a sample of the whole image.
+    const perSample = (r: { ms: number; firstFrameMs: number; radiance: Radiance }) => ((r.ms - r.firstFrameMs) / r.radiance.samples).toFixed(1);
+    console.log(`Cornell ${gl.radiance.width}×${gl.radiance.height}: WebGL2 ${gl.radiance.samples} spp in ${gl.ms} ms (first frame ${gl.firstFrameMs.toFixed(0)} ms, then ${perSample(gl)} ms/spp), means ${a.map((v) => v.toFixed(4))}; WebGPU ${gpu.radiance.samples} spp in ${gpu.ms} ms (first frame ${gpu.firstFrameMs.toFixed(0)} ms, then ${perSample(gpu)} ms/spp), means ${b.map((v) => v.toFixed(4))}; block median ${(100 * median).toFixed(2)} %; compiles ${backend.compiles.map((c) => `${c.key} ${c.ms.toFixed(0)} ms`).join(', ')}`);
     for (let c = 0; c < 3; c++) expect(Math.abs(a[c]! - b[c]!) / b[c]!, `channel ${c}`).toBeLessThan(0.01);
     expect(median).toBeLessThan(0.03);
     expect(gl.errors).toEqual([]);
