@@ -43,6 +43,7 @@ import { adapterKey, type FirstFrameRecord } from './first-frame-estimate.ts';
 import { initialPageState, type PageState } from './page-state.ts';
 import { droppedFiles, fetchFiles, FILE_OPTION, PageScenes, pickedFiles } from './page-scenes.ts';
 import { PageStatus } from './page-status.ts';
+import { chooseBackend, describeBackend } from './backend-choice.ts';
 import { FIRST_FRAME_KEY, HELP_SEEN_KEY, remember, storage } from './page-storage.ts';
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
@@ -102,8 +103,8 @@ function showViewer(v: Viewer): void {
   canvas.dataset.samples = String(s.samples);
   if (s.firstFrameMs !== undefined) canvas.dataset.firstFrameMs = s.firstFrameMs.toFixed(1);
   playButton.textContent = v.state === 'playing' ? 'Pause' : 'Play';
-  playButton.disabled = v.state === 'starting' || v.state === 'failed' || !navigator.gpu || !v.scene;
-  playButton.title = navigator.gpu ? '' : NO_WEBGPU;
+  playButton.disabled = v.state === 'starting' || v.state === 'failed' || !page.backendChosen || !v.scene;
+  playButton.title = page.backendChosen ? '' : CHOOSING_BACKEND;
   status.showStatus(v);
   page.panel?.showStats();
   status.showLegend(v.legend);
@@ -151,8 +152,8 @@ const actions = {
 
 // ---- before Play, help, the panel drawer, focus ----
 
-/** Why Play stays disabled without WebGPU (the canvas's overlay says how to get it). */
-const NO_WEBGPU = 'This browser has no WebGPU: see the notes over the image for how to enable it, or render with the lantern command';
+/** Why Play waits a moment at load: WebGPU is asked for an adapter, else WebGL2 renders (backend-choice.ts). */
+const CHOOSING_BACKEND = 'Asking the browser for WebGPU (WebGL2 renders without it)…';
 
 /** Asks the adapter about itself before Play, for the estimate (no device is made: no GPU work). */
 async function queryAdapter(): Promise<void> {
@@ -362,9 +363,15 @@ page.panel = new SettingsPanel($('panel'), viewer, actions);
 showViewer(viewer);
 
 if (problems.length > 0) showMessage(`Ignored in the link: ${problems.join('; ')}`, 'warning');
-if (!navigator.gpu) {
-  showMessage(describeError(new LanternError('this browser has no WebGPU', 'The notes over the image say which browsers have it and how to turn it on; the lantern command renders without a browser')), 'error');
-} else void queryAdapter();
+// WebGPU where it gives an adapter, else (or with backend=webgl2) WebGL2's fragment path tracer.
+void chooseBackend(location.search, navigator.gpu).then((choice) => {
+  viewer.backend = choice;
+  page.backendChosen = true;
+  if (choice.kind === 'webgpu') void queryAdapter();
+  else showMessage(`Rendering with ${describeBackend(choice)}. Real-time denoising, ReSTIR, the hybrid recipe, spectral mode and the debug views need WebGPU.`, 'info');
+  page.panel?.readFromViewer();
+  showViewer(viewer);
+});
 const scene = linked.scene;
 if (scene?.kind === 'files') {
   const urls = scene.urls;
@@ -408,6 +415,10 @@ declare global {
       readonly selection: { material: number; materialName: string; instanceIndex: number } | undefined;
       /** The tone-mapped estimate (RGBA8, without the selection outline) and the samples it holds, read at one moment. */
       readImage(): Promise<{ samples: number; width: number; height: number; rgba: number[] }>;
+      /** The progressive estimate's mean radiance (RGB floats a pixel, top row first) and its samples, read at one moment. */
+      readRadiance(): Promise<{ samples: number; width: number; height: number; rgb: number[] }>;
+      /** The backend rendering (backend-choice.ts), in the page's words, and on WebGL2 each program compiled with its milliseconds. */
+      readonly backend: { kind: string; description: string; compiles: { key: string; ms: number }[] };
       simulateDeviceLoss(): void;
       /** The frame budget: whether it is on, the scale and samples per frame it chose, and its one-line account (the status line's). */
       readonly budget: BudgetState;
@@ -469,6 +480,10 @@ window.lantern = {
     return s && { material: s.material, materialName: viewer.scene?.prepared.scene.materials[s.material]?.name ?? '', instanceIndex: s.instanceIndex };
   },
   readImage: () => viewer.readImage(),
+  readRadiance: () => viewer.readRadiance(),
+  get backend() {
+    return { kind: viewer.backend.kind, description: describeBackend(viewer.backend), compiles: [...viewer.webgl2.compiles] };
+  },
   simulateDeviceLoss: () => viewer.simulateDeviceLoss(),
   get budget() {
     return viewer.budget;

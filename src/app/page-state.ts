@@ -36,6 +36,8 @@ export interface PageState {
   fileLabel: string;
   /** What the adapter says about itself, asked before Play for the estimate (no device is made: no GPU work). */
   adapterFacts: AdapterFacts | undefined;
+  /** Whether the backend has been chosen (backend-choice.ts; the choice itself is Viewer.backend): Play waits for it. */
+  backendChosen: boolean;
   /** Whether the viewer has played (the controls show by themselves the first time ever). */
   played: boolean;
   /** Whether the first frame's wait has been kept for the next visit's estimate. */
@@ -59,6 +61,7 @@ export function initialPageState(): PageState {
     shownLabel: undefined,
     fileLabel: '',
     adapterFacts: undefined,
+    backendChosen: false,
     played: false,
     recorded: false,
     dragDepth: 0,

@@ -4,6 +4,7 @@
  * for, or the readings), the debug view's legend, and the overlay before Play with the expected wait.
  * main.ts makes one PageStatus over the page's elements; nothing runs at import.
  */
+import { describeBackend } from './backend-choice.ts';
 import { legendGradientCss, type DebugLegend } from '../renderer/debug-legend.ts';
 import { describeEstimate, estimateFirstFrame, frameMs, remainingCompileMs, roughDuration } from './first-frame-estimate.ts';
 import { frameRate } from './number-format.ts';
@@ -90,9 +91,10 @@ export class PageStatus {
     };
     let parts: (StatusPart | undefined)[];
     if (this.page.loading !== undefined) parts = compiling ? waitParts('loading: ', 'shaders') : [part(10, `loading: ${this.page.loading}…`)];
-    else if (!navigator.gpu) parts = [part(10, 'no WebGPU in this browser')];
     else if (v.state === 'idle') parts = [part(10, 'press Play to start')];
+    else if (v.webgl2.compiling) parts = [part(10, `compiling ${v.webgl2.compiling} (WebGL2; ANGLE takes seconds for it)…`, 'compiling (WebGL2)…')];
     else if (v.state === 'starting' || (v.awaitingFirstFrame && compiling)) parts = compiling ? waitParts('', 'shaders') : [part(10, 'starting the GPU…')];
+    else if (v.awaitingFirstFrame && v.backend.kind === 'webgl2') parts = [part(10, 'rendering the first frame (WebGL2: the driver compiles the path tracer at its first draw, seconds to minutes)…', 'rendering the first frame…')];
     else if (v.awaitingFirstFrame) parts = [part(10, 'rendering the first frame…')];
     else {
       const r = v.settings.render;
@@ -106,6 +108,8 @@ export class PageStatus {
         part(5, `${s.width}×${s.height}`),
         part(3, v.budgetText(true), v.budget.on ? `budget ${v.budget.scale.toFixed(2)}×` : undefined),
         part(2, s.adapter),
+        // Which backend renders, and why WebGL2 when it does (backend-choice.ts).
+        v.backend.kind === 'webgl2' ? part(7, describeBackend(v.backend), 'WebGL2') : undefined,
         document.hidden && v.state === 'playing' ? part(9, 'paused while the tab is hidden', 'paused (hidden)') : undefined,
       ];
     }
@@ -142,12 +146,12 @@ export class PageStatus {
     this.el.start.hidden = !before;
     if (!before) return;
     this.el.start.querySelector('.scene-name')!.textContent = this.page.loading !== undefined ? `Loading ${v.stats.sceneName || 'the scene'}…` : v.stats.sceneName;
-    const noGpu = !navigator.gpu;
+    // Without WebGPU, WebGL2 renders; the notes say how to get WebGPU for what needs it.
+    const noGpu = this.page.backendChosen && v.backend.kind === 'webgl2' && !navigator.gpu;
     this.el.start.querySelector<HTMLElement>('.no-webgpu')!.hidden = !noGpu;
-    this.el.startPlay.hidden = noGpu;
     this.el.startPlay.disabled = !v.scene || this.page.loading !== undefined;
     const estimate = estimateFirstFrame(this.page.adapterFacts, this.expectedPixels(v), firstFrameRecord());
-    this.el.start.querySelector('.estimate')!.textContent = noGpu ? '' : estimate ? describeEstimate(estimate) : '';
+    this.el.start.querySelector('.estimate')!.textContent = v.backend.kind === 'webgl2' ? describeBackend(v.backend) : estimate ? describeEstimate(estimate) : '';
   }
 }
 

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { isValidValue, mergeSettings } from '../renderer/settings-schema.ts';
 import { DEFAULT_SETTINGS, type RenderSettings, type RenderSettingsPatch } from '../renderer/settings.ts';
-import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, type PanelContext } from './panel-settings.ts';
+import { notApplicable, numberBindingLimits, PANEL_SETTINGS, settingTooltip, TOOLTIPS, webGpuOnly, type PanelContext } from './panel-settings.ts';
 
 /** The panel's own controls (not render settings), keyed as TOOLTIPS keys them. */
 const OWN_CONTROLS = ['samplesPerFrame', 'autoScale', 'scale', 'accumulate', 'animate', 'convergeWhenStill', 'fov', 'mode'];
@@ -106,5 +106,14 @@ describe('the panel', () => {
         expect(reason, id).toMatch(/^[A-Z].*\.$/);
       }
     }
+  });
+});
+
+describe('the panel on the WebGL2 backend', () => {
+  it('greys out what needs WebGPU with the reason, and leaves the progressive settings', () => {
+    const c: PanelContext = { render: DEFAULT_SETTINGS, hasTorch: false, canWalk: true, moving: false, tileGrid: false, webgl2: true };
+    for (const id of ['recipe', 'temporal', 'denoise', 'spectral', 'debugView', 'restir', 'hybrid.giScale', 'restirCandidates']) expect(notApplicable(id, c), id).toMatch(/^WebGPU only: .+ \(this page renders with WebGL2\)\.$/);
+    for (const id of ['maxBounces', 'toneMapper', 'exposureStops', 'samplesPerFrame', 'mode', 'lightSampling']) expect(webGpuOnly(id), id).toBeUndefined();
+    expect(notApplicable('recipe', { ...c, webgl2: false })).toBeUndefined();
   });
 });

@@ -132,6 +132,40 @@ export interface PanelContext {
   readonly moving: boolean;
   /** The scene has a walk map and a metre size, which tile culling needs. */
   readonly tileGrid: boolean;
+  /** The page renders with WebGL2's fragment path tracer (backend-choice.ts), which has the progressive recipe only. */
+  readonly webgl2?: boolean;
+}
+
+/**
+ * What the WebGL2 backend does not have, and why: controls of these ids (and every hybrid.* and
+ * restir* one) are greyed out on it.
+ */
+const WEBGPU_ONLY: Readonly<Record<string, string>> = {
+  recipe: 'the hybrid recipe rasterises with compute passes',
+  integrator: 'the real-time frame needs compute',
+  temporal: 'real-time denoising needs compute',
+  denoise: 'real-time denoising needs compute',
+  clampK: 'real-time denoising needs compute',
+  historyCap: 'real-time denoising needs compute',
+  denoiseView: 'real-time denoising needs compute',
+  convergeWhenStill: 'the real-time frame needs compute',
+  spectral: 'the fragment tracer is built for RGB',
+  sampler: 'the page carries the tracer built for Sobol sampling',
+  accel: 'the fragment tracer is built for the binary BVH',
+  tileCulling: 'scene swaps per tile are WebGPU uploads',
+  debugView: 'the debug views are compute passes',
+  debugLayout: 'the debug views are compute passes',
+  heatMax: 'the debug views are compute passes',
+  wireframeDepth: 'the debug views are compute passes',
+  wireframeLevel: 'the debug views are compute passes',
+  restir: 'ReSTIR needs storage buffers',
+  restirCandidates: 'ReSTIR needs storage buffers',
+};
+
+/** Why a control is WebGPU-only, or undefined where WebGL2 has it. */
+export function webGpuOnly(id: string): string | undefined {
+  const why = WEBGPU_ONLY[id] ?? (id.startsWith('hybrid.') ? WEBGPU_ONLY.recipe : id.startsWith('restir') ? WEBGPU_ONLY.restir : undefined);
+  return why && `WebGPU only: ${why} (this page renders with WebGL2).`;
 }
 
 const HEAT_VIEWS: readonly string[] = ['heat-nodes', 'heat-triangles'];
@@ -142,6 +176,8 @@ const HEAT_VIEWS: readonly string[] = ['heat-nodes', 'heat-triangles'];
  * would make the control apply.
  */
 export function notApplicable(id: string, c: PanelContext): string | undefined {
+  const onWebGl2 = c.webgl2 ? webGpuOnly(id) : undefined;
+  if (onWebGl2) return onWebGl2;
   const r = c.render;
   const hybrid = r.recipe === 'hybrid';
   const realTimePath = !hybrid && (r.temporal || r.denoise);

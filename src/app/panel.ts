@@ -227,6 +227,7 @@ export class SettingsPanel {
       canWalk: this.viewer.controller?.canWalk ?? false,
       moving: this.viewer.moving,
       tileGrid: !!scene?.walkMap && !!scene.metersPerUnit,
+      webgl2: this.viewer.backend.kind === 'webgl2',
     };
   }
 

@@ -44,6 +44,10 @@ import { imagePoint, MaterialEdits, overrideProblem } from './viewer-edits.ts';
 import { ViewerFrames } from './viewer-frames.ts';
 import { exrOf, imageOf, pngOf, viewParamsOf } from './viewer-output.ts';
 import { defaultFocus, NO_ENVIRONMENT, sceneController } from './viewer-scene.ts';
+import type { BackendChoice } from './backend-choice.ts';
+import { WebGl2Frames } from './viewer-webgl2.ts';
+import type { WebGl2Tracer } from '../webgl2/webgl2-tracer.ts';
+import { accumulationEstimate } from '../renderer/image-readback.ts';
 import { DEFAULT_VIEWER_SETTINGS, describeError, idleInput, type BudgetState, type FrameProgress, type SceneView, type ViewerInput, type ViewerSettings, type ViewerState, type ViewerStats } from './viewer-types.ts';
 
 // The viewer's types and defaults (viewer-types.ts), for the page's modules that import the Viewer.
@@ -109,6 +113,17 @@ export class Viewer {
   });
   /** Test hook (window.lantern.delayFrames): milliseconds each frame waits after its GPU work, a deterministically slow adapter. */
   frameDelayMs = 0;
+  /** The backend the page chose (backend-choice.ts), set before the first Play: WebGPU, or WebGL2 with its reason. */
+  backend: BackendChoice = { kind: 'webgpu' };
+  /** The WebGL2 backend's frames and tracer (backend 'webgl2' only). */
+  readonly webgl2 = new WebGl2Frames({
+    playing: () => this.state === 'playing',
+    advance: (tracer) => this.advanceWebGl2(tracer),
+    samplesPerFrame: () => this.settings.samplesPerFrame,
+    accumulate: () => this.settings.accumulate,
+    fail: (error) => this.fail(error),
+    changed: () => this.hooks.onChange(this),
+  });
 
   constructor(
     private readonly canvas: HTMLCanvasElement,
@@ -118,7 +133,10 @@ export class Viewer {
       // Hidden tabs get no frames; coming back resumes where it was, and the time hidden is not
       // played (a frame asked for before hiding runs only now: its time starts here).
       if (!document.hidden) this.input.restartClock(performance.now());
-      if (!document.hidden && this.state === 'playing') this.frames.loop();
+      if (!document.hidden && this.state === 'playing') {
+        if (this.backend.kind === 'webgl2') this.webgl2.loop();
+        else this.frames.loop();
+      }
       this.hooks.onChange(this);
     });
   }
@@ -154,6 +172,27 @@ export class Viewer {
 
   get stats(): ViewerStats {
     const packed = this.loaded?.prepared.packed.counts;
+    const tracer = this.webgl2.tracer;
+    if (this.backend.kind === 'webgl2') {
+      return {
+        samples: tracer?.sampleCount ?? 0,
+        display: 'progressive',
+        framesPerSecond: this.webgl2.framesPerSecond,
+        frameMs: this.webgl2.frameMs,
+        gpuPasses: [],
+        raysPerSecond: 0,
+        width: tracer?.width ?? 0,
+        height: tracer?.height ?? 0,
+        triangles: packed?.triangles ?? 0,
+        bvhNodes: this.loaded ? this.loaded.prepared.bvh.stats.nodeCount : 0,
+        sceneName: this.loaded?.prepared.scene.name ?? '',
+        adapter: tracer?.renderer.ctx.rendererName ?? '',
+        gpuResources: { buffers: 0, textures: 0, bytes: 0 },
+        kernel: 'generic',
+        firstFrameMs: this.webgl2.firstFrameMs,
+        budget: this.budgetText(),
+      };
+    }
     return {
       ...this.frames.readings(this.samplesPerFrame()),
       width: this.renderer?.width ?? 0,
@@ -175,7 +214,8 @@ export class Viewer {
    * the header wraps, and a longer line changes the canvas's size and aspect, and with it the image.
    */
   budgetText(short = false): string {
-    if (this.scaleFixed) return short ? '' : describeFixedScale(this.settings.scale);
+    // The WebGL2 frames keep the scale they were given: no budget measures them.
+    if (this.scaleFixed || this.backend.kind === 'webgl2') return short ? '' : describeFixedScale(this.settings.scale);
     if (!this.budgetValue) return 'budget: measuring the GPU at the first frames';
     return this.budgetValue.describe(!short);
   }
@@ -201,6 +241,7 @@ export class Viewer {
 
   /** Whether the viewer has been played and waits for its first frame on screen (the GPU starting, pipelines compiling, the frame). */
   get awaitingFirstFrame(): boolean {
+    if (this.backend.kind === 'webgl2') return this.webgl2.playedAt !== undefined && this.webgl2.firstFrameMs === undefined && (this.state === 'starting' || this.state === 'playing');
     return this.frames.playedAt !== undefined && this.frames.firstFrameMs === undefined && (this.state === 'starting' || this.state === 'playing');
   }
 
@@ -230,6 +271,16 @@ export class Viewer {
   /** Starts (acquiring the GPU on first use) or resumes. */
   async play(): Promise<void> {
     if (this.state === 'playing' || this.state === 'starting' || this.state === 'failed') return;
+    if (this.backend.kind === 'webgl2') {
+      if (!this.webgl2.tracer) {
+        this.webgl2.playedAt ??= performance.now();
+        this.setState('starting');
+        await this.startWebGl2();
+      }
+      this.setState('playing');
+      this.webgl2.loop();
+      return;
+    }
     if (!this.renderer) {
       this.frames.playedAt ??= performance.now();
       this.setState('starting');
@@ -262,6 +313,12 @@ export class Viewer {
     // Torch colour, intensity and range set for the last scene mean nothing in this one's units:
     // only on/off carries over.
     this.settings = { ...this.settings, render: { ...this.settings.render, torch: { enabled: this.settings.render.torch.enabled } } };
+    const tracer = this.webgl2.tracer;
+    if (tracer) {
+      tracer.updateSettings(this.settings.render);
+      await this.webgl2.compilingWhile('the WebGL2 path tracer', () => tracer.setScene(loaded.prepared));
+      tracer.setCamera(this.cameraOf(controller));
+    }
     if (this.renderer) {
       this.renderer.updateSettings(this.settings.render);
       await this.renderer.setScene(loaded.prepared);
@@ -445,6 +502,14 @@ export class Viewer {
     this.frames.legendAt = 0;
     const restart = ESTIMATE_SETTINGS.some((k) => render[k] !== before.render[k]) || recipeFor(render) !== recipeFor(before.render);
     if (restart) this.frames.realTimeFrames = 0;
+    const tracer = this.webgl2.tracer;
+    if (tracer) {
+      tracer.updateSettings(render);
+      if (next.scale !== before.scale || fixing) await this.resizeRenderer();
+      if (next.accumulate !== before.accumulate || next.samplesPerFrame !== before.samplesPerFrame) tracer.resetAccumulation();
+      this.hooks.onChange(this);
+      return;
+    }
     if (!this.renderer) return;
     this.renderer.updateSettings(render);
     if (restart) this.renderer.resetHistory();
@@ -471,6 +536,7 @@ export class Viewer {
     if (problem) throw new LanternError(problem);
     c.lens = lens;
     this.frames.realTimeFrames = 0;
+    this.webgl2.tracer?.setCamera(this.cameraOf(c));
     if (this.renderer) {
       this.renderer.setCamera(this.cameraOf(c));
       this.renderer.resetHistory();
@@ -497,11 +563,13 @@ export class Viewer {
     if (!this.controllerValue) return;
     this.controllerValue.vfovDegrees = degrees;
     this.renderer?.setCamera(this.cameraOf(this.controllerValue));
+    this.webgl2.tracer?.setCamera(this.cameraOf(this.controllerValue));
   }
 
   setMoveMode(mode: MoveMode): boolean {
     const ok = this.controllerValue?.setMode(mode) ?? false;
     if (ok && this.controllerValue) this.renderer?.setCamera(this.cameraOf(this.controllerValue));
+    if (ok && this.controllerValue) this.webgl2.tracer?.setCamera(this.cameraOf(this.controllerValue));
     return ok;
   }
 
@@ -522,8 +590,25 @@ export class Viewer {
 
   /** The tone-mapped image (RGBA8, what a screenshot holds) with the sample count at the moment it was read (the test hook). */
   async readImage(): Promise<{ samples: number; width: number; height: number; rgba: number[] }> {
+    const tracer = this.webgl2.tracer;
+    if (tracer) return { samples: tracer.sampleCount, width: tracer.width, height: tracer.height, rgba: Array.from(tracer.readImage()) };
     await this.frameComplete();
     return imageOf(this.requireRenderer(), this.stats.samples);
+  }
+
+  /**
+   * The progressive estimate's mean radiance (RGB floats a pixel, top row first) with its sample
+   * count, read at one moment: the test hook's way to compare the backends' images.
+   */
+  async readRadiance(): Promise<{ samples: number; width: number; height: number; rgb: number[] }> {
+    const tracer = this.webgl2.tracer;
+    if (tracer) {
+      const a = accumulationEstimate(tracer.readAccumulation(), tracer.width, tracer.height, tracer.sampleCount);
+      return { samples: a.samples, width: a.width, height: a.height, rgb: Array.from(a.radiance) };
+    }
+    await this.frameComplete();
+    const a = await this.requireRenderer().readAccumulation();
+    return { samples: a.samples, width: a.width, height: a.height, rgb: Array.from(a.radiance) };
   }
 
   /** The linear radiance (the estimate, or the denoised frame) as EXR bytes: float32 RGB, before exposure and tone mapping. */
@@ -558,6 +643,26 @@ export class Viewer {
     this.timer?.destroy();
     this.renderer?.destroy();
     this.gpu?.device.destroy();
+    this.webgl2.tracer?.destroy();
+  }
+
+  /** Opens WebGL2 (viewer-webgl2.ts) and fills it: the size, the scene (compiling the tracer), the camera. */
+  private async startWebGl2(): Promise<void> {
+    const tracer = await this.webgl2.open(this.canvas, this.settings.render);
+    await this.resizeRenderer();
+    const loaded = this.loaded;
+    if (loaded) await this.webgl2.compilingWhile('the WebGL2 path tracer', () => tracer.setScene(loaded.prepared));
+    if (this.controllerValue) tracer.setCamera(this.cameraOf(this.controllerValue));
+  }
+
+  /** Before a WebGL2 frame: camera input moved through the frame's time. The world does not play there (its updates are WebGPU uploads). */
+  private advanceWebGl2(tracer: WebGl2Tracer): void {
+    const c = this.controllerValue;
+    if (!c || !this.loaded) return;
+    const [lx, ly] = this.input.takeLook();
+    if (lx !== 0 || ly !== 0) c.look(lx, ly);
+    const played = playFrame(c, undefined, this.input.takeHeld(performance.now()), false);
+    if (played.moved || lx !== 0 || ly !== 0) tracer.setCamera(this.cameraOf(c));
   }
 
   /** Acquires the GPU (viewer-device.ts openDevice), then fills it: the budget for its adapter, the size, the scene, the camera, the selection. */
@@ -609,6 +714,14 @@ export class Viewer {
   }
 
   private async resizeRenderer(): Promise<void> {
+    const tracer = this.webgl2.tracer;
+    if (tracer) {
+      const w = Math.max(1, Math.round(this.canvas.width * this.settings.scale));
+      const h = Math.max(1, Math.round(this.canvas.height * this.settings.scale));
+      tracer.resize(w, h);
+      if (this.controllerValue) tracer.setCamera(this.cameraOf(this.controllerValue));
+      return;
+    }
     if (!this.renderer) return;
     // settings.scale says what renders (budget.scale, the panel's resolution); a link carries it only once the user fixes it.
     if (!this.scaleFixed && this.budgetValue) this.settings = { ...this.settings, scale: this.budgetValue.choice.scale };

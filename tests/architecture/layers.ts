@@ -34,10 +34,13 @@ export const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   gpu: GPU_BELOW,
   passes: [...GPU_BELOW, 'gpu'],
   renderer: [...GPU_BELOW, 'gpu', 'passes'],
+  // The WebGL2 backend (fragment path tracer, GLSL translated at build time): beside the renderer,
+  // reading its settings and prepared scenes; nothing below imports it.
+  webgl2: [...GPU_BELOW, 'gpu', 'passes', 'renderer'],
   // The farm's jobs, chunks and shards as data (pure); the CLI runs them (cli/farm).
   farm: [],
   // The two front ends: everything below the renderer and the pure libraries, never each other.
-  app: [...GPU_BELOW, 'gpu', 'passes', 'renderer', 'loaders', 'image', 'exporters', 'world'],
+  app: [...GPU_BELOW, 'gpu', 'passes', 'renderer', 'webgl2', 'loaders', 'image', 'exporters', 'world'],
   cli: [...GPU_BELOW, 'gpu', 'passes', 'renderer', 'loaders', 'image', 'exporters', 'world', 'farm'],
 };
 

@@ -28,6 +28,26 @@ export async function launchBrowser(): Promise<Browser> {
   return chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS, headless: true });
 }
 
+/**
+ * Chromium with WebGPU switched off (navigator.gpu undefined) and WebGL2 on SwiftShader through
+ * ANGLE: what a browser without WebGPU gives the page, for the WebGL2 backend's tests. SwiftShader's
+ * WebGL2 has EXT_color_buffer_float but not KHR_parallel_shader_compile (compiles block).
+ */
+export const CHROMIUM_WEBGL2_ARGS = [
+  '--disable-features=WebGPU',
+  '--use-angle=swiftshader',
+  '--enable-unsafe-swiftshader',
+  '--no-sandbox',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--no-first-run',
+];
+
+export async function launchWebGl2Browser(): Promise<Browser> {
+  return chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_WEBGL2_ARGS, headless: true });
+}
+
 export interface ServedPage {
   readonly url: string;
   /** Addresses of the offered files, relative to the page (files/<n>/<name>). */

@@ -237,7 +237,7 @@ describe('the page for a new user', () => {
     await page.close();
   });
 
-  it('without WebGPU says which browsers have it and how to enable it, points to the CLI, and keeps Play disabled', async () => {
+  it('without WebGPU says which browsers have it and how to enable it, points to the CLI, and offers Play on WebGL2', async () => {
     const page = await bed.browser.newPage({ viewport: { width: 640, height: 400 } });
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
@@ -255,9 +255,12 @@ describe('the page for a new user', () => {
     expect(text).toMatch(/Firefox/);
     expect(text).toMatch(/Safari/);
     expect(text).toMatch(/lantern -- render/);
-    expect(await page.locator('#play').isDisabled()).toBe(true);
-    expect(await page.locator('#play').getAttribute('title')).toMatch(/no WebGPU/);
-    expect(await page.locator('#start-play').isHidden()).toBe(true);
+    expect(text).toMatch(/renders with WebGL2/);
+    // The backend is chosen at load: WebGL2, and Play is offered for it.
+    await expect.poll(() => page.locator('#play').isDisabled()).toBe(false);
+    expect(await page.locator('#start-play').isVisible()).toBe(true);
+    expect(await page.locator('#start .estimate').textContent()).toBe('WebGL2 (fragment path tracer): WebGPU not available');
+    expect(await page.evaluate(() => window.lantern.backend.kind)).toBe('webgl2');
     expect(errors).toEqual([]);
     await page.close();
   });
